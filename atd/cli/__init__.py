@@ -1,0 +1,10 @@
+"""The `atd` command line: the front door, above every other layer.
+
+Each sub-command lives in its own module and registers itself on `main` (or on the
+`robots` group) when imported here.
+"""
+
+from atd.cli.app import main, robots
+from atd.cli import validate as _validate  # noqa: F401  (registers `atd validate`, `atd schema`)
+
+__all__ = ["main", "robots"]

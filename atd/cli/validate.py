@@ -1,0 +1,1 @@
+"""`atd validate` and `atd schema`."""

@@ -1,0 +1,212 @@
+"""The Abstract Task Description as data: a directed multigraph of abstract primitives
+joined by abstract events, plus what is known of the object and its surroundings.
+
+The models say what a well-formed task *is*; `atd.model.reader` turns a file into them
+and reports what is wrong with the file, `atd.model.validate` checks the graph.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Literal
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict, Field
+
+from atd.model.vocabulary import (
+    DEFAULT_SIZE,
+    EventType,
+    HandShape,
+    Movement,
+    ObjectClass,
+    StateType,
+)
+
+Vec3 = tuple[float, float, float]
+
+
+@dataclass(frozen=True)
+class Location:
+    """Where an element was written, so every diagnostic can point at it."""
+
+    file: str
+    line: int
+    col: int = 1
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}:{self.col}"
+
+
+class AtdElement(BaseModel):
+    """Base of every ATD element: immutable, and equal when it means the same thing.
+
+    The source location is carried along for diagnostics but is not part of the
+    meaning, so a task read back from the file it was written to equals the original.
+    """
+
+    model_config = ConfigDict(frozen=True, extra="forbid")
+
+    loc: Location | None = Field(default=None, exclude=True, repr=False)
+
+    def __eq__(self, other: object) -> bool:
+        return type(self) is type(other) and self.model_dump() == other.model_dump()  # type: ignore[union-attr]
+
+    def __hash__(self) -> int:
+        return hash(repr(self.model_dump()))
+
+
+class Pose(AtdElement):
+    """A rigid transform written as 16 numbers: a row-major 4x4 homogeneous matrix."""
+
+    matrix: tuple[float, ...] = Field(min_length=16, max_length=16)
+
+    @classmethod
+    def from_position(cls, xyz: Vec3) -> Pose:
+        m = np.eye(4)
+        m[:3, 3] = xyz
+        return cls(matrix=tuple(float(v) for v in m.ravel()))
+
+    def as_array(self) -> np.ndarray:
+        return np.asarray(self.matrix, dtype=float).reshape(4, 4)
+
+    @property
+    def position(self) -> Vec3:
+        m = self.matrix
+        return (m[3], m[7], m[11])
+
+
+class ObjectInfo(AtdElement):
+    """What the task knows of the object it manipulates (D5 Table 2.1)."""
+
+    pose: Pose | None = None
+    weight: float | None = None  # kg
+    inertia: tuple[float, ...] | None = None  # 3x3, row-major, kg m^2
+    shape: str | None = None  # mesh file, relative to the ATD
+    friction: float | None = None
+    object_class: ObjectClass | None = None
+    size: tuple[float, ...] | None = None  # per class: see vocabulary.SIZE_LAYOUT
+
+    @property
+    def effective_size(self) -> tuple[float, ...]:
+        """The size to simulate and plan with: the file's own, or the class default."""
+        if self.size is not None:
+            return self.size
+        return DEFAULT_SIZE[self.object_class or ObjectClass.BOX]
+
+    @property
+    def half_height(self) -> float:
+        """Distance from the object's centre to its resting face, along world z."""
+        size = self.effective_size
+        kind = self.object_class or ObjectClass.BOX
+        if kind is ObjectClass.BOX:
+            return size[2] / 2
+        if kind is ObjectClass.CYLINDER:
+            return size[1] / 2
+        return size[0]
+
+
+class Obstacle(AtdElement):
+    """Something to keep clear of: a position, and as our extension a box size."""
+
+    position: Vec3
+    size: Vec3 | None = None
+
+
+class Environment(AtdElement):
+    obstacles: tuple[Obstacle, ...] = ()
+
+
+class Waypoint(AtdElement):
+    """A point of a state's path. `position` and `point` give 3 numbers, `pose` 16."""
+
+    kind: Literal["position", "pose", "point"]
+    values: tuple[float, ...]
+
+    @property
+    def position(self) -> Vec3:
+        v = self.values
+        return (v[3], v[7], v[11]) if self.kind == "pose" else (v[0], v[1], v[2])
+
+
+class State(AtdElement):
+    """A node: an abstract primitive with its parameters, a sub-task or an end state."""
+
+    name: str
+    type: StateType
+    movement: Movement | None = None
+    hand_shape: HandShape | None = None
+    path: tuple[Waypoint, ...] = ()
+    preshape: HandShape | None = None  # grasp, Table 7.1
+    object_size: float | None = None  # grasp, metres
+    hand_opening: float | None = None  # release, 0 closed .. 1 open
+    file: str | None = None  # task: the sub-task's ATD, relative to this file
+    parameters: dict[str, str] = Field(default_factory=dict)  # primitive parameter overrides
+
+    @property
+    def target(self) -> Waypoint | None:
+        """The last waypoint is where an arm primitive ends."""
+        return self.path[-1] if self.path else None
+
+
+class Event(AtdElement):
+    type: EventType
+    seconds: float | None = None  # only for timeout
+
+
+class Transition(AtdElement):
+    """An edge, taken when all its events hold."""
+
+    origin: str
+    destination: str
+    events: tuple[Event, ...]
+
+    @property
+    def label(self) -> str:
+        return " & ".join(
+            f"timeout({e.seconds:g}s)" if e.type is EventType.TIMEOUT else e.type.value
+            for e in self.events
+        )
+
+
+class Task(AtdElement):
+    """A whole ATD: the `statemachine` element."""
+
+    initial: str | None = None
+    object: ObjectInfo | None = None
+    environment: Environment | None = None
+    states: tuple[State, ...] = ()
+    transitions: tuple[Transition, ...] = ()
+    source: str | None = Field(default=None, exclude=True, repr=False)
+
+    @property
+    def initial_state(self) -> str | None:
+        """`initial="..."` when given, otherwise the first state in document order."""
+        if self.initial is not None:
+            return self.initial
+        return self.states[0].name if self.states else None
+
+    @cached_property
+    def states_by_name(self) -> dict[str, State]:
+        return {s.name: s for s in self.states}
+
+    @cached_property
+    def transition_ids(self) -> tuple[str, ...]:
+        """Stable ids for edges: `origin->destination`, with `#n` among parallel edges."""
+        totals: dict[tuple[str, str], int] = {}
+        for t in self.transitions:
+            totals[(t.origin, t.destination)] = totals.get((t.origin, t.destination), 0) + 1
+        seen: dict[tuple[str, str], int] = {}
+        ids = []
+        for t in self.transitions:
+            key = (t.origin, t.destination)
+            seen[key] = seen.get(key, 0) + 1
+            base = f"{t.origin}->{t.destination}"
+            ids.append(base if totals[key] == 1 else f"{base}#{seen[key]}")
+        return tuple(ids)
+
+    def outgoing(self, name: str) -> list[tuple[str, Transition]]:
+        """The edges leaving a state, each with its id, in document order."""
+        return [
+            (tid, t) for tid, t in zip(self.transition_ids, self.transitions) if t.origin == name
+        ]
