@@ -1,0 +1,147 @@
+"""The robot interface on MuJoCo (the primary engine).
+
+Arm joints: position servos with velocity feed-forward and gravity compensation of the
+arm's own links (industrial controllers do the same). Hand joints: affine servos whose
+gains are switched between a position servo and a pure force.
+"""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from atd.sim.models import mjcf, pad_frame
+from atd.sim.scene import Scene
+from atd.sim.simrobot import SimRobot
+from factories.description import RobotDescription
+
+
+def _id(m: mujoco.MjModel, kind: mujoco.mjtObj, name: str) -> int:
+    return mujoco.mj_name2id(m, kind, name)
+
+
+class MujocoRobot(SimRobot):
+    engine = "mujoco"
+
+    def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0):
+        super().__init__(description, scene, seed)
+        d = description
+        self.xml = mjcf(d, scene)
+        self.model = m = mujoco.MjModel.from_xml_string(self.xml)
+        self.data = mujoco.MjData(m)
+        mujoco.mj_resetDataKeyframe(m, self.data, 0)
+        mujoco.mj_forward(m, self.data)
+
+        joints = list(d.arm_joints) + list(self.hand_joints)
+        jid = [_id(m, mujoco.mjtObj.mjOBJ_JOINT, n) for n in joints]
+        self._qadr = np.array([m.jnt_qposadr[j] for j in jid])
+        self._vadr = np.array([m.jnt_dofadr[j] for j in jid])
+        self._arm_vadr = self._vadr[: len(d.arm_joints)]
+        n_arm = len(d.arm_joints)
+        self._arm_act = np.arange(n_arm)
+        self._hand_act = np.arange(n_arm, n_arm + len(self.hand_joints))
+        # Velocity feed-forward through the position servo: kp (ref + kv/kp dq) - kp q - kv dq.
+        self._kv_over_kp = np.array([d.joints[n].servo.kv / d.joints[n].servo.kp for n in d.arm_joints])
+        self._hand_kp = np.array([d.joints[n].servo.kp for n in self.hand_joints])
+        self._hand_force = np.zeros(len(self.hand_joints), bool)
+
+        self._tcp_site = _id(m, mujoco.mjtObj.mjOBJ_SITE, d.tcp.name)
+        self._jacp = np.zeros((3, m.nv))
+        self._jacr = np.zeros((3, m.nv))
+        force_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "wrist_force")]
+        torque_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "wrist_torque")]
+        self._wrench_idx = np.r_[force_adr : force_adr + 3, torque_adr : torque_adr + 3]
+        self._touch_adr = np.array(
+            [m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, f"{p.name}_touch")] for p in d.hand.pads], int
+        )
+        self._pad_geom = np.array([_id(m, mujoco.mjtObj.mjOBJ_GEOM, p.name) for p in d.hand.pads], int)
+        self._range_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "range")] if d.range_sensor else -1
+        self._object_body = _id(m, mujoco.mjtObj.mjOBJ_BODY, "object")
+        self._object_qadr = m.jnt_qposadr[m.body_jntadr[self._object_body]] if self._object_body >= 0 else -1
+        self._force6 = np.zeros(6)
+        self._apply_arm(self._q_ref, self._dq_cmd)
+
+    # ---- engine part ------------------------------------------------------------------
+    def _apply_arm(self, q_ref: np.ndarray, dq_ff: np.ndarray) -> None:
+        self.data.ctrl[self._arm_act] = q_ref + self._kv_over_kp * dq_ff
+
+    def _apply_hand(self, force: np.ndarray, values: np.ndarray) -> None:
+        if (force != self._hand_force).any():
+            m = self.model
+            for i in np.flatnonzero(force != self._hand_force):
+                act = self._hand_act[i]
+                kp = 1.0 if force[i] else self._hand_kp[i]
+                m.actuator_gainprm[act, 0] = kp
+                m.actuator_biasprm[act, 1] = 0.0 if force[i] else -kp
+            self._hand_force = force.copy()
+        self.data.ctrl[self._hand_act] = values
+
+    def _advance(self) -> None:
+        # Sensors and site poses come from the start of the last physics step (1 ms old),
+        # as a real sensor's sample is; recomputing them would cost a third of a step.
+        mujoco.mj_step(self.model, self.data, nstep=self.substeps)
+
+    def _jacobian(self) -> np.ndarray:
+        mujoco.mj_jacSite(self.model, self.data, self._jacp, self._jacr, self._tcp_site)
+        return np.vstack([self._jacp[:, self._arm_vadr], self._jacr[:, self._arm_vadr]])
+
+    def _joint_state(self):
+        d = self.data
+        return d.qpos[self._qadr], d.qvel[self._vadr], d.qfrc_actuator[self._vadr]
+
+    def _tcp(self) -> np.ndarray:
+        pose = np.eye(4)
+        pose[:3, :3] = self.data.site_xmat[self._tcp_site].reshape(3, 3)
+        pose[:3, 3] = self.data.site_xpos[self._tcp_site]
+        return pose
+
+    def _wrench(self) -> np.ndarray:
+        # MuJoCo reports what the arm exerts on the hand; the interface wants the reverse.
+        return -self.data.sensordata[self._wrench_idx]
+
+    def _pad_contacts(self):
+        d = self.data
+        touching = d.sensordata[self._touch_adr] > 0
+        if not touching.any() or d.ncon == 0:
+            return [None] * len(self._pad_geom)
+        geoms = d.contact.geom
+        result = []
+        for pad, geom, touch in zip(self.description.hand.pads, self._pad_geom, touching):
+            hits = np.flatnonzero((geoms[:, 0] == geom) | (geoms[:, 1] == geom)) if touch else ()
+            if len(hits) == 0:
+                result.append(None)
+                continue
+            points = np.empty((len(hits), 2))
+            forces = np.empty(len(hits))
+            rot = d.geom_xmat[geom].reshape(3, 3)
+            centre = d.geom_xpos[geom]
+            for k, c in enumerate(hits):
+                mujoco.mj_contactForce(self.model, d, c, self._force6)
+                forces[k] = abs(self._force6[0])
+                points[k] = (rot.T @ (d.contact.pos[c] - centre))[:2]
+            result.append((points, forces))
+        return result
+
+    def _range(self) -> float:
+        distance = float(self.data.sensordata[self._range_adr])
+        low, high = self.description.range_limits
+        return distance if low <= distance <= high else np.inf
+
+    # ---- test hooks ------------------------------------------------------------------
+    def object_pose(self) -> np.ndarray:
+        pose = np.eye(4)
+        pose[:3, :3] = self.data.xmat[self._object_body].reshape(3, 3)
+        pose[:3, 3] = self.data.xpos[self._object_body]
+        return pose
+
+    def place_object(self, pose: np.ndarray) -> None:
+        quat = np.zeros(4)
+        mujoco.mju_mat2Quat(quat, np.ascontiguousarray(pose[:3, :3]).ravel())
+        a = self._object_qadr
+        self.data.qpos[a : a + 7] = np.concatenate([pose[:3, 3], quat])
+        dof = self.model.jnt_dofadr[self.model.body_jntadr[self._object_body]]
+        self.data.qvel[dof : dof + 6] = 0.0
+        mujoco.mj_forward(self.model, self.data)
+
+    def close(self) -> None:
+        """Nothing to release: the model and data are freed with the object."""

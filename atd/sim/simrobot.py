@@ -1,0 +1,278 @@
+"""What both engines share behind the robot interface: command bookkeeping (velocity to
+servo references, limits, hand modes), sensor models, and the fault hooks for tests.
+
+An engine subclass only moves numbers in and out of its physics: it applies servo
+references, advances the physics, and reports true joint states, the TCP pose, the
+wrist wrench in the interface's convention, contacts on pads and the IR range.
+"""
+
+from __future__ import annotations
+
+from abc import abstractmethod
+from typing import Sequence
+
+import numpy as np
+
+from atd.sim.scene import Scene
+from atd.sim.sensors import NoisySensor, TaxelGrid
+from factories.description import RobotDescription, SensorModel
+from primitives.robot import SENSORS, HandInfo, HandMode, PadInfo, Readings, Robot, RobotInfo
+
+#: How far (rad or m) an arm servo reference may run ahead of the joint: a blocked arm
+#: pushes with a bounded force instead of winding up without end.
+REFERENCE_LEASH = 0.05
+_MODE_CODE = {HandMode.POSITION: 0, HandMode.VELOCITY: 1, HandMode.FORCE: 2}
+
+
+def robot_info(d: RobotDescription) -> RobotInfo:
+    """The static facts a primitive needs, taken from the description."""
+    arm = [d.joints[n] for n in d.arm_joints]
+    hand_limits = [d.joints[dof.joints[0][0]] for dof in d.hand.dofs]
+    ratios = np.array([abs(dof.joints[0][1]) for dof in d.hand.dofs])
+    lower = np.array([min(j.lower / r, j.upper / r) for j, r in zip(hand_limits, ratios)])
+    upper = np.array([max(j.lower / r, j.upper / r) for j, r in zip(hand_limits, ratios)])
+    hand = HandInfo(
+        dofs=tuple(dof.name for dof in d.hand.dofs),
+        lower=lower,
+        upper=upper,
+        velocity_limit=np.array([j.velocity for j in hand_limits]) / ratios,
+        effort_limit=np.array([j.effort for j in hand_limits]) * ratios,
+        closing=np.array([dof.closing for dof in d.hand.dofs], float),
+        open=np.array([dof.open for dof in d.hand.dofs]),
+        closed=np.array([dof.closed for dof in d.hand.dofs]),
+        postures={name: np.array(v) for name, v in d.hand.postures.items()},
+        pads=tuple(PadInfo(p.name, p.taxels) for p in d.hand.pads),
+    )
+    return RobotInfo(
+        name=d.label,
+        control_period=d.control_period,
+        arm_joints=d.arm_joints,
+        arm_lower=np.array([j.lower for j in arm]),
+        arm_upper=np.array([j.upper for j in arm]),
+        arm_velocity_limit=np.array([j.velocity for j in arm]),
+        arm_effort_limit=np.array([j.effort for j in arm]),
+        home=np.array(d.home, float),
+        hand=hand,
+        has_range=d.range_sensor is not None,
+        range_limits=d.range_limits,
+    )
+
+
+class SimRobot(Robot):
+    """A simulated arm and hand; subclasses bind it to one physics engine."""
+
+    engine = ""
+
+    def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0):
+        d = description
+        self.description = d
+        self.scene = scene
+        self.info = robot_info(d)
+        self.hand_joints = tuple(n for n in d.joints if n not in d.arm_joints)
+        self.substeps = int(round(d.control_period / d.timestep))
+        n_arm = len(d.arm_joints)
+        # Hand DOF k is read from its first joint; its command spreads over all its joints.
+        self._dof_joint = np.array([n_arm + self.hand_joints.index(dof.joints[0][0]) for dof in d.hand.dofs])
+        self._dof_ratio = np.array([dof.joints[0][1] for dof in d.hand.dofs])
+        self._joint_dof = np.zeros(len(self.hand_joints), int)
+        self._joint_ratio = np.zeros(len(self.hand_joints))
+        for k, dof in enumerate(d.hand.dofs):
+            for joint, ratio in dof.joints:
+                i = self.hand_joints.index(joint)
+                self._joint_dof[i], self._joint_ratio[i] = k, ratio
+        hand_joint_specs = [d.joints[n] for n in self.hand_joints]
+        self._hand_joint_lower = np.array([min(j.lower, j.upper) for j in hand_joint_specs])
+        self._hand_joint_upper = np.array([max(j.lower, j.upper) for j in hand_joint_specs])
+
+        rng = np.random.default_rng(seed)
+        period = d.control_period
+        model = lambda key: d.sensors.get(key, SensorModel())  # noqa: E731
+        self._joint_sensor = NoisySensor(model("joints"), rng, n_arm + len(self.hand_joints), period)
+        self._wrench_sensor = NoisySensor(model("wrench"), rng, 6, period)
+        self._pad_sensor = NoisySensor(model("tactile"), rng, len(d.hand.pads), period)
+        self._range_sensor = NoisySensor(model("range"), rng, 1, period)
+        self._grids = [TaxelGrid(p) for p in d.hand.pads]
+        self._frozen: set[str] = set()
+        self._seq = dict.fromkeys(SENSORS, 0)
+
+        self._time = 0.0
+        self._q_ref = self.info.home.copy()
+        self._dq_cmd = np.zeros(n_arm)
+        self._hand_modes = np.zeros(len(d.hand.dofs), int)
+        self._hand_values = self.info.hand.open.copy()
+        self._hand_target = self.info.hand.open.copy()  # position reference, also for velocity mode
+        self._last: Readings | None = None
+
+    # ---- the robot interface -------------------------------------------------------
+    def read(self) -> Readings:
+        if self._last is None:
+            self._last = self._sample()
+        return self._last
+
+    def command_arm_velocity(self, dq: np.ndarray) -> None:
+        limit = self.info.arm_velocity_limit
+        self._dq_cmd = np.clip(np.asarray(dq, float), -limit, limit)
+
+    def command_hand(self, values: Sequence[float] | np.ndarray, modes: HandMode | Sequence[HandMode]) -> None:
+        n = len(self.info.hand.dofs)
+        values = np.asarray(values, float).reshape(n)
+        codes = np.full(n, _MODE_CODE[HandMode(modes)]) if isinstance(modes, str) else np.array([_MODE_CODE[HandMode(m)] for m in modes])
+        hand = self.info.hand
+        was_force = self._hand_modes == 2
+        self._hand_modes = codes
+        self._hand_values = values
+        position = codes == 0
+        self._hand_target[position] = np.clip(values[position], hand.lower[position], hand.upper[position])
+        # A DOF leaving force mode, or starting to move at a velocity, starts from where it is.
+        restart = (codes == 1) | (was_force & (codes != 2))
+        if restart.any():
+            self._hand_target[restart] = self.read().hand_q[restart]
+
+    def step(self) -> None:
+        info = self.info
+        period = info.control_period
+        q = self.read().arm_q
+        q_ref = np.clip(self._q_ref + self._dq_cmd * period, info.arm_lower, info.arm_upper)
+        self._q_ref = np.clip(q_ref, q - REFERENCE_LEASH, q + REFERENCE_LEASH)
+        self._apply_arm(self._q_ref, self._dq_cmd)
+
+        hand = info.hand
+        velocity = self._hand_modes == 1
+        if velocity.any():
+            rate = np.clip(self._hand_values, -hand.velocity_limit, hand.velocity_limit)
+            self._hand_target[velocity] = np.clip(
+                self._hand_target[velocity] + rate[velocity] * period, hand.lower[velocity], hand.upper[velocity]
+            )
+        dof = self._joint_dof
+        joint_force = self._hand_modes[dof] == 2
+        joint_values = np.where(joint_force, self._hand_values[dof], self._hand_target[dof]) * self._joint_ratio
+        self._apply_hand(joint_force, joint_values)
+
+        self._advance()
+        self._time += period
+        self._last = self._sample()
+
+    def jacobian(self) -> np.ndarray:
+        return self._jacobian()
+
+    # ---- fault hooks, for tests of the layers above (not part of the interface) ---------
+    def freeze(self, sensor: str) -> None:
+        """Stop a sensor stream updating, as a stuck driver would."""
+        if sensor not in SENSORS:
+            raise ValueError(f"unknown sensor '{sensor}'; one of {', '.join(SENSORS)}")
+        self._frozen.add(sensor)
+
+    def unfreeze(self, sensor: str) -> None:
+        self._frozen.discard(sensor)
+
+    @abstractmethod
+    def object_pose(self) -> np.ndarray:
+        """True 4x4 pose of the scene's object (for checks, not for primitives)."""
+
+    @abstractmethod
+    def place_object(self, pose: np.ndarray) -> None:
+        """Teleport the object, at rest (moving it away removes it from the task)."""
+
+    @abstractmethod
+    def close(self) -> None:
+        """Release the engine."""
+
+    # ---- the engine's part --------------------------------------------------------------
+    @abstractmethod
+    def _apply_arm(self, q_ref: np.ndarray, dq_ff: np.ndarray) -> None:
+        """Servo references for the arm joints, with velocity feed-forward."""
+
+    @abstractmethod
+    def _apply_hand(self, force: np.ndarray, values: np.ndarray) -> None:
+        """Per hand joint: a force (where `force`) or a position reference."""
+
+    @abstractmethod
+    def _advance(self) -> None:
+        """Run the physics for one control period."""
+
+    @abstractmethod
+    def _jacobian(self) -> np.ndarray:
+        """(6, n_arm) TCP Jacobian, world frame."""
+
+    @abstractmethod
+    def _joint_state(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """True (q, dq, effort) of arm joints then `hand_joints`."""
+
+    @abstractmethod
+    def _tcp(self) -> np.ndarray:
+        """True TCP pose."""
+
+    @abstractmethod
+    def _wrench(self) -> np.ndarray:
+        """True wrist wrench in the interface's convention."""
+
+    @abstractmethod
+    def _pad_contacts(self) -> list[tuple[np.ndarray, np.ndarray] | None]:
+        """Per pad: contact points (k, 2) in the pad frame and their normal forces (k,), or None."""
+
+    @abstractmethod
+    def _range(self) -> float:
+        """True distance along the IR sensor's axis, inf when nothing is in range."""
+
+    # ---- sampling --------------------------------------------------------------------------
+    def _sample(self) -> Readings:
+        prev = self._last
+        seq = self._seq
+        frozen = self._frozen
+        n = len(self.info.arm_joints)
+
+        if "joints" in frozen and prev is not None:
+            arm_q, arm_dq, arm_eff, hand_q, hand_dq, hand_eff = (
+                prev.arm_q, prev.arm_dq, prev.arm_effort, prev.hand_q, prev.hand_dq, prev.hand_effort
+            )
+        else:
+            q, dq, eff = self._joint_state()
+            q = self._joint_sensor(q)
+            arm_q, arm_dq, arm_eff = q[:n], dq[:n], eff[:n]
+            hand_q = q[self._dof_joint] / self._dof_ratio
+            hand_dq = dq[self._dof_joint] / self._dof_ratio
+            hand_eff = eff[self._dof_joint] * self._dof_ratio
+            seq["joints"] += 1
+
+        if "wrench" in frozen and prev is not None:
+            wrench = prev.wrench
+        else:
+            wrench = self._wrench_sensor(self._wrench())
+            seq["wrench"] += 1
+
+        if "tactile" in frozen and prev is not None:
+            taxels, pad_force = prev.taxels, prev.pad_force
+        else:
+            taxels, pad_force = self._tactile(hand_eff)
+            seq["tactile"] += 1
+
+        rng = None
+        if self.info.has_range:
+            if "range" in frozen and prev is not None:
+                rng = prev.range
+            else:
+                rng = float(self._range_sensor(np.array([self._range()]))[0])
+                seq["range"] += 1
+
+        return Readings(
+            time=self._time, arm_q=arm_q, arm_dq=arm_dq, arm_effort=arm_eff,
+            hand_q=hand_q, hand_dq=hand_dq, hand_effort=hand_eff, tcp=self._tcp(), wrench=wrench,
+            taxels=taxels, pad_force=pad_force, range=rng, seq=dict(seq),
+        )
+
+    def _tactile(self, hand_effort: np.ndarray) -> tuple[dict[str, np.ndarray | None], np.ndarray]:
+        pads = self.description.hand.pads
+        if self.description.hand.pad_force_from_effort:
+            # No tactile array: each finger reports the grip force its DOF measures.
+            squeeze = np.maximum(0.0, self.info.hand.closing * hand_effort)
+            force = np.array([squeeze[0]] * len(pads))
+            return dict.fromkeys((p.name for p in pads), None), self._pad_sensor(force)
+        images = {}
+        force = np.zeros(len(pads))
+        for i, (pad, grid, contact) in enumerate(zip(pads, self._grids, self._pad_contacts())):
+            if contact is None:
+                images[pad.name] = np.zeros(grid.shape)
+            else:
+                images[pad.name] = grid.image(*contact)
+                force[i] = contact[1].sum()
+        return images, self._pad_sensor(force)
