@@ -47,9 +47,9 @@ WAYPOINT_COUNT = {"position": 3, "pose": 16, "point": 3}
 RIGID_TOLERANCE = 1e-3
 
 
-def _elements(node: etree._Element) -> Iterable[etree._Element]:
+def _elements(node: etree._Element) -> list[etree._Element]:
     """Child elements, skipping comments."""
-    return (c for c in node if isinstance(c.tag, str))
+    return list(node.iterchildren(etree.Element))
 
 
 def _words(node: etree._Element) -> list[str]:
@@ -361,7 +361,7 @@ class TaskReader:
                 values = self._numbers(child, f"<{child.tag}>", WAYPOINT_COUNT[str(child.tag)])
             if values is not None:
                 points.append(Waypoint(kind=child.tag, values=values, loc=self.doc.loc(child)))
-        if not points and not list(_elements(node)):
+        if not points and not _elements(node):
             self._error("ATD105", f"empty <{node.tag}>", node, "add <position>x y z</position> waypoints, or remove it")
         return tuple(points) or None
 
@@ -373,7 +373,8 @@ class TaskReader:
             if not ends[end]:
                 self._error("ATD102", f"<transition> has no {end}", node, f'add {end}="state name"')
         events = []
-        for child in _elements(node):
+        children = _elements(node)
+        for child in children:
             try:
                 kind = EventType(child.tag)
             except ValueError:
@@ -390,7 +391,7 @@ class TaskReader:
                     self._error("ATD111", f"<{kind.value}/> takes no content", child,
                                 "only <timeout> holds a value (seconds)")
                 events.append(Event(type=kind, loc=self.doc.loc(child)))
-        if not list(_elements(node)):
+        if not children:
             self._error("ATD203", "transition has no event", node,
                         "add at least one event, e.g. <success/>; several events must all hold")
         if not (ends["origin"] and ends["destination"]) or not events:

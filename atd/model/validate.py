@@ -10,7 +10,7 @@ from pathlib import Path
 
 import networkx as nx
 
-from atd.model.diagnostics import Diagnostic, did_you_mean, error, warning
+from atd.model.diagnostics import Diagnostic, did_you_mean, error, has_errors, warning
 from atd.model.task import State, Task
 from atd.model.vocabulary import StateType
 
@@ -25,15 +25,19 @@ def _graph(task: Task) -> nx.MultiDiGraph:
     return graph
 
 
-def check_task(task: Task, unreadable_states: frozenset[str] = frozenset()) -> list[Diagnostic]:
-    """Every graph-level problem of one task, as diagnostics (sub-tasks not included)."""
+def check_task(task: Task, unreadable_states: frozenset[str] = frozenset(), read_cleanly: bool = True) -> list[Diagnostic]:
+    """Every graph-level problem of one task, as diagnostics (sub-tasks not included).
+
+    Reachability is judged only on a graph read without errors: with an edge dropped for
+    a typo, "unreachable" warnings would be noise that follows from the typo.
+    """
     found: list[Diagnostic] = []
     found += _names(task)
     found += _endpoints(task, unreadable_states)
     found += _ends(task)
     found += _ambiguity(task)
     found += _targets(task)
-    if not any(d.severity == "error" and d.code in ("ATD201", "ATD213") for d in found):
+    if read_cleanly and not has_errors(found):
         found += _reachability(task)
     return found
 
