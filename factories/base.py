@@ -296,9 +296,12 @@ def grasp_width(obj: ObjectInfo) -> float:
 
 
 def parallel_jaw_closest() -> dict[HandShape, HandShape]:
-    """A parallel jaw has one open and one grasp shape (D5 2.2.2): every preshape is 'open',
-    every grasp (and 'closed') is 'pinch_grasp'."""
-    closing = {HandShape.CLOSED, HandShape.POWER_GRASP, HandShape.CYLINDRICAL_GRASP,
-               HandShape.SPHERICAL_GRASP, HandShape.HOOK_GRASP}
-    return {s: HandShape.PINCH_GRASP if s in closing else HandShape.OPEN
-            for s in HandShape if s not in (HandShape.OPEN, HandShape.PINCH_GRASP)}
+    """A parallel jaw opens, closes, and has one grasp (D5 2.2.2): every preshape becomes
+    'open', every grasp 'pinch_grasp', and extended fingers the closed jaws."""
+    grasps = {HandShape.POWER_GRASP, HandShape.CYLINDRICAL_GRASP, HandShape.SPHERICAL_GRASP, HandShape.HOOK_GRASP}
+    closest = {s: HandShape.PINCH_GRASP if s in grasps else HandShape.OPEN for s in HandShape}
+    closest.update({HandShape.EXTEND: HandShape.CLOSED, HandShape.EXTEND_FINGER: HandShape.CLOSED})
+    return {s: made for s, made in closest.items() if s not in PARALLEL_JAW_SHAPES}
+
+
+PARALLEL_JAW_SHAPES = frozenset({HandShape.OPEN, HandShape.CLOSED, HandShape.PINCH_GRASP})

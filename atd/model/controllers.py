@@ -381,4 +381,5 @@ def check_params(where: str, specs: Mapping[str, ParamSpec], params: Mapping[str
 
 
 def defaults(specs: Mapping[str, ParamSpec]) -> dict[str, ParamValue]:
-    return {name: spec.default for name, spec in specs.items() if spec.default is not None}
+    """The default of every parameter that has one (empty point lists are left out)."""
+    return {name: spec.default for name, spec in specs.items() if spec.default not in (None, ())}

@@ -28,6 +28,7 @@ from factories.base import (
     any_of,
     arm_motion_flags,
     obstacle_params,
+    PARALLEL_JAW_SHAPES,
     parallel_jaw_closest,
 )
 
@@ -52,7 +53,7 @@ def _arm(side: str, y: float) -> Arm:
     return Arm(side, f"Baxter {side} 7-DOF arm with the light parallel gripper", _GRIPPER, sensors, workspace)
 
 
-_GRIPPER = Hand("Baxter light parallel gripper", "parallel jaw", frozenset({HandShape.OPEN, HandShape.PINCH_GRASP}),
+_GRIPPER = Hand("Baxter light parallel gripper", "parallel jaw", PARALLEL_JAW_SHAPES,
                 parallel_jaw_closest(), max_opening=0.08)
 
 

@@ -26,6 +26,7 @@ from factories.base import (
     all_of,
     any_of,
     arm_motion_flags,
+    PARALLEL_JAW_SHAPES,
     parallel_jaw_closest,
 )
 
@@ -39,7 +40,7 @@ _WORKSPACE = Workspace(
 
 _PADS = ("tactile_left", "tactile_right")
 _WRT102 = Hand("Weiss WRT-102 (Schunk PG70 based)", "parallel jaw",
-               frozenset({HandShape.OPEN, HandShape.PINCH_GRASP}), parallel_jaw_closest(), max_opening=0.068)
+               PARALLEL_JAW_SHAPES, parallel_jaw_closest(), max_opening=0.068)
 
 
 class MelfaFactory(Factory):
