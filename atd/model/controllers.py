@@ -50,8 +50,8 @@ class ParamSpec:
 
     A parameter with no default is either required (a factory must set it, e.g. a
     target) or optional (omitted when unset, e.g. PREGRASP_SIZE "default: none").
-    Only parameters with a default are tunable in a robot config file: the others
-    come from the task.
+    Only parameters with a default are tunable in a robot config file: the others,
+    and point lists (waypoints, obstacles), come from the task.
     """
 
     type: ParamType
@@ -64,7 +64,7 @@ class ParamSpec:
 
     @property
     def tunable(self) -> bool:
-        return self.default is not None
+        return self.default is not None and self.type is not ParamType.POINTS
 
 
 @dataclass(frozen=True)
@@ -113,8 +113,11 @@ _ARM_CONTROLLERS = (
         {
             "target": _TARGET,
             "waypoints": _p(PTS, "via points before the target (thesis WAYPOINTS)", ()),
+            "obstacles": _p(PTS, "centres of boxes to keep clear of (thesis 3.3.2 OBSTACLES)", ()),
+            "obstacle_sizes": _p(PTS, "full x y z size of each obstacle box, same order as obstacles", ()),
             "straight_line": _p(FLAG, "follow the straight Cartesian line (guarded motion, thesis 7.2)", False),
-            "keep_orientation": _p(FLAG, "hold the hand orientation (constrained motion, thesis 7.2)", True),
+            "keep_orientation": _p(FLAG, "hold the hand orientation all along (constrained motion, thesis 7.2); "
+                                  "otherwise only the final orientation is the starting one", False),
             "force_threshold": _p(NUM, "unexpected-contact force (thesis 3.3.2 FORCE_THRESHOLD)", 15.0, unit="N"),
             "max_speed": _p(NUM, "TCP speed limit (ours; the thesis' VELOCITY_LIMITS zeros mean 'none')", 0.15,
                             unit="m/s"),
@@ -378,4 +381,5 @@ def check_params(where: str, specs: Mapping[str, ParamSpec], params: Mapping[str
 
 
 def defaults(specs: Mapping[str, ParamSpec]) -> dict[str, ParamValue]:
-    return {name: spec.default for name, spec in specs.items() if spec.default is not None}
+    """The default of every parameter that has one (empty point lists are left out)."""
+    return {name: spec.default for name, spec in specs.items() if spec.default not in (None, ())}

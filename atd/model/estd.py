@@ -20,6 +20,7 @@ from atd.model.controllers import (
     HAND_CONTROLLERS,
     ParamValue,
     check_params,
+    format_value,
 )
 from atd.model.task import Environment, ObjectInfo
 from atd.model.vocabulary import EventType, StateType
@@ -157,3 +158,14 @@ def validate_vocabulary(estd: Estd) -> list[str]:
                         need = f"names sensors of kind {spec.reads.value}" if spec.reads else "reads no sensor"
                         problems.append(f"{where}: condition '{leaf.kind}' {need}")
     return problems
+
+
+def describe(node: Condition | ConditionGroup, thresholds: bool = False) -> str:
+    """One line for people: `all(arm_done, hand_done)`; with thresholds, leaves show their parameters."""
+    if isinstance(node, ConditionGroup):
+        return f"{node.op}({', '.join(describe(c, thresholds) for c in node.children)})"
+    if not thresholds or not (node.params or node.sensors):
+        return node.kind
+    params = [f"{k}={format_value(v)}" for k, v in sorted(node.params.items())]
+    sensors = [f"on={'+'.join(node.sensors)}"] if node.sensors else []
+    return f"{node.kind}[{', '.join(sensors + params)}]"

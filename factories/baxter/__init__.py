@@ -1,1 +1,1 @@
-"""baxter"""
+"""The baxter robot: its factory (factory.py) and its physical description (description.py)."""

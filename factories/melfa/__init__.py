@@ -1,1 +1,1 @@
-"""melfa"""
+"""The melfa robot: its factory (factory.py) and its physical description (description.py)."""
