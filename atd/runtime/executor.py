@@ -195,6 +195,7 @@ class Outcome:
 
 
 Progress = Callable[[str, float, float], None]  # (current state path, sim time, wall time)
+Observer = Callable[[float], None]  # called after every control step with the simulated time
 
 
 class Executor:
@@ -220,7 +221,8 @@ class Executor:
         if command.hand_values is not None:
             self.robot.command_hand(command.hand_values, command.hand_modes)
 
-    def run(self, progress: Progress | None = None, every: int = 200) -> Outcome:
+    def run(self, progress: Progress | None = None, every: int = 200,
+            observers: tuple[Observer, ...] = ()) -> Outcome:
         started = wallclock.perf_counter()
         dt = self.robot.info.control_period
         readings = self.robot.read()
@@ -238,6 +240,8 @@ class Executor:
                 break
             self.robot.step()
             ticks += 1
+            for observe in observers:
+                observe(readings.time + dt)
             if progress and ticks % every == 0:
                 progress(self.machine.innermost().visit.path, readings.time, wall)
         wall = wallclock.perf_counter() - started
