@@ -188,10 +188,11 @@ class Hand:
 @dataclass(frozen=True)
 class SensorModel:
     """How a sensor differs from the truth: white noise, constant bias, a first-order
-    low-pass filter (cutoff in Hz, None = unfiltered) and quantisation (0 = none)."""
+    low-pass filter (cutoff in Hz, None = unfiltered) and quantisation (0 = none).
+    Noise and bias are one number for every axis or one per axis (force then torque)."""
 
-    noise_std: float = 0.0
-    bias: float = 0.0
+    noise_std: float | tuple[float, ...] = 0.0
+    bias: float | tuple[float, ...] = 0.0
     cutoff_hz: float | None = None
     resolution: float = 0.0
 

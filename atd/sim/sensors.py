@@ -17,15 +17,15 @@ class NoisySensor:
 
     def __init__(self, model: SensorModel, rng: np.random.Generator, size: int, period: float):
         self._rng = rng
-        self._std = model.noise_std
+        self._std = np.asarray(model.noise_std, float) if np.any(model.noise_std) else None
         self._size = size
-        self._bias = model.bias * rng.standard_normal(size) if model.bias else None
+        self._bias = np.asarray(model.bias, float) * rng.standard_normal(size) if np.any(model.bias) else None
         self._alpha = 1.0 - np.exp(-2 * np.pi * model.cutoff_hz * period) if model.cutoff_hz else None
         self._state: np.ndarray | None = None
         self._resolution = model.resolution
 
     def __call__(self, true: np.ndarray) -> np.ndarray:
-        x = true + self._rng.normal(0.0, self._std, self._size) if self._std else true.copy()
+        x = true + self._std * self._rng.standard_normal(self._size) if self._std is not None else true.copy()
         if self._bias is not None:
             x += self._bias
         if self._alpha is not None:

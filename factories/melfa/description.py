@@ -105,7 +105,8 @@ def description(arm: str | None = None) -> RobotDescription:
         home=HOME,
         sensors={
             "joints": SensorModel(resolution=1e-5),
-            "wrench": SensorModel(noise_std=0.05, resolution=0.01),  # JR3-class: about 0.1 N resolution or better
+            # JR3-class: a few hundredths of a newton of noise (no datasheet found; robot-facts.md section 6).
+            "wrench": SensorModel(noise_std=(0.05, 0.05, 0.05, 0.002, 0.002, 0.002)),
             "tactile": SensorModel(noise_std=0.0, resolution=0.01),
         },
         extra_sites=(Site("attachment_site", "link6", Origin((0.03, 0, 0), (0, np.pi / 2, 0))),),

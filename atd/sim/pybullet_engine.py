@@ -1,0 +1,241 @@
+"""The robot interface on PyBullet, same scene, frames and signs as MuJoCo.
+
+Holding by friction needs (sim-notes.md): a small step, friction anchors, enough solver
+iterations. Bullet multiplies the friction of the two bodies in contact, so robot and
+table use 1 and the object's own coefficient (from the ATD) governs its contacts, as
+geom priority makes it do in MuJoCo. Hand joints follow their DOF with mimic targets;
+a force-mode joint gets its torque re-applied every physics step, as Bullet clears it.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+
+import numpy as np
+import pybullet as pb
+
+from atd.sim.models import matrix_to_quat, urdf
+from atd.sim.scene import TABLE_CENTRE, TABLE_HALF, Body, Scene
+from atd.sim.simrobot import SimRobot
+from factories.description import RobotDescription
+
+SOLVER_ITERATIONS = 100
+ARM_POSITION_GAIN = 0.3
+HAND_POSITION_GAIN = 0.3
+
+
+def _xyzw(m: np.ndarray) -> list[float]:
+    w, x, y, z = matrix_to_quat(m[:3, :3])
+    return [x, y, z, w]
+
+
+def _matrix(position, xyzw) -> np.ndarray:
+    m = np.eye(4)
+    m[:3, :3] = np.array(pb.getMatrixFromQuaternion(xyzw)).reshape(3, 3)
+    m[:3, 3] = position
+    return m
+
+
+class PybulletRobot(SimRobot):
+    engine = "pybullet"
+
+    def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0):
+        super().__init__(description, scene, seed)
+        d = description
+        self.client = c = pb.connect(pb.DIRECT)
+        pb.setTimeStep(d.timestep, physicsClientId=c)
+        pb.setGravity(0, 0, -9.81, physicsClientId=c)
+        pb.setPhysicsEngineParameter(numSolverIterations=SOLVER_ITERATIONS, physicsClientId=c)
+
+        self.urdf = urdf(d)
+        fd, path = tempfile.mkstemp(suffix=".urdf")
+        try:
+            with os.fdopen(fd, "w") as f:
+                f.write(self.urdf)
+            base = d.base.matrix()
+            self.body = pb.loadURDF(
+                path, base[:3, 3].tolist(), _xyzw(base), useFixedBase=True,
+                flags=pb.URDF_USE_INERTIA_FROM_FILE, physicsClientId=c,
+            )
+        finally:
+            os.unlink(path)
+
+        index = {}
+        for i in range(pb.getNumJoints(self.body, physicsClientId=c)):
+            info = pb.getJointInfo(self.body, i, physicsClientId=c)
+            index[info[1].decode()] = i
+            index["link:" + info[12].decode()] = i
+            pb.changeDynamics(self.body, i, lateralFriction=1.0, frictionAnchor=1, physicsClientId=c)
+        joints = list(d.arm_joints) + list(self.hand_joints)
+        self._joints = [index[n] for n in joints]
+        self._arm = self._joints[: len(d.arm_joints)]
+        self._hand = self._joints[len(d.arm_joints):]
+        movable = [i for i in range(pb.getNumJoints(self.body, physicsClientId=c))
+                   if pb.getJointInfo(self.body, i, physicsClientId=c)[2] != pb.JOINT_FIXED]
+        self._movable = movable
+        self._jac_columns = [movable.index(i) for i in self._arm]
+        self._hand_link = index["link:" + d.hand_root]
+        self._ft_joint = self._hand_link  # the hand root's weld to the flange
+        pb.enableJointForceTorqueSensor(self.body, self._ft_joint, True, physicsClientId=c)
+        hand_root = d.links_by_name[d.hand_root]
+        self._tcp_offset = d.tcp.origin.matrix()
+        self._hand_com = np.asarray(hand_root.centre_of_mass)
+        self._tcp_from_com = np.asarray(d.tcp.origin.xyz) - self._hand_com
+        self._range_offset = d.range_sensor.origin.matrix() if d.range_sensor else None
+        self._range_link = index["link:" + d.range_sensor.link] if d.range_sensor else -1
+        self._pad_links = [index["link:" + p.name] for p in d.hand.pads]
+        self._arm_effort = [d.joints[n].effort for n in d.arm_joints]
+        self._hand_effort = [d.joints[n].effort for n in self.hand_joints]
+        self._arm_gain = [ARM_POSITION_GAIN] * len(self._arm)
+        self._hand_gain = [HAND_POSITION_GAIN] * len(self._hand)
+        self._force_joints: list[int] = []
+        self._forces: list[float] = []
+        self._hand_force = np.zeros(len(self._hand), bool)
+        self._hand_values = np.zeros(len(self._hand))
+
+        home = dict(zip(d.arm_joints, d.home)) | d.hand_joint_targets(self.info.hand.open)
+        for name, i in zip(joints, self._joints):
+            pb.resetJointState(self.body, i, home.get(name, 0.0), physicsClientId=c)
+
+        self._build_scene(scene)
+        self._apply_arm(self._q_ref, self._dq_cmd)
+        self._apply_hand(np.zeros(len(self._hand), bool), np.array([home[n] for n in self.hand_joints]))
+
+    def _build_scene(self, scene: Scene) -> None:
+        c = self.client
+        table = pb.createCollisionShape(pb.GEOM_BOX, halfExtents=TABLE_HALF, physicsClientId=c)
+        self.table = pb.createMultiBody(0, table, basePosition=TABLE_CENTRE, physicsClientId=c)
+        pb.changeDynamics(self.table, -1, lateralFriction=1.0, frictionAnchor=1, physicsClientId=c)
+        for obstacle in scene.obstacles:
+            self._make(obstacle, fixed=True)
+        self.object = self._make(scene.object, fixed=False) if scene.object else -1
+
+    def _make(self, body: Body, fixed: bool) -> int:
+        c = self.client
+        half = body.half_extents
+        if body.kind == "box":
+            shape = pb.createCollisionShape(pb.GEOM_BOX, halfExtents=half, physicsClientId=c)
+        elif body.kind == "cylinder":
+            shape = pb.createCollisionShape(pb.GEOM_CYLINDER, radius=half[0], height=2 * half[1], physicsClientId=c)
+        elif body.kind == "sphere":
+            shape = pb.createCollisionShape(pb.GEOM_SPHERE, radius=half[0], physicsClientId=c)
+        else:
+            shape = pb.createCollisionShape(pb.GEOM_MESH, fileName=str(body.mesh), physicsClientId=c)
+        uid = pb.createMultiBody(
+            0 if fixed else body.mass, shape, basePosition=body.pose[:3, 3].tolist(),
+            baseOrientation=_xyzw(body.pose), physicsClientId=c,
+        )
+        pb.changeDynamics(uid, -1, lateralFriction=body.friction, frictionAnchor=1, physicsClientId=c)
+        if not fixed:
+            pb.changeDynamics(
+                uid, -1, spinningFriction=0.01 * body.friction, rollingFriction=0.0001,
+                localInertiaDiagonal=body.inertia(), physicsClientId=c,
+            )
+        return uid
+
+    # ---- engine part ------------------------------------------------------------------
+    def _apply_arm(self, q_ref: np.ndarray, dq_ff: np.ndarray) -> None:
+        pb.setJointMotorControlArray(
+            self.body, self._arm, pb.POSITION_CONTROL, targetPositions=q_ref.tolist(), targetVelocities=dq_ff.tolist(),
+            forces=self._arm_effort, positionGains=self._arm_gain, physicsClientId=self.client,
+        )
+
+    def _apply_hand(self, force: np.ndarray, values: np.ndarray) -> None:
+        c = self.client
+        servo = ~force
+        if servo.any():
+            idx = np.flatnonzero(servo)
+            pb.setJointMotorControlArray(
+                self.body, [self._hand[i] for i in idx], pb.POSITION_CONTROL,
+                targetPositions=values[idx].tolist(), forces=[self._hand_effort[i] for i in idx],
+                positionGains=[self._hand_gain[i] for i in idx], physicsClientId=c,
+            )
+        newly = force & ~self._hand_force
+        if newly.any():  # a motor left on would fight the torque: switch it off
+            idx = np.flatnonzero(newly)
+            pb.setJointMotorControlArray(
+                self.body, [self._hand[i] for i in idx], pb.VELOCITY_CONTROL, forces=[0.0] * len(idx), physicsClientId=c
+            )
+        self._hand_force = force.copy()
+        self._hand_values = values.copy()
+        limits = np.array(self._hand_effort)
+        self._force_joints = [self._hand[i] for i in np.flatnonzero(force)]
+        self._forces = np.clip(values[force], -limits[force], limits[force]).tolist()
+
+    def _advance(self) -> None:
+        c = self.client
+        for _ in range(self.substeps):
+            if self._force_joints:
+                pb.setJointMotorControlArray(
+                    self.body, self._force_joints, pb.TORQUE_CONTROL, forces=self._forces, physicsClientId=c
+                )
+            pb.stepSimulation(physicsClientId=c)
+
+    def _jacobian(self) -> np.ndarray:
+        q = [s[0] for s in pb.getJointStates(self.body, self._movable, physicsClientId=self.client)]
+        zeros = [0.0] * len(q)
+        lin, ang = pb.calculateJacobian(
+            self.body, self._hand_link, self._tcp_from_com.tolist(), q, zeros, zeros, physicsClientId=self.client
+        )
+        return np.vstack([np.asarray(lin)[:, self._jac_columns], np.asarray(ang)[:, self._jac_columns]])
+
+    def _joint_state(self):
+        states = pb.getJointStates(self.body, self._joints, physicsClientId=self.client)
+        q = np.array([s[0] for s in states])
+        dq = np.array([s[1] for s in states])
+        effort = np.array([s[3] for s in states])
+        if self._force_joints:  # Bullet reports no motor torque under torque control
+            n = len(self._arm)
+            effort[n:][self._hand_force] = self._forces
+        return q, dq, effort
+
+    def _link_pose(self, link: int) -> np.ndarray:
+        state = pb.getLinkState(self.body, link, computeForwardKinematics=True, physicsClientId=self.client)
+        return _matrix(state[4], state[5])
+
+    def _tcp(self) -> np.ndarray:
+        return self._link_pose(self._hand_link) @ self._tcp_offset
+
+    def _wrench(self) -> np.ndarray:
+        # Bullet reports what the arm exerts on the hand, about the hand root's centre of
+        # mass (Bullet's link frame); the interface wants the reverse, about the sensor.
+        reaction = pb.getJointState(self.body, self._ft_joint, physicsClientId=self.client)[2]
+        force = -np.array(reaction[:3])
+        torque = -np.array(reaction[3:]) + np.cross(self._hand_com, force)
+        return np.concatenate([force, torque])
+
+    def _pad_contacts(self):
+        c = self.client
+        contacts = pb.getContactPoints(bodyA=self.body, physicsClientId=c)
+        result = []
+        for link in self._pad_links:
+            hits = [p for p in contacts if p[3] == link]
+            if not hits:
+                result.append(None)
+                continue
+            pose = self._link_pose(link)
+            world = np.array([p[5] for p in hits])
+            local = (world - pose[:3, 3]) @ pose[:3, :3]
+            result.append((local[:, :2], np.array([p[9] for p in hits])))
+        return result
+
+    def _range(self) -> float:
+        pose = self._link_pose(self._range_link) @ self._range_offset
+        low, high = self.description.range_limits
+        start = pose[:3, 3] + pose[:3, 2] * low
+        hit = pb.rayTest(start.tolist(), (pose[:3, 3] + pose[:3, 2] * high).tolist(), physicsClientId=self.client)[0]
+        return low + hit[2] * (high - low) if hit[0] >= 0 else np.inf
+
+    # ---- test hooks ------------------------------------------------------------------
+    def object_pose(self) -> np.ndarray:
+        position, xyzw = pb.getBasePositionAndOrientation(self.object, physicsClientId=self.client)
+        return _matrix(position, xyzw)
+
+    def place_object(self, pose: np.ndarray) -> None:
+        pb.resetBasePositionAndOrientation(self.object, pose[:3, 3].tolist(), _xyzw(pose), physicsClientId=self.client)
+        pb.resetBaseVelocity(self.object, [0, 0, 0], [0, 0, 0], physicsClientId=self.client)
+
+    def close(self) -> None:
+        if pb.isConnected(self.client):
+            pb.disconnect(self.client)
