@@ -1,0 +1,134 @@
+"""Cartesian velocity building blocks shared by every arm controller.
+
+Thesis 3.3.2: a Cartesian velocity law v = n (x_target - x_current), kept inside velocity
+limits, resolved to joint velocities by the robot (damped least squares). Here too: the
+proportional law with its gains, orientation errors, the twist shaper that enforces
+velocity and acceleration limits, and the obstacle field.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Sequence
+
+import numpy as np
+
+GAIN = 4.0  # 1/s: linear P gain; 3 mm from the target the TCP still moves at 12 mm/s
+ROTATION_GAIN = 3.0  # 1/s
+MAX_ANGULAR_SPEED = 1.0  # rad/s
+ORIENTATION_TOLERANCE = math.radians(2.0)
+
+# Our smoothing, always on: a velocity step of 0.15 m/s in one 5 ms tick would shake the
+# hand with tens of newtons of inertial force, which the wrist sensor cannot tell from a
+# contact. 1 m/s^2 costs 0.15 s of ramp and keeps inertial forces near 1.5 N.
+LINEAR_ACCELERATION = 1.0  # m/s^2
+ANGULAR_ACCELERATION = 4.0  # rad/s^2
+
+WORLD_DOWN = np.array([0.0, 0.0, -1.0])
+
+
+def top_down(rotation: np.ndarray) -> np.ndarray:
+    """The top-down hand orientation nearest `rotation`: hand z = world -z, the hand's x
+    axis kept as it points now (projected on the table plane), so the grasp keeps its yaw."""
+    x = rotation[:, 0] - rotation[2, 0] * np.array([0.0, 0.0, 1.0])
+    if np.linalg.norm(x) < 1e-6:  # hand x points straight up or down: take hand y's yaw
+        x = np.cross(rotation[:, 1], WORLD_DOWN)
+    x /= np.linalg.norm(x)
+    z = WORLD_DOWN
+    return np.column_stack([x, np.cross(z, x), z])
+
+
+def rotation_error(goal: np.ndarray, current: np.ndarray) -> np.ndarray:
+    """World-frame rotation vector (axis * angle) that turns `current` into `goal`."""
+    r = goal @ current.T
+    cos = max(-1.0, min(1.0, (r[0, 0] + r[1, 1] + r[2, 2] - 1.0) / 2.0))
+    angle = math.acos(cos)
+    axis = np.array([r[2, 1] - r[1, 2], r[0, 2] - r[2, 0], r[1, 0] - r[0, 1]])
+    if angle < 1e-9:
+        return np.zeros(3)
+    if math.pi - angle < 1e-6:  # half a turn: the axis is the eigenvector of r for eigenvalue 1
+        axis = np.sqrt(np.maximum(0.0, (np.diag(r) + 1.0) / 2.0))
+        return axis * angle
+    return axis * (angle / (2.0 * math.sin(angle)))
+
+
+def clamp_norm(v: np.ndarray, limit: float) -> np.ndarray:
+    n = float(np.linalg.norm(v))
+    return v * (limit / n) if n > limit > 0.0 else v
+
+
+def orientation_twist(goal: np.ndarray, current: np.ndarray) -> tuple[np.ndarray, float]:
+    """Angular velocity towards `goal`, and the angle still to turn."""
+    err = rotation_error(goal, current)
+    angle = float(np.linalg.norm(err))
+    return clamp_norm(ROTATION_GAIN * err, MAX_ANGULAR_SPEED), angle
+
+
+class TwistShaper:
+    """Keeps a commanded twist within the velocity and acceleration limits (thesis 3.3.2
+    VELOCITY_LIMITS, ACCELERATION_LIMITS: per axis, zero = no limit), and always within
+    our gentle acceleration ramp."""
+
+    def __init__(self, velocity_limits: Sequence[float] = (0.0,) * 6,
+                 acceleration_limits: Sequence[float] = (0.0,) * 6) -> None:
+        vel = np.asarray(velocity_limits, float)
+        acc = np.asarray(acceleration_limits, float)
+        self._vel = np.where(vel > 0.0, vel, np.inf)
+        self._acc = np.where(acc > 0.0, acc, np.inf)
+        self.last = np.zeros(6)
+
+    def stop(self) -> np.ndarray:
+        """An immediate stop (a contact does not wait for a ramp)."""
+        self.last = np.zeros(6)
+        return self.last
+
+    def __call__(self, twist: np.ndarray, dt: float) -> np.ndarray:
+        wanted = np.clip(twist, -self._vel, self._vel)
+        change = np.clip(wanted - self.last, -self._acc * dt, self._acc * dt)
+        change[:3] = clamp_norm(change[:3], LINEAR_ACCELERATION * dt)
+        change[3:] = clamp_norm(change[3:], ANGULAR_ACCELERATION * dt)
+        self.last = self.last + change
+        return self.last
+
+
+class ObstacleField:
+    """A repulsive velocity field around box obstacles (thesis 3.3.2: a force field after
+    Khatib keeps the transport clear of OBSTACLES).
+
+    Each box is grown by `clearance` (the hand's reach around the TCP); within `reach`
+    of the grown box the TCP is pushed straight away from it, harder the closer it gets.
+    Near a box, the push replaces the part of the goal velocity that points into it, so
+    the TCP slides around the box instead of stopping against it.
+    """
+
+    def __init__(self, centres: Sequence[Sequence[float]], sizes: Sequence[Sequence[float]],
+                 clearance: float = 0.06, reach: float = 0.06) -> None:
+        centres = np.asarray(centres, float).reshape(-1, 3)
+        sizes = np.asarray(sizes, float).reshape(-1, 3) if len(sizes) else np.zeros_like(centres)
+        self._low = centres - sizes / 2 - clearance
+        self._high = centres + sizes / 2 + clearance
+        self._reach = reach
+
+    def __bool__(self) -> bool:
+        return len(self._low) > 0
+
+    def shape(self, position: np.ndarray, velocity: np.ndarray, speed: float) -> np.ndarray:
+        """`velocity` bent around every grown box near `position`."""
+        for low, high in zip(self._low, self._high):
+            closest = np.clip(position, low, high)
+            away = position - closest
+            distance = float(np.linalg.norm(away))
+            if distance >= self._reach:
+                continue
+            if distance < 1e-9:  # inside the grown box: leave by the nearest face
+                depth = np.minimum(position - low, high - position)
+                axis = int(np.argmin(depth))
+                away = np.zeros(3)
+                away[axis] = 1.0 if position[axis] - low[axis] > high[axis] - position[axis] else -1.0
+                distance = 0.0
+            normal = away / max(distance, 1e-9) if distance > 0.0 else away
+            into = float(velocity @ normal)
+            if into < 0.0:
+                velocity = velocity - into * normal
+            velocity = velocity + normal * speed * (1.0 - distance / self._reach)
+        return velocity
