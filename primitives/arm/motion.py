@@ -3,7 +3,7 @@
 Thesis 3.3.2: a Cartesian velocity law v = n (x_target - x_current), kept inside velocity
 limits, resolved to joint velocities by the robot (damped least squares). Here too: the
 proportional law with its gains, orientation errors, the twist shaper that enforces
-velocity and acceleration limits, and the obstacle field.
+velocity and acceleration limits, and the detour around known obstacles.
 """
 
 from __future__ import annotations
@@ -91,44 +91,58 @@ class TwistShaper:
         return self.last
 
 
-class ObstacleField:
-    """A repulsive velocity field around box obstacles (thesis 3.3.2: a force field after
-    Khatib keeps the transport clear of OBSTACLES).
+class ObstacleDetour:
+    """Routes around known box obstacles (thesis 3.3.2 OBSTACLES): up, across, down.
 
-    Each box is grown by `clearance` (the hand's reach around the TCP); within `reach`
-    of the grown box the TCP is pushed straight away from it, harder the closer it gets.
-    Near a box, the push replaces the part of the goal velocity that points into it, so
-    the TCP slides around the box instead of stopping against it.
+    Each box is grown by `clearance` (the hand's reach around the TCP). A straight leg
+    that would cross a grown box is replaced by a climb to just above the highest box in
+    the way, a level leg, and a descent onto the goal. Obstacles stand on the table, so
+    over the top is always a way round, and unlike a repulsive field this cannot stall
+    in a local minimum in front of a box. A box that holds the leg's start or goal (a
+    goal right beside an obstacle) cannot be kept clear of and is not routed around.
     """
 
     def __init__(self, centres: Sequence[Sequence[float]], sizes: Sequence[Sequence[float]],
-                 clearance: float = 0.06, reach: float = 0.06) -> None:
+                 clearance: float = 0.05) -> None:
         centres = np.asarray(centres, float).reshape(-1, 3)
         sizes = np.asarray(sizes, float).reshape(-1, 3) if len(sizes) else np.zeros_like(centres)
         self._low = centres - sizes / 2 - clearance
         self._high = centres + sizes / 2 + clearance
-        self._reach = reach
 
-    def __bool__(self) -> bool:
-        return len(self._low) > 0
+    def route(self, start: np.ndarray, goal: np.ndarray) -> list[np.ndarray]:
+        """The points to visit after `start`, ending with `goal`."""
+        blocking = self._crossed(start, goal)
+        if not blocking:
+            return [goal]
+        height = max(start[2], goal[2])
+        while blocking:  # raise the level leg until it crosses nothing
+            height = max(height, max(self._high[i][2] for i in blocking))
+            up = np.array([start[0], start[1], height])
+            over = np.array([goal[0], goal[1], height])
+            blocking = [i for i in self._crossed(up, over) if self._high[i][2] > height]
+        return [up, over, goal]
 
-    def shape(self, position: np.ndarray, velocity: np.ndarray, speed: float) -> np.ndarray:
-        """`velocity` bent around every grown box near `position`."""
-        for low, high in zip(self._low, self._high):
-            closest = np.clip(position, low, high)
-            away = position - closest
-            distance = float(np.linalg.norm(away))
-            if distance >= self._reach:
+    def _crossed(self, a: np.ndarray, b: np.ndarray) -> list[int]:
+        """Boxes the segment a-b passes through, other than those holding a or b (slab test)."""
+        crossed = []
+        d = b - a
+        for i, (low, high) in enumerate(zip(self._low, self._high)):
+            if _inside(a, low, high) or _inside(b, low, high):
                 continue
-            if distance < 1e-9:  # inside the grown box: leave by the nearest face
-                depth = np.minimum(position - low, high - position)
-                axis = int(np.argmin(depth))
-                away = np.zeros(3)
-                away[axis] = 1.0 if position[axis] - low[axis] > high[axis] - position[axis] else -1.0
-                distance = 0.0
-            normal = away / max(distance, 1e-9) if distance > 0.0 else away
-            into = float(velocity @ normal)
-            if into < 0.0:
-                velocity = velocity - into * normal
-            velocity = velocity + normal * speed * (1.0 - distance / self._reach)
-        return velocity
+            enter, leave = 0.0, 1.0
+            for k in range(3):
+                if abs(d[k]) < 1e-12:
+                    if not low[k] <= a[k] <= high[k]:
+                        break
+                    continue
+                t0, t1 = sorted(((low[k] - a[k]) / d[k], (high[k] - a[k]) / d[k]))
+                enter, leave = max(enter, t0), min(leave, t1)
+                if enter > leave:
+                    break
+            else:
+                crossed.append(i)
+        return crossed
+
+
+def _inside(p: np.ndarray, low: np.ndarray, high: np.ndarray) -> bool:
+    return bool(np.all(p >= low) and np.all(p <= high))

@@ -1,7 +1,7 @@
 """Moving the TCP: holding still, and the move/transport controller (thesis 3.3.2, Eq. 3.3).
 
 The same Cartesian controller serves every arm (thesis 7.3) and every ATD movement type
-(thesis 7.2): free (any path: straight at the goal, bent around known obstacles), guarded
+(thesis 7.2): free (any path: straight at the goal, or over the top of known obstacles), guarded
 (along the straight Cartesian line, ending on contact), constrained (the hand's
 orientation held all along, inside the velocity and acceleration limits).
 """
@@ -13,7 +13,7 @@ import numpy as np
 from primitives.arm.motion import (
     GAIN,
     ORIENTATION_TOLERANCE,
-    ObstacleField,
+    ObstacleDetour,
     TwistShaper,
     clamp_norm,
     orientation_twist,
@@ -67,7 +67,7 @@ class CartesianMove(Controller):
     def __init__(self, ctx: Context) -> None:
         super().__init__(ctx)
         p = self.params
-        self.points = [np.asarray(w, float) for w in p.get("waypoints", ())] + [np.asarray(p["target"], float)]
+        self.via = [np.asarray(w, float) for w in p.get("waypoints", ())] + [np.asarray(p["target"], float)]
         self.straight = bool(p["straight_line"])
         self.keep_orientation = bool(p["keep_orientation"])
         self.threshold = float(p["force_threshold"])
@@ -75,7 +75,7 @@ class CartesianMove(Controller):
         self.tolerance = float(p["tolerance"])
         self.contact = ContactWrench(float(p["filter_time"]))
         self.shaper = TwistShaper(p["velocity_limits"], p["acceleration_limits"])
-        self.field = ObstacleField(p.get("obstacles", ()), p.get("obstacle_sizes", ()))
+        self.detour = ObstacleDetour(p.get("obstacles", ()), p.get("obstacle_sizes", ()))
         self.rest: np.ndarray | None = None  # where to stay once finished; None = stand still
 
     def start(self, readings: Readings) -> None:
@@ -83,6 +83,9 @@ class CartesianMove(Controller):
         self.rotation = top_down(readings.tcp[:3, :3])
         self.leg = 0
         self.leg_start = readings.tcp[:3, 3].copy()
+        self.points = []
+        for point in self.via:
+            self.points += self.detour.route(self.points[-1] if self.points else self.leg_start, point)
         self._reset_progress(readings.time)
 
     def _reset_progress(self, now: float) -> None:
@@ -124,8 +127,6 @@ class CartesianMove(Controller):
             return self._stay(readings)
 
         v = self._line(position, goal) if self.straight else clamp_norm(GAIN * (goal - position), self.max_speed)
-        if self.field:
-            v = clamp_norm(self.field.shape(position, v, self.max_speed), self.max_speed)
         if self.keep_orientation and angle > ORIENTATION_TOLERANCE:
             v = v * (ORIENTATION_TOLERANCE / angle)  # turn back first, then move on
         return arm_output(self.shaper(np.concatenate([v, w]), dt))
