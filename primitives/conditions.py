@@ -108,11 +108,16 @@ class Fault(Condition):
 
 class SimulationUnstable(Condition):
     """The physics diverged: a non-finite reading, or joints, wrench or TCP far beyond
-    anything a working robot shows."""
+    anything a working robot shows. A joint that jumps further in one tick than its speed
+    allows counts too: an engine that meets NaNs may reset its state (MuJoCo does), and
+    the jump is all a sensor sees of that."""
 
     def __init__(self, ctx: Context, sensors: tuple[str, ...] = ()) -> None:
         super().__init__(ctx, sensors)
         self.max_speed = RUNAWAY_SPEED * ctx.info.arm_velocity_limit
+
+    def start(self, readings: Readings) -> None:
+        self.last_q = readings.arm_q
 
     def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
         r = readings
@@ -121,8 +126,9 @@ class SimulationUnstable(Condition):
             if not np.isfinite(values).all():
                 self.evidence = {"non_finite": name, name: values}
                 return True
-        if (np.abs(r.arm_dq) > self.max_speed).any():
-            self.evidence = {"runaway_joint_speed": r.arm_dq}
+        jump, self.last_q = np.abs(r.arm_q - self.last_q), r.arm_q
+        if (np.abs(r.arm_dq) > self.max_speed).any() or (jump > self.max_speed * dt).any():
+            self.evidence = {"runaway_joint_speed": r.arm_dq, "joint_jump": jump}
             return True
         force = float(np.linalg.norm(r.wrench[:3]))
         if force > RUNAWAY_FORCE or float(np.linalg.norm(r.tcp[:3, 3])) > RUNAWAY_DISTANCE:
