@@ -40,27 +40,31 @@ def top_down(rotation: np.ndarray) -> np.ndarray:
 
 def rotation_error(goal: np.ndarray, current: np.ndarray) -> np.ndarray:
     """World-frame rotation vector (axis * angle) that turns `current` into `goal`."""
-    r = goal @ current.T
-    cos = max(-1.0, min(1.0, (r[0, 0] + r[1, 1] + r[2, 2] - 1.0) / 2.0))
+    r = (goal @ current.T).tolist()  # plain floats: nine element reads cost less than on an array
+    cos = max(-1.0, min(1.0, (r[0][0] + r[1][1] + r[2][2] - 1.0) / 2.0))
     angle = math.acos(cos)
-    axis = np.array([r[2, 1] - r[1, 2], r[0, 2] - r[2, 0], r[1, 0] - r[0, 1]])
     if angle < 1e-9:
         return np.zeros(3)
     if math.pi - angle < 1e-6:  # half a turn: the axis is the eigenvector of r for eigenvalue 1
-        axis = np.sqrt(np.maximum(0.0, (np.diag(r) + 1.0) / 2.0))
-        return axis * angle
-    return axis * (angle / (2.0 * math.sin(angle)))
+        return np.sqrt(np.maximum(0.0, (np.array([r[0][0], r[1][1], r[2][2]]) + 1.0) / 2.0)) * angle
+    scale = angle / (2.0 * math.sin(angle))
+    return np.array([r[2][1] - r[1][2], r[0][2] - r[2][0], r[1][0] - r[0][1]]) * scale
+
+
+def norm(v: np.ndarray) -> float:
+    """Euclidean norm of a short vector (a fraction of np.linalg.norm's cost, every tick)."""
+    return math.sqrt(float(v @ v))
 
 
 def clamp_norm(v: np.ndarray, limit: float) -> np.ndarray:
-    n = float(np.linalg.norm(v))
+    n = norm(v)
     return v * (limit / n) if n > limit > 0.0 else v
 
 
 def orientation_twist(goal: np.ndarray, current: np.ndarray) -> tuple[np.ndarray, float]:
     """Angular velocity towards `goal`, and the angle still to turn."""
     err = rotation_error(goal, current)
-    angle = float(np.linalg.norm(err))
+    angle = norm(err)
     return clamp_norm(ROTATION_GAIN * err, MAX_ANGULAR_SPEED), angle
 
 
@@ -73,8 +77,8 @@ class TwistShaper:
                  acceleration_limits: Sequence[float] = (0.0,) * 6) -> None:
         vel = np.asarray(velocity_limits, float)
         acc = np.asarray(acceleration_limits, float)
-        self._vel = np.where(vel > 0.0, vel, np.inf)
-        self._acc = np.where(acc > 0.0, acc, np.inf)
+        self._vel = np.where(vel > 0.0, vel, np.inf) if (vel > 0.0).any() else None
+        self._acc = np.where(acc > 0.0, acc, np.inf) if (acc > 0.0).any() else None
         self.last = np.zeros(6)
 
     def stop(self) -> np.ndarray:
@@ -83,8 +87,11 @@ class TwistShaper:
         return self.last
 
     def __call__(self, twist: np.ndarray, dt: float) -> np.ndarray:
-        wanted = np.clip(twist, -self._vel, self._vel)
-        change = np.clip(wanted - self.last, -self._acc * dt, self._acc * dt)
+        wanted = twist if self._vel is None else np.minimum(np.maximum(twist, -self._vel), self._vel)
+        change = wanted - self.last
+        if self._acc is not None:
+            step = self._acc * dt
+            change = np.minimum(np.maximum(change, -step), step)
         change[:3] = clamp_norm(change[:3], LINEAR_ACCELERATION * dt)
         change[3:] = clamp_norm(change[3:], ANGULAR_ACCELERATION * dt)
         self.last = self.last + change

@@ -16,6 +16,7 @@ from primitives.arm.motion import (
     ObstacleDetour,
     TwistShaper,
     clamp_norm,
+    norm,
     orientation_twist,
     top_down,
 )
@@ -106,12 +107,12 @@ class CartesianMove(Controller):
 
         position = readings.tcp[:3, 3]
         goal = self.points[self.leg]
-        distance = float(np.linalg.norm(goal - position))
+        distance = norm(goal - position)
         if self.leg < len(self.points) - 1 and distance < VIA_TOLERANCE:
             self.leg_start, self.leg = goal, self.leg + 1
             self._reset_progress(readings.time)
             goal = self.points[self.leg]
-            distance = float(np.linalg.norm(goal - position))
+            distance = norm(goal - position)
 
         w, angle = orientation_twist(self.rotation, readings.tcp[:3, :3])
         if self.leg == len(self.points) - 1 and distance < self.tolerance and angle < ORIENTATION_TOLERANCE:
@@ -134,7 +135,7 @@ class CartesianMove(Controller):
     def _line(self, position: np.ndarray, goal: np.ndarray) -> np.ndarray:
         """Along the straight line from the leg's start to its goal, pulled back onto it."""
         leg = goal - self.leg_start
-        length = float(np.linalg.norm(leg))
+        length = norm(leg)
         if length < 1e-6:
             return clamp_norm(GAIN * (goal - position), self.max_speed)
         u = leg / length
