@@ -6,5 +6,6 @@ Each sub-command lives in its own module and registers itself on `main` (or on t
 
 from atd.cli.app import main, robots
 from atd.cli import validate as _validate  # noqa: F401  (registers `atd validate`, `atd schema`)
+from atd.cli import robot_test as _robot_test  # noqa: F401  (registers `atd robots test`)
 
 __all__ = ["main", "robots"]
