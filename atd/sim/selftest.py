@@ -23,6 +23,9 @@ LIFT = 0.10  # m
 HOLD_TIME = 3.0  # s
 SLIP_TOLERANCE = 0.01  # m
 WEIGHT_TOLERANCE = 0.10  # relative
+# Peak joint speed over the limit while every joint runs to its limits at once: the
+# command is clamped to the limit, the servos overshoot it briefly under the coupling.
+SPEED_TOLERANCE = 0.25  # relative
 GRIP_FRACTION = 0.4  # of each closing DOF's effort limit
 BOX = 0.05  # m
 
@@ -77,6 +80,7 @@ def check_limits(d: RobotDescription, engine: str, seed: int) -> Check:
     hand = info.hand
     period = info.control_period
     problems = []
+    peak = 0.0
     try:
         for sign in (1.0, -1.0):
             goal = info.arm_upper if sign > 0 else info.arm_lower
@@ -84,7 +88,7 @@ def check_limits(d: RobotDescription, engine: str, seed: int) -> Check:
             robot.command_arm_velocity(sign * 2 * info.arm_velocity_limit)
             robot.command_hand(hand_goal, HandMode.POSITION)
             span = float(np.max((info.arm_upper - info.arm_lower) / info.arm_velocity_limit))
-            fastest = np.zeros(info.arm_dof)
+            fastest = np.zeros(info.arm_dof)  # this direction's peak speeds
             beyond = np.zeros(info.arm_dof)
             for _ in range(int((span + 1.0) / period)):
                 robot.step()
@@ -92,12 +96,13 @@ def check_limits(d: RobotDescription, engine: str, seed: int) -> Check:
                 fastest = np.maximum(fastest, np.abs(r.arm_dq))
                 beyond = np.maximum(beyond, np.maximum(r.arm_q - info.arm_upper, info.arm_lower - r.arm_q))
             r = robot.read()
+            peak = max(peak, float(np.max(fastest / info.arm_velocity_limit)))
             for i, name in enumerate(info.arm_joints):
                 if abs(r.arm_q[i] - goal[i]) > 0.02:
                     problems.append(f"{name} stopped {r.arm_q[i] - goal[i]:+.3f} from its limit")
                 if beyond[i] > 0.01:
                     problems.append(f"{name} passed its limit by {beyond[i]:.3f}")
-                if fastest[i] > 1.1 * info.arm_velocity_limit[i]:
+                if fastest[i] > (1 + SPEED_TOLERANCE) * info.arm_velocity_limit[i]:
                     problems.append(f"{name} ran at {fastest[i]:.2f} > {info.arm_velocity_limit[i]:.2f}")
             for i, name in enumerate(hand.dofs):
                 tolerance = 0.02 * (hand.upper[i] - hand.lower[i])
@@ -106,7 +111,7 @@ def check_limits(d: RobotDescription, engine: str, seed: int) -> Check:
     finally:
         robot.close()
     joints = info.arm_dof + len(hand.dofs)
-    return Check("joint limits", not problems, "; ".join(problems) or f"{joints} joints reach both limits, within speed limits")
+    return Check("joint limits", not problems, "; ".join(problems) or f"{joints} joints reach both limits; peak speed {peak:.0%} of the limit")
 
 
 def check_at_rest(d: RobotDescription, engine: str, seed: int) -> tuple[Check, Check, Check]:
