@@ -30,7 +30,7 @@ from atd.sim.simrobot import SimRobot
 from factories.description import RobotDescription
 
 SOLVER_ITERATIONS = 100
-ARM_POSITION_GAIN = 0.3
+ARM_POSITION_GAIN = 0.1
 HAND_POSITION_GAIN = 0.3
 
 
@@ -102,7 +102,6 @@ class PybulletRobot(SimRobot):
         self._force_joints: list[int] = []
         self._forces: list[float] = []
         self._hand_force = np.zeros(len(self._hand), bool)
-        self._hand_values = np.zeros(len(self._hand))
 
         home = dict(zip(d.arm_joints, d.home)) | d.hand_joint_targets(self.info.hand.open)
         for name, i in zip(joints, self._joints):
@@ -173,7 +172,6 @@ class PybulletRobot(SimRobot):
                 self.body, [self._hand[i] for i in idx], pb.VELOCITY_CONTROL, forces=[0.0] * len(idx), physicsClientId=c
             )
         self._hand_force = force.copy()
-        self._hand_values = values.copy()
         limits = np.array(self._hand_effort)
         self._force_joints = [self._hand[i] for i in np.flatnonzero(force)]
         self._forces = np.clip(values[force], -limits[force], limits[force]).tolist()

@@ -146,7 +146,10 @@ def check_at_rest(d: RobotDescription, engine: str, seed: int) -> tuple[Check, C
 
 
 def check_grasp(d: RobotDescription, engine: str, seed: int, record: Recorder | None = None) -> tuple[Check, Check]:
-    """Scripted, non-reactive: preshape, descend top-down, close with a fixed force, lift 10 cm, hold 3 s."""
+    """Scripted, non-reactive: preshape, descend top-down, close with a fixed force, lift 10 cm, hold 3 s.
+
+    The hand makes its `test_grasp` shape; every pad on a finger that shape moves must feel the box.
+    """
     robot = make_robot(d, box_scene(BOX), engine, seed)
     info = robot.info
     hand = info.hand
@@ -159,18 +162,21 @@ def check_grasp(d: RobotDescription, engine: str, seed: int, record: Recorder | 
     try:
         box = robot.object_pose()[:3, 3]
         orientation = d.tcp_pose(info.home, hand.open)[:3, :3]
-        preshape = hand.postures.get("power_grasp_preshape", hand.open)
+        shape = d.hand.test_grasp
+        preshape, grasp = hand.postures[f"{shape}_preshape"], hand.postures[shape]
         robot.command_hand(preshape, HandMode.POSITION)
         _move_tcp(robot, _pose(orientation, box + (0, 0, LIFT)), tick)
         _move_tcp(robot, _pose(orientation, box), tick, speed=0.05)
-        closing = hand.closing != 0
-        grip = np.where(closing, hand.closing * GRIP_FRACTION * hand.effort_limit, preshape)
-        robot.command_hand(grip, [HandMode.FORCE if c else HandMode.POSITION for c in closing])
+        # The DOFs the grasp posture moves push with a fixed effort; the others hold.
+        moving = (hand.closing != 0) & ~np.isclose(grasp, preshape)
+        command = np.where(moving, hand.closing * GRIP_FRACTION * hand.effort_limit, preshape)
+        robot.command_hand(command, [HandMode.FORCE if m else HandMode.POSITION for m in moving])
         for _ in range(int(1.0 / info.control_period)):
             tick()
         r = robot.read()
         pads = r.pad_force.copy()
         taxel_ok = all(img is None or img.sum() > 0 for img, f in zip(r.taxels.values(), pads) if f > 0)
+        touching = _pads_moved(d, [dof for dof, m in zip(d.hand.dofs, moving) if m])
         start = robot.object_pose()[2, 3]
         _move_tcp(robot, _pose(orientation, box + (0, 0, LIFT)), tick, speed=0.1)
         lifted = robot.object_pose()[2, 3] - start
@@ -191,10 +197,24 @@ def check_grasp(d: RobotDescription, engine: str, seed: int, record: Recorder | 
         ),
         Check(
             "tactile non-zero in the grasp",
-            bool((pads > 0).all()) and taxel_ok,
-            ", ".join(f"{n} {f:.1f} N" for n, f in zip(names, pads)),
+            bool((pads[touching] > 0).all()) and taxel_ok,
+            f"{d.hand.test_grasp}: " + ", ".join(f"{n} {f:.1f} N" for n, f in zip(names, pads)),
         ),
     )
+
+
+def _pads_moved(d: RobotDescription, dofs) -> np.ndarray:
+    """Which pads ride on a finger that one of `dofs` moves (those must feel the object)."""
+    driven = {joint for dof in dofs for joint, _ in dof.joints}
+    links = d.links_by_name
+    moved = []
+    for pad in d.hand.pads:
+        link, hit = links[pad.link], False
+        while link is not None and not hit:
+            hit = link.joint is not None and link.joint.name in driven
+            link = links.get(link.parent) if link.parent else None
+        moved.append(hit)
+    return np.array(moved)
 
 
 def _pose(rotation: np.ndarray, position) -> np.ndarray:

@@ -79,10 +79,12 @@ class SimRobot(Robot):
         self._dof_ratio = np.array([dof.joints[0][1] for dof in d.hand.dofs])
         self._joint_dof = np.zeros(len(self.hand_joints), int)
         self._joint_ratio = np.zeros(len(self.hand_joints))
+        self._joint_follows = np.zeros(len(self.hand_joints), bool)  # geared to its DOF's first joint
         for k, dof in enumerate(d.hand.dofs):
-            for joint, ratio in dof.joints:
+            for n, (joint, ratio) in enumerate(dof.joints):
                 i = self.hand_joints.index(joint)
                 self._joint_dof[i], self._joint_ratio[i] = k, ratio
+                self._joint_follows[i] = dof.geared and n > 0
         hand_joint_specs = [d.joints[n] for n in self.hand_joints]
         self._hand_joint_lower = np.array([min(j.lower, j.upper) for j in hand_joint_specs])
         self._hand_joint_upper = np.array([max(j.lower, j.upper) for j in hand_joint_specs])
@@ -154,8 +156,12 @@ class SimRobot(Robot):
                 self._hand_target[velocity] + rate[velocity] * period, hand.lower[velocity], hand.upper[velocity]
             )
         dof = self._joint_dof
-        joint_force = self._hand_modes[dof] == 2
-        joint_values = np.where(joint_force, self._hand_values[dof], self._hand_target[dof]) * self._joint_ratio
+        force_dof = self._hand_modes[dof] == 2
+        # Under a force command a geared joint follows where its DOF's motor joint is.
+        follows = force_dof & self._joint_follows
+        joint_force = force_dof & ~follows
+        reference = np.where(follows, self.read().hand_q[dof], self._hand_target[dof])
+        joint_values = np.where(joint_force, self._hand_values[dof], reference) * self._joint_ratio
         self._apply_hand(joint_force, joint_values)
 
         self._advance()
