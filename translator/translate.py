@@ -60,9 +60,10 @@ def _loc_text(loc: Location | None) -> str | None:
 
 
 def _stamped(node: Condition | ConditionGroup, atd: str) -> Condition | ConditionGroup:
+    """The same tree with every leaf carrying `atd` (already validated, so not validated again)."""
     if isinstance(node, Condition):
-        return node.model_copy(update={"atd": atd})
-    return node.model_copy(update={"children": tuple(_stamped(c, atd) for c in node.children)})
+        return Condition.model_construct(kind=node.kind, sensors=node.sensors, params=node.params, atd=atd)
+    return ConditionGroup.model_construct(op=node.op, children=tuple(_stamped(c, atd) for c in node.children))
 
 
 class _Translator:
