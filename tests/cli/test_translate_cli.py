@@ -90,6 +90,7 @@ def test_check_prints_the_robot_matrix_with_reasons(tmp_path):
 def test_robots_list_and_show():
     listing = atd("robots", "list").stdout
     assert "melfa: Mitsubishi Melfa RV-3SB" in listing and "tombatossals:" in listing and "baxter:" in listing
+    assert atd("robots").stdout == listing  # bare `atd robots` lists too
     show = atd("robots", "show", "melfa").stdout
     assert "| slide | - | - | - |" in show
     assert "success (leaving place): all(any(arm_done, tactile_load_change[" in show
