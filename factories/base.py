@@ -177,6 +177,7 @@ class Factory(ABC):
     def map_event(self, event_type: EventType, seconds: float | None, transition: Transition,
                   context: MappingContext) -> ConditionNode:
         """The condition tree that detects one abstract event on the edge leaving `transition.origin`."""
+        event_type = EventType(event_type)
         origin = context.state(transition.origin)
         if event_type is EventType.TIMEOUT:
             return self.condition(event_type, "timeout", seconds=seconds)
