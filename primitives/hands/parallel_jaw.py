@@ -18,6 +18,8 @@ from primitives.hands.posture import position_command
 from primitives.robot import HandMode, Readings
 
 TOUCH = 0.5  # N on a pad: that finger touches the object
+MOTOR_TOUCH = 0.25  # of the grasp force, on the jaw motor: the jaws meet resistance
+CONFIRM = 0.95  # of the grasp force: the grip is there
 EMPTY = 0.001  # m from fully closed: the jaws closed on nothing
 SQUEEZE_GAIN = 5.0  # 1/s: how fast the squeeze corrects the motor force towards the pad force wanted
 SQUEEZE_TRIM = 0.5  # the correction stays within +-50 % of the grasp force
@@ -44,6 +46,12 @@ class Jaws:
             return float(readings.pad_force.min())
         return max(0.0, self.closing * float(readings.hand_effort[0]))
 
+    def both_touch(self, readings: Readings, grasp_force: float) -> bool:
+        """Both jaws are on the object: both pads feel it, or the motor meets resistance."""
+        if self.source == "tactile":
+            return bool((readings.pad_force > TOUCH).all())
+        return self.force(readings) > MOTOR_TOUCH * grasp_force
+
     def empty(self, readings: Readings) -> bool:
         return abs(float(readings.hand_q[0]) - self.closed) < EMPTY
 
@@ -53,12 +61,15 @@ class Jaws:
 
 
 class CloseUntilForce(Controller):
-    """Close at `closing_speed` until the grip force reaches `grasp_force`, then hold it.
+    """Close at `closing_speed` until both jaws touch, then press with `grasp_force`;
+    done once the force source feels it (within 5 %).
 
-    Re-centring: while only one pad touches, the object sits off-centre and closing
-    further would push it across the table. The gripper asks the arm to move towards the
-    touching pad as fast as that jaw closes, so the touching pad stands still on the
-    object while the other comes to meet it.
+    Pressing is done by force, not by driving the jaws further: a small object stops the
+    jaws near their closed limit, where a position servo has no travel left to build
+    force with. Re-centring: while only one pad touches, the object sits off-centre and
+    closing further would push it across the table; the gripper asks the arm to move
+    towards the touching pad as fast as that jaw closes, so the touching pad stands still
+    on the object while the other comes to meet it.
     """
 
     def __init__(self, ctx: Context) -> None:
@@ -69,19 +80,24 @@ class CloseUntilForce(Controller):
 
     def start(self, readings: Readings) -> None:
         self.reference = float(readings.hand_q[0])
+        self.pressing = False
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         board = self.ctx.blackboard
         if self.status is Status.RUNNING:
             force = self.jaws.force(readings)
-            if force >= self.grasp_force:
-                self.finish(Status.DONE, f"grip force {force:.1f} N >= {self.grasp_force:g} N")
-            elif self.jaws.empty(readings):
+            if self.pressing and force >= CONFIRM * self.grasp_force:
+                self.finish(Status.DONE, f"grip force {force:.1f} N (asked {self.grasp_force:g} N)")
+            elif not self.pressing and self.jaws.both_touch(readings, self.grasp_force):
+                self.pressing = True
+            elif not self.pressing and self.jaws.empty(readings):
                 self.finish(Status.ERROR, "the jaws closed on nothing")
-        if self.status is not Status.RUNNING:
+        if self.pressing:
             board[ARM_NUDGE] = None
-            return self.jaws.command(self.grasp_force) if self.status is Status.DONE else position_command(
-                np.array([self.reference]))
+            return self.jaws.command(self.grasp_force)
+        if self.status is Status.ERROR:
+            board[ARM_NUDGE] = None
+            return position_command(np.array([self.reference]))
         board[ARM_NUDGE] = self._nudge(readings)
         self.reference += self.jaws.closing * self.speed * dt
         return position_command(np.array([self.reference]))

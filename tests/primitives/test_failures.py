@@ -83,7 +83,8 @@ def test_a_sensor_frozen_mid_run_ends_through_hardware_failure(sensor: str) -> N
     assert frozen and frozen[0]["frozen_sensor"] == sensor
 
 
-def test_a_diverging_simulation_ends_through_hardware_failure() -> None:
+def test_a_diverging_simulation_ends_through_hardware_failure(tmp_path: Path, monkeypatch) -> None:
+    monkeypatch.chdir(tmp_path)  # MuJoCo writes its warning to MUJOCO_LOG.TXT in the working directory
     robot = melfa()
     unstable = leaf("simulation_unstable")
     estd = machine(Stage(use("cartesian_move", target=(0.05, 0.1, 0.2)), use("hold_position"), both_done()),
