@@ -15,6 +15,7 @@ from typing import Callable, Mapping
 from atd.model.controllers import ARM_CONTROLLERS, CONDITIONS, HAND_CONTROLLERS, defaults
 from atd.model.estd import Condition as Leaf
 from atd.model.estd import Controller as Use
+from primitives.arm.grasp import RobustGraspApproach
 from primitives.arm.move import CartesianMove, Hold
 from primitives.arm.surface import Place, ReleaseRetreat, Slide
 from primitives.base import Condition, Context, Controller, Status
@@ -30,8 +31,10 @@ from primitives.conditions import (
     WristForceAbove,
 )
 from primitives.hands import hand_kind
+from primitives.hands.barrett import BarrettRobustGrasp
 from primitives.hands.parallel_jaw import CloseUntilForce, Squeeze
 from primitives.hands.posture import HandShape, HoldPosition, OpenTo
+from primitives.hands.sdh2 import Sdh2RobustGrasp
 
 
 class BuildError(ValueError):
@@ -47,13 +50,15 @@ ARM: Mapping[str, ControllerClass] = {
     "place": Place,
     "slide": Slide,
     "release_retreat": ReleaseRetreat,
+    "robust_grasp_approach": RobustGraspApproach,
 }
 
 _POSTURES: Mapping[str, ControllerClass] = {"hold_position": HoldPosition, "hand_shape": HandShape, "open_to": OpenTo}
 
 HANDS: Mapping[str, Mapping[str, ControllerClass]] = {
     "parallel_jaw": {**_POSTURES, "close_until_force": CloseUntilForce, "squeeze": Squeeze},
-    "multi_finger": {**_POSTURES},
+    "barrett": {**_POSTURES, "robust_grasp_hand": BarrettRobustGrasp},
+    "sdh2": {**_POSTURES, "robust_grasp_hand": Sdh2RobustGrasp},
 }
 
 
@@ -97,7 +102,10 @@ def build_controller(use: Use, role: str, ctx: Context) -> Controller:
     if role == "arm":
         table = ARM
     else:
-        kind = hand_kind(ctx.info.hand)
+        try:
+            kind = hand_kind(ctx.info.hand)
+        except ValueError as exc:
+            raise BuildError(f"the {ctx.info.name}: {exc}") from None
         table = HANDS[kind]
         if use.name not in table:
             raise BuildError(f"the {ctx.info.name} hand ({kind.replace('_', ' ')}) has no '{use.name}' controller; "

@@ -12,6 +12,7 @@ from primitives.robot import HandMode, Readings
 REACHED = 0.02  # of a DOF's range: close enough to the goal
 STALL_TIME = 1.0  # s stopped short of the goal: something blocks the fingers
 STILL_SPEED = 0.05  # of a DOF's speed limit: a finger slower than this has stopped
+LOADED = 0.05  # of a DOF's effort limit, in the closing direction: the finger presses on something
 
 
 def position_command(values: np.ndarray) -> ControlData:
@@ -56,12 +57,25 @@ class PostureDrive(Controller):
 
 
 class HoldPosition(PostureDrive):
-    """Keep the fingers where they were when the state began (D5 2.2.4: hand idle)."""
+    """Keep the fingers where they were when the state began (D5 2.2.4: hand idle).
+
+    A finger pressing on something when the state begins keeps pressing with the effort
+    it had, as a Barrett's worm drive keeps its torque: holding it at its measured
+    position would take the grip off a grasped object.
+    """
 
     def start(self, readings: Readings) -> None:
         super().start(readings)
+        hand = self.ctx.info.hand
         self.goal = readings.hand_q.copy()
+        self.loaded = (hand.closing * readings.hand_effort) > LOADED * hand.effort_limit
+        self.effort = readings.hand_effort.copy()
         self.finish(Status.DONE, "holding the fingers")
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        values = np.where(self.loaded, self.effort, self.goal)
+        modes = tuple(HandMode.FORCE if loaded else HandMode.POSITION for loaded in self.loaded)
+        return ControlData(hand=HandCommand(values=values, modes=modes))
 
 
 class HandShape(PostureDrive):
@@ -77,10 +91,17 @@ class HandShape(PostureDrive):
 
 
 class OpenTo(PostureDrive):
-    """Open the hand to HAND_TARGET_POSITION: 0 = closed, 1 = fully open (thesis 3.3.4)."""
+    """Open the hand to HAND_TARGET_POSITION: 0 = closed, 1 = fully open (thesis 3.3.4).
+
+    Only the closing DOFs move: a Barrett's spread or an SDH2's finger rotation stays as
+    it is, since swinging the fingers round beside the object could knock it over.
+    """
 
     def __init__(self, ctx: Context) -> None:
         super().__init__(ctx, float(ctx.params["speed"]))
-        hand = ctx.info.hand
+
+    def start(self, readings: Readings) -> None:
+        super().start(readings)
+        hand = self.ctx.info.hand
         opening = float(self.params["hand_position"])
-        self.goal = hand.closed + opening * (hand.open - hand.closed)
+        self.goal = np.where(hand.closing != 0, hand.closed + opening * (hand.open - hand.closed), readings.hand_q)

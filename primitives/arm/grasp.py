@@ -1,0 +1,104 @@
+"""The arm side of the robust grasp (thesis 3.3.1): approach and alignment (Eq. 3.1), the
+sliding grasp (Eq. 3.2), and the moves the hand side asks for (finger-lost correction).
+
+It talks with the hand side through the blackboard: it raises CONTACT when the hand may
+close, watches FINGERS_STOPPED to end the sliding grasp, and carries out SHIFT requests.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from primitives.arm.motion import GAIN, orientation_twist
+from primitives.arm.move import arm_output
+from primitives.base import Context, ControlData, Controller, Status
+from primitives.blackboard import CONTACT, FINGERS_STOPPED, SHIFT
+from primitives.filters import ContactWrench
+from primitives.robot import Readings
+
+SHIFT_TOLERANCE = 0.002  # m: a requested shift counts as made
+SHIFT_TIME = 2.0  # s: a shift that has not arrived by then is blocked; the grasp goes on from there
+
+
+class RobustGraspApproach(Controller):
+    """Approach along GRASP_DIRECTION until the wrist feels a contact, align on it, then
+    ride the supporting surface while the fingers close.
+
+    Alignment (Eq. 3.1, hand frame): while in contact, T_y > T_t moves v_x - v_z,
+    T_y < -T_t moves -v_x - v_z; out of contact the hand approaches at v_z; contact with
+    |T_y| <= T_t ends the alignment, as does covering MAX_DISTANCE without a contact.
+    Sliding grasp (Eq. 3.2), with the wrench tared when it starts: F_z <= -F_t (fingers
+    pushing on the surface) backs off, F_z >= F_t (the contact taken at the start is
+    lost) moves forward, otherwise the arm stays; it ends when the fingers stop.
+    """
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        p = self.params
+        direction = np.asarray(p["grasp_direction"], float)
+        self.direction = direction / np.linalg.norm(direction)
+        self.max_distance = float(p["max_distance"])
+        self.force_threshold = float(p["force_threshold"])
+        self.torque_threshold = float(p["torque_threshold"])
+        self.speed = float(p["correction_velocity"])
+        self.contact = ContactWrench(float(p["filter_time"]))
+        self.side = np.array([1.0, 0.0, 0.0])  # v_x of Eq. 3.1
+
+    def start(self, readings: Readings) -> None:
+        self.contact.start(readings)
+        self.origin = readings.tcp[:3, 3].copy()
+        self.rotation = readings.tcp[:3, :3].copy()
+        self.phase = "approach"
+        self.goal: np.ndarray | None = None  # where to stay, or to shift to
+        self.ctx.blackboard[CONTACT] = False
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        board = self.ctx.blackboard
+        wrench = self.contact.update(readings, dt)
+        rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
+        if board.get(SHIFT) is not None and self.phase != "shift":
+            self.phase, self.goal = "shift", position + rotation @ np.asarray(board[SHIFT], float)
+            self.contact.start(readings)
+            self.shift_started = readings.time
+        v = np.zeros(3)  # hand frame
+        if self.phase == "approach":
+            v = self._align(readings, wrench)
+        if self.phase == "slide":
+            if board.get(FINGERS_STOPPED):
+                self.phase, self.goal = "hold", position.copy()
+                self.finish(Status.DONE, "the fingers closed")
+            elif wrench[2] <= -self.force_threshold:
+                v = -self.speed * self.direction
+            elif wrench[2] >= self.force_threshold:
+                v = self.speed * self.direction
+        world = rotation @ v
+        if self.phase in ("hold", "shift"):
+            world = GAIN * (self.goal - position)
+            if self.phase == "shift" and (np.linalg.norm(self.goal - position) < SHIFT_TOLERANCE
+                                          or self.contact.force >= self.force_threshold
+                                          or readings.time - self.shift_started > SHIFT_TIME):
+                board[SHIFT] = None  # made, or as far as the surface or the object allows
+                self._slide(readings)
+        w, _ = orientation_twist(self.rotation, rotation)
+        return arm_output(np.concatenate([world, w]))
+
+    def _align(self, readings: Readings, wrench: np.ndarray) -> np.ndarray:
+        """Eq. 3.1; switches to the sliding grasp when the alignment is over."""
+        if self.contact.force >= self.force_threshold:
+            torque = float(wrench[4])
+            if torque > self.torque_threshold:
+                return self.speed * (self.side - self.direction)
+            if torque < -self.torque_threshold:
+                return self.speed * (-self.side - self.direction)
+            self._slide(readings)
+            return np.zeros(3)
+        travelled = float((readings.tcp[:3, 3] - self.origin) @ (readings.tcp[:3, :3] @ self.direction))
+        if travelled >= self.max_distance:
+            self._slide(readings)
+            return np.zeros(3)
+        return self.speed * self.direction
+
+    def _slide(self, readings: Readings) -> None:
+        self.contact.start(readings)
+        self.phase = "slide"
+        self.ctx.blackboard[CONTACT] = True
