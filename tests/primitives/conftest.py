@@ -1,5 +1,6 @@
-"""Running primitives on the simulated Melfa: whole examples through the translator, or
-small hand-made state machines that chain a few controllers until a condition holds."""
+"""Running primitives on simulated robots (the MuJoCo Melfa unless said otherwise): whole
+examples through the translator, or small hand-made state machines that chain a few
+controllers until a condition holds."""
 
 from __future__ import annotations
 
@@ -14,15 +15,17 @@ from atd.model import load_task
 from atd.model.estd import Condition, ConditionGroup, Controller, Estd, EstdEvent, EstdState, EstdTransition
 from atd.model.vocabulary import EventType, StateType
 from atd.runtime.executor import Executor, Outcome
+from atd.sim import load_description, make_robot
 from atd.sim.mujoco_engine import MujocoRobot
 from atd.sim.scene import Scene, box_scene, scene_from_task
+from atd.sim.simrobot import SimRobot
 from factories.melfa.description import description
 from factories.registry import create
 from primitives.base import Context
 from translator import translate
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-Hook = Callable[[MujocoRobot, str, float], None]  # robot, current state path, sim time
+Hook = Callable[[SimRobot, str, float], None]  # robot, current state path, sim time
 
 
 def melfa(scene: Scene | None = None) -> MujocoRobot:
@@ -75,7 +78,7 @@ def _edge(origin: str, destination: str, event: EventType, condition, suffix: st
                           events=(EstdEvent(type=event, atd=f"{atd}/{event.value}", condition=condition),))
 
 
-def execute(estd: Estd, robot: MujocoRobot, hook: Hook | None = None, task=None) -> tuple[Outcome, Executor]:
+def execute(estd: Estd, robot: SimRobot, hook: Hook | None = None, task=None) -> tuple[Outcome, Executor]:
     ctx = Context(info=robot.info, params={}, object=task.object if task else None,
                   environment=task.environment if task else None)
     executor = Executor(estd, robot, ctx, budget=60.0)
@@ -83,15 +86,20 @@ def execute(estd: Estd, robot: MujocoRobot, hook: Hook | None = None, task=None)
     return executor.run(progress=progress, every=1), executor
 
 
-def run_example(path: Path, hook: Hook | None = None) -> tuple[Outcome, Executor, MujocoRobot]:
-    """Translate an ATD for the Melfa and run it in its own scene."""
+def run_example(path: Path, hook: Hook | None = None, robot: str = "melfa",
+                arm: str | None = None) -> tuple[Outcome, Executor, SimRobot]:
+    """Translate an ATD for a robot (the Melfa by default) and run it in its own scene."""
     task, diagnostics = load_task(path)
     assert task is not None, diagnostics
-    translation = translate(task, create("melfa"))
+    translation = translate(task, create(robot, arm))
     assert translation.ok, translation.diagnostics
-    robot = melfa(scene_from_task(task, path))
-    outcome, executor = execute(translation.estd, robot, hook, task)
-    return outcome, executor, robot
+    sim = make_robot(load_description(robot, arm), scene_from_task(task, path))
+    outcome, executor = execute(translation.estd, sim, hook, task)
+    return outcome, executor, sim
+
+
+def simulated(robot: str, arm: str | None = None, scene: Scene | None = None) -> SimRobot:
+    return make_robot(load_description(robot, arm), scene)
 
 
 def events(executor: Executor) -> list[dict]:

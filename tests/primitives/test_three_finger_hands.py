@@ -1,0 +1,71 @@
+"""The robust grasp on Tombatossals' three-finger hands: the Barrett (right arm) through the
+seed tasks, the Schunk SDH2 (left arm) through a grasp-and-lift machine."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from atd.model.vocabulary import EventType
+from atd.sim.scene import box_scene
+from tests.primitives.conftest import (
+    EXAMPLES,
+    Stage,
+    both_done,
+    events,
+    execute,
+    leaf,
+    machine,
+    run_example,
+    simulated,
+    tcp,
+    use,
+)
+
+
+def test_barrett_picks_and_places_the_box() -> None:
+    outcome, executor, robot = run_example(EXAMPLES / "pick_and_place.xml", robot="tombatossals", arm="right")
+    assert outcome.succeeded, outcome.summary
+    box = robot.object_pose()[:3, 3]
+    assert np.linalg.norm(box - (0.10, 0.10, 0.025)) < 0.02, f"the box ended at {box}"
+    grasped = [r for r in events(executor) if r["state"] == "grasp" and r["event"] == "success"][0]
+    held = next(c["reason"] for c in grasped["conditions"] if c["kind"] == "hand_done")
+    assert held.startswith("object held: f1 ") and "f3" not in held  # a pinch: F1 against F2
+
+
+def test_barrett_grasps_and_lifts_the_cylinder() -> None:
+    outcome, _, robot = run_example(EXAMPLES / "grasp_and_lift.xml", robot="tombatossals", arm="right")
+    assert outcome.succeeded, outcome.summary
+    assert robot.object_pose()[2, 3] > 0.14
+
+
+def _sdh2_grasp(scene) -> tuple:
+    robot = simulated("tombatossals", "left", scene)
+    grasp = dict(preshape="pinch_grasp_preshape", grasp_shape="pinch_grasp", pregrasp_size=0.64)
+    estd = machine(
+        Stage(use("cartesian_move", target=(0.125, 0.0, 0.03), straight_line=True),
+              use("hand_shape", shape="pinch_grasp_preshape"), both_done()),
+        Stage(use("robust_grasp_approach"), use("robust_grasp_hand", **grasp), both_done(), seconds=20.0),
+        Stage(use("cartesian_move", target=(0.125, 0.0, 0.15), straight_line=True), use("hold_position"),
+              both_done()),
+        failures={"s1": (EventType.ERROR, leaf("hand_error"))},
+    )
+    return robot, *execute(estd, robot)
+
+
+def test_sdh2_robust_grasp_holds_the_box_up() -> None:
+    robot, outcome, executor = _sdh2_grasp(box_scene())
+    assert outcome.succeeded, outcome.summary
+    assert robot.object_pose()[2, 3] > 0.12
+    pads = robot.read().pad_force
+    assert pads[0] > 1.0 and pads[1] > 1.0  # the two pinching fingers still press
+    grasp_events = [r for r in events(executor) if r["state"] == "s1"]
+    reason = next(c["reason"] for c in grasp_events[0]["conditions"] if c["kind"] == "hand_done")
+    assert reason.startswith("object held")
+
+
+def test_robust_grasp_on_nothing_is_a_hand_error() -> None:
+    robot, outcome, executor = _sdh2_grasp(box_scene(xy=(0.0, 0.25)))
+    assert not outcome.succeeded
+    reason = events(executor)[-1]["conditions"][0]["reason"]
+    assert reason.startswith("nothing between the fingers after 3 corrections")
+    assert tcp(robot)[2] < 0.03  # it looked further down each time, then gave up
