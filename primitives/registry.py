@@ -15,7 +15,7 @@ from typing import Callable, Mapping
 from atd.model.controllers import ARM_CONTROLLERS, CONDITIONS, HAND_CONTROLLERS, defaults
 from atd.model.estd import Condition as Leaf
 from atd.model.estd import Controller as Use
-from primitives.arm.grasp import RobustGraspApproach
+from primitives.arm.grasp import NaiveGraspApproach, RobustGraspApproach
 from primitives.arm.move import CartesianMove, Hold
 from primitives.arm.surface import Place, ReleaseRetreat, Slide
 from primitives.base import Condition, Context, Controller, Status
@@ -32,7 +32,8 @@ from primitives.conditions import (
 )
 from primitives.hands import hand_kind
 from primitives.hands.barrett import BarrettRobustGrasp
-from primitives.hands.parallel_jaw import CloseUntilForce, Squeeze
+from primitives.hands.multi_finger import NaiveGraspHand
+from primitives.hands.parallel_jaw import CloseUntilForce, NaiveJawGrasp, Squeeze
 from primitives.hands.posture import HandShape, HoldPosition, OpenTo
 from primitives.hands.sdh2 import Sdh2RobustGrasp
 
@@ -51,14 +52,16 @@ ARM: Mapping[str, ControllerClass] = {
     "slide": Slide,
     "release_retreat": ReleaseRetreat,
     "robust_grasp_approach": RobustGraspApproach,
+    "naive_grasp_approach": NaiveGraspApproach,
 }
 
 _POSTURES: Mapping[str, ControllerClass] = {"hold_position": HoldPosition, "hand_shape": HandShape, "open_to": OpenTo}
 
 HANDS: Mapping[str, Mapping[str, ControllerClass]] = {
-    "parallel_jaw": {**_POSTURES, "close_until_force": CloseUntilForce, "squeeze": Squeeze},
-    "barrett": {**_POSTURES, "robust_grasp_hand": BarrettRobustGrasp},
-    "sdh2": {**_POSTURES, "robust_grasp_hand": Sdh2RobustGrasp},
+    "parallel_jaw": {**_POSTURES, "close_until_force": CloseUntilForce, "squeeze": Squeeze,
+                     "naive_grasp_hand": NaiveJawGrasp},
+    "barrett": {**_POSTURES, "robust_grasp_hand": BarrettRobustGrasp, "naive_grasp_hand": NaiveGraspHand},
+    "sdh2": {**_POSTURES, "robust_grasp_hand": Sdh2RobustGrasp, "naive_grasp_hand": NaiveGraspHand},
 }
 
 

@@ -1,8 +1,10 @@
-"""The arm side of the robust grasp (thesis 3.3.1): approach and alignment (Eq. 3.1), the
-sliding grasp (Eq. 3.2), and the moves the hand side asks for (finger-lost correction).
+"""The arm side of the grasps: the robust grasp (thesis 3.3.1) with its approach and
+alignment (Eq. 3.1), sliding grasp (Eq. 3.2) and the moves the hand side asks for
+(finger-lost correction); and the naive baseline grasp of thesis 3.4.1.
 
-It talks with the hand side through the blackboard: it raises CONTACT when the hand may
-close, watches FINGERS_STOPPED to end the sliding grasp, and carries out SHIFT requests.
+Both talk with the hand side through the blackboard: they raise CONTACT when the hand may
+close; the robust one also watches FINGERS_STOPPED to end the sliding grasp and carries
+out SHIFT requests.
 """
 
 from __future__ import annotations
@@ -17,6 +19,7 @@ from primitives.filters import ContactWrench
 from primitives.robot import Readings
 
 SHIFT_TOLERANCE = 0.002  # m: a requested shift counts as made
+BACK_OFF = 0.002  # m: the naive approach settles this far short of its contact
 SHIFT_TIME = 2.0  # s: a shift that has not arrived by then is blocked; the grasp goes on from there
 
 
@@ -102,3 +105,45 @@ class RobustGraspApproach(Controller):
         self.contact.start(readings)
         self.phase = "slide"
         self.ctx.blackboard[CONTACT] = True
+
+
+class NaiveGraspApproach(Controller):
+    """The naive grasp's arm (thesis 3.4.1): forward along the grasp direction until the
+    wrist feels a contact or `distance` is covered, then stay (BACK_OFF short of where it
+    stopped, so the fingers do not close while pressing on what they hit) and let the
+    hand close. No alignment, no riding the surface: the baseline the robust grasp is
+    measured by."""
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        p = self.params
+        direction = np.asarray(p["grasp_direction"], float)
+        self.direction = direction / np.linalg.norm(direction)
+        self.distance = float(p["distance"])
+        self.threshold = float(p["force_threshold"])
+        self.velocity = float(p["velocity"])
+        self.contact = ContactWrench(float(p["filter_time"]))
+
+    def start(self, readings: Readings) -> None:
+        self.contact.start(readings)
+        self.origin = readings.tcp[:3, 3].copy()
+        self.rotation = readings.tcp[:3, :3].copy()
+        self.ctx.blackboard[CONTACT] = False
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        self.contact.update(readings, dt)
+        rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
+        if self.status is Status.RUNNING:
+            travelled = float((position - self.origin) @ (rotation @ self.direction))
+            if self.contact.force >= self.threshold:
+                self._stop(position, rotation, f"contact after {travelled * 100:.1f} cm")
+            elif travelled >= self.distance:
+                self._stop(position, rotation, f"moved {travelled * 100:.1f} cm without a contact")
+        v = GAIN * (self.goal - position) if self.status is Status.DONE else rotation @ (self.velocity * self.direction)
+        w, _ = orientation_twist(self.rotation, rotation)
+        return arm_output(np.concatenate([v, w]))
+
+    def _stop(self, position: np.ndarray, rotation: np.ndarray, reason: str) -> None:
+        self.goal = position - BACK_OFF * (rotation @ self.direction)
+        self.ctx.blackboard[CONTACT] = True
+        self.finish(Status.DONE, reason)

@@ -1,5 +1,7 @@
-"""The hand side of the robust grasp for three-finger hands (thesis 3.3.1; D5 appendix).
+"""Grasps of three-finger hands: the hand side of the robust grasp (thesis 3.3.1; D5
+appendix), and the naive baseline grasp of thesis 3.4.1 it is measured against.
 
+The robust grasp:
 Preshape, wait for the arm to find the object (blackboard CONTACT), close every grasping
 finger until it can close no further, then judge the grasp by the pads:
 
@@ -16,6 +18,7 @@ the finger-lost correction needs to know which way "towards the contacts" is.
 
 from __future__ import annotations
 
+from abc import abstractmethod
 from typing import Mapping
 
 import numpy as np
@@ -39,23 +42,25 @@ OBJECT_LOST_STEP = 0.01  # m further along the approach, per retry (D5: "a littl
 RETRIES = 3
 
 
-class RobustGraspHand(Controller):
-    layout: FingerLayout = {}
+class FingerGrasp(Controller):
+    """What every grasp of a multi-finger hand shares: which DOFs grasp (those the grasp
+    posture moves), which pad each one's finger carries, and the phases preshape, wait
+    for the arm's CONTACT, close, and hold; subclasses say how to close and how to hold."""
 
     def __init__(self, ctx: Context) -> None:
         super().__init__(ctx)
         hand = ctx.info.hand
         postures = hand.postures
-        shapes = [s for s in (self.params.get("preshape"), self.params["grasp_shape"]) if s is not None]
+        shapes = [s for s in (self.params.get("preshape"), self.params.get("grasp_shape")) if s is not None]
         for shape in shapes:
             if shape not in postures:
                 raise ValueError(f"the hand cannot make the shape '{shape}'; it makes: {', '.join(sorted(postures))}")
+        if self.params.get("grasp_shape") is None:
+            raise ValueError("a multi-finger grasp needs grasp_shape")
         self.grasp = np.asarray(postures[self.params["grasp_shape"]], float)
         self.preshape = np.asarray(postures[self.params["preshape"]], float) if self.params.get("preshape") else None
         self.size = self.params.get("pregrasp_size")
-        self.grasp_force = float(self.params["grasp_force"])
         self.touch = float(self.params["contact_threshold"])
-        self.correct = bool(self.params["finger_lost_correction"])
         self.range = hand.upper - hand.lower
         self.rate = CLOSING_SPEED * hand.velocity_limit
         pad_of = {pad.name.removesuffix("_pad"): i for i, pad in enumerate(hand.pads)}
@@ -77,6 +82,7 @@ class RobustGraspHand(Controller):
             raise ValueError("the grasp shape moves no finger that has a tactile pad")
         self.reference = readings.hand_q.copy()
         self.effort = np.zeros_like(self.reference)
+        self.pressing = moving  # the DOFs pressed by force once holding
         self.retries = 0
         self.phase = "preshape"
         self.still = np.zeros_like(self.reference)
@@ -100,18 +106,27 @@ class RobustGraspHand(Controller):
             self.retries += 1
             self._begin_closing(board)
         elif self.phase == "hold":
-            self._adapt(readings, dt)
+            self._hold(readings, dt)
         return self._command()
+
+    @abstractmethod
+    def _close(self, readings: Readings, dt: float, board: dict) -> None:
+        """One tick of closing; ends by setting FINGERS_STOPPED and the next phase."""
+
+    @abstractmethod
+    def _hold(self, readings: Readings, dt: float) -> None:
+        """One tick of holding the object once the fingers have closed."""
 
     def _begin_closing(self, board: dict) -> None:
         self.phase = "close"
         self.still[:] = 0.0
         board[FINGERS_STOPPED] = False
 
-    def _close(self, readings: Readings, dt: float, board: dict) -> None:
-        """Every grasping finger closes until it stands still (on the object, or blocked)
-        or reaches its limit. A pad touching on the way (a fingertip sliding on the
-        table) does not stop it: only where the fingers end up counts."""
+    def _closed(self, readings: Readings, dt: float) -> bool:
+        """One tick of closing: every grasping finger closes until it stands still (on the
+        object, or blocked) or reaches its limit; true once all have. A pad touching on
+        the way (a fingertip sliding on the table) does not stop a finger: only where the
+        fingers end up counts, as a Barrett finger's clutch stops it only when blocked."""
         hand = self.ctx.info.hand
         q, moving = readings.hand_q, self.moving
         step = self.rate * dt
@@ -120,11 +135,11 @@ class RobustGraspHand(Controller):
         self.reference = np.clip(self.reference, q - lead, q + lead)
         at_limit = np.abs(q - hand.closed) < REACHED * self.range
         self._blocked(readings, dt)
-        if (at_limit | (self.still > STALL_TIME))[moving].all():
-            board[FINGERS_STOPPED] = True
-            self.effort = np.where(moving, TOUCH_EFFORT * hand.effort_limit, 0.0)
-            self.settled = 0.0
-            self._judge(readings)
+        return bool((at_limit | (self.still > STALL_TIME))[moving].all())
+
+    def _touching(self, readings: Readings) -> list[str]:
+        pads = readings.pad_force
+        return [f for f in self.fingers if pads[self.pad_of[f]] >= self.touch]
 
     def _blocked(self, readings: Readings, dt: float) -> bool:
         """Counts how long each DOF has stood still; true once every moving one has, for
@@ -133,9 +148,39 @@ class RobustGraspHand(Controller):
         self.still = np.where(np.abs(readings.hand_dq) < 0.05 * hand.velocity_limit, self.still + dt, 0.0)
         return bool((self.still[self.moving] > STALL_TIME).all())
 
+    # -- commands -----------------------------------------------------------------------
+    def _ramp(self, goal: np.ndarray, dt: float, q: np.ndarray) -> bool:
+        step = self.rate * dt
+        self.reference += np.clip(goal - self.reference, -step, step)
+        return bool((np.abs(goal - q) < REACHED * self.range + 1e-3).all())
+
+    def _command(self) -> ControlData:
+        hand = self.ctx.info.hand
+        pressing = self.pressing & (self.phase == "hold")
+        values = np.where(pressing, hand.closing * self.effort, self.reference)
+        modes = tuple(HandMode.FORCE if p else HandMode.POSITION for p in pressing)
+        return ControlData(hand=HandCommand(values=values, modes=modes))
+
+
+class RobustGraspHand(FingerGrasp):
+    """The robust grasp's hand side; `layout` comes from the hand kind's module."""
+
+    layout: FingerLayout = {}
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        self.grasp_force = float(self.params["grasp_force"])
+        self.correct = bool(self.params["finger_lost_correction"])
+
+    def _close(self, readings: Readings, dt: float, board: dict) -> None:
+        if self._closed(readings, dt):
+            board[FINGERS_STOPPED] = True
+            self.effort = np.where(self.moving, TOUCH_EFFORT * self.ctx.info.hand.effort_limit, 0.0)
+            self.settled = 0.0
+            self._judge(readings)
+
     def _judge(self, readings: Readings) -> None:
-        pads = readings.pad_force
-        touching = [f for f in self.fingers if pads[self.pad_of[f]] >= self.touch]
+        touching = self._touching(readings)
         lost = [f for f in self.fingers if f not in touching]
         if not lost:
             self.phase = "hold"
@@ -154,7 +199,7 @@ class RobustGraspHand(Controller):
         self.still[:] = 0.0
         self.phase = "reopen"
 
-    def _adapt(self, readings: Readings, dt: float) -> None:
+    def _hold(self, readings: Readings, dt: float) -> None:
         """Force adaptation: from a light touch, each grasping finger's effort rises until
         its pad feels the grasp force, and keeps it there; the object is held once every
         pad has felt it for SETTLE_TIME."""
@@ -171,15 +216,30 @@ class RobustGraspHand(Controller):
             forces = ", ".join(f"{f} {pads[self.pad_of[f]]:.1f} N" for f in self.fingers)
             self.finish(Status.DONE, f"object held: {forces}")
 
-    # -- commands -----------------------------------------------------------------------
-    def _ramp(self, goal: np.ndarray, dt: float, q: np.ndarray) -> bool:
-        step = self.rate * dt
-        self.reference += np.clip(goal - self.reference, -step, step)
-        return bool((np.abs(goal - q) < REACHED * self.range + 1e-3).all())
 
-    def _command(self) -> ControlData:
-        hand = self.ctx.info.hand
-        pressing = self.moving & (self.phase == "hold")
-        values = np.where(pressing, hand.closing * self.effort, self.reference)
-        modes = tuple(HandMode.FORCE if p else HandMode.POSITION for p in pressing)
-        return ControlData(hand=HandCommand(values=values, modes=modes))
+
+class NaiveGraspHand(FingerGrasp):
+    """The naive grasp's hand (thesis 3.4.1): close until every finger stops, then add a
+    little effort (`squeeze`) to the fingers whose pads touch. No judging, no
+    corrections, no force adaptation: only closing on nothing at all is an error."""
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        self.squeeze = float(self.params["squeeze"])
+
+    def _close(self, readings: Readings, dt: float, board: dict) -> None:
+        if not self._closed(readings, dt):
+            return
+        board[FINGERS_STOPPED] = True
+        touching = self._touching(readings)
+        if not touching:
+            self.finish(Status.ERROR, "nothing between the fingers")
+            self.phase = "failed"
+            return
+        self.pressing = self.moving & np.array([f in touching for f in self.finger_of_dof])
+        self.effort = np.where(self.pressing, self.squeeze * self.ctx.info.hand.effort_limit, 0.0)
+        self.phase = "hold"
+        self.finish(Status.DONE, f"closed; touching: {', '.join(touching)}")
+
+    def _hold(self, readings: Readings, dt: float) -> None:
+        """The squeeze stays as set."""

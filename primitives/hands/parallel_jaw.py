@@ -13,13 +13,14 @@ from __future__ import annotations
 import numpy as np
 
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
-from primitives.blackboard import ARM_NUDGE
+from primitives.blackboard import ARM_NUDGE, CONTACT
 from primitives.hands.posture import position_command
 from primitives.robot import HandMode, Readings
 
 TOUCH = 0.5  # N on a pad: that finger touches the object
 MOTOR_TOUCH = 0.25  # of the grasp force, on the jaw motor: the jaws meet resistance
 CONFIRM = 0.95  # of the grasp force: the grip is there
+NAIVE_SPEED = 0.5  # of the jaws' speed limit, for the naive grasp
 EMPTY = 0.001  # m from fully closed: the jaws closed on nothing
 SQUEEZE_GAIN = 5.0  # 1/s: how fast the squeeze corrects the motor force towards the pad force wanted
 SQUEEZE_TRIM = 0.5  # the correction stays within +-50 % of the grasp force
@@ -135,3 +136,31 @@ class Squeeze(Controller):
             error = self.grasp_force - self.jaws.force(readings)
             self.trim = min(limit, max(-limit, self.trim + SQUEEZE_GAIN * error * dt))
         return self.jaws.command(self.grasp_force + self.trim)
+
+
+class NaiveJawGrasp(Controller):
+    """The naive grasp of thesis 3.4.1 on a gripper: once the arm has stopped (CONTACT),
+    close until the jaw motor meets the object, then press with `squeeze` of its effort
+    limit. No tactile sensing, no re-centring, no force check: the baseline."""
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        self.jaws = Jaws(ctx, "motor")
+        self.force = float(self.params["squeeze"]) * float(ctx.info.hand.effort_limit[0])
+        self.speed = NAIVE_SPEED * float(ctx.info.hand.velocity_limit[0])
+
+    def start(self, readings: Readings) -> None:
+        self.reference = float(readings.hand_q[0])
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        if self.status is Status.DONE:
+            return self.jaws.command(self.force)
+        if self.status is Status.RUNNING and self.ctx.blackboard.get(CONTACT):
+            if self.jaws.both_touch(readings, self.force):
+                self.finish(Status.DONE, "closed on the object")
+                return self.jaws.command(self.force)
+            if self.jaws.empty(readings):
+                self.finish(Status.ERROR, "the jaws closed on nothing")
+            else:
+                self.reference += self.jaws.closing * self.speed * dt
+        return position_command(np.array([self.reference]))
