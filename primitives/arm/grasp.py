@@ -60,7 +60,11 @@ class RobustGraspApproach(Controller):
         wrench = self.contact.update(readings, dt)
         rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
         if board.get(SHIFT) is not None and self.phase != "shift":
-            self.phase, self.goal = "shift", position + rotation @ np.asarray(board[SHIFT], float)
+            shift = np.asarray(board[SHIFT], float)
+            self.phase, self.goal = "shift", position + rotation @ shift
+            # A shift along the approach looks for the object, so a contact ends it; a
+            # sideways one drags the fingertips over the surface, which is no reason to stop.
+            self.probing = float(shift @ self.direction) > 0.0
             self.contact.start(readings)
             self.shift_started = readings.time
         v = np.zeros(3)  # hand frame
@@ -78,7 +82,7 @@ class RobustGraspApproach(Controller):
         if self.phase in ("hold", "shift"):
             world = GAIN * (self.goal - position)
             if self.phase == "shift" and (np.linalg.norm(self.goal - position) < SHIFT_TOLERANCE
-                                          or self.contact.force >= self.force_threshold
+                                          or (self.probing and self.contact.force >= self.force_threshold)
                                           or readings.time - self.shift_started > SHIFT_TIME):
                 board[SHIFT] = None  # made, or as far as the surface or the object allows
                 self._slide(readings)

@@ -214,7 +214,7 @@ class RobustGraspHand(FingerGrasp):
         self.settled = self.settled + dt if held else 0.0
         if self.settled >= SETTLE_TIME and self.status is Status.RUNNING:
             forces = ", ".join(f"{f} {pads[self.pad_of[f]]:.1f} N" for f in self.fingers)
-            self.finish(Status.DONE, f"object held: {forces}")
+            self.finish(Status.DONE, f"object held after {self.retries} corrections: {forces}")
 
 
 

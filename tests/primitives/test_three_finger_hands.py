@@ -29,7 +29,7 @@ def test_barrett_picks_and_places_the_box() -> None:
     assert np.linalg.norm(box - (0.10, 0.10, 0.025)) < 0.02, f"the box ended at {box}"
     grasped = [r for r in events(executor) if r["state"] == "grasp" and r["event"] == "success"][0]
     held = next(c["reason"] for c in grasped["conditions"] if c["kind"] == "hand_done")
-    assert held.startswith("object held: f1 ") and "f3" not in held  # a pinch: F1 against F2
+    assert held.startswith("object held after 0 corrections: f1 ") and "f3" not in held  # a pinch: F1 against F2
 
 
 def test_barrett_grasps_and_lifts_the_cylinder() -> None:
@@ -69,3 +69,21 @@ def test_robust_grasp_on_nothing_is_a_hand_error() -> None:
     reason = events(executor)[-1]["conditions"][0]["reason"]
     assert reason.startswith("nothing between the fingers after 3 corrections")
     assert tcp(robot)[2] < 0.03  # it looked further down each time, then gave up
+
+
+def test_barrett_finger_lost_correction_shifts_the_hand_onto_the_object() -> None:
+    """A heavy box 4 cm off the grasp centre along the pinch: F1 closes on it, F2 on
+    nothing; the hand reopens and shifts towards F1 until both fingers hold it."""
+    robot = simulated("tombatossals", "right", box_scene(xy=(0.165, 0.0), mass=5.0))
+    pinch = dict(preshape="pinch_grasp_preshape", grasp_shape="pinch_grasp")
+    estd = machine(
+        Stage(use("cartesian_move", target=(0.125, 0.0, 0.03), straight_line=True),
+              use("hand_shape", shape="pinch_grasp_preshape"), both_done()),
+        Stage(use("robust_grasp_approach"), use("robust_grasp_hand", **pinch), both_done(), seconds=40.0),
+    )
+    outcome, executor = execute(estd, robot)
+    assert outcome.succeeded, outcome.summary
+    held = next(c["reason"] for c in events(executor)[-1]["conditions"] if c["kind"] == "hand_done")
+    assert held.startswith("object held after") and "after 0 corrections" not in held, held
+    assert tcp(robot)[0] > 0.145  # the hand went to the box; the box did not come to the hand
+    assert abs(robot.object_pose()[0, 3] - 0.165) < 0.005
