@@ -1,9 +1,9 @@
 """Grasps of three-finger hands: the hand side of the robust grasp (thesis 3.3.1; D5
 appendix), and the naive baseline grasp of thesis 3.4.1 it is measured against.
 
-The robust grasp:
-Preshape, wait for the arm to find the object (blackboard CONTACT), close every grasping
-finger until it can close no further, then judge the grasp by the pads:
+The robust grasp: preshape, wait for the arm to find the object (blackboard CONTACT),
+close every grasping finger until it can close no further, then judge the grasp by the
+pads:
 
 - every grasping finger touches: force adaptation raises each finger's effort until its
   pad feels GRASP_FORCE; the grasp succeeds only then, with the object held;
@@ -78,8 +78,6 @@ class FingerGrasp(Controller):
             pre[moving & wider] = sized[moving & wider]
         self.pre, self.moving = pre, moving
         self.fingers = sorted({self.finger_of_dof[i] for i in np.flatnonzero(moving)} - {None})
-        if not self.fingers:
-            raise ValueError("the grasp shape moves no finger that has a tactile pad")
         self.reference = readings.hand_q.copy()
         self.effort = np.zeros_like(self.reference)
         self.pressing = moving  # the DOFs pressed by force once holding
@@ -87,6 +85,9 @@ class FingerGrasp(Controller):
         self.phase = "preshape"
         self.still = np.zeros_like(self.reference)
         self.ctx.blackboard[FINGERS_STOPPED] = False
+        if not self.fingers:
+            self.finish(Status.ERROR, "from this posture the grasp shape moves no finger that has a tactile pad")
+            self.phase = "failed"
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         board = self.ctx.blackboard
@@ -215,7 +216,6 @@ class RobustGraspHand(FingerGrasp):
         if self.settled >= SETTLE_TIME and self.status is Status.RUNNING:
             forces = ", ".join(f"{f} {pads[self.pad_of[f]]:.1f} N" for f in self.fingers)
             self.finish(Status.DONE, f"object held after {self.retries} corrections: {forces}")
-
 
 
 class NaiveGraspHand(FingerGrasp):
