@@ -167,13 +167,19 @@ class FingerPad:
 
 @dataclass(frozen=True)
 class HandDof:
-    """One actuated motion: the joints it drives, each with its ratio to the DOF value."""
+    """One actuated motion: the joints it drives, each with its ratio to the DOF value.
+
+    `geared`: the first joint carries the motor and the others follow it through a
+    linkage (a Barrett finger's distal joint), so under a force command only the first
+    is pushed; otherwise every joint is pushed alike (the two jaws of a parallel gripper).
+    """
 
     name: str
     joints: tuple[tuple[str, float], ...]
     closing: int  # +1 / -1: direction that closes the hand; 0: does not close it
     open: float
     closed: float
+    geared: bool = False
 
 
 @dataclass(frozen=True)
@@ -183,6 +189,7 @@ class Hand:
     pads: tuple[FingerPad, ...]
     postures: dict[str, tuple[float, ...]] = field(default_factory=dict)  # D5 hand shape -> DOF values
     pad_force_from_effort: bool = False  # no tactile array: pad force = measured finger effort
+    test_grasp: str = "power_grasp"  # the hand shape (with its preshape) `atd robots test` lifts a 5 cm box with
 
 
 @dataclass(frozen=True)

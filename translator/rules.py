@@ -23,6 +23,8 @@ from atd.model.vocabulary import StateType
 
 def event_ids(transition_id: str, event_types: list[str]) -> list[str]:
     """Trace ids of the events of one edge: `<edge id>/<event>`, `#n` only among repeats."""
+    if len(set(event_types)) == len(event_types):
+        return [f"{transition_id}/{kind}" for kind in event_types]
     totals = Counter(event_types)
     seen: Counter[str] = Counter()
     ids = []

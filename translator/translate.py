@@ -12,6 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
+from atd.model.bulk import cyclic_gc_paused
 from atd.model.controllers import CONDITIONS, CONTROLLERS, parse_value
 from atd.model.diagnostics import Diagnostic, Severity, error, has_errors, warning
 from atd.model.estd import (
@@ -49,7 +50,8 @@ def translate(task: Task, factory: Factory, load: Loader = load_task) -> Transla
     """Translate `task` for the factory's robot; `load` reads sub-task files (default: load_task)."""
     translator = _Translator(factory, load)
     source = Path(task.source).resolve() if task.source else None
-    estd = translator.machine(task, (source,) if source else ())
+    with cyclic_gc_paused():
+        estd = translator.machine(task, (source,) if source else ())
     if estd is None or has_errors(translator.diagnostics):
         return Translation(None, translator.diagnostics)
     return Translation(estd, translator.diagnostics)
@@ -60,9 +62,10 @@ def _loc_text(loc: Location | None) -> str | None:
 
 
 def _stamped(node: Condition | ConditionGroup, atd: str) -> Condition | ConditionGroup:
+    """The same tree with every leaf carrying `atd` (already validated, so not validated again)."""
     if isinstance(node, Condition):
-        return node.model_copy(update={"atd": atd})
-    return node.model_copy(update={"children": tuple(_stamped(c, atd) for c in node.children)})
+        return Condition.model_construct(kind=node.kind, sensors=node.sensors, params=node.params, atd=atd)
+    return ConditionGroup.model_construct(op=node.op, children=tuple(_stamped(c, atd) for c in node.children))
 
 
 class _Translator:

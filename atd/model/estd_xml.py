@@ -29,7 +29,7 @@ from atd.model.estd import (
 )
 from atd.model.reader import TaskReader
 from atd.model.task import Location
-from atd.model.writer import _object as write_object
+from atd.model.writer import object_element
 from atd.model.xmlsafe import ParsedXml, parse_bytes, read_file
 from schemas import schema_path
 
@@ -64,7 +64,7 @@ def _machine(parent: etree._Element | None, estd: Estd) -> etree._Element:
                    initial=estd.initial)
     root = etree.Element(ROOT, attrs) if parent is None else etree.SubElement(parent, ROOT, attrs)
     if estd.object is not None:
-        write_object(root, estd.object)
+        object_element(root, estd.object)
     if estd.environment is not None:
         env = etree.SubElement(root, "environment")
         for obstacle in estd.environment.obstacles:

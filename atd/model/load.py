@@ -2,14 +2,12 @@
 
 from __future__ import annotations
 
-import gc
-from contextlib import contextmanager
 from functools import cache
-from typing import Iterator
 from pathlib import Path
 
 from lxml import etree
 
+from atd.model.bulk import cyclic_gc_paused
 from atd.model.diagnostics import Diagnostic, error, has_errors
 from atd.model.reader import read_task
 from atd.model.task import Location, Task
@@ -42,22 +40,8 @@ def load_task(path: str | Path) -> tuple[Task | None, list[Diagnostic]]:
     Returns the task (None when the file could not be read at all) and every
     diagnostic found; the task is fit to translate only when none is an error.
     """
-    with _cyclic_gc_paused():
+    with cyclic_gc_paused():
         return _load(Path(path), (), {})
-
-
-@contextmanager
-def _cyclic_gc_paused() -> Iterator[None]:
-    """Reading a big task makes ~100,000 small objects and no garbage cycles; letting the
-    cycle collector rescan them over and over doubles the load time (measured: 1.6 s vs
-    0.74 s for 10,000 states, benchmarks/bench_validate.py)."""
-    enabled = gc.isenabled()
-    gc.disable()
-    try:
-        yield
-    finally:
-        if enabled:
-            gc.enable()
 
 
 def _load(path: Path, including: tuple[Path, ...], seen: dict[Path, list[Diagnostic]]) -> tuple[Task | None, list[Diagnostic]]:

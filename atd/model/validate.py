@@ -37,6 +37,7 @@ def check_task(task: Task, unreadable_states: frozenset[str] = frozenset(), read
     found += _ends(task)
     found += _ambiguity(task)
     found += _targets(task)
+    found += _shape(task)
     if read_cleanly and not has_errors(found):
         found += _reachability(task)
     return found
@@ -123,6 +124,19 @@ def _targets(task: Task) -> list[Diagnostic]:
                 "add <path><position>x y z</position></path>, or an <object> with a <pose> to derive it from",
             ))
     return found
+
+
+def _shape(task: Task) -> list[Diagnostic]:
+    """A mesh named by the object must be there when the task runs; say so now."""
+    obj = task.object
+    if obj is None or obj.shape is None or task.source is None:
+        return []
+    mesh = Path(task.source).parent / obj.shape
+    if mesh.is_file():
+        return []
+    return [warning("ATD215", f"object shape '{obj.shape}' not found next to the task", obj.loc,
+                    f"looked for {mesh}; simulation needs the mesh there (STL or OBJ), or remove <shape> "
+                    "to simulate the object from its class and size")]
 
 
 def _reachability(task: Task) -> list[Diagnostic]:

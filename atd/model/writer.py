@@ -26,7 +26,8 @@ def _child(parent: etree._Element, tag: str, text: str | None = None, **attrib: 
     return node
 
 
-def _object(parent: etree._Element, obj: ObjectInfo) -> None:
+def object_element(parent: etree._Element, obj: ObjectInfo) -> None:
+    """The `<object>` block; ESTD files carry the same block as the ATD they came from."""
     node = _child(parent, "object")
     if obj.pose is not None:
         _child(node, "pose", _numbers(obj.pose.matrix))
@@ -77,7 +78,7 @@ def _transition(parent: etree._Element, transition: Transition) -> None:
 def task_to_xml(task: Task) -> bytes:
     root = etree.Element("statemachine", {"initial": task.initial} if task.initial else {})
     if task.object is not None:
-        _object(root, task.object)
+        object_element(root, task.object)
     if task.environment is not None:
         env = _child(root, "environment")
         for obstacle in task.environment.obstacles:

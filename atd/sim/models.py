@@ -156,7 +156,7 @@ def mjcf(d: RobotDescription, scene: Scene) -> str:
     return _ENV.get_template("scene.mjcf.j2").render(
         d=d,
         root=root,
-        table={"pos": _fmt(TABLE_CENTRE), "size": _fmt(TABLE_HALF)},
+        table={"pos": _fmt(TABLE_CENTRE), "size": _fmt(TABLE_HALF)} if scene.table else None,
         object=_body(scene.object) if scene.object else None,
         obstacles=[_body(b) for b in scene.obstacles],
         hand_joints=hand_joints,

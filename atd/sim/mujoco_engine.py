@@ -10,8 +10,8 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from atd.sim.models import mjcf, pad_frame
-from atd.sim.scene import Scene
+from atd.sim.models import mjcf
+from atd.sim.scene import CAMERA_AZIMUTH, CAMERA_DISTANCE, CAMERA_ELEVATION, CAMERA_TARGET, Scene
 from atd.sim.simrobot import SimRobot
 from factories.description import RobotDescription
 
@@ -59,6 +59,7 @@ class MujocoRobot(SimRobot):
         self._object_body = _id(m, mujoco.mjtObj.mjOBJ_BODY, "object")
         self._object_qadr = m.jnt_qposadr[m.body_jntadr[self._object_body]] if self._object_body >= 0 else -1
         self._force6 = np.zeros(6)
+        self._renderer: mujoco.Renderer | None = None
         self._apply_arm(self._q_ref, self._dq_cmd)
 
     # ---- engine part ------------------------------------------------------------------
@@ -75,6 +76,14 @@ class MujocoRobot(SimRobot):
                 m.actuator_biasprm[act, 1] = 0.0 if force[i] else -kp
             self._hand_force = force.copy()
         self.data.ctrl[self._hand_act] = values
+
+    def _set_joints(self, positions: dict[str, float]) -> None:
+        m, d = self.model, self.data
+        for name, q in positions.items():
+            j = _id(m, mujoco.mjtObj.mjOBJ_JOINT, name)
+            d.qpos[m.jnt_qposadr[j]] = q
+            d.qvel[m.jnt_dofadr[j]] = 0.0
+        mujoco.mj_forward(m, d)
 
     def _advance(self) -> None:
         # Sensors and site poses come from the start of the last physics step (1 ms old),
@@ -143,5 +152,17 @@ class MujocoRobot(SimRobot):
         self.data.qvel[dof : dof + 6] = 0.0
         mujoco.mj_forward(self.model, self.data)
 
+    def render(self, width: int, height: int) -> np.ndarray:
+        """An RGB picture of the scene (needs an OpenGL backend, e.g. MUJOCO_GL=egl)."""
+        if self._renderer is None:
+            self._renderer = mujoco.Renderer(self.model, height, width)
+        camera = mujoco.MjvCamera()
+        camera.lookat[:] = CAMERA_TARGET
+        camera.distance, camera.azimuth, camera.elevation = CAMERA_DISTANCE, CAMERA_AZIMUTH, CAMERA_ELEVATION
+        self._renderer.update_scene(self.data, camera)
+        return self._renderer.render()
+
     def close(self) -> None:
-        """Nothing to release: the model and data are freed with the object."""
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None

@@ -16,12 +16,21 @@ import numpy as np
 import pybullet as pb
 
 from atd.sim.models import matrix_to_quat, urdf
-from atd.sim.scene import TABLE_CENTRE, TABLE_HALF, Body, Scene
+from atd.sim.scene import (
+    CAMERA_AZIMUTH,
+    CAMERA_DISTANCE,
+    CAMERA_ELEVATION,
+    CAMERA_TARGET,
+    TABLE_CENTRE,
+    TABLE_HALF,
+    Body,
+    Scene,
+)
 from atd.sim.simrobot import SimRobot
 from factories.description import RobotDescription
 
 SOLVER_ITERATIONS = 100
-ARM_POSITION_GAIN = 0.3
+ARM_POSITION_GAIN = 0.1
 HAND_POSITION_GAIN = 0.3
 
 
@@ -67,6 +76,7 @@ class PybulletRobot(SimRobot):
             index[info[1].decode()] = i
             index["link:" + info[12].decode()] = i
             pb.changeDynamics(self.body, i, lateralFriction=1.0, frictionAnchor=1, physicsClientId=c)
+        self._index = index
         joints = list(d.arm_joints) + list(self.hand_joints)
         self._joints = [index[n] for n in joints]
         self._arm = self._joints[: len(d.arm_joints)]
@@ -92,7 +102,6 @@ class PybulletRobot(SimRobot):
         self._force_joints: list[int] = []
         self._forces: list[float] = []
         self._hand_force = np.zeros(len(self._hand), bool)
-        self._hand_values = np.zeros(len(self._hand))
 
         home = dict(zip(d.arm_joints, d.home)) | d.hand_joint_targets(self.info.hand.open)
         for name, i in zip(joints, self._joints):
@@ -102,11 +111,16 @@ class PybulletRobot(SimRobot):
         self._apply_arm(self._q_ref, self._dq_cmd)
         self._apply_hand(np.zeros(len(self._hand), bool), np.array([home[n] for n in self.hand_joints]))
 
+    def _set_joints(self, positions: dict[str, float]) -> None:
+        for name, q in positions.items():
+            pb.resetJointState(self.body, self._index[name], q, 0.0, physicsClientId=self.client)
+
     def _build_scene(self, scene: Scene) -> None:
         c = self.client
-        table = pb.createCollisionShape(pb.GEOM_BOX, halfExtents=TABLE_HALF, physicsClientId=c)
-        self.table = pb.createMultiBody(0, table, basePosition=TABLE_CENTRE, physicsClientId=c)
-        pb.changeDynamics(self.table, -1, lateralFriction=1.0, frictionAnchor=1, physicsClientId=c)
+        if scene.table:
+            table = pb.createCollisionShape(pb.GEOM_BOX, halfExtents=TABLE_HALF, physicsClientId=c)
+            self.table = pb.createMultiBody(0, table, basePosition=TABLE_CENTRE, physicsClientId=c)
+            pb.changeDynamics(self.table, -1, lateralFriction=1.0, frictionAnchor=1, physicsClientId=c)
         for obstacle in scene.obstacles:
             self._make(obstacle, fixed=True)
         self.object = self._make(scene.object, fixed=False) if scene.object else -1
@@ -158,7 +172,6 @@ class PybulletRobot(SimRobot):
                 self.body, [self._hand[i] for i in idx], pb.VELOCITY_CONTROL, forces=[0.0] * len(idx), physicsClientId=c
             )
         self._hand_force = force.copy()
-        self._hand_values = values.copy()
         limits = np.array(self._hand_effort)
         self._force_joints = [self._hand[i] for i in np.flatnonzero(force)]
         self._forces = np.clip(values[force], -limits[force], limits[force]).tolist()
@@ -235,6 +248,16 @@ class PybulletRobot(SimRobot):
     def place_object(self, pose: np.ndarray) -> None:
         pb.resetBasePositionAndOrientation(self.object, pose[:3, 3].tolist(), _xyzw(pose), physicsClientId=self.client)
         pb.resetBaseVelocity(self.object, [0, 0, 0], [0, 0, 0], physicsClientId=self.client)
+
+    def render(self, width: int, height: int) -> np.ndarray:
+        """An RGB picture of the scene from the same viewpoint as MuJoCo's (software renderer)."""
+        az, el = np.radians(CAMERA_AZIMUTH), np.radians(CAMERA_ELEVATION)
+        forward = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+        eye = np.asarray(CAMERA_TARGET) - CAMERA_DISTANCE * forward  # as MuJoCo places its free camera
+        view = pb.computeViewMatrix(eye.tolist(), CAMERA_TARGET, [0, 0, 1], physicsClientId=self.client)
+        projection = pb.computeProjectionMatrixFOV(45.0, width / height, 0.05, 5.0, physicsClientId=self.client)
+        image = pb.getCameraImage(width, height, view, projection, renderer=pb.ER_TINY_RENDERER, physicsClientId=self.client)[2]
+        return np.asarray(image, np.uint8).reshape(height, width, 4)[:, :, :3]
 
     def close(self) -> None:
         if pb.isConnected(self.client):

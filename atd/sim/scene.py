@@ -23,6 +23,12 @@ MESH_SUFFIXES = (".stl", ".obj")
 TABLE_CENTRE = (0.2, 0.0, -0.025)
 TABLE_HALF = (0.32, 0.6, 0.025)
 
+# Where pictures of the scene look from: a view of the work area from the front left.
+CAMERA_TARGET = (0.1, 0.0, 0.1)
+CAMERA_DISTANCE = 1.4
+CAMERA_AZIMUTH = 150.0  # degrees about z, from +x
+CAMERA_ELEVATION = -25.0  # degrees
+
 
 class SceneError(ValueError):
     """The ATD describes something the simulator cannot build; the message says what to fix."""
@@ -68,6 +74,7 @@ class Body:
 class Scene:
     object: Body | None
     obstacles: tuple[Body, ...] = ()
+    table: bool = True  # False: free space, for moving joints through their whole range
 
 
 def box_scene(size: float = 0.05, xy: tuple[float, float] = (0.125, 0.0), mass: float = DEFAULT_WEIGHT) -> Scene:

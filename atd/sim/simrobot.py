@@ -20,7 +20,10 @@ from primitives.robot import SENSORS, HandInfo, HandMode, PadInfo, Readings, Rob
 
 #: How far (rad or m) an arm servo reference may run ahead of the joint: a blocked arm
 #: pushes with a bounded force instead of winding up without end.
-REFERENCE_LEASH = 0.05
+REFERENCE_LEASH = 0.02
+#: Time to reach full speed from rest: the reference generator limits acceleration to
+#: speed limit / RAMP_TIME, as an industrial controller's does, and brakes before limits.
+RAMP_TIME = 0.2
 _MODE_CODE = {HandMode.POSITION: 0, HandMode.VELOCITY: 1, HandMode.FORCE: 2}
 
 
@@ -76,10 +79,12 @@ class SimRobot(Robot):
         self._dof_ratio = np.array([dof.joints[0][1] for dof in d.hand.dofs])
         self._joint_dof = np.zeros(len(self.hand_joints), int)
         self._joint_ratio = np.zeros(len(self.hand_joints))
+        self._joint_follows = np.zeros(len(self.hand_joints), bool)  # geared to its DOF's first joint
         for k, dof in enumerate(d.hand.dofs):
-            for joint, ratio in dof.joints:
+            for n, (joint, ratio) in enumerate(dof.joints):
                 i = self.hand_joints.index(joint)
                 self._joint_dof[i], self._joint_ratio[i] = k, ratio
+                self._joint_follows[i] = dof.geared and n > 0
         hand_joint_specs = [d.joints[n] for n in self.hand_joints]
         self._hand_joint_lower = np.array([min(j.lower, j.upper) for j in hand_joint_specs])
         self._hand_joint_upper = np.array([max(j.lower, j.upper) for j in hand_joint_specs])
@@ -98,6 +103,7 @@ class SimRobot(Robot):
         self._time = 0.0
         self._q_ref = self.info.home.copy()
         self._dq_cmd = np.zeros(n_arm)
+        self._dq_ref = np.zeros(n_arm)  # the command after acceleration and limit shaping
         self._hand_modes = np.zeros(len(d.hand.dofs), int)
         self._hand_values = self.info.hand.open.copy()
         self._hand_target = self.info.hand.open.copy()  # position reference, also for velocity mode
@@ -132,9 +138,15 @@ class SimRobot(Robot):
         info = self.info
         period = info.control_period
         q = self.read().arm_q
-        q_ref = np.clip(self._q_ref + self._dq_cmd * period, info.arm_lower, info.arm_upper)
+        accel = info.arm_velocity_limit / RAMP_TIME
+        dq = np.clip(self._dq_cmd, self._dq_ref - accel * period, self._dq_ref + accel * period)
+        # Brake so as to stop at a joint limit rather than run into it.
+        dq = np.clip(dq, -np.sqrt(2 * accel * np.maximum(self._q_ref - info.arm_lower, 0.0)),
+                     np.sqrt(2 * accel * np.maximum(info.arm_upper - self._q_ref, 0.0)))
+        q_ref = np.clip(self._q_ref + dq * period, info.arm_lower, info.arm_upper)
         self._q_ref = np.clip(q_ref, q - REFERENCE_LEASH, q + REFERENCE_LEASH)
-        self._apply_arm(self._q_ref, self._dq_cmd)
+        self._dq_ref = dq
+        self._apply_arm(self._q_ref, dq)
 
         hand = info.hand
         velocity = self._hand_modes == 1
@@ -144,8 +156,12 @@ class SimRobot(Robot):
                 self._hand_target[velocity] + rate[velocity] * period, hand.lower[velocity], hand.upper[velocity]
             )
         dof = self._joint_dof
-        joint_force = self._hand_modes[dof] == 2
-        joint_values = np.where(joint_force, self._hand_values[dof], self._hand_target[dof]) * self._joint_ratio
+        force_dof = self._hand_modes[dof] == 2
+        # Under a force command a geared joint follows where its DOF's motor joint is.
+        follows = force_dof & self._joint_follows
+        joint_force = force_dof & ~follows
+        reference = np.where(follows, self.read().hand_q[dof], self._hand_target[dof])
+        joint_values = np.where(joint_force, self._hand_values[dof], reference) * self._joint_ratio
         self._apply_hand(joint_force, joint_values)
 
         self._advance()
@@ -165,6 +181,16 @@ class SimRobot(Robot):
     def unfreeze(self, sensor: str) -> None:
         self._frozen.discard(sensor)
 
+    def reset_arm(self, q: np.ndarray) -> None:
+        """Teleport the arm to `q`, at rest, holding there."""
+        q = np.asarray(q, float)
+        self._set_joints(dict(zip(self.info.arm_joints, q)))
+        self._q_ref = q.copy()
+        self._dq_cmd = np.zeros_like(q)
+        self._dq_ref = np.zeros_like(q)
+        self._apply_arm(self._q_ref, self._dq_ref)
+        self._last = self._sample()
+
     @abstractmethod
     def object_pose(self) -> np.ndarray:
         """True 4x4 pose of the scene's object (for checks, not for primitives)."""
@@ -172,6 +198,10 @@ class SimRobot(Robot):
     @abstractmethod
     def place_object(self, pose: np.ndarray) -> None:
         """Teleport the object, at rest (moving it away removes it from the task)."""
+
+    @abstractmethod
+    def render(self, width: int, height: int) -> np.ndarray:
+        """An RGB picture (height, width, 3) of the scene, for videos."""
 
     @abstractmethod
     def close(self) -> None:
@@ -185,6 +215,10 @@ class SimRobot(Robot):
     @abstractmethod
     def _apply_hand(self, force: np.ndarray, values: np.ndarray) -> None:
         """Per hand joint: a force (where `force`) or a position reference."""
+
+    @abstractmethod
+    def _set_joints(self, positions: dict[str, float]) -> None:
+        """Teleport joints, at rest, and bring poses and sensors up to date."""
 
     @abstractmethod
     def _advance(self) -> None:

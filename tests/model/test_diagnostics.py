@@ -99,6 +99,7 @@ CASES = {
                                              GO_DONE + SUB)),
     "sub-task includes itself": ("ATD212", task(MOVE + bad('  <state name="sub" type="task" file="task.xml"/>'),
                                                 GO_DONE + SUB)),
+    "object mesh missing": ("ATD215", task(MOVE, GO_DONE, bad("  <object>") + "    <shape>mug.stl</shape>\n  </object>\n")),
     "unknown initial state": ("ATD213", task(MOVE, GO_DONE, root='<statemachine initial="start">' + HERE)),
     "repeated transition": ("ATD214", task(MOVE, GO_DONE + bad(GO_DONE))),
 }
@@ -168,3 +169,12 @@ def test_mutual_inclusion_is_caught(atd_file, diagnose):
     atd_file(task(body.format("a.xml"), edges), name="b.xml")
     found = diagnose(task(body.format("b.xml"), edges), name="a.xml")
     assert [(d.code, d.loc.file.endswith("b.xml")) for d in found] == [("ATD212", True)]
+
+
+def test_initial_attribute_chooses_the_first_state(atd_file):
+    from atd.model import load_task
+    path = atd_file(task(MOVE + '  <state name="first" type="move"><path><position>0 0 0.2</position></path></state>\n',
+                         GO_DONE + '  <transition origin="first" destination="go"><success/></transition>\n',
+                         root='<statemachine initial="first">'))
+    loaded, found = load_task(path)
+    assert loaded.initial_state == "first" and found == []
