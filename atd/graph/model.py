@@ -7,6 +7,7 @@ text so every renderer, down to the bitmap font of the PNG writer, can show them
 
 from __future__ import annotations
 
+import textwrap
 from dataclasses import dataclass, field
 from enum import StrEnum
 from pathlib import Path
@@ -17,6 +18,7 @@ from atd.model.task import State, Task
 from atd.model.vocabulary import StateType
 
 # The controller parameters worth a line in a box; the rest are tuning (shown with all_params).
+WRAP_WIDTH = 44  # characters per label line when conditions are shown
 KEY_PARAMS = ("target", "shape", "preshape", "grasp_shape", "grasp_force", "hand_position")
 
 
@@ -116,6 +118,12 @@ def _estd_lines(state: EstdState, all_params: bool) -> list[str]:
     return lines
 
 
+def _wrap(text: str) -> list[str]:
+    """Long condition trees broken after their commas, so a label stays a column, not a banner."""
+    return textwrap.wrap(text, WRAP_WIDTH, subsequent_indent="    ", break_long_words=False,
+                         break_on_hyphens=False)
+
+
 def _event_word(event: EstdEvent) -> str:
     """The event as the ATD wrote it: a timeout shows its time limit, like `Transition.label`."""
     condition = event.condition
@@ -136,7 +144,8 @@ def from_estd(estd: Estd, file: str, conditions: bool = False, all_params: bool 
                                 state.name == estd.initial))
     for transition in estd.transitions:
         if conditions:
-            lines = tuple(f"{e.type.value}: {describe(e.condition, thresholds=True)}" for e in transition.events)
+            lines = tuple(line for e in transition.events
+                          for line in _wrap(f"{e.type.value}: {describe(e.condition, thresholds=True)}"))
         else:
             lines = (" & ".join(_event_word(e) for e in transition.events),)
         graph.edges.append(Edge(transition.origin, transition.destination, lines, transition.atd))
