@@ -8,6 +8,7 @@ import click
 
 from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_USAGE, main
 from atd.graph.dot import GraphvizError
+from atd.graph.png import PictureTooBig
 from atd.graph.render import FORMATS, Renderer, render
 from atd.graph.source import read_graph
 from atd.model import write_atomically
@@ -46,6 +47,9 @@ def graph(file: Path, output: Path, renderer: str, conditions: bool, all_params:
     except GraphvizError as exc:
         click.echo(f"error: {exc}; install graphviz (https://graphviz.org/download/) or use "
                    f"--renderer builtin", err=True)
+        raise SystemExit(EXIT_USAGE) from None
+    except PictureTooBig as exc:
+        click.echo(f"error: {file}: {exc}", err=True)
         raise SystemExit(EXIT_USAGE) from None
     try:
         write_atomically(output, data)

@@ -10,9 +10,7 @@ import shutil
 import subprocess
 
 from atd.graph.model import Graph, NodeKind
-
-# fill colour, border colour: the same palette as the built-in renderer (atd.graph.style)
-from atd.graph.style import PALETTE
+from atd.graph.style import PALETTE  # the same colours as the built-in renderer
 
 DOT_TIMEOUT_S = 60
 

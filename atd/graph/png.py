@@ -12,6 +12,11 @@ from atd.graph.raster import Canvas, colour
 from atd.graph.style import BACKGROUND, EDGE_COLOUR, LABEL_COLOUR, PALETTE, TEXT_COLOUR
 
 SCALE = 2  # every layout pixel drawn as 2x2, so the 5x9 glyphs read like a 10x18 font
+MAX_PIXELS = 40_000_000  # ~120 MB of RGB while drawing; beyond that SVG is the better format
+
+
+class PictureTooBig(ValueError):
+    """The task is too big to draw as a bitmap; the message suggests SVG."""
 PNG_METRICS = Metrics(char_width=GLYPH_WIDTH + 1, line_height=GLYPH_HEIGHT + 2, pad_x=6.0, pad_y=4.0)
 
 
@@ -36,7 +41,13 @@ def _route(canvas: Canvas, route: Route) -> None:
 
 
 def to_png(drawing: Layout) -> bytes:
-    canvas = Canvas(math.ceil(drawing.width), math.ceil(drawing.height), colour(BACKGROUND))
+    """The drawing at double size, or at natural size when doubling would pass MAX_PIXELS."""
+    width, height = math.ceil(drawing.width), math.ceil(drawing.height)
+    scale = SCALE if width * height * SCALE * SCALE <= MAX_PIXELS else 1
+    if width * height > MAX_PIXELS:
+        raise PictureTooBig(f"the drawing would be {width} x {height} pixels, too big for a PNG; "
+                            "draw it as .svg (any size) or .dot instead")
+    canvas = Canvas(width, height, colour(BACKGROUND))
     _text_block(canvas, (drawing.title,), drawing.title_at[0], drawing.title_at[1], colour(TEXT_COLOUR), None,
                 bold_first=True)
     for route in drawing.routes:
@@ -50,4 +61,4 @@ def to_png(drawing: Layout) -> bytes:
             canvas.frame(x0 + 3, y0 + 3, x1 - 3, y1 - 3, border)
         _text_block(canvas, box.node.lines, box.x, box.y + PNG_METRICS.pad_y, colour(TEXT_COLOUR), box.width,
                     bold_first=True)
-    return canvas.to_png(SCALE)
+    return canvas.to_png(scale)

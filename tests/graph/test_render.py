@@ -169,3 +169,16 @@ def test_the_font_has_every_printable_ascii_character():
         assert all(0 <= c < GLYPH_WIDTH and 0 <= r < GLYPH_HEIGHT for c, r in pixels), chr(code)
     assert glyph(" ") == ()
     assert len({glyph(chr(c)) for c in range(33, 127)}) == 94  # no two characters look the same
+
+
+def test_big_pictures_shrink_then_are_refused(monkeypatch, no_graphviz):
+    from atd.graph import png
+
+    graph = example_graph("retry_grasp.xml")
+    full = read_png(render(graph, "png")[0])
+    monkeypatch.setattr(png, "MAX_PIXELS", full[0] * full[1] // 2)  # room for 1x but not 2x
+    half = read_png(render(graph, "png")[0])
+    assert (half[0], half[1]) == (full[0] // 2, full[1] // 2)
+    monkeypatch.setattr(png, "MAX_PIXELS", 1000)
+    with pytest.raises(png.PictureTooBig, match=r"too big for a PNG; draw it as \.svg"):
+        render(graph, "png")
