@@ -18,7 +18,9 @@ each say how wide their characters are.
 
 from __future__ import annotations
 
+from collections import deque
 from dataclasses import dataclass, field
+from typing import Callable
 
 from atd.graph.model import Edge, Graph, Node
 
@@ -246,9 +248,9 @@ class _Builder:
             if start in seen:
                 continue
             seen.add(start)
-            queue = [start]
+            queue = deque([start])
             while queue:
-                i = queue.pop(0)
+                i = queue.popleft()
                 order.append(i)
                 for j in self.vertices[i].down:
                     if j not in seen:
@@ -311,7 +313,8 @@ class _Builder:
             offsets.append(offsets[-1] + va.right + vb.left + gap)
         return offsets
 
-    def _pull(self, rank: list[int], x: list[float], neighbours) -> None:
+    def _pull(self, rank: list[int], x: list[float], neighbours: Callable[[int], list[int]]) -> None:
+        """Move a rank towards where its neighbours are, keeping its order and minimum spacing."""
         offsets = self._offsets(rank)
         targets, weights = [], []
         for v in rank:
