@@ -13,7 +13,8 @@ from atd.model.diagnostics import render_all
 from atd.model.estd import Estd
 from atd.model.estd_xml import read_estd
 from atd.runtime.report import summary
-from atd.runtime.session import ENGINES, Run, RunError
+from atd.runtime.session import ENGINES, Run, RunError, Unrunnable
+from factories.base import Factory
 from factories.registry import UnknownRobot, create
 from translator import translate
 
@@ -32,8 +33,16 @@ def _is_estd(path: Path) -> bool:
     return head.startswith(b"{") or b"<estd" in head
 
 
-def _load(task: Path, robot: str | None, arm: str | None) -> Estd:
-    """The ESTD to run: read as is, or translated from an ATD for the robot."""
+def _factory(robot: str, arm: str | None) -> Factory:
+    try:
+        return create(robot, arm)
+    except (UnknownRobot, ValueError) as exc:
+        _fail(f"error: {exc.args[0]}", EXIT_USAGE)
+        raise
+
+
+def _load(task: Path, robot: str | None, arm: str | None) -> tuple[Estd, Factory]:
+    """The ESTD to run and its robot's factory: read as is, or translated from an ATD."""
     if _is_estd(task):
         estd, found = read_estd(task)
         if estd is None:
@@ -41,20 +50,17 @@ def _load(task: Path, robot: str | None, arm: str | None) -> Estd:
         if robot and robot != estd.robot:
             _fail(f"error: {task} was translated for '{estd.robot}', not '{robot}'; "
                   f"translate the ATD again with --robot {robot}", EXIT_USAGE)
-        return estd
+        return estd, _factory(estd.robot, estd.arm)
     if robot is None:
         _fail(f"error: {task} is an ATD; say which robot runs it with --robot (see `atd robots list`)", EXIT_USAGE)
-    try:
-        factory = create(robot, arm)
-    except (UnknownRobot, ValueError) as exc:
-        _fail(f"error: {exc.args[0]}", EXIT_USAGE)
+    factory = _factory(robot, arm)
     atd_task, found = load_task(task)
     if atd_task is None or has_errors(found):
         _fail(render_all(found), EXIT_INVALID)
     result = translate(atd_task, factory)
     if result.estd is None:
         _fail(render_all(result.diagnostics) + f"\n{task}: {robot} cannot do this task", EXIT_UNTRANSLATABLE)
-    return result.estd
+    return result.estd, factory
 
 
 class _Progress:
@@ -96,14 +102,18 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
     Exit status: 0 the task ended in a success state, 3 in a failure state (or the watchdog
     stopped it), 1 invalid input, 2 usage error, 4 the robot cannot do the task.
     """
-    estd = _load(task, robot, arm)
+    estd, factory = _load(task, robot, arm)
     try:
-        session = Run(estd, engine=engine, seed=seed, trace_path=trace_path, realtime=realtime, budget=budget)
+        session = Run(estd, factory, engine=engine, seed=seed, trace_path=trace_path, realtime=realtime, budget=budget)
+    except Unrunnable as exc:
+        _fail(f"error: {exc}", EXIT_UNTRANSLATABLE)
     except RunError as exc:
         _fail(f"error: {exc}", EXIT_USAGE)
     outcome = session.execute(_Progress(quiet))
     title = f"{task.name} on {estd.robot} ({estd.arm} arm) in {engine}, seed {seed}"
     click.echo(summary(outcome, session.trace.records, title))
+    x, y, z = session.object_position
+    click.echo(f"the object rests at ({x:.3f}, {y:.3f}, {z:.3f})")
     if trace_path:
         click.echo(f"trace: {trace_path}")
     raise SystemExit(EXIT_OK if outcome.succeeded else EXIT_TASK_FAILED)

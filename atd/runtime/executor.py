@@ -21,7 +21,7 @@ from atd.model.vocabulary import StateType
 from atd.runtime.arbitrator import arbitrate
 from atd.runtime.trace import Trace
 from primitives.base import Condition, Context, ControlData, Status, StateView
-from primitives.registry import build_condition, build_controller
+from primitives.registry import BuildError, build_condition, build_controller
 from primitives.robot import Readings, Robot, dls_joint_velocities
 
 
@@ -117,7 +117,6 @@ class Machine:
             self.sub.enter(state.machine.initial, readings)
         if state.type.is_end:
             self.ended = state
-            self.visit.left = readings.time
             self.trace.write("end", readings.time, state=self.visit.path, atd=state.atd, outcome=state.type.value)
 
     # -- one tick -------------------------------------------------------------------------
@@ -198,6 +197,28 @@ Progress = Callable[[str, float, float], None]  # (current state path, sim time,
 Observer = Callable[[float], None]  # called after every control step with the simulated time
 
 
+def build_problems(estd: Estd, base: Context) -> list[str]:
+    """Everything in the ESTD this robot cannot build (a controller its hand does not have,
+    a sensor it lacks), found before the run starts rather than in the middle of it."""
+    problems = []
+    for prefix, machine in estd.walk():
+        ctx = replace(base, blackboard={})
+        for state in machine.states:
+            for role, use in (("arm", state.arm), ("hand", state.hand)):
+                if use is not None:
+                    try:
+                        build_controller(use, role, ctx)
+                    except BuildError as exc:
+                        problems.append(f"state '{prefix}{state.name}': {exc}")
+        for transition in machine.transitions:
+            for event in transition.events:
+                try:
+                    ConditionTree(event.condition, ctx)
+                except BuildError as exc:
+                    problems.append(f"transition '{prefix}{transition.atd}' event '{event.type.value}': {exc}")
+    return problems
+
+
 class Executor:
     """Runs one ESTD on one robot until an end state, or the watchdog, stops it."""
 
@@ -228,6 +249,7 @@ class Executor:
         readings = self.robot.read()
         self.machine.enter(self.estd.initial, readings)
         ticks = 0
+        shown = ""
         verdict: str | None = None
         while not self.machine.ended:
             readings = self.robot.read()
@@ -242,8 +264,11 @@ class Executor:
             ticks += 1
             for observe in observers:
                 observe(readings.time + dt)
-            if progress and ticks % every == 0:
-                progress(self.machine.innermost().visit.path, readings.time, wall)
+            if progress:
+                where = self.machine.innermost().visit.path
+                if where != shown or ticks % every == 0:
+                    shown = where
+                    progress(where, readings.time, wall)
         wall = wallclock.perf_counter() - started
         self.trace.close()
         end = self.machine.ended
