@@ -43,18 +43,18 @@ _SDH2 = Hand(
     cannot_grasp={HandShape.HOOK_GRASP: _SDH2_NO_HOOK, HandShape.HOOK_GRASP_PRESHAPE: _SDH2_NO_HOOK},
 )
 
-# The fingertip pads, named as the hands' descriptions name them (the SDH2's third finger
-# is its thumb); a test checks every tactile sensor here is a pad of the simulated hand.
+# Which pads hold an object (finger pads), and which count as any finger contact. The names
+# are the pads' names in the hands' descriptions (the SDH2's thumb carries 'tactile_f3');
+# a test checks every tactile sensor here is a pad of the simulated hand.
+_FINGER_PADS = ("tactile_f1", "tactile_f2", "tactile_f3")
 _BARRETT_SENSORS = (
     _WRIST_FT,
-    *(Sensor(p, SensorKind.TACTILE, f"Weiss 5x8 pad on the distal phalanx of finger {p[-1]}")
-      for p in ("tactile_f1", "tactile_f2", "tactile_f3")),
+    *(Sensor(p, SensorKind.TACTILE, f"Weiss 5x8 pad on the distal phalanx of finger {p[-1]}") for p in _FINGER_PADS),
+    Sensor("tactile_palm", SensorKind.TACTILE, "Weiss 6x14 pad on the palm"),
 )
 _SDH2_SENSORS = (
     _WRIST_FT,
-    Sensor("tactile_f1", SensorKind.TACTILE, "Weiss pad on the distal phalanx of finger 1"),
-    Sensor("tactile_f2", SensorKind.TACTILE, "Weiss pad on the distal phalanx of finger 2"),
-    Sensor("tactile_thumb", SensorKind.TACTILE, "Weiss pad on the distal phalanx of the thumb"),
+    *(Sensor(p, SensorKind.TACTILE, f"Weiss pads on the phalanges of finger {p[-1]}") for p in _FINGER_PADS),
 )
 
 # The grasp a hand closes into when the task names none, and the preshape that precedes each grasp.
@@ -148,9 +148,9 @@ class TombatossalsFactory(Factory):
     def sensed_event(self, event_type: EventType, origin: State) -> ConditionNode:
         pads = self.arm.sensors_of(SensorKind.TACTILE)
         if event_type is EventType.GRASP_STABLE:
-            return self.condition(event_type, "tactile_force_above", pads, min_pads=2)
+            return self.condition(event_type, "tactile_force_above", _FINGER_PADS, min_pads=2)
         if event_type is EventType.GRASP_LOST:
-            return self.condition(event_type, "tactile_force_below", pads, min_pads=2)
+            return self.condition(event_type, "tactile_force_below", _FINGER_PADS, min_pads=2)
         if event_type is EventType.FINGER_CONTACT:
             return self.condition(event_type, "tactile_force_above", pads, min_pads=1)
         if event_type is EventType.FINGER_CONTACT_LOST:
