@@ -28,6 +28,11 @@ def known_robots() -> list[str]:
     )
 
 
+def variants() -> list[tuple[str, str | None]]:
+    """Every (robot, arm) model there is."""
+    return [(robot, arm) for robot in known_robots() for arm in importlib.import_module(f"factories.{robot}.description").ARMS]
+
+
 def load_description(robot: str, arm: str | None = None) -> RobotDescription:
     """The robot's description from `factories.<robot>.description` (until the factory
     registry can be asked)."""

@@ -81,6 +81,9 @@ def _arm(side: str) -> tuple[Link, ...]:
     return tuple(links)
 
 
+ARMS = ("right", "left")  # what `description(arm)` accepts; the first is the default
+
+
 @lru_cache(maxsize=None)
 def description(arm: str | None = None) -> RobotDescription:
     side = arm or "right"

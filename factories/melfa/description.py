@@ -72,9 +72,12 @@ def _arm() -> tuple[Link, ...]:
     )
 
 
+ARMS = (None,)  # what `description(arm)` accepts; the first is the default
+
+
 @lru_cache(maxsize=None)
 def description(arm: str | None = None) -> RobotDescription:
-    if arm not in (None, "right"):
+    if arm is not None:
         raise ValueError(f"the Melfa has one arm; got arm '{arm}' (leave --arm out)")
     # Ry(90 deg) turns the hand's z (approach) along link6's x, out of the flange.
     hand_links, grip, pads, tcp_depth = parallel_jaw(PG70, "link6", Origin((0.03, 0, 0), (0, np.pi / 2, 0)))

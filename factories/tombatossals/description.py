@@ -224,9 +224,12 @@ def _sdh2() -> tuple[tuple[Link, ...], Hand, float]:
 # Found with `inverse_kinematics` from many starts, keeping the solution farthest from
 # the joint limits: TCP 15 cm above the middle of the work area, top-down.
 HOME = {
-    "right": (2.0829, 0.9435, -0.5064, 1.6968, 1.9621, -1.3491, -1.698),
-    "left": (1.4878, -0.872, -0.1109, -1.6845, -1.6535, 1.7265, -1.5193),
+    "right": (2.0532, 0.9389, -0.4985, 1.7014, 1.9358, -1.3386, -1.6889),
+    "left": (1.502, -0.8841, -0.1818, -1.6711, -1.648, 1.7894, -1.5213),
 }
+
+
+ARMS = ("right", "left")  # what `description(arm)` accepts; the first is the default
 
 
 @lru_cache(maxsize=None)
