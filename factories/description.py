@@ -105,6 +105,7 @@ class Joint:
     servo: Servo
     damping: float = 0.0
     armature: float = 0.0  # reflected rotor inertia, kg m^2 (kg for prismatic)
+    friction: float = 0.0  # dry friction, N m or N: a self-locking drive resists being pushed back
 
 
 @dataclass(frozen=True)

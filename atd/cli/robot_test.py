@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import os
 import sys
 from pathlib import Path
 
@@ -22,7 +21,6 @@ def robot_test(robot: str, arm: str | None, engine: str, seed: int, video: Path 
 
     Exits 0 only when every check passes.
     """
-    os.environ.setdefault("MUJOCO_GL", "egl")  # headless rendering, before mujoco loads
     from atd.sim import UnknownRobot, load_description
     from atd.sim.selftest import run_all
     from atd.sim.video import Recorder

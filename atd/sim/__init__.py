@@ -5,7 +5,11 @@ from __future__ import annotations
 
 import importlib
 import importlib.util
+import os
 import pkgutil
+
+# Headless pictures (videos of runs): MuJoCo picks its OpenGL backend when first imported.
+os.environ.setdefault("MUJOCO_GL", "egl")
 
 import factories
 from atd.sim.scene import Scene, box_scene

@@ -3,8 +3,7 @@
 Holding by friction needs (sim-notes.md): a small step, friction anchors, enough solver
 iterations. Bullet multiplies the friction of the two bodies in contact, so robot and
 table use 1 and the object's own coefficient (from the ATD) governs its contacts, as
-geom priority makes it do in MuJoCo. Hand joints follow their DOF with mimic targets;
-a force-mode joint gets its torque re-applied every physics step, as Bullet clears it.
+geom priority makes it do in MuJoCo. Hand joints follow their DOF with mimic targets.
 """
 
 from __future__ import annotations
@@ -102,11 +101,10 @@ class PybulletRobot(SimRobot):
         self._range_link = index["link:" + d.range_sensor.link] if d.range_sensor else -1
         self._arm_effort = [d.joints[n].effort for n in d.arm_joints]
         self._hand_effort = [d.joints[n].effort for n in self.hand_joints]
+        self._hand_effort_array = np.array(self._hand_effort)
+        self._hand_kv = np.array([d.joints[n].servo.kv for n in self.hand_joints])
         self._arm_gain = [ARM_POSITION_GAIN] * len(self._arm)
         self._hand_gain = [HAND_POSITION_GAIN] * len(self._hand)
-        self._force_joints: list[int] = []
-        self._forces: list[float] = []
-        self._hand_force = np.zeros(len(self._hand), bool)
 
         home = dict(zip(d.arm_joints, d.home)) | d.hand_joint_targets(self.info.hand.open)
         for name, i in zip(joints, self._joints):
@@ -162,35 +160,32 @@ class PybulletRobot(SimRobot):
         )
 
     def _apply_hand(self, force: np.ndarray, values: np.ndarray) -> None:
+        """Position joints get a servo; force joints a motor that runs at F/kv pushing with at
+        most F: in free space it closes at the speed where MuJoCo's damped force balances, and
+        against an object it pushes with F, as MuJoCo's does; it also stops the finger being
+        pushed back by less than F (a self-locking drive; Bullet has no joint friction)."""
         c = self.client
-        servo = ~force
-        if servo.any():
-            idx = np.flatnonzero(servo)
-            pb.setJointMotorControlArray(
-                self.body, [self._hand[i] for i in idx], pb.POSITION_CONTROL,
-                targetPositions=values[idx].tolist(), forces=[self._hand_effort[i] for i in idx],
-                positionGains=[self._hand_gain[i] for i in idx], physicsClientId=c,
-            )
-        newly = force & ~self._hand_force
-        if newly.any():  # a motor left on would fight the torque: switch it off
-            idx = np.flatnonzero(newly)
-            pb.setJointMotorControlArray(
-                self.body, [self._hand[i] for i in idx], pb.VELOCITY_CONTROL, forces=[0.0] * len(idx), physicsClientId=c
-            )
-        self._hand_force = force.copy()
-        limits = np.array(self._hand_effort)
-        self._force_joints = [self._hand[i] for i in np.flatnonzero(force)]
-        self._forces = np.clip(values[force], -limits[force], limits[force]).tolist()
+        for mode, idx in ((pb.POSITION_CONTROL, np.flatnonzero(~force)), (pb.VELOCITY_CONTROL, np.flatnonzero(force))):
+            if len(idx) == 0:
+                continue
+            joints = [self._hand[i] for i in idx]
+            if mode == pb.POSITION_CONTROL:
+                pb.setJointMotorControlArray(
+                    self.body, joints, mode, targetPositions=values[idx].tolist(),
+                    forces=[self._hand_effort[i] for i in idx], positionGains=[self._hand_gain[i] for i in idx],
+                    physicsClientId=c,
+                )
+            else:
+                push = np.clip(values[idx], -self._hand_effort_array[idx], self._hand_effort_array[idx])
+                pb.setJointMotorControlArray(
+                    self.body, joints, mode, targetVelocities=(push / self._hand_kv[idx]).tolist(),
+                    forces=np.abs(push).tolist(), physicsClientId=c,
+                )
 
     def _advance(self) -> None:
-        c = self.client
         self._contact_cache = self._root_cache = None
         for _ in range(self.substeps):
-            if self._force_joints:
-                pb.setJointMotorControlArray(
-                    self.body, self._force_joints, pb.TORQUE_CONTROL, forces=self._forces, physicsClientId=c
-                )
-            pb.stepSimulation(physicsClientId=c)
+            pb.stepSimulation(physicsClientId=self.client)
 
     def _jacobian(self) -> np.ndarray:
         q = [s[0] for s in pb.getJointStates(self.body, self._movable, physicsClientId=self.client)]
@@ -204,11 +199,7 @@ class PybulletRobot(SimRobot):
         states = pb.getJointStates(self.body, self._joints, physicsClientId=self.client)
         q = np.array([s[0] for s in states])
         dq = np.array([s[1] for s in states])
-        effort = np.array([s[3] for s in states])
-        if self._force_joints:  # Bullet reports no motor torque under torque control
-            n = len(self._arm)
-            effort[n:][self._hand_force] = self._forces
-        return q, dq, effort
+        return q, dq, np.array([s[3] for s in states])
 
     def _link_pose(self, link: int) -> np.ndarray:
         state = pb.getLinkState(self.body, link, computeForwardKinematics=True, physicsClientId=self.client)

@@ -72,7 +72,10 @@ def _pa10(side: str) -> tuple[Link, ...]:
 BH_DW, BH_AW, BH_A1, BH_A2, BH_A3 = 0.076, 0.025, 0.050, 0.070, 0.050
 BH_DISTAL_REST = 42 * D
 BH_COUPLING = 0.84 / 2.44
-_BH_FINGER = Servo(kp=20.0, kv=1.0)
+# The finger drives are self-locking (worm gears): modelled as dry friction on the motor
+# joint, so an object pushes a stalled finger back only with more than this (our value).
+BH_SELF_LOCK = 0.5
+_BH_FINGER = Servo(kp=20.0, kv=0.3)  # kv also limits the free closing speed under force to about 2 rad/s
 _BH_SPREAD = Servo(kp=20.0, kv=1.0)
 
 
@@ -80,7 +83,8 @@ def _barrett_finger(finger: str, parent: str, origin: Origin) -> tuple[tuple[Lin
     flex = (0.0, -1.0, 0.0)  # about -y: x (along the finger) turns towards +z (the approach side)
     proximal = Link(
         f"bh_{finger}_proximal", parent, origin, 0.1, (box((0.035, 0, 0), (0.035, 0.012, 0.009), METAL),),
-        Joint(f"bh_{finger}_proximal", "revolute", flex, 0.0, 2.44, 2.0, 3.0, _BH_FINGER, damping=0.05, armature=0.01),
+        Joint(f"bh_{finger}_proximal", "revolute", flex, 0.0, 2.44, 2.0, 3.0, _BH_FINGER, damping=0.05, armature=0.01,
+              friction=BH_SELF_LOCK),
     )
     distal = Link(
         f"bh_{finger}_distal", proximal.name, Origin((BH_A2, 0, 0), (0, -BH_DISTAL_REST, 0)), 0.05,
