@@ -96,7 +96,7 @@ class PybulletRobot(SimRobot):
         hand_root = d.links_by_name[d.hand_root]
         self._tcp_offset = d.tcp.origin.matrix()
         self._hand_com = np.asarray(hand_root.centre_of_mass)
-        self._tcp_from_com = np.asarray(d.tcp.origin.xyz) - self._hand_com
+        self._tcp_in_link = list(d.tcp.origin.xyz)  # calculateJacobian takes it in the URDF link frame
         self._range_offset = d.range_sensor.origin.matrix() if d.range_sensor else None
         self._range_link = index["link:" + d.range_sensor.link] if d.range_sensor else -1
         self._arm_effort = [d.joints[n].effort for n in d.arm_joints]
@@ -191,7 +191,7 @@ class PybulletRobot(SimRobot):
         q = [s[0] for s in pb.getJointStates(self.body, self._movable, physicsClientId=self.client)]
         zeros = [0.0] * len(q)
         lin, ang = pb.calculateJacobian(
-            self.body, self._hand_link, self._tcp_from_com.tolist(), q, zeros, zeros, physicsClientId=self.client
+            self.body, self._hand_link, self._tcp_in_link, q, zeros, zeros, physicsClientId=self.client
         )
         return np.vstack([np.asarray(lin)[:, self._jac_columns], np.asarray(ang)[:, self._jac_columns]])
 
