@@ -88,14 +88,16 @@ class PybulletRobot(SimRobot):
         self._pad_links = [index["link:" + p.name] for p in d.hand.pads]
         self._hand_links = [index["link:" + n] for n in d.hand_links if n != d.hand_root] + self._pad_links
         self._hand_set = {self._hand_link, *self._hand_links}
-        self._hand_weights = np.array(
-            [[0.0, 0.0, -9.81 * pb.getDynamicsInfo(self.body, i, physicsClientId=c)[0]] for i in [self._hand_link, *self._hand_links]]
+        self._pad_of_link = {link: k for k, link in enumerate(self._pad_links)}
+        self._untouched = (np.zeros(0, int), np.zeros((0, 2)), np.zeros(0))
+        self._hand_weights = np.array(  # z of each hand link's weight, root first
+            [-9.81 * pb.getDynamicsInfo(self.body, i, physicsClientId=c)[0] for i in [self._hand_link, *self._hand_links]]
         )
         self._contact_cache: tuple | None = None
         self._root_cache: np.ndarray | None = None
         hand_root = d.links_by_name[d.hand_root]
         self._tcp_offset = d.tcp.origin.matrix()
-        self._hand_com = np.asarray(hand_root.centre_of_mass)
+        self._hand_com_h = np.append(hand_root.centre_of_mass, 1.0)
         self._tcp_in_link = list(d.tcp.origin.xyz)  # calculateJacobian takes it in the URDF link frame
         self._range_offset = d.range_sensor.origin.matrix() if d.range_sensor else None
         self._range_link = index["link:" + d.range_sensor.link] if d.range_sensor else -1
@@ -197,9 +199,8 @@ class PybulletRobot(SimRobot):
 
     def _joint_state(self):
         states = pb.getJointStates(self.body, self._joints, physicsClientId=self.client)
-        q = np.array([s[0] for s in states])
-        dq = np.array([s[1] for s in states])
-        return q, dq, np.array([s[3] for s in states])
+        q, dq, effort = np.array([(s[0], s[1], s[3]) for s in states]).T
+        return q, dq, effort
 
     def _link_pose(self, link: int) -> np.ndarray:
         state = pb.getLinkState(self.body, link, computeForwardKinematics=True, physicsClientId=self.client)
@@ -226,34 +227,31 @@ class PybulletRobot(SimRobot):
         about 7 N at 5 cm/s, measured here), so the sensor is modelled quasi-statically:
         the hand's inertia (mass times acceleration, a fraction of a newton here) is left out.
         """
-        c = self.client
         root = self._hand_root()
         origin = root[:3, 3]
-        states = pb.getLinkStates(self.body, self._hand_links, physicsClientId=c)
-        com = np.vstack([(root @ np.append(self._hand_com, 1.0))[:3], [s[0] for s in states]])  # Bullet: link = CoM
-        force = self._hand_weights.sum(axis=0)
-        torque = np.cross(com - origin, self._hand_weights).sum(axis=0)
-        for p in self._contacts():
-            if p[3] in self._hand_set:
-                f = p[9] * np.asarray(p[7]) + p[10] * np.asarray(p[11]) + p[12] * np.asarray(p[13])
-                force += f
-                torque += np.cross(np.asarray(p[5]) - origin, f)
+        states = pb.getLinkStates(self.body, self._hand_links, physicsClientId=self.client)
+        # Weights pull along -z: r x (0, 0, w) = (r_y w, -r_x w, 0).
+        arms = np.array([(root @ self._hand_com_h)[:3], *(s[0] for s in states)]) - origin
+        torque = np.array([arms[:, 1] @ self._hand_weights, -(arms[:, 0] @ self._hand_weights), 0.0])
+        force = np.array([0.0, 0.0, self._hand_weights.sum()])
+        hits = [p for p in self._contacts() if p[3] in self._hand_set]
+        if hits:
+            c = np.array([(*p[5], *p[7], p[9], p[10], *p[11], p[12], *p[13]) for p in hits])
+            f = c[:, 3:6] * c[:, 6:7] + c[:, 8:11] * c[:, 7:8] + c[:, 12:15] * c[:, 11:12]
+            r = c[:, 0:3] - origin
+            force += f.sum(axis=0)
+            torque += (r[:, [1, 2, 0]] * f[:, [2, 0, 1]] - r[:, [2, 0, 1]] * f[:, [1, 2, 0]]).sum(axis=0)
         rot = root[:3, :3]
         return np.concatenate([force @ rot, torque @ rot])
 
     def _pad_contacts(self):
-        contacts = self._contacts()
-        result = []
-        for link in self._pad_links:
-            hits = [p for p in contacts if p[3] == link]
-            if not hits:
-                result.append(None)
-                continue
-            pose = self._link_pose(link)
-            world = np.array([p[5] for p in hits])
-            local = (world - pose[:3, 3]) @ pose[:3, :3]
-            result.append((local[:, :2], np.array([p[9] for p in hits])))
-        return result
+        hits = [(self._pad_of_link[p[3]], p) for p in self._contacts() if p[3] in self._pad_of_link]
+        if not hits:
+            return self._untouched
+        pad = np.array([k for k, _ in hits])
+        frames = {k: self._link_pose(self._pad_links[k]) for k in set(pad.tolist())}
+        xy = np.array([(np.asarray(p[5]) - frames[k][:3, 3]) @ frames[k][:3, :2] for k, p in hits])
+        return pad, xy, np.array([p[9] for _, p in hits])
 
     def _range(self) -> float:
         pose = self._link_pose(self._range_link) @ self._range_offset

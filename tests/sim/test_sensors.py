@@ -8,7 +8,7 @@ import pytest
 
 from atd.sim import ENGINES, load_description
 from atd.sim.scene import Scene, box_scene
-from atd.sim.sensors import NoisySensor, TaxelGrid
+from atd.sim.sensors import NoisySensor, TaxelImages
 from factories.description import FingerPad, Origin, SensorModel
 from primitives.robot import HandMode
 
@@ -67,13 +67,18 @@ def test_a_frozen_stream_stops_counting_and_keeps_its_value(melfa, robot_of, run
 
 
 def test_a_contact_lands_on_the_taxel_under_it() -> None:
-    pad = FingerPad("p", "l", Origin(), half_size=(0.01, 0.02), thickness=0.003, taxels=(8, 4))
-    grid = TaxelGrid(pad)
-    image = grid.image(np.array([[-0.0099, -0.0199], [0.0099, 0.0199], [0.03, 0.0]]), np.array([1.0, 2.0, 4.0]))
-    assert image.shape == (8, 4)
-    assert image[0, 0] == 1.0 and image[7, 3] == 2.0  # corners: rows along y, columns along x
-    assert image[4, 3] == 4.0  # past the edge counts on the edge taxel
-    assert image.sum() == 7.0
+    pads = (
+        FingerPad("a", "l", Origin(), half_size=(0.01, 0.02), thickness=0.003, taxels=(8, 4)),
+        FingerPad("b", "l", Origin(), half_size=(0.01, 0.01), thickness=0.003, taxels=(2, 2)),
+    )
+    xy = np.array([[-0.0099, -0.0199], [0.0099, 0.0199], [0.03, 0.0], [0.005, -0.005]])
+    images, force = TaxelImages(pads)(np.array([0, 0, 0, 1]), xy, np.array([1.0, 2.0, 4.0, 8.0]))
+    a, b = images["a"], images["b"]
+    assert a.shape == (8, 4) and b.shape == (2, 2)
+    assert a[0, 0] == 1.0 and a[7, 3] == 2.0  # corners: rows along y, columns along x
+    assert a[4, 3] == 4.0  # past the edge counts on the edge taxel
+    assert b[0, 1] == 8.0 and b.sum() == 8.0
+    np.testing.assert_array_equal(force, [7.0, 8.0])
 
 
 @pytest.mark.parametrize("engine", ENGINES)
