@@ -14,9 +14,6 @@ import numpy as np
 from atd.sim.scene import TABLE_CENTRE, TABLE_HALF, Body, Scene
 from factories.description import FingerPad, Link, Origin, RobotDescription, Shape
 
-ROBOT_GROUP = "robot"
-
-
 def matrix_to_quat(r: np.ndarray) -> tuple[float, float, float, float]:
     """(w, x, y, z) of a rotation matrix."""
     w = np.sqrt(max(0.0, 1.0 + r[0, 0] + r[1, 1] + r[2, 2])) / 2

@@ -122,8 +122,8 @@ class MujocoRobot(SimRobot):
         pad = pad[active]
         g = self._pad_geom[pad]
         offset = contact.pos[active] - d.geom_xpos[g]
-        axes = d.geom_xmat[g]  # row-major: the pad's x axis is entries 0, 3, 6 and its y axis 1, 4, 7
-        xy = np.stack([(offset * axes[:, 0::3]).sum(axis=1), (offset * axes[:, 1::3]).sum(axis=1)], axis=1)
+        # Row vector times each pad's rotation: the point in that pad's frame.
+        xy = np.matmul(offset[:, None, :], d.geom_xmat[g].reshape(-1, 3, 3))[:, 0, :2]
         # With elliptic cones a contact's first constraint row is its normal force.
         return pad, xy, d.efc_force[address[active]]
 
