@@ -35,8 +35,8 @@ _LENGTH = (0.117, 0.200, 0.250, 0.240, 0.240, 0.040, 0.030)
 JR3_THICKNESS = 0.033
 _SERVO = {
     "s1": (Servo(20000.0, 500.0), 1.0), "s2": (Servo(20000.0, 500.0), 1.0),
-    "s3": (Servo(10000.0, 250.0), 0.5), "e1": (Servo(10000.0, 250.0), 0.5),
-    "e2": (Servo(4000.0, 50.0), 0.1), "w1": (Servo(4000.0, 50.0), 0.1), "w2": (Servo(4000.0, 50.0), 0.1),
+    "s3": (Servo(15000.0, 300.0), 0.5), "e1": (Servo(15000.0, 300.0), 0.5),
+    "e2": (Servo(6000.0, 60.0), 0.1), "w1": (Servo(6000.0, 60.0), 0.1), "w2": (Servo(6000.0, 60.0), 0.1),
 }
 # Arm bases on the torso sides, their axes horizontal and 120 degrees apart (60 degrees off
 # straight ahead): Ry(90 deg) lays the arm's z horizontal, the yaw turns it out.
