@@ -97,3 +97,26 @@ def test_joint_commands_beyond_the_limits_are_clamped(melfa, robot_of, run, engi
     assert np.all(q <= info.arm_upper + 0.01)
     assert np.all(peak <= 1.25 * info.arm_velocity_limit)
     np.testing.assert_allclose(q, info.arm_upper, atol=0.02)
+
+
+def test_a_tilted_hand_reads_the_same_wrench_on_both_engines(melfa, robot_of, run) -> None:
+    """Gravity seen from a tilted hand: force components and the torque of the hand's weight about the sensor."""
+    mean = {}
+    for engine in ENGINES:
+        robot = robot_of(melfa, engine, box_scene(xy=(0.3, 0.3)))
+        dq = np.zeros(6)
+        dq[4:] = 0.5  # tilt the wrist and turn the flange
+        robot.command_arm_velocity(dq)
+        run(robot, 1.0)
+        robot.command_arm_velocity(np.zeros(6))
+        run(robot, 0.5)
+        samples = []
+        for _ in range(100):
+            robot.step()
+            samples.append(robot.read().wrench)
+        mean[engine] = np.mean(samples, axis=0)
+    mj, pb = mean["mujoco"], mean["pybullet"]
+    assert np.linalg.norm(mj[:3]) == pytest.approx(melfa.hand_mass * GRAVITY, rel=0.01)
+    assert abs(mj[0]) > 3 and abs(mj[1]) > 2 and abs(mj[3]) > 0.1  # really tilted: weight on every axis
+    np.testing.assert_allclose(mj[:3], pb[:3], atol=0.05)
+    np.testing.assert_allclose(mj[3:], pb[3:], atol=0.005)
