@@ -6,6 +6,10 @@ Each sub-command lives in its own module and registers itself on `main` (or on t
 
 from atd.cli.app import main, robots
 from atd.cli import validate as _validate  # noqa: F401  (registers `atd validate`, `atd schema`)
+from atd.cli import translate as _translate  # noqa: F401  (registers `atd translate`)
+from atd.cli import check as _check  # noqa: F401  (registers `atd check`)
+from atd.cli import robots_command as _robots  # noqa: F401  (registers `atd robots list|show`)
+from atd.cli import graph as _graph  # noqa: F401  (registers `atd graph`)
 from atd.cli import robot_test as _robot_test  # noqa: F401  (registers `atd robots test`)
 
 __all__ = ["main", "robots"]

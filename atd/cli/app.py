@@ -17,6 +17,9 @@ def main() -> None:
     """Describe a manipulation task once (ATD), translate it for a robot (ESTD), run it in simulation."""
 
 
-@main.group()
-def robots() -> None:
-    """The robots installed through factories."""
+@main.group(invoke_without_command=True)
+@click.pass_context
+def robots(ctx: click.Context) -> None:
+    """The robots installed through factories (bare `atd robots` lists them)."""
+    if ctx.invoked_subcommand is None:
+        ctx.invoke(robots.get_command(ctx, "list"))

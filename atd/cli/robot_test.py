@@ -12,7 +12,7 @@ from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, robots
 
 @robots.command("test")
 @click.argument("robot")
-@click.option("--arm", type=click.Choice(["left", "right"]), default=None, help="Which arm of a two-arm robot (default: the robot's own).")
+@click.option("--arm", default=None, help="Which arm (e.g. left, right; default: the robot's first).")
 @click.option("--engine", type=click.Choice(["mujoco", "pybullet"]), default="mujoco", show_default=True)
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the sensor noise.")
 @click.option("--video", type=click.Path(dir_okay=False, path_type=Path), default=None, help="Write the grasp as an animated GIF.")

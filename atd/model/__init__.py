@@ -1,6 +1,7 @@
 """The ATD and ESTD languages as data, their XML form, and their validation."""
 
 from atd.model.diagnostics import Diagnostic, Severity, has_errors
+from atd.model.load import load_task
 from atd.model.task import (
     Environment,
     Event,
@@ -14,6 +15,7 @@ from atd.model.task import (
     Waypoint,
 )
 from atd.model.vocabulary import EventType, HandShape, Movement, ObjectClass, StateType
+from atd.model.writer import task_to_xml, write_atomically
 
 __all__ = [
     "Diagnostic",
@@ -34,4 +36,7 @@ __all__ = [
     "Transition",
     "Waypoint",
     "has_errors",
+    "load_task",
+    "task_to_xml",
+    "write_atomically",
 ]

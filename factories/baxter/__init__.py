@@ -1,1 +1,1 @@
-"""baxter"""
+"""The baxter factory."""

@@ -39,6 +39,7 @@ _WRIST = Servo(kp=1000.0, kv=20.0)
 # 41.7 mm of travel spans a 26-68 mm opening, wide enough for the 5-6 cm class defaults.
 GRIPPER = JawSpec(
     prefix="gripper",
+    pad_prefix="gripper",
     body_half=(0.03, 0.05, 0.01),
     body_mass=0.3,
     finger_base_z=0.02,
@@ -81,13 +82,13 @@ def _arm(side: str) -> tuple[Link, ...]:
     return tuple(links)
 
 
-ARMS = ("right", "left")  # what `description(arm)` accepts; the first is the default
+ARMS = ("right", "left")  # what `description(arm)` accepts (None = the first); its factory's arm names
 
 
 @lru_cache(maxsize=None)
 def description(arm: str | None = None) -> RobotDescription:
-    side = arm or "right"
-    if side not in HOME:
+    side = arm or ARMS[0]
+    if side not in ARMS:
         raise ValueError(f"Baxter has a 'left' and a 'right' arm; got '{arm}'")
     hand_links, grip, pads, tcp_depth = parallel_jaw(GRIPPER, "hand", Origin((0, 0, 0.025)))
     hand = Hand(

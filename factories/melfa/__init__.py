@@ -1,1 +1,1 @@
-"""melfa"""
+"""The melfa factory."""

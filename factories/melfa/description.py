@@ -35,6 +35,7 @@ _WRIST = Servo(kp=1500.0, kv=40.0)
 # DSA-style 6 x 14 taxel pad (3.4 mm pitch), 34 mm stroke per jaw [PG70U].
 PG70 = JawSpec(
     prefix="pg70",
+    pad_prefix="tactile",
     body_half=(0.04, 0.05, 0.0465),
     body_mass=1.2,
     finger_base_z=0.093,
@@ -72,13 +73,13 @@ def _arm() -> tuple[Link, ...]:
     )
 
 
-ARMS = (None,)  # what `description(arm)` accepts; the first is the default
+ARMS = ("main",)  # what `description(arm)` accepts (None = the first); its factory's arm names
 
 
 @lru_cache(maxsize=None)
 def description(arm: str | None = None) -> RobotDescription:
-    if arm is not None:
-        raise ValueError(f"the Melfa has one arm; got arm '{arm}' (leave --arm out)")
+    if arm not in (None, *ARMS):
+        raise ValueError(f"the Melfa has one arm, 'main'; got arm '{arm}' (leave --arm out)")
     # Ry(90 deg) turns the hand's z (approach) along link6's x, out of the flange.
     hand_links, grip, pads, tcp_depth = parallel_jaw(PG70, "link6", Origin((0.03, 0, 0), (0, np.pi / 2, 0)))
     hand = Hand(

@@ -1,1 +1,1 @@
-"""tombatossals"""
+"""The tombatossals factory."""

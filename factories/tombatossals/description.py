@@ -93,7 +93,7 @@ def _barrett_finger(finger: str, parent: str, origin: Origin) -> tuple[tuple[Lin
     )
     # Weiss pad on the grasping (+z) face of the distal link, 5 x 8 taxels (thesis A.1.2),
     # flush with the fingertip: a small object is touched by the pad's tip edge.
-    pad = FingerPad(f"{finger}_pad", distal.name, Origin((0.031, 0, 0.0085)), (0.019, 0.012), 0.003, (5, 8))
+    pad = FingerPad(f"tactile_{finger}", distal.name, Origin((0.031, 0, 0.0085)), (0.019, 0.012), 0.003, (5, 8))
     return (proximal, distal), pad
 
 
@@ -115,6 +115,8 @@ def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
     chain, pad = _barrett_finger("f3", "bh_palm", Origin((0, -BH_A1, BH_DW), (0, 0, -np.pi / 2)))
     links += chain
     pads.append(pad)
+    # Weiss 6 x 14 pad on the palm (thesis A.1.2), its columns across the palm.
+    pads.append(FingerPad("tactile_palm", "bh_palm", Origin((0, 0, BH_DW + 0.0015)), (0.035, 0.015), 0.003, (6, 14)))
 
     def finger(name: str) -> HandDof:
         return HandDof(name, ((f"bh_{name}_proximal", 1.0), (f"bh_{name}_distal", BH_COUPLING)), 1, 0.0, 2.44, geared=True)
@@ -153,7 +155,7 @@ _SDH_SERVO = Servo(kp=30.0, kv=1.0)
 _SDH_SPEED = 210 * D  # thesis A.1.2
 
 
-def _sdh_finger(finger: str, parent: str, origin: Origin) -> tuple[tuple[Link, ...], FingerPad]:
+def _sdh_finger(finger: str, parent: str, origin: Origin, pad_name: str | None = None) -> tuple[tuple[Link, ...], FingerPad]:
     curl = (0.0, 1.0, 0.0)  # about +y: z (along the finger) turns towards +x (inwards)
     proximal = Link(
         f"sdh_{finger}_proximal", parent, origin, 0.15,
@@ -169,7 +171,8 @@ def _sdh_finger(finger: str, parent: str, origin: Origin) -> tuple[tuple[Link, .
     )
     # Weiss pad on the inner (+x) face of the distal link, 6 x 13 taxels; Ry(90 deg) turns
     # the pad's normal to +x and its x down the finger.
-    pad = FingerPad(f"{finger}_pad", distal.name, Origin((0.0105, 0, 0.038), (0, np.pi / 2, 0)), (0.024, 0.009), 0.003, (6, 13))
+    pad = FingerPad(pad_name or f"tactile_{finger}", distal.name, Origin((0.0105, 0, 0.038), (0, np.pi / 2, 0)),
+                    (0.024, 0.009), 0.003, (6, 13))
     return (proximal, distal), pad
 
 
@@ -189,7 +192,7 @@ def _sdh2() -> tuple[tuple[Link, ...], Hand, float]:
         chain, pad = _sdh_finger(finger, knuckle.name, Origin((0, 0, SDH_KNUCKLE)))
         links += [knuckle, *chain]
         pads.append(pad)
-    chain, pad = _sdh_finger("thumb", "sdh_palm", Origin((-0.038, 0, SDH_BASE_Z + SDH_KNUCKLE)))
+    chain, pad = _sdh_finger("thumb", "sdh_palm", Origin((-0.038, 0, SDH_BASE_Z + SDH_KNUCKLE)), pad_name="tactile_f3")
     links += chain
     pads.append(pad)
 
@@ -233,13 +236,13 @@ HOME = {
 }
 
 
-ARMS = ("right", "left")  # what `description(arm)` accepts; the first is the default
+ARMS = ("right", "left")  # what `description(arm)` accepts (None = the first); its factory's arm names
 
 
 @lru_cache(maxsize=None)
 def description(arm: str | None = None) -> RobotDescription:
-    side = arm or "right"
-    if side not in HOME:
+    side = arm or ARMS[0]
+    if side not in ARMS:
         raise ValueError(f"Tombatossals has a 'left' (Schunk SDH2) and a 'right' (Barrett) arm; got '{arm}'")
     hand_links, hand, tcp_depth = _barrett() if side == "right" else _sdh2()
     root = hand_links[0].name

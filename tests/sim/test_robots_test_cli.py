@@ -11,7 +11,7 @@ from atd.sim import variants
 
 def test_the_three_robots_and_both_tombatossals_hands_are_there() -> None:
     assert variants() == [
-        ("baxter", "right"), ("baxter", "left"), ("melfa", None), ("tombatossals", "right"), ("tombatossals", "left"),
+        ("baxter", "right"), ("baxter", "left"), ("melfa", "main"), ("tombatossals", "right"), ("tombatossals", "left"),
     ]
 
 
@@ -34,7 +34,7 @@ def test_unknown_robot_is_named_with_the_known_ones() -> None:
 def test_an_arm_the_robot_does_not_have_is_refused() -> None:
     result = CliRunner().invoke(main, ["robots", "test", "melfa", "--arm", "left"])
     assert result.exit_code == 1
-    assert "the Melfa has one arm" in result.output
+    assert "the Melfa has one arm, 'main'" in result.output
 
 
 def test_video_other_than_gif_is_refused_before_running(tmp_path) -> None:

@@ -1,0 +1,5 @@
+"""`python -m atd` runs the command line."""
+
+from atd.cli import main
+
+main()

@@ -1,0 +1,80 @@
+"""`atd robots list` and `atd robots show R`: the installed factories and their mapping tables.
+
+(Not `robots.py`: that name would shadow the `robots` click group that `atd.cli` exports.)
+"""
+
+from __future__ import annotations
+
+import click
+
+from atd.cli.app import robots
+from atd.cli.translate import make_factory
+from atd.model.controllers import format_value
+from atd.model.task import Event, Location, State, Task, Transition
+from atd.model.vocabulary import EventType, StateType
+from atd.model.estd import describe
+from factories.base import Factory, MappingContext, Unmappable
+from factories.registry import installed
+
+
+@robots.command("list")
+def list_robots() -> None:
+    """Every installed robot with its arms and capabilities."""
+    for name, entry in installed().items():
+        factory = entry.load()()
+        caps = factory.capabilities
+        click.echo(f"{name}: {factory.description}")
+        click.echo(f"  arms:        {', '.join(a.name for a in factory.arms)} (default {factory.arms[0].name})")
+        click.echo(f"  primitives:  {', '.join(sorted(p.value for p in caps.primitives))}")
+        click.echo(f"  hand shapes: {', '.join(sorted(s.value for s in caps.hand_shapes))}")
+        click.echo(f"  events:      {', '.join(sorted(e.value for e in caps.events))}")
+
+
+def event_rows(factory: Factory) -> list[tuple[str, str]]:
+    """How each abstract event is detected, read off the factory itself (so it cannot go stale)."""
+    rows = []
+    for origin_type in (StateType.MOVE, *sorted(factory.primitives - {StateType.MOVE})):
+        origin = State(name="origin", type=origin_type)
+        task = Task(states=(origin, State(name="next", type=StateType.SUCCESS)))
+        for event in EventType:
+            edge = Transition(origin="origin", destination="next", events=(Event(type=event),))
+            try:
+                text = describe(factory.map_event(event, 5.0, edge, MappingContext(task)), thresholds=True)
+            except Unmappable as exc:
+                text = f"cannot: {exc.reason}"
+            label = event.value if origin_type is StateType.MOVE else f"{event.value} (leaving {origin_type.value})"
+            if origin_type is StateType.MOVE or text not in {r[1] for r in rows if r[0].split()[0] == event.value}:
+                rows.append((label, text))
+    return rows
+
+
+def mapping_table(factory: Factory) -> str:
+    """The robot's mapping table in the columns of thesis Tables 7.3 and 7.4, as Markdown."""
+    lines = ["| Abstract | Concrete primitive | Extra parameters | Control and sensors |", "|---|---|---|---|"]
+    lines += [f"| {r.abstract} | {r.concrete} | {r.extra_parameters} | {r.control_and_sensors} |"
+              for r in factory.node_table]
+    return "\n".join(lines)
+
+
+@robots.command("show")
+@click.argument("robot")
+@click.option("--arm", default=None, help="which arm (default: the robot's first)")
+def show(robot: str, arm: str | None) -> None:
+    """Print ROBOT's description, arms, mapping table, event conditions and config values."""
+    factory = make_factory(robot, arm, None)
+    click.echo(f"{factory.name}: {factory.description}\n")
+    for a in factory.arms:
+        w = a.workspace
+        click.echo(f"arm '{a.name}': {a.description} ({a.hand.kind} hand)")
+        click.echo(f"  sensors: {', '.join(f'{s.name} ({s.kind.value})' for s in a.sensors)}")
+        click.echo(f"  workspace: shoulder {w.shoulder}, wrist reach {w.min_reach:g}..{w.max_reach:g} m, "
+                   f"tool {w.tool_length:g} m; {w.basis}")
+    click.echo(f"\nprimitives ({factory.arm.name} arm):\n{mapping_table(factory)}\n")
+    click.echo("events:")
+    for label, text in event_rows(factory):
+        click.echo(f"  {label}: {text}")
+    click.echo("\nconfig (overrides of the thesis defaults):")
+    for name, params in sorted(factory.config.controllers.items()):
+        click.echo(f"  {name}: {', '.join(f'{k}={format_value(v)}' for k, v in sorted(params.items()))}")
+    for (event, kind), params in sorted(factory.config.conditions.items()):
+        click.echo(f"  {event}/{kind}: {', '.join(f'{k}={format_value(v)}' for k, v in sorted(params.items()))}")

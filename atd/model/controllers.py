@@ -1,0 +1,385 @@
+"""The ESTD vocabulary: every concrete controller and condition an ESTD may name.
+
+This module is the one contract between the two sides of an ESTD. Factories choose
+names from it and fill in parameters; the runtime implements exactly these names and
+reads the parameters by the names given here. Defaults are the thesis values of
+chapter 3.3 where the thesis gives one (cited per parameter), otherwise ours (marked).
+
+Per D5 2.2.4 every ESTD state runs one arm controller and one hand controller at the
+same time; the runtime's arbitrator merges their outputs per degree of freedom. A leaf
+condition reads sensors of one kind (wrist force-torque, tactile pads, gripper, range)
+and holds or not at each control step.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import StrEnum
+from types import MappingProxyType
+from typing import Mapping, Union
+
+ParamValue = Union[bool, int, float, str, tuple[float, ...], tuple[tuple[float, ...], ...]]
+
+
+class Role(StrEnum):
+    ARM = "arm"
+    HAND = "hand"
+
+
+class SensorKind(StrEnum):
+    """What a sensor measures, so a condition can check it names sensors it can read."""
+
+    FORCE_TORQUE = "force_torque"  # 6-axis wrist wrench, hand frame (see docs/estd.md)
+    TACTILE = "tactile"  # one pad: total normal force in N
+    GRIPPER = "gripper"  # parallel gripper: jaw opening in m and motor force in N
+    RANGE = "range"  # distance in m along the hand's approach axis
+
+
+class ParamType(StrEnum):
+    NUMBER = "number"  # float
+    INTEGER = "integer"
+    FLAG = "flag"  # bool, written true/false
+    WORD = "word"  # str
+    VECTOR = "vector"  # fixed-length tuple of floats, written space-separated
+    POINTS = "points"  # tuple of 3-vectors, written "x y z; x y z"
+
+
+@dataclass(frozen=True)
+class ParamSpec:
+    """One parameter: its type, meaning, unit and default.
+
+    A parameter with no default is either required (a factory must set it, e.g. a
+    target) or optional (omitted when unset, e.g. PREGRASP_SIZE "default: none").
+    Only parameters with a default are tunable in a robot config file: the others,
+    and point lists (waypoints, obstacles), come from the task.
+    """
+
+    type: ParamType
+    doc: str
+    default: ParamValue | None = None
+    required: bool = False
+    unit: str = ""
+    length: int | None = None  # VECTOR only
+    choices: tuple[str, ...] = ()  # WORD only; empty = free text
+
+    @property
+    def tunable(self) -> bool:
+        return self.default is not None and self.type is not ParamType.POINTS
+
+
+@dataclass(frozen=True)
+class ControllerSpec:
+    name: str
+    role: Role
+    doc: str
+    source: str  # where the control law comes from
+    params: Mapping[str, ParamSpec] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class ConditionSpec:
+    kind: str
+    doc: str
+    reads: SensorKind | None = None  # leaves of this kind name >= 1 sensor of this kind
+    params: Mapping[str, ParamSpec] = field(default_factory=dict)
+
+
+def _p(type_: ParamType, doc: str, default: ParamValue | None = None, *, unit: str = "",
+       required: bool = False, length: int | None = None, choices: tuple[str, ...] = ()) -> ParamSpec:
+    return ParamSpec(type_, doc, default, required, unit, length, choices)
+
+
+NUM, VEC, FLAG, WORD, PTS, INT = (ParamType.NUMBER, ParamType.VECTOR, ParamType.FLAG, ParamType.WORD,
+                                  ParamType.POINTS, ParamType.INTEGER)
+
+# Parameters shared by several controllers, defined once.
+_TARGET = _p(VEC, "TCP position to reach, ATD world frame", unit="m", required=True, length=3)
+_SURFACE_NORMAL = _p(VEC, "normal of the supporting surface, world frame (thesis 3.3.3-3.3.5)", (0.0, 0.0, 1.0),
+                     length=3)
+_FILTER = _p(NUM, "time constant of the first-order low-pass applied to the wrench before thresholding "
+                "(ours; 0 = raw)", 0.0, unit="s")
+_FORCE_SOURCE = _p(WORD, "what measures the grip force: the tactile pads or the gripper motor", "tactile",
+                   choices=("tactile", "motor"))
+_FOR = _p(NUM, "the condition must hold this long without a break before it fires (ours; 0 = at once)",
+          0.0, unit="s")
+
+_ARM_CONTROLLERS = (
+    ControllerSpec("hold", Role.ARM, "Keep the TCP where it was when the state began.", "D5 2.2.4 (arm idle)"),
+    ControllerSpec(
+        "cartesian_move", Role.ARM,
+        "Move the TCP to the target through the waypoints with a Cartesian velocity law; stop on an "
+        "unexpected contact (||F|| >= force_threshold).",
+        "thesis 3.3.2, Eq. 3.3 (transport)",
+        {
+            "target": _TARGET,
+            "waypoints": _p(PTS, "via points before the target (thesis WAYPOINTS)", ()),
+            "obstacles": _p(PTS, "centres of boxes to keep clear of (thesis 3.3.2 OBSTACLES)", ()),
+            "obstacle_sizes": _p(PTS, "full x y z size of each obstacle box, same order as obstacles", ()),
+            "straight_line": _p(FLAG, "follow the straight Cartesian line (guarded motion, thesis 7.2)", False),
+            "keep_orientation": _p(FLAG, "hold the hand orientation all along (constrained motion, thesis 7.2); "
+                                  "otherwise only the final orientation is the starting one", False),
+            "force_threshold": _p(NUM, "unexpected-contact force (thesis 3.3.2 FORCE_THRESHOLD)", 15.0, unit="N"),
+            "max_speed": _p(NUM, "TCP speed limit (ours; the thesis' VELOCITY_LIMITS zeros mean 'none')", 0.15,
+                            unit="m/s"),
+            "velocity_limits": _p(VEC, "linear and angular velocity limits; zeros = none (thesis 3.3.2)",
+                                  (0.0,) * 6, length=6),
+            "acceleration_limits": _p(VEC, "linear and angular acceleration limits; zeros = none (thesis 3.3.2)",
+                                      (0.0,) * 6, length=6),
+            "tolerance": _p(NUM, "distance to the target counted as reached (ours)", 0.003, unit="m"),
+            "filter_time": _FILTER,
+        },
+    ),
+    ControllerSpec(
+        "robust_grasp_approach", Role.ARM,
+        "Arm side of the robust grasp: move along the grasp direction until contact, align on the "
+        "wrist torque, then slide on the supporting surface while the fingers close.",
+        "thesis 3.3.1, Eq. 3.1 (alignment) and 3.2 (sliding grasp)",
+        {
+            "grasp_direction": _p(VEC, "approach direction in the hand frame (thesis GRASP_DIRECTION)",
+                                  (0.0, 0.0, 1.0), length=3),
+            "max_distance": _p(NUM, "how far to look for a contact (thesis MAX_DISTANCE)", 0.2, unit="m"),
+            "force_threshold": _p(NUM, "contact force on the wrist (thesis FORCE_THRESHOLD)", 2.0, unit="N"),
+            "torque_threshold": _p(NUM, "alignment torque (thesis TORQUE_THRESHOLD)", 5.0, unit="N m"),
+            "correction_velocity": _p(NUM, "speed of corrective motions (thesis CORRECTION_VELOCITY)", 0.005,
+                                      unit="m/s"),
+            "filter_time": _FILTER,
+        },
+    ),
+    ControllerSpec(
+        "place", Role.ARM,
+        "Bring the held object over the target, then descend along -surface_normal until the wrist "
+        "feels the surface.",
+        "thesis 3.3.3, Eq. 3.4",
+        {
+            "target": _TARGET,
+            "surface_normal": _SURFACE_NORMAL,
+            "velocity": _p(NUM, "descent speed (thesis VELOCITY)", 0.005, unit="m/s"),
+            "force_threshold": _p(NUM, "surface contact force (thesis FORCE_THRESHOLD)", 5.0, unit="N"),
+            "approach_height": _p(NUM, "height above the target where the slow descent starts (ours)", 0.02,
+                                  unit="m"),
+            "max_overshoot": _p(NUM, "how far below the target to keep descending before giving up (ours)",
+                                0.03, unit="m"),
+            "max_speed": _p(NUM, "TCP speed limit while bringing the object over the target (ours)", 0.15,
+                            unit="m/s"),
+            "filter_time": _FILTER,
+        },
+    ),
+    ControllerSpec(
+        "slide", Role.ARM,
+        "Press the object onto the surface with a force between the two thresholds while moving it to "
+        "the target.",
+        "thesis 3.3.5, Eq. 3.6",
+        {
+            "target": _TARGET,
+            "surface_normal": _SURFACE_NORMAL,
+            "lower_force_threshold": _p(NUM, "minimum pressing force (thesis LOWER_FORCE_THRESHOLD)", 5.0,
+                                        unit="N"),
+            "upper_force_threshold": _p(NUM, "maximum pressing force (thesis UPPER_FORCE_THRESHOLD)", 9.0,
+                                        unit="N"),
+            "target_velocity": _p(NUM, "speed towards the target (thesis TARGET_VELOCITY)", 0.005, unit="m/s"),
+            "contact_velocity": _p(NUM, "speed along the normal (thesis CONTACT_VELOCITY)", 0.005, unit="m/s"),
+            "tolerance": _p(NUM, "distance to the target counted as reached (ours)", 0.005, unit="m"),
+            "filter_time": _FILTER,
+        },
+    ),
+    ControllerSpec(
+        "release_retreat", Role.ARM,
+        "While the hand opens, back away along the surface normal only when the fingers push on "
+        "the surface.",
+        "thesis 3.3.4, Eq. 3.5",
+        {
+            "surface_normal": _SURFACE_NORMAL,
+            "velocity": _p(NUM, "retreat speed (thesis VELOCITY)", 0.001, unit="m/s"),
+            "force_threshold": _p(NUM, "finger-on-surface force (thesis FORCE_THRESHOLD)", 5.0, unit="N"),
+            "filter_time": _FILTER,
+        },
+    ),
+)
+
+_HAND_CONTROLLERS = (
+    ControllerSpec("hold_position", Role.HAND,
+                   "Keep the finger joints where they were when the state began.", "D5 2.2.4 (hand idle)"),
+    ControllerSpec(
+        "hand_shape", Role.HAND, "Drive the fingers to a named shape of this hand.", "D5 2.2.2 hand shapes",
+        {"shape": _p(WORD, "an ATD hand shape this hand can make", required=True),
+         "speed": _p(NUM, "fraction of the joints' speed limit to use (ours)", 0.5)},
+    ),
+    ControllerSpec(
+        "robust_grasp_hand", Role.HAND,
+        "Hand side of the robust grasp: preshape, close when the arm reports contact, redo the grasp "
+        "when a finger loses contact, then raise the finger force.",
+        "thesis 3.3.1 (finger-lost correction, force adaptation)",
+        {
+            "preshape": _p(WORD, "starting hand configuration (thesis PREGRASP_TYPE); unset = current"),
+            "pregrasp_size": _p(NUM, "hand opening before closing, 0..1 (thesis PREGRASP_SIZE); unset = current"),
+            "grasp_shape": _p(WORD, "the grasp to close into", required=True),
+            "grasp_force": _p(NUM, "fingertip force after force adaptation (ours)", 5.0, unit="N"),
+            "contact_threshold": _p(NUM, "pad force counted as finger contact (ours)", 0.3, unit="N"),
+            "finger_lost_correction": _p(FLAG, "reopen and shift when a finger misses (thesis 3.3.1)", True),
+        },
+    ),
+    ControllerSpec(
+        "close_until_force", Role.HAND,
+        "Close the jaws until the grip force reaches grasp_force, then keep it.",
+        "thesis 7.3 (Melfa grasp)",
+        {
+            "grasp_force": _p(NUM, "grip force to reach", 15.0, unit="N"),
+            "closing_speed": _p(NUM, "jaw closing speed (ours)", 0.02, unit="m/s"),
+            "force_source": _FORCE_SOURCE,
+        },
+    ),
+    ControllerSpec(
+        "squeeze", Role.HAND, "Keep applying the grip force so the object does not loosen while it moves.",
+        "thesis 7.3 (Melfa transport)",
+        {"grasp_force": _p(NUM, "grip force to hold", 15.0, unit="N"), "force_source": _FORCE_SOURCE},
+    ),
+    ControllerSpec(
+        "open_to", Role.HAND, "Open the hand until it reaches the hand position.",
+        "thesis 3.3.4 HAND_TARGET_POSITION; thesis 7.3 (Melfa release)",
+        {"hand_position": _p(NUM, "target opening, 0 = closed .. 1 = open (thesis default 1.0)", 1.0),
+         "speed": _p(NUM, "fraction of the joints' speed limit to use (ours)", 0.5)},
+    ),
+)
+
+_TACTILE_PARAMS = {
+    "force_threshold": _p(NUM, "pad force counted as touching", 0.5, unit="N"),
+    "min_pads": _p(INT, "how many pads must touch", 1),
+    "for_time": _FOR,
+}
+
+_CONDITIONS = (
+    ConditionSpec("arm_done", "The state's arm controller reports it has finished."),
+    ConditionSpec("hand_done", "The state's hand controller reports it has finished."),
+    ConditionSpec("arm_error", "The arm controller gave up (target unreachable, no contact within reach)."),
+    ConditionSpec("hand_error", "The hand controller gave up (nothing between the fingers, shape unreachable)."),
+    ConditionSpec("arm_fault", "Arm hardware failure: joint limit, actuator saturation or tracking error."),
+    ConditionSpec("hand_fault", "Hand hardware failure: joint limit, actuator saturation or tracking error."),
+    ConditionSpec("simulation_unstable", "The physics engine diverged (non-finite or runaway state)."),
+    ConditionSpec("timeout", "Time since the state began.",
+                  params={"seconds": _p(NUM, "time limit", unit="s", required=True)}),
+    ConditionSpec("subtask_succeeded", "The sub-task's machine ended in a success state."),
+    ConditionSpec("subtask_failed", "The sub-task's machine ended in a failure state."),
+    ConditionSpec("tactile_force_above", "At least min_pads pads read >= force_threshold.",
+                  SensorKind.TACTILE, _TACTILE_PARAMS),
+    ConditionSpec("tactile_force_below", "Fewer than min_pads pads read >= force_threshold.",
+                  SensorKind.TACTILE, _TACTILE_PARAMS),
+    ConditionSpec(
+        "tactile_load_change",
+        "The summed pad force moved by more than force_change since the state began: the held object "
+        "touched something.", SensorKind.TACTILE,
+        {"force_change": _p(NUM, "change of the summed pad force", 1.0, unit="N"), "for_time": _FOR},
+    ),
+    ConditionSpec(
+        "wrist_force_above", "The tared, filtered wrench exceeds the threshold.", SensorKind.FORCE_TORQUE,
+        {
+            "force_threshold": _p(NUM, "force limit", 15.0, unit="N"),
+            "axis": _p(WORD, "which force: the norm, or minus the hand z force (pushed back)", "norm",
+                       choices=("norm", "-z")),
+            "filter_time": _FILTER,
+            "for_time": _FOR,
+        },
+    ),
+    ConditionSpec("gripper_force_above", "The gripper motor force is at least the threshold.", SensorKind.GRIPPER,
+                  {"force_threshold": _p(NUM, "motor force", 5.0, unit="N"), "for_time": _FOR}),
+    ConditionSpec("gripper_force_below", "The gripper motor force is below the threshold.", SensorKind.GRIPPER,
+                  {"force_threshold": _p(NUM, "motor force", 5.0, unit="N"), "for_time": _FOR}),
+    ConditionSpec("gripper_opening_above", "The jaws are open wider than the width.", SensorKind.GRIPPER,
+                  {"width": _p(NUM, "jaw opening", 0.005, unit="m"), "for_time": _FOR}),
+    ConditionSpec("gripper_opening_below", "The jaws are open less than the width.", SensorKind.GRIPPER,
+                  {"width": _p(NUM, "jaw opening", 0.005, unit="m"), "for_time": _FOR}),
+    ConditionSpec("range_below", "The range sensor reads less than the distance.", SensorKind.RANGE,
+                  {"distance": _p(NUM, "range", 0.05, unit="m"), "for_time": _FOR}),
+    ConditionSpec("range_above", "The range sensor reads more than the distance.", SensorKind.RANGE,
+                  {"distance": _p(NUM, "range", 0.05, unit="m"), "for_time": _FOR}),
+)
+
+ARM_CONTROLLERS: Mapping[str, ControllerSpec] = MappingProxyType({c.name: c for c in _ARM_CONTROLLERS})
+HAND_CONTROLLERS: Mapping[str, ControllerSpec] = MappingProxyType({c.name: c for c in _HAND_CONTROLLERS})
+CONTROLLERS: Mapping[str, ControllerSpec] = MappingProxyType({**ARM_CONTROLLERS, **HAND_CONTROLLERS})
+CONDITIONS: Mapping[str, ConditionSpec] = MappingProxyType({c.kind: c for c in _CONDITIONS})
+
+
+# --- parameter values: one text form for XML and config files --------------------------------
+
+
+def format_number(value: float) -> str:
+    """Fixed, locale-free float text: 9 significant digits, no '-0'."""
+    text = f"{float(value):.9g}"
+    return "0" if text == "-0" else text
+
+
+def format_value(value: ParamValue) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return str(value) if isinstance(value, int) else format_number(value)
+    if isinstance(value, str):
+        return value
+    if value and isinstance(value[0], tuple):
+        return "; ".join(" ".join(format_number(v) for v in point) for point in value)
+    return " ".join(format_number(v) for v in value)
+
+
+def parse_value(spec: ParamSpec, text: str) -> ParamValue:
+    """Read a parameter's text; raise ValueError with a reason a person can act on."""
+    text = text.strip()
+    if spec.type is ParamType.FLAG:
+        if text.lower() not in ("true", "false"):
+            raise ValueError(f"'{text}' is not true or false")
+        return text.lower() == "true"
+    if spec.type is ParamType.WORD:
+        return coerce_value(spec, text)
+    if spec.type is ParamType.POINTS:
+        points = [p for p in text.split(";") if p.strip()]
+        return coerce_value(spec, tuple(tuple(float(v) for v in p.split()) for p in points))
+    if spec.type is ParamType.VECTOR:
+        return coerce_value(spec, tuple(float(v) for v in text.split()))
+    try:
+        return coerce_value(spec, int(text) if spec.type is ParamType.INTEGER else float(text))
+    except ValueError:
+        raise ValueError(f"'{text}' is not a {spec.type.value}") from None
+
+
+def coerce_value(spec: ParamSpec, value: object) -> ParamValue:
+    """Check a value against its spec and return it in its canonical Python type."""
+    kind = spec.type
+    if kind is ParamType.FLAG and isinstance(value, bool):
+        return value
+    if kind is ParamType.INTEGER and isinstance(value, int) and not isinstance(value, bool):
+        return value
+    if kind is ParamType.NUMBER and isinstance(value, (int, float)) and not isinstance(value, bool):
+        return float(value)
+    if kind is ParamType.WORD and isinstance(value, str):
+        if spec.choices and value not in spec.choices:
+            raise ValueError(f"'{value}' is not one of {', '.join(spec.choices)}")
+        return value
+    if kind is ParamType.VECTOR and isinstance(value, (tuple, list)):
+        vector = tuple(float(v) for v in value)
+        if spec.length is not None and len(vector) != spec.length:
+            raise ValueError(f"needs {spec.length} numbers, got {len(vector)}")
+        return vector
+    if kind is ParamType.POINTS and isinstance(value, (tuple, list)):
+        points = tuple(tuple(float(v) for v in p) for p in value)
+        if any(len(p) != 3 for p in points):
+            raise ValueError("every point needs 3 numbers (x y z)")
+        return points
+    raise ValueError(f"{value!r} is not a {kind.value}")
+
+
+def check_params(where: str, specs: Mapping[str, ParamSpec], params: Mapping[str, object]) -> list[str]:
+    """Problems with a parameter set: unknown names, missing required ones, wrong types."""
+    problems = [f"{where}: unknown parameter '{name}'" for name in params if name not in specs]
+    problems += [f"{where}: missing required parameter '{name}'"
+                 for name, spec in specs.items() if spec.required and name not in params]
+    for name, value in params.items():
+        if name in specs:
+            try:
+                coerce_value(specs[name], value)
+            except ValueError as exc:
+                problems.append(f"{where}: parameter '{name}': {exc}")
+    return problems
+
+
+def defaults(specs: Mapping[str, ParamSpec]) -> dict[str, ParamValue]:
+    """The default of every parameter that has one (empty point lists are left out)."""
+    return {name: spec.default for name, spec in specs.items() if spec.default not in (None, ())}

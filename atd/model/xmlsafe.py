@@ -1,0 +1,141 @@
+"""Reading XML that may be hostile, and knowing where each element was written.
+
+Task files come from anywhere, so the parser expands no entities, loads no DTD, touches
+no network, and refuses files that are too big, too deep, binary or carry a DOCTYPE at
+all (an ATD never needs one). Every refusal is one diagnostic, never an exception.
+"""
+
+from __future__ import annotations
+
+import bisect
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+from lxml import etree
+
+from atd.model.diagnostics import Diagnostic, error
+from atd.model.task import Location
+
+MAX_BYTES = 32 * 1024 * 1024  # a 10,000-state task is about 4 MB
+MAX_DEPTH = 256  # libxml2 refuses deeper documents unless huge_tree is set; an ATD nests 4 levels
+
+_START_TAG = re.compile(rb"<([A-Za-z_][\w.\-]*)")
+_SKIPPED = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>", re.S)
+_DOCTYPE = re.compile(rb"<!DOCTYPE|<!ENTITY", re.I)
+
+
+@dataclass
+class ParsedXml:
+    """A parsed document and the exact start of every element's tag."""
+
+    root: etree._Element
+    file: str
+    _starts: dict[etree._Element, tuple[int, int]]
+
+    def loc(self, element: etree._Element) -> Location:
+        line, col = self._starts.get(element, (element.sourceline or 0, 1))
+        return Location(self.file, line, col)
+
+
+def _parser() -> etree.XMLParser:
+    return etree.XMLParser(
+        resolve_entities=False,
+        no_network=True,
+        load_dtd=False,
+        dtd_validation=False,
+        huge_tree=False,
+        remove_pis=True,
+    )
+
+
+def _line_col(newlines: list[int], offset: int) -> tuple[int, int]:
+    line = bisect.bisect_right(newlines, offset - 1)
+    start = newlines[line - 1] + 1 if line else 0
+    return line + 1, offset - start + 1
+
+
+def _tag_starts(data: bytes, root: etree._Element) -> dict[etree._Element, tuple[int, int]]:
+    """Pair elements in document order with the `<tag` openings in the text.
+
+    lxml reports the line where a start tag *ends*; authors expect the line where it
+    begins, and a column too, so we find the openings ourselves.
+    """
+    newlines = [m.start() for m in re.finditer(rb"\n", data)]
+    skipped = [(m.start(), m.end()) for m in _SKIPPED.finditer(data)]
+    openings = []
+    k = 0
+    for m in _START_TAG.finditer(data):
+        while k < len(skipped) and skipped[k][1] <= m.start():
+            k += 1
+        if k < len(skipped) and skipped[k][0] <= m.start():
+            continue
+        openings.append(m.start())
+    elements = list(root.iter(etree.Element))
+    if len(elements) != len(openings):
+        return {}
+    return {e: _line_col(newlines, off) for e, off in zip(elements, openings)}
+
+
+def _too_big(size: int, file: str) -> Diagnostic:
+    return error(
+        "ATD002",
+        f"file is {size / 1e6:.1f} MB, larger than the {MAX_BYTES // 2**20} MiB an ATD may be",
+        Location(file, 1, 1),
+        'split the task into sub-tasks (type="task") or check that this is the right file',
+    )
+
+
+def parse_bytes(data: bytes, file: str) -> tuple[ParsedXml | None, list[Diagnostic]]:
+    """Parse untrusted bytes; on refusal return None and the one reason why."""
+    if len(data) > MAX_BYTES:
+        return None, [_too_big(len(data), file)]
+    if b"\x00" in data[:65536] or not data.strip():
+        what = "is empty" if not data.strip() else "is binary, not XML text"
+        return None, [error("ATD006", f"file {what}", Location(file, 1, 1), "an ATD is an XML text file")]
+    doctype = _DOCTYPE.search(data)
+    if doctype:
+        line, col = _line_col([m.start() for m in re.finditer(rb"\n", data[: doctype.start()])], doctype.start())
+        return None, [
+            error(
+                "ATD004",
+                "DOCTYPE and entity declarations are not allowed in an ATD",
+                Location(file, line, col),
+                "remove the <!DOCTYPE ...> block; ATD files need no DTD or entities",
+            )
+        ]
+    try:
+        root = etree.fromstring(data, _parser())
+    except etree.XMLSyntaxError as exc:
+        line, col = exc.position if exc.position else (1, 1)
+        message = str(exc.msg or exc).split(", line ")[0]
+        if "Excessive depth" in message:
+            return None, [
+                error("ATD005", "elements are nested too deeply", Location(file, line, col),
+                      f"an ATD nests 4 levels (statemachine, state, path, position); this file nests over {MAX_DEPTH}")
+            ]
+        return None, [
+            error("ATD003", f"not well-formed XML: {message}", Location(file, line, max(col, 1)),
+                  "check the tag at this place is closed and the file is complete")
+        ]
+    except ValueError as exc:  # e.g. undecodable text in the declared encoding
+        return None, [error("ATD006", f"cannot decode file: {exc}", Location(file, 1, 1),
+                            "save the file as UTF-8")]
+    return ParsedXml(root, file, _tag_starts(data, root)), []
+
+
+def read_file(path: Path, shown_as: str | None = None) -> tuple[ParsedXml | None, list[Diagnostic]]:
+    """Read and parse a file, refusing oversized ones before reading them."""
+    file = shown_as or str(path)
+    try:
+        size = path.stat().st_size
+        if size > MAX_BYTES:
+            return None, [_too_big(size, file)]
+        data = path.read_bytes()
+    except FileNotFoundError:
+        return None, [error("ATD001", "no such file", Location(file, 0, 0), "check the path")]
+    except IsADirectoryError:
+        return None, [error("ATD001", "is a directory, not a file", Location(file, 0, 0), "name an .xml file")]
+    except OSError as exc:
+        return None, [error("ATD001", f"cannot read file: {exc.strerror}", Location(file, 0, 0), None)]
+    return parse_bytes(data, file)

@@ -1,0 +1,308 @@
+"""The factory interface: what the generic translator asks of each robot (thesis Fig. 7.3b).
+
+A factory knows one robot: its arms, hands, sensors and workspace, and how each abstract
+primitive and abstract event becomes concrete controllers and conditions on it. It is
+asked about one node or one event at a time, with the task's object and environment
+information (thesis 7.2.2), and answers with vocabulary from `atd.model.controllers`.
+When it cannot, it raises `Unmappable` with the reason; the translator turns that into
+a diagnostic with the ATD file:line.
+
+The generic parts every robot shares live here: hand-shape fallback, motion targets
+from the object information, the workspace check, and the events any robot detects the
+same way (timeout, success, error, hardware failure).
+"""
+
+from __future__ import annotations
+
+import math
+from abc import ABC, abstractmethod
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import ClassVar, Mapping
+
+from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamValue, SensorKind, defaults
+from atd.model.estd import Condition, ConditionGroup, Controller
+from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
+from atd.model.vocabulary import EventType, HandShape, Movement, StateType
+from factories.config import RobotConfig, load_config
+
+ConditionNode = Condition | ConditionGroup
+
+APPROACH_CLEARANCE = 0.10  # m above the object's top: where a free approach ends
+LIFT_HEIGHT = 0.10  # m: a transport without a path lifts the object this much
+
+
+class Unmappable(Exception):
+    """The robot cannot do what the node or event asks; `reason` says why, `hint` what to do."""
+
+    def __init__(self, reason: str, hint: str | None = None) -> None:
+        super().__init__(reason)
+        self.reason = reason
+        self.hint = hint
+
+
+@dataclass(frozen=True)
+class Sensor:
+    name: str
+    kind: SensorKind
+    description: str
+
+
+@dataclass(frozen=True)
+class Workspace:
+    """Where the TCP can go with the hand pointing down: a shell around the shoulder.
+
+    The wrist centre sits `tool_length` above a top-down TCP; it must lie between
+    `min_reach` and `max_reach` from the shoulder point (ATD world frame).
+    """
+
+    shoulder: Vec3
+    min_reach: float
+    max_reach: float
+    tool_length: float
+    basis: str  # where the numbers come from
+
+    def reach_problem(self, point: Vec3) -> str | None:
+        wrist = (point[0], point[1], point[2] + self.tool_length)
+        distance = math.dist(wrist, self.shoulder)
+        if self.min_reach <= distance <= self.max_reach:
+            return None
+        where = "beyond" if distance > self.max_reach else "inside"
+        return (f"target ({point[0]:g}, {point[1]:g}, {point[2]:g}) is outside the reachable workspace: its wrist "
+                f"point is {distance:.3f} m from the shoulder, {where} the {self.min_reach:g}..{self.max_reach:g} m "
+                "shell")
+
+
+@dataclass(frozen=True)
+class Hand:
+    name: str
+    kind: str  # "multi-finger" or "parallel jaw"
+    shapes: frozenset[HandShape]  # shapes it can make
+    closest: Mapping[HandShape, HandShape]  # every other shape -> the closest it can make
+    max_opening: float  # m between the fingertips, fully open
+    cannot_grasp: Mapping[HandShape, str] = field(default_factory=dict)  # grasp shape -> why refused
+
+
+@dataclass(frozen=True)
+class Arm:
+    """One arm of the robot with its hand and sensors: what `--arm` chooses."""
+
+    name: str
+    description: str
+    hand: Hand
+    sensors: tuple[Sensor, ...]
+    workspace: Workspace
+
+    def sensors_of(self, kind: SensorKind) -> tuple[str, ...]:
+        return tuple(s.name for s in self.sensors if s.kind is kind)
+
+
+@dataclass(frozen=True)
+class Capabilities:
+    primitives: frozenset[StateType]
+    hand_shapes: frozenset[HandShape]
+    events: frozenset[EventType]
+
+
+@dataclass(frozen=True)
+class MappingRow:
+    """One row of a robot's mapping table, in the columns of thesis Tables 7.3 and 7.4."""
+
+    abstract: str
+    concrete: str  # "-" when the robot has no such primitive
+    extra_parameters: str
+    control_and_sensors: str
+
+
+@dataclass(frozen=True)
+class MappingContext:
+    """What the factory may know beyond the node or event itself (thesis 7.2.2)."""
+
+    task: Task
+
+    @property
+    def object(self) -> ObjectInfo | None:
+        return self.task.object
+
+    @property
+    def environment(self) -> Environment | None:
+        return self.task.environment
+
+    def state(self, name: str) -> State:
+        return self.task.states_by_name[name]
+
+
+@dataclass(frozen=True)
+class NodeMapping:
+    """The concrete primitive for one ATD node; `notes` become warnings (e.g. shape fallbacks)."""
+
+    primitive: str
+    arm: Controller
+    hand: Controller
+    notes: tuple[str, ...] = ()
+
+
+class Factory(ABC):
+    """Base of every robot factory. Subclasses set the class attributes and the mapping."""
+
+    name: ClassVar[str]
+    description: ClassVar[str]
+    arms: ClassVar[tuple[Arm, ...]]  # the first is the default
+    primitives: ClassVar[frozenset[StateType]]
+    node_table: ClassVar[tuple[MappingRow, ...]]  # thesis Tables 7.3 / 7.4 columns
+
+    def __init__(self, arm: str | None = None, config: Path | None = None) -> None:
+        names = [a.name for a in self.arms]
+        if arm is not None and arm not in names:
+            raise ValueError(f"robot '{self.name}' has no arm '{arm}'; choose one of: {', '.join(names)}")
+        self.arm = self.arms[names.index(arm)] if arm else self.arms[0]
+        shipped = Path(__file__).parent / self.name / "config.toml"
+        self.config = load_config(shipped, self.name) if shipped.is_file() else RobotConfig()
+        if config is not None:
+            self.config = load_config(config, self.name).over(self.config)
+
+    # -- what the robot is ----------------------------------------------------------------
+    @property
+    def capabilities(self) -> Capabilities:
+        events = frozenset(EventType) - frozenset(self.undetectable_events)
+        return Capabilities(self.primitives, self.arm.hand.shapes, events)
+
+    undetectable_events: ClassVar[tuple[EventType, ...]] = ()
+
+    # -- the two questions the translator asks --------------------------------------------
+    @abstractmethod
+    def map_node(self, state: State, context: MappingContext) -> NodeMapping:
+        """The concrete primitive (arm and hand controllers) for one abstract primitive."""
+
+    def map_event(self, event_type: EventType, seconds: float | None, transition: Transition,
+                  context: MappingContext) -> ConditionNode:
+        """The condition tree that detects one abstract event on the edge leaving `transition.origin`."""
+        event_type = EventType(event_type)
+        origin = context.state(transition.origin)
+        if event_type is EventType.TIMEOUT:
+            return self.condition(event_type, "timeout", seconds=seconds)
+        if event_type is EventType.HARDWARE_FAILURE:  # D5 Fig. 2.3: arm OR hand failure
+            return any_of(self.condition(event_type, "arm_fault"), self.condition(event_type, "hand_fault"),
+                          self.condition(event_type, "simulation_unstable"))
+        if event_type is EventType.ERROR:
+            return any_of(self.condition(event_type, "arm_error"), self.condition(event_type, "hand_error"))
+        if event_type is EventType.SUCCESS:
+            return self.success(origin)
+        if event_type in self.undetectable_events:
+            raise Unmappable(f"the {self.name} has no sensor to detect '{event_type.value}'")
+        return self.sensed_event(event_type, origin)
+
+    def success(self, origin: State) -> ConditionNode:
+        """Thesis 7.2.2: one abstract success may need the arm AND the hand controller done."""
+        return all_of(self.condition(EventType.SUCCESS, "arm_done"), self.condition(EventType.SUCCESS, "hand_done"))
+
+    @abstractmethod
+    def sensed_event(self, event_type: EventType, origin: State) -> ConditionNode:
+        """grasp_stable, grasp_lost, finger_contact(_lost), collision: from this robot's sensors."""
+
+    # -- building blocks ------------------------------------------------------------------
+    def controller(self, name: str, **params: ParamValue) -> Controller:
+        """A controller with thesis defaults, then this robot's config, then `params`."""
+        merged = defaults(CONTROLLERS[name].params)
+        merged.update(self.config.controllers.get(name, {}))
+        merged.update({k: v for k, v in params.items() if v is not None})
+        return Controller(name=name, params=merged)
+
+    def condition(self, event: EventType, kind: str, sensors: tuple[str, ...] = (), **params: ParamValue) -> Condition:
+        """A leaf with defaults, then this robot's config for (event, kind), then `params`."""
+        merged = defaults(CONDITIONS[kind].params)
+        merged.update(self.config.conditions.get((event.value, kind), {}))
+        merged.update({k: v for k, v in params.items() if v is not None})
+        return Condition(kind=kind, sensors=sensors, params=merged)
+
+    def shape(self, wanted: HandShape) -> tuple[HandShape, tuple[str, ...]]:
+        """The shape to make for `wanted`, and a note when it is only the closest one."""
+        hand = self.arm.hand
+        if wanted in hand.shapes:
+            return wanted, ()
+        made = hand.closest[wanted]
+        return made, (f"the {hand.name} cannot make '{wanted.value}'; using the closest shape '{made.value}'",)
+
+    def check_reach(self, *points: Vec3) -> None:
+        for point in points:
+            problem = self.arm.workspace.reach_problem(point)
+            if problem:
+                raise Unmappable(f"{problem} of the {self.arm.description}",
+                                 "move the target into the work area, or choose a robot or arm that reaches it")
+
+    def motion(self, state: State, context: MappingContext) -> tuple[Vec3, tuple[Vec3, ...]]:
+        """Target and via points of an arm primitive: the path, or derived from the object."""
+        if state.path:
+            points = [w.position for w in state.path]
+            self.check_reach(*points)
+            return points[-1], tuple(points[:-1])
+        target = derived_target(state, context.object)
+        self.check_reach(target)
+        return target, ()
+
+
+def derived_target(state: State, obj: ObjectInfo | None) -> Vec3:
+    """Thesis 7.2: the end pose is usually enough; without a path, take it from the object.
+
+    A free approach ends above the object, a guarded move descends to grasp height (the
+    object's centre, where the TCP holds it), a transport lifts, a place puts the object
+    back where it was. A push or slide needs to know where to: the object cannot say.
+    """
+    if state.type in (StateType.PUSH, StateType.SLIDE):
+        raise Unmappable(f"it has no path, and the object information says where the object is, not where to "
+                         f"{state.type.value} it",
+                         "add <path><position>x y z</position></path> with the destination")
+    if obj is None or obj.pose is None:
+        raise Unmappable("it has no path, and the task gives no object pose to derive a target from",
+                         "add <path><position>x y z</position></path>, or an <object> with a <pose>")
+    x, y, z = obj.pose.position
+    if state.type is StateType.TRANSPORT:
+        return (x, y, z + LIFT_HEIGHT)
+    if state.type is StateType.PLACE or state.movement is Movement.GUARDED:
+        return (x, y, z)
+    return (x, y, z + obj.half_height + APPROACH_CLEARANCE)
+
+
+def all_of(*children: ConditionNode) -> ConditionGroup:
+    return ConditionGroup(op="all", children=children)
+
+
+def any_of(*children: ConditionNode) -> ConditionGroup:
+    return ConditionGroup(op="any", children=children)
+
+
+def arm_motion_flags(state: State) -> dict[str, bool]:
+    """Thesis 7.2 motion types: guarded = straight Cartesian line; constrained = orientation held."""
+    return {"straight_line": state.movement is Movement.GUARDED,
+            "keep_orientation": state.movement is Movement.CONSTRAINED}
+
+
+
+def obstacle_params(context: MappingContext) -> dict[str, tuple[tuple[float, ...], ...]]:
+    """Table 7.3's transport extra parameter: the environment's obstacles, for the arm to avoid.
+
+    An obstacle written without a size is a point (size 0 0 0), as in D5 Table 2.1.
+    """
+    obstacles = context.environment.obstacles if context.environment else ()
+    if not obstacles:
+        return {}
+    return {"obstacles": tuple(o.position for o in obstacles),
+            "obstacle_sizes": tuple(o.size or (0.0, 0.0, 0.0) for o in obstacles)}
+
+
+def grasp_width(obj: ObjectInfo) -> float:
+    """Width the fingers close across, top-down: a box's narrower side, a round object's diameter."""
+    size = obj.effective_size
+    return min(size[0], size[1]) if len(size) == 3 else 2 * size[0]
+
+
+def parallel_jaw_closest() -> dict[HandShape, HandShape]:
+    """A parallel jaw opens, closes, and has one grasp (D5 2.2.2): every preshape becomes
+    'open', every grasp 'pinch_grasp', and extended fingers the closed jaws."""
+    grasps = {HandShape.POWER_GRASP, HandShape.CYLINDRICAL_GRASP, HandShape.SPHERICAL_GRASP, HandShape.HOOK_GRASP}
+    closest = {s: HandShape.PINCH_GRASP if s in grasps else HandShape.OPEN for s in HandShape}
+    closest.update({HandShape.EXTEND: HandShape.CLOSED, HandShape.EXTEND_FINGER: HandShape.CLOSED})
+    return {s: made for s, made in closest.items() if s not in PARALLEL_JAW_SHAPES}
+
+
+PARALLEL_JAW_SHAPES = frozenset({HandShape.OPEN, HandShape.CLOSED, HandShape.PINCH_GRASP})

@@ -1,0 +1,117 @@
+"""Rethink Baxter (thesis A.4): our own mapping, in the spirit of Tables 7.3 and 7.4.
+
+A 7-DOF compliant arm with a light parallel gripper. It has no tactile pads and its
+wrist force-torque sensor is virtual (computed from joint torques): noisy and inaccurate
+but good enough for contact detection (A.4). So contact thresholds are raised and the
+wrench is low-pass filtered (values in `config.toml`), a grasp is judged from the
+gripper itself (motor force, and jaws stopped before closing fully), and the IR range
+sensor in the hand confirms that something sits between the fingers.
+"""
+
+from __future__ import annotations
+
+from atd.model.controllers import SensorKind
+from atd.model.task import State
+from atd.model.vocabulary import EventType, HandShape, StateType
+from factories.base import (
+    Arm,
+    ConditionNode,
+    Factory,
+    Hand,
+    MappingContext,
+    MappingRow,
+    NodeMapping,
+    Sensor,
+    Unmappable,
+    Workspace,
+    all_of,
+    any_of,
+    arm_motion_flags,
+    obstacle_params,
+    PARALLEL_JAW_SHAPES,
+    parallel_jaw_closest,
+)
+
+# Baxter: the base frame sits 0.93 m above the floor and a lab table top about 0.78 m
+# (robot-facts.md 7, 8), so we place the base 0.15 m above the table top, 0.40 m behind the
+# work-area origin. Shoulder = S0 axis at S1 height, base + (0.064, -/+0.259, 0.400); from there
+# S0-S1 offset 0.069 + upper arm 0.364 + forearm 0.374 = 0.808 m to W1. W1 to TCP: 0.116 (W1-W2)
+# + 0.114 (W2-hand) + 0.025 (gripper base) + 0.090 (to mid-finger) = 0.345 m.
+_BASIS = ("Baxter URDF link lengths (robot-facts.md 7); base placed (ours) at world (-0.40, 0, 0.15), 0.15 m above "
+          "the table top")
+
+
+def _arm(side: str, y: float) -> Arm:
+    sensors = (
+        Sensor("wrist_ft", SensorKind.FORCE_TORQUE,
+               "virtual 6-axis wrench computed from joint torques: noisy, for contact detection only"),
+        Sensor("gripper", SensorKind.GRIPPER, "gripper jaw opening and motor force"),
+        Sensor("ir_range", SensorKind.RANGE, "IR range sensor in the hand, looking along the approach axis"),
+    )
+    workspace = Workspace(shoulder=(-0.336, y, 0.55), min_reach=0.25, max_reach=0.808, tool_length=0.345,
+                          basis=_BASIS)
+    return Arm(side, f"Baxter {side} 7-DOF arm with the light parallel gripper", _GRIPPER, sensors, workspace)
+
+
+_GRIPPER = Hand("Baxter light parallel gripper", "parallel jaw", PARALLEL_JAW_SHAPES,
+                parallel_jaw_closest(), max_opening=0.08)
+
+
+class BaxterFactory(Factory):
+    name = "baxter"
+    description = ("Rethink Baxter: 7-DOF compliant arms, light parallel gripper, noisy virtual wrist "
+                   "force-torque sensor, IR range sensor in the hand; no tactile pads (thesis A.4)")
+    arms = (_arm("right", -0.259), _arm("left", +0.259))
+    primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
+                            StateType.PLACE, StateType.SLIDE, StateType.RELEASE})
+    node_table = (
+        MappingRow("grasp", "grasp", "grasp force", "arm control, gripper force and opening, IR range"),
+        MappingRow("move", "move", "-", "arm control, filtered virtual F/T"),
+        MappingRow("push", "move", "-", "arm control, filtered virtual F/T"),
+        MappingRow("transport", "transport", "obstacles, motion constraints", "arm control, gripper force"),
+        MappingRow("place", "place", "contact threshold (raised, filtered)", "arm control, virtual F/T"),
+        MappingRow("slide", "slide", "slide force thresholds (raised, filtered)", "arm control, virtual F/T"),
+        MappingRow("release", "release", "hand position", "arm control, virtual F/T"),
+    )
+
+    def map_node(self, state: State, context: MappingContext) -> NodeMapping:
+        kind = state.type
+        if kind is StateType.GRASP:
+            notes = self.shape(state.hand_shape)[1] if state.hand_shape else ()
+            if context.object is not None and context.object.pose is not None:
+                self.check_reach(context.object.pose.position)
+            return NodeMapping("grasp", self.controller("hold"), self.controller("close_until_force"), notes)
+        if kind is StateType.RELEASE:
+            return NodeMapping("release", self.controller("release_retreat"),
+                               self.controller("open_to", hand_position=state.hand_opening))
+        target, via = self.motion(state, context)
+        if kind is StateType.PLACE:
+            return NodeMapping("place", self.controller("place", target=target), self.controller("squeeze"))
+        if kind is StateType.SLIDE:  # press with the closed fingertips
+            return NodeMapping("slide", self.controller("slide", target=target),
+                               self.controller("hand_shape", shape=HandShape.PINCH_GRASP.value))
+        extra = obstacle_params(context) if kind is StateType.TRANSPORT else {}
+        arm = self.controller("cartesian_move", target=target, waypoints=via, **arm_motion_flags(state), **extra)
+        if kind is StateType.TRANSPORT:
+            return NodeMapping("transport", arm, self.controller("squeeze"))
+        if state.hand_shape is None:
+            return NodeMapping("move", arm, self.controller("hold_position"))
+        shape, notes = self.shape(state.hand_shape)
+        return NodeMapping("move", arm, self.controller("hand_shape", shape=shape.value), notes)
+
+    def sensed_event(self, event_type: EventType, origin: State) -> ConditionNode:
+        gripper, ir = ("gripper",), ("ir_range",)
+        if event_type is EventType.GRASP_STABLE:
+            return all_of(self.condition(event_type, "gripper_force_above", gripper),
+                          self.condition(event_type, "gripper_opening_above", gripper),
+                          self.condition(event_type, "range_below", ir))
+        if event_type is EventType.GRASP_LOST:
+            return any_of(self.condition(event_type, "gripper_opening_below", gripper),
+                          self.condition(event_type, "range_above", ir))
+        if event_type is EventType.FINGER_CONTACT:
+            return self.condition(event_type, "gripper_force_above", gripper)
+        if event_type is EventType.FINGER_CONTACT_LOST:
+            return self.condition(event_type, "gripper_force_below", gripper)
+        if event_type is EventType.COLLISION:
+            return self.condition(event_type, "wrist_force_above", ("wrist_ft",))
+        raise Unmappable(f"no mapping for event '{event_type.value}'")

@@ -1,0 +1,112 @@
+"""The Mitsubishi Melfa RV-3SB with the Weiss WRT-102 gripper (thesis A.3), as in Table 7.4.
+
+A 6-DOF industrial arm with a JR3 wrist force-torque sensor and a PG70-based parallel
+gripper with a tactile pad on each finger. Its primitives are simpler than Tombatossals'
+(thesis 7.3): grasp closes until the tactile grasp force is reached, transport keeps
+squeezing so the object does not loosen, place is a transport that stops on the contact
+the pads feel, and there is no slide.
+"""
+
+from __future__ import annotations
+
+from atd.model.controllers import SensorKind
+from atd.model.task import State
+from atd.model.vocabulary import EventType, HandShape, StateType
+from factories.base import (
+    Arm,
+    ConditionNode,
+    Factory,
+    Hand,
+    MappingContext,
+    MappingRow,
+    NodeMapping,
+    Sensor,
+    Unmappable,
+    Workspace,
+    all_of,
+    any_of,
+    arm_motion_flags,
+    PARALLEL_JAW_SHAPES,
+    parallel_jaw_closest,
+)
+
+# RV-3SB: base on the table top at world (-0.35, 0, 0); J2 is 0.350 m up and 0.095 m forward of
+# the base (DH d1, a1), and the arm reaches 0.642 m from J2 to the J5 wrist centre
+# (robot-facts.md 4). J5 to TCP: flange 0.085 + JR3 0.030 + PG70 body 0.093 + half finger 0.030.
+_WORKSPACE = Workspace(
+    shoulder=(-0.255, 0.0, 0.35), min_reach=0.20, max_reach=0.642, tool_length=0.238,
+    basis="RV-3SB DH d1 = 0.350, a1 = 0.095, reach 0.642 m J2 to J5 (robot-facts.md 4); base at world (-0.35, 0, 0)",
+)
+
+_PADS = ("tactile_left", "tactile_right")
+_WRT102 = Hand("Weiss WRT-102 (Schunk PG70 based)", "parallel jaw",
+               PARALLEL_JAW_SHAPES, parallel_jaw_closest(), max_opening=0.068)
+
+
+class MelfaFactory(Factory):
+    name = "melfa"
+    description = ("Mitsubishi Melfa RV-3SB 6-DOF arm with a JR3 wrist force-torque sensor and the Weiss WRT-102 "
+                   "parallel gripper (Schunk PG70 based) with a tactile pad on each finger (thesis A.3)")
+    arms = (
+        Arm("main", "Melfa RV-3SB arm with the WRT-102 gripper", _WRT102,
+            (Sensor("wrist_ft", SensorKind.FORCE_TORQUE, "JR3 6-axis force-torque sensor between arm and gripper"),
+             *(Sensor(p, SensorKind.TACTILE, f"Weiss tactile pad on the {p.split('_')[1]} finger") for p in _PADS)),
+            _WORKSPACE),
+    )
+    primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
+                            StateType.PLACE, StateType.RELEASE})
+    node_table = (  # thesis Table 7.4
+        MappingRow("grasp", "grasp", "grasp force", "arm control, tactile sensors"),
+        MappingRow("move", "move", "-", "arm control"),
+        MappingRow("push", "move", "-", "arm control"),
+        MappingRow("transport", "transport", "motion constraints", "arm control, tactile"),
+        MappingRow("place", "transport", "motion constraints", "arm control, tactile"),
+        MappingRow("slide", "-", "-", "-"),
+        MappingRow("release", "release", "hand position", "arm control"),
+    )
+
+    def map_node(self, state: State, context: MappingContext) -> NodeMapping:
+        kind = state.type
+        if kind is StateType.SLIDE:
+            raise Unmappable("the Melfa has no slide primitive (thesis Table 7.4)",
+                             "push the object instead (type=\"push\"), or translate for tombatossals or baxter")
+        if kind is StateType.GRASP:
+            notes = self.shape(state.hand_shape)[1] if state.hand_shape else ()
+            if context.object is not None and context.object.pose is not None:
+                self.check_reach(context.object.pose.position)
+            return NodeMapping("grasp", self.controller("hold"), self.controller("close_until_force"), notes)
+        if kind is StateType.RELEASE:
+            return NodeMapping("release", self.controller("hold"),
+                               self.controller("open_to", hand_position=state.hand_opening))
+        target, via = self.motion(state, context)
+        flags = arm_motion_flags(state)
+        if kind is StateType.PLACE:  # a transport that ends on contact: descend straight onto the surface
+            flags["straight_line"] = True
+        arm = self.controller("cartesian_move", target=target, waypoints=via, **flags)
+        if kind in (StateType.TRANSPORT, StateType.PLACE):
+            return NodeMapping("transport", arm, self.controller("squeeze"))
+        if state.hand_shape is None:
+            return NodeMapping("move", arm, self.controller("hold_position"))
+        shape, notes = self.shape(state.hand_shape)
+        return NodeMapping("move", arm, self.controller("hand_shape", shape=shape.value), notes)
+
+    def success(self, origin: State) -> ConditionNode:
+        if origin.type is not StateType.PLACE:
+            return super().success(origin)
+        success = EventType.SUCCESS
+        return all_of(any_of(self.condition(success, "arm_done"),
+                             self.condition(success, "tactile_load_change", _PADS)),
+                      self.condition(success, "hand_done"))
+
+    def sensed_event(self, event_type: EventType, origin: State) -> ConditionNode:
+        if event_type is EventType.GRASP_STABLE:
+            return self.condition(event_type, "tactile_force_above", _PADS, min_pads=2)
+        if event_type is EventType.GRASP_LOST:
+            return self.condition(event_type, "tactile_force_below", _PADS, min_pads=2)
+        if event_type is EventType.FINGER_CONTACT:
+            return self.condition(event_type, "tactile_force_above", _PADS, min_pads=1)
+        if event_type is EventType.FINGER_CONTACT_LOST:
+            return self.condition(event_type, "tactile_force_below", _PADS, min_pads=1)
+        if event_type is EventType.COLLISION:
+            return self.condition(event_type, "wrist_force_above", ("wrist_ft",))
+        raise Unmappable(f"no mapping for event '{event_type.value}'")

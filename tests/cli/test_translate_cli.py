@@ -1,0 +1,121 @@
+"""`atd translate`, `atd check` and `atd robots` as a user meets them: output, files, exit codes."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import textwrap
+from atd.model.estd_xml import read_estd
+from tests.conftest import EXAMPLES, REPO
+
+
+def atd(*args: str, env=None) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "atd", *args], capture_output=True, text=True, timeout=120,
+                          cwd=REPO, env=env)
+
+
+def test_pick_and_place_translates_for_every_robot(tmp_path):
+    for name in ("pick_and_place.xml",):
+        shutil.copy(EXAMPLES / name, tmp_path / name)
+    for robot in ("tombatossals", "melfa", "baxter"):
+        result = atd("translate", str(tmp_path / "pick_and_place.xml"), "--robot", robot)
+        assert result.returncode == 0, result.stderr
+        out = tmp_path / f"pick_and_place.{robot}.estd.xml"
+        assert f"wrote {out}" in result.stdout
+        assert "put_down   place      " in result.stdout  # the summary table
+        estd, found = read_estd(out)
+        assert found == [] and estd.robot == robot
+    json_out = tmp_path / "p.json"
+    assert atd("translate", str(tmp_path / "pick_and_place.xml"), "-r", "melfa", "--format", "json",
+               "-o", str(json_out), "-q").returncode == 0
+    assert read_estd(json_out)[0] == read_estd(tmp_path / "pick_and_place.melfa.estd.xml")[0]
+
+
+def test_untranslatable_exits_4_and_writes_nothing(tmp_path):
+    task = tmp_path / "wipe.xml"
+    task.write_text(textwrap.dedent("""\
+        <statemachine>
+          <state name="wipe" type="slide"><path><position>0.1 0.1 0.03</position></path></state>
+          <state name="done" type="success"/>
+          <transition origin="wipe" destination="done"><success/></transition>
+        </statemachine>
+        """))
+    result = atd("translate", str(task), "--robot", "melfa")
+    assert result.returncode == 4
+    assert f"{task}:2:3: error[TRN001]: melfa: cannot map slide state 'wipe'" in result.stderr
+    assert list(tmp_path.iterdir()) == [task]
+
+
+def test_invalid_atd_exits_1(tmp_path):
+    task = tmp_path / "bad.xml"
+    task.write_text('<statemachine>\n  <state name="a" type="mvoe"/>\n</statemachine>\n')
+    result = atd("translate", str(task), "--robot", "baxter")
+    assert result.returncode == 1 and "error[ATD104]" in result.stderr
+    assert "Traceback" not in result.stderr
+
+
+def test_unknown_robot_and_arm_are_usage_errors():
+    result = atd("translate", str(EXAMPLES / "simple_move.xml"), "--robot", "nao")
+    assert result.returncode == 2 and "no robot 'nao' is installed; installed: baxter, melfa, tombatossals" in result.stderr
+    result = atd("translate", str(EXAMPLES / "simple_move.xml"), "--robot", "melfa", "--arm", "left")
+    assert result.returncode == 2 and "robot 'melfa' has no arm 'left'; choose one of: main" in result.stderr
+
+
+def test_user_config_overrides_the_robot_values(tmp_path):
+    config = tmp_path / "robots.toml"
+    config.write_text("[melfa.controllers.close_until_force]\ngrasp_force = 22.5\n")
+    out = tmp_path / "out.xml"
+    assert atd("translate", str(EXAMPLES / "pick_and_place.xml"), "-r", "melfa", "--config", str(config),
+               "-o", str(out)).returncode == 0
+    grasp = next(s for s in read_estd(out)[0].states if s.name == "grasp")
+    assert grasp.hand.params["grasp_force"] == 22.5
+    config.write_text("[melfa.controllers.cartesian_move]\ntarget = [0, 0, 0]\n")
+    result = atd("translate", str(EXAMPLES / "pick_and_place.xml"), "-r", "melfa", "--config", str(config))
+    assert result.returncode == 1
+    assert "[melfa.controllers.cartesian_move] 'target' comes from the task" in result.stderr
+
+
+def test_check_prints_the_robot_matrix_with_reasons(tmp_path):
+    result = atd("check", *map(str, sorted(EXAMPLES.glob("*.xml"))), str(REPO / "tests/data/seeds/fig7_2.xml"))
+    assert result.returncode == 0
+    header = result.stdout.splitlines()[0].split()
+    assert header == ["task", "baxter:right", "baxter:left", "melfa", "tombatossals:right", "tombatossals:left"]
+    assert any(line.startswith(str(EXAMPLES / "pick_and_place.xml")) and line.count("yes") == 5
+               for line in result.stdout.splitlines())
+    assert "why not:" in result.stdout and "fig7_2.xml:14:3: error[TRN001]" in result.stdout
+
+
+def test_robots_list_and_show():
+    listing = atd("robots", "list").stdout
+    assert "melfa: Mitsubishi Melfa RV-3SB" in listing and "tombatossals:" in listing and "baxter:" in listing
+    assert atd("robots").stdout == listing  # bare `atd robots` lists too
+    show = atd("robots", "show", "melfa").stdout
+    assert "| slide | - | - | - |" in show
+    assert "success (leaving place): all(any(arm_done, tactile_load_change[" in show
+
+
+def test_a_separately_installed_package_adds_a_robot(tmp_path):
+    """Another distribution, laid out as pip installs a wheel (package + .dist-info with an
+    `atd.factories` entry point) in its own site dir: found by real entry-point discovery.
+    (Building it with pip needs setuptools >= 68 and wheel, which this offline machine lacks.)"""
+    site = tmp_path / "site"
+    (site / "toyrobot").mkdir(parents=True)
+    (site / "toyrobot" / "__init__.py").write_text(textwrap.dedent('''\
+        from factories.melfa.factory import MelfaFactory
+
+        class ToyFactory(MelfaFactory):
+            name = "toyrobot"
+            description = "a Melfa twin from another package"
+        '''))
+    info = site / "toyrobot-0.1.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: toyrobot\nVersion: 0.1\n")
+    (info / "entry_points.txt").write_text("[atd.factories]\ntoyrobot = toyrobot:ToyFactory\n")
+    env = {**os.environ, "PYTHONPATH": f"{REPO}{os.pathsep}{site}"}
+    assert "toyrobot: a Melfa twin from another package" in atd("robots", "list", env=env).stdout
+    out = tmp_path / "toy.xml"
+    assert atd("translate", str(EXAMPLES / "simple_move.xml"), "-r", "toyrobot", "-o", str(out), env=env).returncode == 0
+    assert read_estd(out)[0].robot == "toyrobot"
+    assert "toyrobot" not in atd("robots", "list").stdout

@@ -1,0 +1,208 @@
+"""Every row of thesis Tables 7.3 (Tombatossals) and 7.4 (Melfa), our Baxter table, and every refusal."""
+
+from __future__ import annotations
+
+import pytest
+
+from atd.model import Environment, HandShape, Movement, Obstacle, State, StateType
+from atd.model.estd import describe
+from factories.base import MappingContext, Unmappable
+from factories.registry import create
+from tests.translator.helpers import BOX, at, every_factory, one_state_task
+from translator import translate
+
+TARGET = at(0.10, 0.10, 0.025)
+
+
+def _state(kind: StateType, **fields) -> State:
+    path = TARGET if kind in (StateType.MOVE, StateType.PUSH, StateType.TRANSPORT, StateType.PLACE,
+                              StateType.SLIDE) else ()
+    return State(name="s", type=kind, **{"path": path, **fields})
+
+
+def _map(robot: str, state: State, arm: str | None = None, environment=None):
+    task = one_state_task(state).model_copy(update={"environment": environment})
+    return create(robot, arm).map_node(state, MappingContext(task))
+
+
+# Table 7.3: abstract -> Tombatossals primitive, its controllers, and the extra parameter it carries.
+TABLE_7_3 = [
+    (StateType.GRASP, "robust_grasp", "robust_grasp_approach", "robust_grasp_hand", ("hand", "pregrasp_size", 0.562)),
+    (StateType.MOVE, "transport", "cartesian_move", "hold_position", ("arm", "force_threshold", 15.0)),
+    (StateType.PUSH, "transport", "cartesian_move", "hold_position", ("arm", "force_threshold", 15.0)),
+    (StateType.TRANSPORT, "transport", "cartesian_move", "hold_position",
+     ("arm", "obstacles", ((0.25, 0.22, 0.06),))),
+    (StateType.PLACE, "place", "place", "hold_position", ("arm", "force_threshold", 5.0)),
+    (StateType.SLIDE, "slide", "slide", "hand_shape", ("arm", "upper_force_threshold", 9.0)),
+    (StateType.RELEASE, "release", "release_retreat", "open_to", ("hand", "hand_position", 1.0)),
+]
+
+
+@pytest.mark.parametrize("kind, primitive, arm, hand, extra", TABLE_7_3, ids=[r[0].value for r in TABLE_7_3])
+def test_table_7_3_tombatossals(kind, primitive, arm, hand, extra):
+    env = Environment(obstacles=(Obstacle(position=(0.25, 0.22, 0.06)),))
+    mapping = _map("tombatossals", _state(kind), environment=env)
+    assert (mapping.primitive, mapping.arm.name, mapping.hand.name) == (primitive, arm, hand)
+    role, name, value = extra
+    assert getattr(mapping, role).params[name] == value
+
+
+def test_table_7_3_grasp_uses_wrist_force_torque_and_tactile():
+    mapping = _map("tombatossals", _state(StateType.GRASP, hand_shape=HandShape.PINCH_GRASP))
+    assert mapping.arm.params["force_threshold"] == 2.0 and mapping.arm.params["torque_threshold"] == 5.0
+    assert mapping.hand.params["preshape"] == "pinch_grasp_preshape"
+    task = one_state_task(_state(StateType.GRASP))
+    factory = create("tombatossals")
+    stable = factory.map_event("grasp_stable", None, task.transitions[0], MappingContext(task))
+    assert stable.sensors == ("tactile_f1", "tactile_f2", "tactile_f3") and stable.params["min_pads"] == 2
+
+
+# Table 7.4: abstract -> Melfa primitive and controllers.
+TABLE_7_4 = [
+    (StateType.GRASP, "grasp", "hold", "close_until_force"),
+    (StateType.MOVE, "move", "cartesian_move", "hold_position"),
+    (StateType.PUSH, "move", "cartesian_move", "hold_position"),
+    (StateType.TRANSPORT, "transport", "cartesian_move", "squeeze"),
+    (StateType.PLACE, "transport", "cartesian_move", "squeeze"),
+    (StateType.RELEASE, "release", "hold", "open_to"),
+]
+
+
+@pytest.mark.parametrize("kind, primitive, arm, hand", TABLE_7_4, ids=[r[0].value for r in TABLE_7_4])
+def test_table_7_4_melfa(kind, primitive, arm, hand):
+    mapping = _map("melfa", _state(kind))
+    assert (mapping.primitive, mapping.arm.name, mapping.hand.name) == (primitive, arm, hand)
+
+
+def test_table_7_4_grasp_closes_until_the_tactile_grasp_force():
+    hand = _map("melfa", _state(StateType.GRASP)).hand
+    assert hand.params == {"grasp_force": 15.0, "closing_speed": 0.02, "force_source": "tactile"}
+
+
+def test_table_7_4_transport_keeps_squeezing_with_the_grasp_force():
+    assert _map("melfa", _state(StateType.TRANSPORT)).hand.params["grasp_force"] == 15.0
+
+
+def test_table_7_4_place_is_a_transport_that_stops_on_tactile_contact():
+    task = one_state_task(_state(StateType.PLACE))
+    estd = translate(task, create("melfa")).estd
+    assert estd.states[0].arm.params["straight_line"] is True
+    assert describe(estd.transitions[0].events[0].condition) == "all(any(arm_done, tactile_load_change), hand_done)"
+
+
+def test_table_7_4_release_opens_to_the_hand_position():
+    assert _map("melfa", _state(StateType.RELEASE, hand_opening=0.4)).hand.params["hand_position"] == 0.4
+
+
+def test_table_7_4_has_no_slide():
+    with pytest.raises(Unmappable, match=r"the Melfa has no slide primitive \(thesis Table 7.4\)"):
+        _map("melfa", _state(StateType.SLIDE))
+
+
+def test_slide_refusal_reaches_the_user_with_file_line_and_robot(atd_file):
+    from atd.model import load_task
+
+    path = atd_file("""
+        <statemachine>
+          <state name="wipe" type="slide"><path><position>0.1 0.1 0.03</position></path></state>
+          <state name="done" type="success"/>
+          <transition origin="wipe" destination="done"><success/></transition>
+        </statemachine>
+    """)
+    result = translate(load_task(path)[0], create("melfa"))
+    assert result.estd is None
+    assert result.diagnostics[0].render().startswith(
+        f"{path}:2:3: error[TRN001]: melfa: cannot map slide state 'wipe': the Melfa has no slide primitive")
+
+
+@pytest.mark.parametrize("field", ["hand_shape", "preshape"])
+@pytest.mark.parametrize("shape", [HandShape.HOOK_GRASP, HandShape.HOOK_GRASP_PRESHAPE])
+def test_sdh2_refuses_a_hook_grasp(field, shape):
+    with pytest.raises(Unmappable, match="the Schunk SDH2 cannot make a hook grasp"):
+        _map("tombatossals", _state(StateType.GRASP, **{field: shape}), arm="left")
+    assert _map("tombatossals", _state(StateType.GRASP, **{field: shape}), arm="right").primitive == "robust_grasp"
+
+
+def test_a_target_outside_the_workspace_is_refused_for_every_robot():
+    for factory in every_factory():
+        state = State(name="far", type=StateType.MOVE, path=at(0.10, 0.10, 1.50))
+        with pytest.raises(Unmappable, match=r"target \(0.1, 0.1, 1.5\) is outside the reachable workspace"):
+            factory.map_node(state, MappingContext(one_state_task(state)))
+
+
+def test_the_shared_work_area_is_reachable_by_every_robot_and_arm():
+    for factory in every_factory():
+        for x in (0.0, 0.2):
+            for y in (-0.15, 0.15):
+                for z in (0.02, 0.25):
+                    assert factory.arm.workspace.reach_problem((x, y, z)) is None, (factory.name, x, y, z)
+
+
+@pytest.mark.parametrize("kind", [StateType.PUSH, StateType.SLIDE])
+def test_push_or_slide_without_a_path_is_refused(kind):
+    with pytest.raises(Unmappable, match=f"where to {kind.value} it"):
+        _map("tombatossals", State(name="s", type=kind))
+
+
+def test_no_path_and_no_object_pose_is_refused():
+    state = State(name="s", type=StateType.MOVE)
+    with pytest.raises(Unmappable, match="no object pose to derive a target from"):
+        create("baxter").map_node(state, MappingContext(one_state_task(state, obj=None)))
+
+
+@pytest.mark.parametrize("kind, movement, target", [
+    (StateType.MOVE, Movement.FREE, (0.10, -0.05, 0.15)),  # approach: above the object
+    (StateType.MOVE, Movement.GUARDED, (0.10, -0.05, 0.025)),  # guarded descent: to grasp height
+    (StateType.TRANSPORT, None, (0.10, -0.05, 0.125)),  # lift
+    (StateType.PLACE, None, (0.10, -0.05, 0.025)),  # put back
+])
+def test_targets_are_derived_from_the_object_when_there_is_no_path(kind, movement, target):
+    arm = _map("baxter", State(name="s", type=kind, movement=movement)).arm
+    assert arm.params["target"] == pytest.approx(target)
+
+
+def test_parallel_jaw_maps_other_shapes_to_the_closest_with_a_note():
+    for robot in ("melfa", "baxter"):
+        mapping = _map(robot, _state(StateType.MOVE, hand_shape=HandShape.POWER_GRASP_PRESHAPE))
+        assert mapping.hand.params["shape"] == "open"
+        assert "cannot make 'power_grasp_preshape'; using the closest shape 'open'" in mapping.notes[0]
+        assert _map(robot, _state(StateType.MOVE, hand_shape=HandShape.CYLINDRICAL_GRASP)).hand.params["shape"] == \
+            "pinch_grasp"
+
+
+def test_sdh2_makes_a_cylinder_where_a_move_asks_for_a_hook():
+    mapping = _map("tombatossals", _state(StateType.MOVE, hand_shape=HandShape.HOOK_GRASP_PRESHAPE), arm="left")
+    assert mapping.hand.params["shape"] == "cylindrical_grasp_preshape" and mapping.notes
+
+
+def test_baxter_reads_its_noisy_force_sensor_with_raised_filtered_thresholds():
+    place = _map("baxter", _state(StateType.PLACE)).arm
+    assert place.params["force_threshold"] == 10.0 and place.params["filter_time"] == 0.05
+    task = one_state_task(_state(StateType.GRASP))
+    factory = create("baxter")
+    ctx = MappingContext(task)
+    assert describe(factory.map_event("grasp_stable", None, task.transitions[0], ctx)) == \
+        "all(gripper_force_above, gripper_opening_above, range_below)"
+    assert describe(factory.map_event("grasp_lost", None, task.transitions[0], ctx)) == \
+        "any(gripper_opening_below, range_above)"
+    collision = factory.map_event("collision", None, task.transitions[0], ctx)
+    assert collision.params["force_threshold"] == 30.0 and collision.params["filter_time"] == 0.05
+
+
+def test_hardware_failure_is_arm_or_hand_failure_on_every_robot():
+    task = one_state_task(_state(StateType.MOVE))
+    for factory in every_factory():
+        node = factory.map_event("hardware_failure", None, task.transitions[0], MappingContext(task))
+        assert describe(node) == "any(arm_fault, hand_fault, simulation_unstable)"
+
+
+def test_each_mapping_table_row_says_what_the_factory_does():
+    for factory in every_factory():
+        for row in factory.node_table:
+            state = _state(StateType(row.abstract))
+            if row.concrete == "-":
+                with pytest.raises(Unmappable):
+                    factory.map_node(state, MappingContext(one_state_task(state)))
+            else:
+                assert factory.map_node(state, MappingContext(one_state_task(state))).primitive == row.concrete
+        assert {StateType(r.abstract) for r in factory.node_table if r.concrete != "-"} == factory.primitives

@@ -1,0 +1,184 @@
+"""DOT, SVG and PNG of real tasks, and the choice between graphviz and the built-in renderer."""
+
+from __future__ import annotations
+
+import re
+import shutil
+import stat
+import struct
+import zlib
+
+import pytest
+from lxml import etree
+
+from atd.graph.dot import GraphvizError, to_dot
+from atd.graph.font import GLYPH_HEIGHT, GLYPH_WIDTH, glyph
+from atd.graph.model import Node, NodeKind, from_estd
+from atd.graph.raster import colour
+from atd.graph.render import Renderer, render
+from atd.graph.style import PALETTE
+from atd.model import load_task
+from factories.registry import create
+from tests.conftest import EXAMPLES
+from tests.graph.test_layout import example_graph, overlap
+from translator import translate
+
+SVG = "{http://www.w3.org/2000/svg}"
+NODE_LINE = re.compile(r'^  "([^"]+)" \[label=')
+EDGE_LINE = re.compile(r'^  "([^"]+)" -> "([^"]+)" \[label="([^"]*)"')
+
+
+@pytest.fixture
+def no_graphviz(monkeypatch):
+    """A machine without graphviz, whatever this one has."""
+    monkeypatch.setattr(shutil, "which", lambda name, *a, **k: None)
+
+
+def fake_dot(tmp_path, monkeypatch, script: str) -> None:
+    """Put an executable `dot` on PATH that runs `script` (Python) on the DOT it is given."""
+    program = tmp_path / "bin" / "dot"
+    program.parent.mkdir()
+    program.write_text(f"#!{shutil.which('python3') or '/usr/bin/env python3'}\nimport sys\n{script}\n")
+    program.chmod(program.stat().st_mode | stat.S_IEXEC)
+    monkeypatch.setenv("PATH", str(program.parent))
+
+
+def melfa_estd():
+    task, _ = load_task(EXAMPLES / "pick_and_place.xml")
+    result = translate(task, create("melfa"))
+    assert result.estd is not None, result.diagnostics
+    return result.estd
+
+
+def test_dot_has_one_node_per_state_and_one_edge_per_transition():
+    task, _ = load_task(EXAMPLES / "pick_and_place.xml")
+    text = to_dot(example_graph("pick_and_place.xml"))
+    nodes = [m.group(1) for line in text.splitlines() if (m := NODE_LINE.match(line))]
+    edges = [m.groups() for line in text.splitlines() if (m := EDGE_LINE.match(line))]
+    assert nodes == [s.name for s in task.states]
+    assert edges == [(t.origin, t.destination, t.label) for t in task.transitions]
+    assert ("grasp", "lift", "success & grasp_stable") in edges
+    assert ("approach", "failed", "timeout(20s)") in edges
+    assert text == to_dot(example_graph("pick_and_place.xml"))  # deterministic
+
+
+def test_dot_quotes_awkward_names():
+    graph = example_graph("simple_move.xml")
+    graph.nodes[0] = Node('say "hi"\\', graph.nodes[0].lines, graph.nodes[0].kind)
+    assert '"say \\"hi\\"\\\\" [label=' in to_dot(graph)
+
+
+def test_svg_fallback_is_wellformed_with_a_box_per_state_and_an_arrow_per_transition(no_graphviz):
+    graph = example_graph("pick_and_place.xml")
+    data, drawn_by = render(graph, "svg")
+    assert drawn_by == "the built-in layout"
+    root = etree.fromstring(data)
+    assert root.tag == f"{SVG}svg"
+    states = root.findall(f"{SVG}g[@class='state']")
+    assert [g.get("data-state") for g in states] == [n.id for n in graph.nodes]
+    rects = []
+    for g in states:
+        r = g.find(f"{SVG}rect")
+        x, y, w, h = (float(r.get(k)) for k in ("x", "y", "width", "height"))
+        rects.append((x, y, x + w, y + h))
+        assert g.find(f"{SVG}text").text == g.get("data-state")  # the name is the first line
+    assert not any(overlap(a, b) for i, a in enumerate(rects) for b in rects[i + 1:])
+    edges = root.findall(f"{SVG}g[@class='edge']")
+    assert sorted(g.get("data-transition") for g in edges) == sorted(e.id for e in graph.edges)
+    for g in edges:
+        assert g.find(f"{SVG}path") is not None and len(g.find(f"{SVG}polygon").get("points").split()) == 3
+    labels = {t.text for g in edges for t in g.findall(f"{SVG}text")}
+    assert {"success", "success & grasp_stable", "grasp_lost", "timeout(20s)", "hardware_failure"} <= labels
+
+
+def read_png(data: bytes) -> tuple[int, int, list[bytes]]:
+    """Width, height and the raw RGB rows of a PNG as our writer makes it (filter 0, one IDAT)."""
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    chunks, at = {}, 8
+    while at < len(data):
+        (length,), kind = struct.unpack(">I", data[at:at + 4]), data[at + 4:at + 8]
+        body = data[at + 8:at + 8 + length]
+        assert struct.unpack(">I", data[at + 8 + length:at + 12 + length])[0] == zlib.crc32(kind + body)
+        chunks[kind] = body
+        at += 12 + length
+    width, height, depth, kind, *_ = struct.unpack(">IIBBBBB", chunks[b"IHDR"])
+    assert (depth, kind) == (8, 2) and b"IEND" in chunks
+    raw = zlib.decompress(chunks[b"IDAT"])
+    stride = 1 + 3 * width
+    assert len(raw) == height * stride
+    return width, height, [raw[y * stride + 1:(y + 1) * stride] for y in range(height)]
+
+
+def test_png_fallback_is_a_real_picture(no_graphviz):
+    data, drawn_by = render(example_graph("pick_and_place.xml"), "png")
+    assert drawn_by == "the built-in layout"
+    width, height, rows = read_png(data)
+    assert width > 300 and height > 600
+    pixels = {bytes(row[i:i + 3]) for row in rows for i in range(0, len(row), 3)}
+    for kind in (NodeKind.PRIMITIVE, NodeKind.SUCCESS, NodeKind.FAILURE):
+        fill, border = PALETTE[kind]
+        assert colour(fill) in pixels and colour(border) in pixels
+
+
+def test_estd_graph_names_primitives_and_controllers(no_graphviz):
+    graph = from_estd(melfa_estd(), "pick_and_place.melfa.estd.xml")
+    boxes = {n.id: n.lines for n in graph.nodes}
+    assert boxes["grasp"][1:] == ("grasp", "arm: hold", "hand: close_until_force", "  grasp_force=15")
+    assert "place as transport" in boxes["put_down"] and "hand: squeeze" in boxes["put_down"]
+    assert "arm: cartesian_move" in boxes["approach"] and "  target=0.1 -0.05 0.15" in boxes["approach"]
+    assert [e.lines for e in graph.edges if e.id == "approach->failed#2"] == [("timeout(20s)",)]
+    svg = etree.fromstring(render(graph, "svg")[0])
+    assert "hand: close_until_force" in {t.text for t in svg.iter(f"{SVG}text")}
+
+
+def test_estd_conditions_are_shown_on_request():
+    graph = from_estd(melfa_estd(), "p.xml", conditions=True)
+    put_down = next(e for e in graph.edges if e.id == "put_down->let_go")
+    text = " ".join(line.strip() for line in put_down.lines)
+    assert text.startswith("success: all(any(arm_done, tactile_load_change[on=tactile_left+tactile_right,")
+    assert len(put_down.lines) > 1  # wrapped: each line as long as the longest unbreakable word allows
+    assert all(len(line) <= 44 or " " not in line.strip() for line in put_down.lines)
+
+
+def test_graphviz_draws_when_installed(tmp_path, monkeypatch):
+    fake_dot(tmp_path, monkeypatch, "dot = sys.stdin.read()\n"
+             "sys.stdout.write('<svg><!-- ' + sys.argv[1] + ' ' + str(dot.count(' -> ')) + ' --></svg>')")
+    data, drawn_by = render(example_graph("pick_and_place.xml"), "svg")
+    assert (data, drawn_by) == (b"<svg><!-- -Tsvg 22 --></svg>", "graphviz")
+
+
+def test_a_failing_graphviz_falls_back_unless_asked_for(tmp_path, monkeypatch):
+    fake_dot(tmp_path, monkeypatch, "sys.stderr.write('Error: syntax error in line 1'); sys.exit(1)")
+    graph = example_graph("retry_grasp.xml")
+    data, drawn_by = render(graph, "png")
+    assert data.startswith(b"\x89PNG") and "syntax error in line 1" in drawn_by
+    with pytest.raises(GraphvizError, match="syntax error in line 1"):
+        render(graph, "png", Renderer.GRAPHVIZ)
+
+
+def test_graphviz_asked_for_but_missing(no_graphviz):
+    with pytest.raises(GraphvizError, match="not installed"):
+        render(example_graph("retry_grasp.xml"), "svg", Renderer.GRAPHVIZ)
+
+
+def test_the_font_has_every_printable_ascii_character():
+    unknown = glyph("\u2603")
+    for code in range(33, 127):
+        pixels = glyph(chr(code))
+        assert pixels and pixels != unknown, chr(code)
+        assert all(0 <= c < GLYPH_WIDTH and 0 <= r < GLYPH_HEIGHT for c, r in pixels), chr(code)
+    assert glyph(" ") == ()
+    assert len({glyph(chr(c)) for c in range(33, 127)}) == 94  # no two characters look the same
+
+
+def test_big_pictures_shrink_then_are_refused(monkeypatch, no_graphviz):
+    from atd.graph import png
+
+    graph = example_graph("retry_grasp.xml")
+    full = read_png(render(graph, "png")[0])
+    monkeypatch.setattr(png, "MAX_PIXELS", full[0] * full[1] // 2)  # room for 1x but not 2x
+    half = read_png(render(graph, "png")[0])
+    assert (half[0], half[1]) == (full[0] // 2, full[1] // 2)
+    monkeypatch.setattr(png, "MAX_PIXELS", 1000)
+    with pytest.raises(png.PictureTooBig, match=r"too big for a PNG; draw it as \.svg"):
+        render(graph, "png")

@@ -1,0 +1,51 @@
+"""The seeds' own XML, as printed, and every shipped example must be accepted."""
+
+import pytest
+
+from atd.model import Severity, StateType, load_task
+from tests.conftest import EXAMPLES, SEEDS
+
+
+@pytest.mark.parametrize("name", ["fig7_2.xml", "d5_example.xml"])
+def test_seed_xml_as_printed_has_no_errors(name):
+    task, found = load_task(SEEDS / name)
+    assert task is not None
+    assert [d for d in found if d.severity is Severity.ERROR] == []
+
+
+def test_fig7_2_reads_as_the_figure_draws_it():
+    task, _ = load_task(SEEDS / "fig7_2.xml")
+    assert [s.name for s in task.states] == [
+        "approach", "preshape_hand", "grasp_object", "lift_object", "success_end", "fail_end"]
+    assert task.initial_state == "approach"
+    lift = task.states_by_name["lift_object"]
+    assert lift.type is StateType.TRANSPORT and lift.target.position == (0.2, 0.6, 0.25)
+    grasp_edge = task.transitions[2]
+    assert [e.type.value for e in grasp_edge.events] == ["success", "grasp_stable"]
+
+
+def test_fig7_2_only_warns_about_the_targets_the_figure_omits():
+    _, found = load_task(SEEDS / "fig7_2.xml")
+    assert {(d.code, d.loc.line) for d in found} == {("ATD210", 2), ("ATD210", 6)}
+
+
+def test_d5_example_keeps_its_object_and_timeout():
+    task, found = load_task(SEEDS / "d5_example.xml")
+    assert [d.code for d in found] == ["ATD215"]  # cup.mdl is not shipped with the seed
+    assert task.object.pose.position == (1.0, 1.0, 1.0)
+    assert task.object.object_class.value == "cylinder"
+    assert task.transitions[2].events[0].seconds == 10.0
+    assert [w.position for w in task.states[0].path] == [(0.0, 0.0, 4.0), (0.0, 5.0, 3.0)]
+
+
+@pytest.mark.parametrize("path", sorted(EXAMPLES.glob("*.xml")), ids=lambda p: p.name)
+def test_every_example_is_clean(path):
+    task, found = load_task(path)
+    assert task is not None and found == []
+
+
+def test_empty_the_box_loops_over_its_sub_task():
+    task, _ = load_task(EXAMPLES / "empty_the_box.xml")
+    loop = task.states_by_name["pick_one"]
+    assert loop.type is StateType.TASK and loop.file == "pick_one.xml"
+    assert any(t.origin == t.destination == "pick_one" for t in task.transitions)
