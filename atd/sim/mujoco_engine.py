@@ -92,7 +92,7 @@ class MujocoRobot(SimRobot):
         # as a real sensor's sample is; recomputing them would cost a third of a step.
         mujoco.mj_step(self.model, self.data, nstep=self.substeps)
 
-    def _jacobian(self) -> np.ndarray:
+    def jacobian(self) -> np.ndarray:
         mujoco.mj_jacSite(self.model, self.data, self._jacp, self._jacr, self._tcp_site)
         return np.vstack([self._jacp[:, self._arm_vadr], self._jacr[:, self._arm_vadr]])
 

@@ -189,7 +189,7 @@ class PybulletRobot(SimRobot):
         for _ in range(self.substeps):
             pb.stepSimulation(physicsClientId=self.client)
 
-    def _jacobian(self) -> np.ndarray:
+    def jacobian(self) -> np.ndarray:
         q = [s[0] for s in pb.getJointStates(self.body, self._movable, physicsClientId=self.client)]
         zeros = [0.0] * len(q)
         lin, ang = pb.calculateJacobian(

@@ -24,7 +24,9 @@ REFERENCE_LEASH = 0.02
 #: Time to reach full speed from rest: the reference generator limits acceleration to
 #: speed limit / RAMP_TIME, as an industrial controller's does, and brakes before limits.
 RAMP_TIME = 0.2
-_MODE_CODE = {HandMode.POSITION: 0, HandMode.VELOCITY: 1, HandMode.FORCE: 2}
+# Hand modes as small integers, so a tick compares arrays instead of strings.
+POSITION, VELOCITY, FORCE = 0, 1, 2
+_MODE_CODE = {HandMode.POSITION: POSITION, HandMode.VELOCITY: VELOCITY, HandMode.FORCE: FORCE}
 
 
 def robot_info(d: RobotDescription) -> RobotInfo:
@@ -69,7 +71,6 @@ class SimRobot(Robot):
     def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0):
         d = description
         self.description = d
-        self.scene = scene
         self.info = robot_info(d)
         self.hand_joints = tuple(n for n in d.joints if n not in d.arm_joints)
         self.substeps = int(round(d.control_period / d.timestep))
@@ -85,17 +86,14 @@ class SimRobot(Robot):
                 i = self.hand_joints.index(joint)
                 self._joint_dof[i], self._joint_ratio[i] = k, ratio
                 self._joint_follows[i] = dof.geared and n > 0
-        hand_joint_specs = [d.joints[n] for n in self.hand_joints]
-        self._hand_joint_lower = np.array([min(j.lower, j.upper) for j in hand_joint_specs])
-        self._hand_joint_upper = np.array([max(j.lower, j.upper) for j in hand_joint_specs])
 
         rng = np.random.default_rng(seed)
         period = d.control_period
-        model = lambda key: d.sensors.get(key, SensorModel())  # noqa: E731
-        self._joint_sensor = NoisySensor(model("joints"), rng, n_arm + len(self.hand_joints), period)
-        self._wrench_sensor = NoisySensor(model("wrench"), rng, 6, period)
-        self._pad_sensor = NoisySensor(model("tactile"), rng, len(d.hand.pads), period)
-        self._range_sensor = NoisySensor(model("range"), rng, 1, period)
+        ideal = SensorModel()
+        self._joint_sensor = NoisySensor(d.sensors.get("joints", ideal), rng, n_arm + len(self.hand_joints), period)
+        self._wrench_sensor = NoisySensor(d.sensors.get("wrench", ideal), rng, 6, period)
+        self._pad_sensor = NoisySensor(d.sensors.get("tactile", ideal), rng, len(d.hand.pads), period)
+        self._range_sensor = NoisySensor(d.sensors.get("range", ideal), rng, 1, period)
         self._taxels = TaxelImages(d.hand.pads)
         self._frozen: set[str] = set()
         self._seq = dict.fromkeys(SENSORS, 0)
@@ -123,17 +121,20 @@ class SimRobot(Robot):
         self._dq_cmd = np.minimum(np.maximum(dq, -limit), limit)
 
     def command_hand(self, values: Sequence[float] | np.ndarray, modes: HandMode | Sequence[HandMode]) -> None:
-        n = len(self.info.hand.dofs)
-        values = np.asarray(values, float).reshape(n)
-        codes = np.full(n, _MODE_CODE[HandMode(modes)]) if isinstance(modes, str) else np.array([_MODE_CODE[HandMode(m)] for m in modes])
         hand = self.info.hand
-        was_force = self._hand_modes == 2
+        n = len(hand.dofs)
+        values = np.asarray(values, float)
+        modes = [modes] * n if isinstance(modes, str) else list(modes)
+        if values.shape != (n,) or len(modes) != n:
+            raise ValueError(f"{self.info.name}: give one hand value and mode per DOF ({', '.join(hand.dofs)})")
+        codes = np.array([_MODE_CODE[HandMode(m)] for m in modes])
+        was_force = self._hand_modes == FORCE
         self._hand_modes = codes
         self._hand_values = values
-        position = codes == 0
+        position = codes == POSITION
         self._hand_target[position] = np.clip(values[position], hand.lower[position], hand.upper[position])
         # A DOF leaving force mode, or starting to move at a velocity, starts from where it is.
-        restart = (codes == 1) | (was_force & (codes != 2))
+        restart = (codes == VELOCITY) | (was_force & (codes != FORCE))
         if restart.any():
             self._hand_target[restart] = self.read().hand_q[restart]
         self._hand_changes = True
@@ -160,14 +161,14 @@ class SimRobot(Robot):
         """Turn the DOF commands into joint commands; needed each tick only while a target
         moves (velocity mode) or a geared joint follows its motor joint (force mode)."""
         hand = self.info.hand
-        velocity = self._hand_modes == 1
+        velocity = self._hand_modes == VELOCITY
         if velocity.any():
             rate = np.minimum(np.maximum(self._hand_values, -hand.velocity_limit), hand.velocity_limit)
             target = self._hand_target + rate * self.info.control_period
             target = np.minimum(np.maximum(target, hand.lower), hand.upper)
             self._hand_target = np.where(velocity, target, self._hand_target)
         dof = self._joint_dof
-        force_dof = self._hand_modes[dof] == 2
+        force_dof = self._hand_modes[dof] == FORCE
         # Under a force command a geared joint follows where its DOF's motor joint is.
         follows = force_dof & self._joint_follows
         joint_force = force_dof & ~follows
@@ -175,9 +176,6 @@ class SimRobot(Robot):
         joint_values = np.where(joint_force, self._hand_values[dof], reference) * self._joint_ratio
         self._apply_hand(joint_force, joint_values)
         self._hand_changes = bool(velocity.any() or follows.any())
-
-    def jacobian(self) -> np.ndarray:
-        return self._jacobian()
 
     # ---- fault hooks, for tests of the layers above (not part of the interface) ---------
     def freeze(self, sensor: str) -> None:
@@ -231,10 +229,6 @@ class SimRobot(Robot):
     @abstractmethod
     def _advance(self) -> None:
         """Run the physics for one control period."""
-
-    @abstractmethod
-    def _jacobian(self) -> np.ndarray:
-        """(6, n_arm) TCP Jacobian, world frame."""
 
     @abstractmethod
     def _joint_state(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

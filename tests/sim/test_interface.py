@@ -74,3 +74,13 @@ def test_static_facts_describe_each_hand() -> None:
     assert [d.name for d in barrett.dofs] == ["spread", "f1", "f2", "f3"]
     assert "hook_grasp" in barrett.postures
     assert "hook_grasp" not in load_description("tombatossals", "left").hand.postures  # SDH2 cannot (thesis A.1.2)
+
+
+def test_the_object_can_be_teleported_or_taken_away(melfa, robot_of, run, engine) -> None:
+    """Fault hook for the layers above: the object vanishes from the hand as a real one may slip out."""
+    robot = robot_of(melfa, engine)
+    away = np.eye(4)
+    away[:3, 3] = (0.4, -0.4, 0.025)
+    robot.place_object(away)
+    run(robot, 0.2)
+    np.testing.assert_allclose(robot.object_pose()[:3, 3], away[:3, 3], atol=1e-3)
