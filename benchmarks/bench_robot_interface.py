@@ -22,30 +22,16 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from atd.sim import ENGINES, load_description, make_robot, variants  # noqa: E402
-from atd.sim.selftest import GRIP_FRACTION, _move_tcp, _pose  # noqa: E402
+from atd.sim.selftest import close_on_box, move_tcp, pose  # noqa: E402
 from atd.sim.simrobot import SimRobot  # noqa: E402
-from primitives.robot import HandMode  # noqa: E402
 
 
 def holding(robot: SimRobot) -> None:
-    """Grip the test box and lift it 5 cm, as the self-test does."""
-    d, info = robot.description, robot.info
-    hand = info.hand
-    shape = d.hand.test_grasp
-    preshape, grasp = hand.postures[f"{shape}_preshape"], hand.postures[shape]
+    """Grip the test box as the self-test does and lift it 5 cm."""
     orientation = robot.read().tcp[:3, :3]
     box = robot.object_pose()[:3, 3]
-    robot.command_hand(preshape, HandMode.POSITION)
-    _move_tcp(robot, _pose(orientation, box + (0, 0, 0.1)), robot.step)
-    _move_tcp(robot, _pose(orientation, box), robot.step, speed=0.05)
-    moving = (hand.closing != 0) & ~np.isclose(grasp, preshape)
-    robot.command_hand(
-        np.where(moving, hand.closing * GRIP_FRACTION * hand.effort_limit, preshape),
-        [HandMode.FORCE if m else HandMode.POSITION for m in moving],
-    )
-    for _ in range(200):
-        robot.step()
-    _move_tcp(robot, _pose(orientation, box + (0, 0, 0.05)), robot.step, speed=0.1)
+    close_on_box(robot, orientation, robot.step)
+    move_tcp(robot, pose(orientation, box + (0, 0, 0.05)), robot.step, speed=0.1)
 
 
 def bare_loop(robot: SimRobot, ticks: int) -> float:

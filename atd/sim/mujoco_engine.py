@@ -1,8 +1,8 @@
 """The robot interface on MuJoCo (the primary engine).
 
 Arm joints: position servos with velocity feed-forward and gravity compensation of the
-arm's own links (industrial controllers do the same). Hand joints: affine servos whose
-gains are switched between a position servo and a pure force.
+arm's own links (industrial controllers do the same). Hand joints: affine actuators
+switched between a position servo (kp, kv) and a damped push (force - kv * speed).
 """
 
 from __future__ import annotations
@@ -60,7 +60,7 @@ class MujocoRobot(SimRobot):
         self._untouched = (np.zeros(0, int), np.zeros((0, 2)), np.zeros(0))
         self._range_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "range")] if d.range_sensor else -1
         self._object_body = _id(m, mujoco.mjtObj.mjOBJ_BODY, "object")
-        self._object_qadr = m.jnt_qposadr[m.body_jntadr[self._object_body]] if self._object_body >= 0 else -1
+        self._object_qadr = m.jnt_qposadr[m.body_jntadr[self._object_body]]  # meaningful only with an object
         self._renderer: mujoco.Renderer | None = None
         self._apply_arm(self._q_ref, self._dq_cmd)
 
@@ -134,12 +134,16 @@ class MujocoRobot(SimRobot):
 
     # ---- test hooks ------------------------------------------------------------------
     def object_pose(self) -> np.ndarray:
+        if self._object_body < 0:
+            raise LookupError("the scene has no object")
         pose = np.eye(4)
         pose[:3, :3] = self.data.xmat[self._object_body].reshape(3, 3)
         pose[:3, 3] = self.data.xpos[self._object_body]
         return pose
 
     def place_object(self, pose: np.ndarray) -> None:
+        if self._object_body < 0:
+            raise LookupError("the scene has no object")
         quat = np.zeros(4)
         mujoco.mju_mat2Quat(quat, np.ascontiguousarray(pose[:3, :3]).ravel())
         a = self._object_qadr

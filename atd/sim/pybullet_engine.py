@@ -102,11 +102,9 @@ class PybulletRobot(SimRobot):
         self._range_offset = d.range_sensor.origin.matrix() if d.range_sensor else None
         self._range_link = index["link:" + d.range_sensor.link] if d.range_sensor else -1
         self._arm_effort = [d.joints[n].effort for n in d.arm_joints]
-        self._hand_effort = [d.joints[n].effort for n in self.hand_joints]
-        self._hand_effort_array = np.array(self._hand_effort)
+        self._hand_effort = np.array([d.joints[n].effort for n in self.hand_joints])
         self._hand_kv = np.array([d.joints[n].servo.kv for n in self.hand_joints])
         self._arm_gain = [ARM_POSITION_GAIN] * len(self._arm)
-        self._hand_gain = [HAND_POSITION_GAIN] * len(self._hand)
 
         home = dict(zip(d.arm_joints, d.home)) | d.hand_joint_targets(self.info.hand.open)
         for name, i in zip(joints, self._joints):
@@ -167,22 +165,20 @@ class PybulletRobot(SimRobot):
         against an object it pushes with F, as MuJoCo's does; it also stops the finger being
         pushed back by less than F (a self-locking drive; Bullet has no joint friction)."""
         c = self.client
-        for mode, idx in ((pb.POSITION_CONTROL, np.flatnonzero(~force)), (pb.VELOCITY_CONTROL, np.flatnonzero(force))):
-            if len(idx) == 0:
-                continue
-            joints = [self._hand[i] for i in idx]
-            if mode == pb.POSITION_CONTROL:
-                pb.setJointMotorControlArray(
-                    self.body, joints, mode, targetPositions=values[idx].tolist(),
-                    forces=[self._hand_effort[i] for i in idx], positionGains=[self._hand_gain[i] for i in idx],
-                    physicsClientId=c,
-                )
-            else:
-                push = np.clip(values[idx], -self._hand_effort_array[idx], self._hand_effort_array[idx])
-                pb.setJointMotorControlArray(
-                    self.body, joints, mode, targetVelocities=(push / self._hand_kv[idx]).tolist(),
-                    forces=np.abs(push).tolist(), physicsClientId=c,
-                )
+        servo = np.flatnonzero(~force)
+        if len(servo):
+            pb.setJointMotorControlArray(
+                self.body, [self._hand[i] for i in servo], pb.POSITION_CONTROL, targetPositions=values[servo].tolist(),
+                forces=self._hand_effort[servo].tolist(), positionGains=[HAND_POSITION_GAIN] * len(servo),
+                physicsClientId=c,
+            )
+        pushed = np.flatnonzero(force)
+        if len(pushed):
+            push = np.clip(values[pushed], -self._hand_effort[pushed], self._hand_effort[pushed])
+            pb.setJointMotorControlArray(
+                self.body, [self._hand[i] for i in pushed], pb.VELOCITY_CONTROL,
+                targetVelocities=(push / self._hand_kv[pushed]).tolist(), forces=np.abs(push).tolist(), physicsClientId=c,
+            )
 
     def _advance(self) -> None:
         self._contact_cache = self._root_cache = None
@@ -262,10 +258,14 @@ class PybulletRobot(SimRobot):
 
     # ---- test hooks ------------------------------------------------------------------
     def object_pose(self) -> np.ndarray:
+        if self.object < 0:
+            raise LookupError("the scene has no object")
         position, xyzw = pb.getBasePositionAndOrientation(self.object, physicsClientId=self.client)
         return _matrix(position, xyzw)
 
     def place_object(self, pose: np.ndarray) -> None:
+        if self.object < 0:
+            raise LookupError("the scene has no object")
         pb.resetBasePositionAndOrientation(self.object, pose[:3, 3].tolist(), _xyzw(pose), physicsClientId=self.client)
         pb.resetBaseVelocity(self.object, [0, 0, 0], [0, 0, 0], physicsClientId=self.client)
         self._contact_cache = None
