@@ -28,7 +28,7 @@ from atd.sim.scene import (
 from atd.sim.simrobot import SimRobot
 from factories.description import RobotDescription
 
-SOLVER_ITERATIONS = 100
+SOLVER_ITERATIONS = 50
 ARM_POSITION_GAIN = 0.1
 HAND_POSITION_GAIN = 0.3
 
