@@ -55,6 +55,7 @@ GRIPPER = JawSpec(
     servo=Servo(kp=3000.0, kv=40.0),
 )
 
+HAND_MOUNT = Origin((0, 0, 0.025))  # gripper base on the hand link (electric-gripper xacro) [BAX]
 # Found with `inverse_kinematics`: TCP 15 cm above the middle of the work area, top-down.
 HOME = {
     "right": (0.5567, -0.6607, 0.9944, 1.9396, 2.1332, -0.8987, -1.8344),
@@ -90,7 +91,7 @@ def description(arm: str | None = None) -> RobotDescription:
     side = arm or ARMS[0]
     if side not in ARMS:
         raise ValueError(f"Baxter has a 'left' and a 'right' arm; got '{arm}'")
-    hand_links, grip, pads, tcp_depth = parallel_jaw(GRIPPER, "hand", Origin((0, 0, 0.025)))
+    hand_links, grip, pads, tcp_depth = parallel_jaw(GRIPPER, "hand", HAND_MOUNT)
     hand = Hand(
         name="electric_gripper",
         dofs=(grip,),
@@ -129,5 +130,5 @@ def description(arm: str | None = None) -> RobotDescription:
         # The IR sensor looks along the approach axis beside the gripper body, clear of the fingers.
         range_sensor=Site("ir_range", "gripper_base", Origin((0.045, 0, 0.0))),
         range_limits=(0.04, 0.40),
-        extra_sites=(Site("attachment_site", "hand", Origin((0, 0, 0.025))),),
+        extra_sites=(Site("attachment_site", "hand", HAND_MOUNT),),
     )

@@ -33,6 +33,7 @@ _PA10 = (
 # Length of each link along the arm (to the next joint; w2 to the flange 30 mm, then the JR3).
 _LENGTH = (0.117, 0.200, 0.250, 0.240, 0.240, 0.040, 0.030)
 JR3_THICKNESS = 0.033
+HAND_MOUNT = Origin((0, 0, _LENGTH[-1] + JR3_THICKNESS))  # on w2_link: flange, then the JR3
 _SERVO = {
     "s1": (Servo(20000.0, 500.0), 1.0), "s2": (Servo(20000.0, 500.0), 1.0),
     "s3": (Servo(15000.0, 300.0), 0.5), "e1": (Servo(15000.0, 300.0), 0.5),
@@ -99,7 +100,7 @@ def _barrett_finger(finger: str, parent: str, origin: Origin) -> tuple[tuple[Lin
 
 def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
     links: list[Link] = [
-        Link("bh_palm", "w2_link", Origin((0, 0, _LENGTH[-1] + JR3_THICKNESS)), 0.6,
+        Link("bh_palm", "w2_link", HAND_MOUNT, 0.6,
              (box((0, 0, BH_DW / 2), (0.045, 0.065, BH_DW / 2), DARK),), com=(0, 0, 0.037)),
     ]
     pads = []
@@ -178,7 +179,7 @@ def _sdh_finger(finger: str, parent: str, origin: Origin, pad_name: str | None =
 
 def _sdh2() -> tuple[tuple[Link, ...], Hand, float]:
     links: list[Link] = [
-        Link("sdh_palm", "w2_link", Origin((0, 0, _LENGTH[-1] + JR3_THICKNESS)), 1.1,
+        Link("sdh_palm", "w2_link", HAND_MOUNT, 1.1,
              (cylinder((0, 0, 0), (0, 0, SDH_BASE_Z), 0.05, DARK),)),
     ]
     pads = []
@@ -264,5 +265,5 @@ def description(arm: str | None = None) -> RobotDescription:
             "wrench": SensorModel(noise_std=(0.05, 0.05, 0.05, 0.002, 0.002, 0.002)),
             "tactile": SensorModel(resolution=0.01),
         },
-        extra_sites=(Site("attachment_site", "w2_link", Origin((0, 0, _LENGTH[-1] + JR3_THICKNESS))),),
+        extra_sites=(Site("attachment_site", "w2_link", HAND_MOUNT),),
     )
