@@ -13,6 +13,7 @@ import numpy as np
 
 from atd.sim.scene import TABLE_CENTRE, TABLE_HALF, Body, Scene
 from factories.description import FingerPad, Link, Origin, RobotDescription, Shape
+from factories.parts import PAD
 
 def matrix_to_quat(r: np.ndarray) -> tuple[float, float, float, float]:
     """(w, x, y, z) of a rotation matrix."""
@@ -89,7 +90,7 @@ def _pad_frame(pad: FingerPad) -> np.ndarray:
 
 
 def _pad_geom(pad: FingerPad) -> GeomView:
-    shape = Shape("box", (pad.half_size[0], pad.half_size[1], pad.thickness / 2), rgba=(0.85, 0.45, 0.1, 1.0))
+    shape = Shape("box", (pad.half_size[0], pad.half_size[1], pad.thickness / 2), rgba=PAD)
     return _geom(pad.name, shape, _pad_frame(pad))
 
 

@@ -14,7 +14,7 @@ from functools import lru_cache
 import numpy as np
 
 from factories.description import Hand, Joint, Link, Origin, RobotDescription, SensorModel, Servo, Site
-from factories.parts import DARK, JawSpec, box, capsule, cylinder, parallel_jaw
+from factories.parts import DARK, JawSpec, capsule, cylinder, parallel_jaw
 
 D = np.pi / 180
 
