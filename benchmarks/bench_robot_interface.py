@@ -82,8 +82,10 @@ def main() -> None:
                 holding(robot)
                 ticks = round(args.seconds / robot.info.control_period)
                 steps = ticks * robot.substeps
-                bare = min(bare_loop(robot, ticks) for _ in range(args.repeat))
-                through = min(interface_loop(robot, ticks) for _ in range(args.repeat))
+                # Interleaved, so that both loops see the same states of the held box.
+                times = [(bare_loop(robot, ticks), interface_loop(robot, ticks)) for _ in range(args.repeat)]
+                bare = min(t[0] for t in times)
+                through = min(t[1] for t in times)
             finally:
                 robot.close()
             ratio = through / bare
