@@ -49,17 +49,6 @@ class Origin:
         m[:3, 3] = self.xyz
         return m
 
-    def quat(self) -> tuple[float, float, float, float]:
-        """(w, x, y, z), as MJCF writes orientations."""
-        r, p, y = (v / 2 for v in self.rpy)
-        cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
-        return (
-            cr * cp * cy + sr * sp * sy,
-            sr * cp * cy - cr * sp * sy,
-            cr * sp * cy + sr * cp * sy,
-            cr * cp * sy - sr * sp * cy,
-        )
-
 
 @dataclass(frozen=True)
 class Shape:
@@ -105,6 +94,7 @@ class Joint:
     servo: Servo
     damping: float = 0.0
     armature: float = 0.0  # reflected rotor inertia, kg m^2 (kg for prismatic)
+    friction: float = 0.0  # dry friction, N m or N: a self-locking drive resists being pushed back
 
 
 @dataclass(frozen=True)

@@ -56,7 +56,8 @@ class JawSpec:
     position 0 and `stroke` the travel of each jaw.
     """
 
-    prefix: str
+    prefix: str  # of link and joint names
+    pad_prefix: str  # of pad names: `<pad_prefix>_left` and `_right`
     body_half: Vec3
     body_mass: float
     finger_base_z: float
@@ -107,7 +108,7 @@ def parallel_jaw(spec: JawSpec, parent: str, mount: Origin) -> tuple[tuple[Link,
         # y up the finger; the right pad is the same turned half round the finger axis.
         pads.append(
             FingerPad(
-                f"{side}_pad",
+                f"{spec.pad_prefix}_{side}",
                 finger,
                 Origin((0.0, inner, pad_centre_z), (np.pi / 2, 0.0, 0.0 if sign > 0 else np.pi)),
                 spec.pad_half,

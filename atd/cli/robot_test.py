@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import os
 import sys
 from pathlib import Path
 
@@ -13,7 +12,7 @@ from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, robots
 
 @robots.command("test")
 @click.argument("robot")
-@click.option("--arm", type=click.Choice(["left", "right"]), default=None, help="Which arm of a two-arm robot (default: the robot's own).")
+@click.option("--arm", default=None, help="Which arm (e.g. left, right; default: the robot's first).")
 @click.option("--engine", type=click.Choice(["mujoco", "pybullet"]), default="mujoco", show_default=True)
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the sensor noise.")
 @click.option("--video", type=click.Path(dir_okay=False, path_type=Path), default=None, help="Write the grasp as an animated GIF.")
@@ -22,7 +21,6 @@ def robot_test(robot: str, arm: str | None, engine: str, seed: int, video: Path 
 
     Exits 0 only when every check passes.
     """
-    os.environ.setdefault("MUJOCO_GL", "egl")  # headless rendering, before mujoco loads
     from atd.sim import UnknownRobot, load_description
     from atd.sim.selftest import run_all
     from atd.sim.video import Recorder

@@ -5,7 +5,11 @@ from __future__ import annotations
 
 import importlib
 import importlib.util
+import os
 import pkgutil
+
+# Headless pictures (videos of runs): MuJoCo picks its OpenGL backend when first imported.
+os.environ.setdefault("MUJOCO_GL", "egl")
 
 import factories
 from atd.sim.scene import Scene, box_scene
@@ -26,6 +30,11 @@ def known_robots() -> list[str]:
         for info in pkgutil.iter_modules(factories.__path__)
         if info.ispkg and importlib.util.find_spec(f"factories.{info.name}.description") is not None
     )
+
+
+def variants() -> list[tuple[str, str | None]]:
+    """Every (robot, arm) model there is."""
+    return [(robot, arm) for robot in known_robots() for arm in importlib.import_module(f"factories.{robot}.description").ARMS]
 
 
 def load_description(robot: str, arm: str | None = None) -> RobotDescription:

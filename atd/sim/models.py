@@ -13,9 +13,7 @@ import numpy as np
 
 from atd.sim.scene import TABLE_CENTRE, TABLE_HALF, Body, Scene
 from factories.description import FingerPad, Link, Origin, RobotDescription, Shape
-
-ROBOT_GROUP = "robot"
-
+from factories.parts import PAD
 
 def matrix_to_quat(r: np.ndarray) -> tuple[float, float, float, float]:
     """(w, x, y, z) of a rotation matrix."""
@@ -75,16 +73,16 @@ class BodyView:
 def _geom(name: str, shape: Shape, frame: np.ndarray | None = None) -> GeomView:
     m = shape.origin.matrix() if frame is None else frame
     s = shape.size
-    urdf = {
-        "box": {"size": _fmt(2 * v for v in s)},
-        "sphere": {"radius": _fmt(s)},
-        "cylinder": {"radius": _fmt(s[:1]), "length": _fmt([2 * s[1]])} if len(s) > 1 else {},
-        "capsule": {"radius": _fmt(s[:1]), "length": _fmt([2 * s[1]])} if len(s) > 1 else {},
-    }[shape.kind]
+    if shape.kind == "box":
+        urdf = {"size": _fmt(2 * v for v in s)}
+    elif shape.kind == "sphere":
+        urdf = {"radius": _fmt(s)}
+    else:  # URDF lengths are whole (PyBullet's capsule length excludes the caps, as MJCF's does)
+        urdf = {"radius": _fmt(s[:1]), "length": _fmt([2 * s[1]])}
     return GeomView(name, shape.kind, _fmt(s), urdf, Placed.of(m), _fmt(shape.rgba))
 
 
-def pad_frame(pad: FingerPad) -> np.ndarray:
+def _pad_frame(pad: FingerPad) -> np.ndarray:
     """Centre of the pad's box in its link: half a thickness behind the sensing surface."""
     shift = np.eye(4)
     shift[2, 3] = -pad.thickness / 2
@@ -92,8 +90,8 @@ def pad_frame(pad: FingerPad) -> np.ndarray:
 
 
 def _pad_geom(pad: FingerPad) -> GeomView:
-    shape = Shape("box", (pad.half_size[0], pad.half_size[1], pad.thickness / 2), rgba=(0.85, 0.45, 0.1, 1.0))
-    return _geom(pad.name, shape, pad_frame(pad))
+    shape = Shape("box", (pad.half_size[0], pad.half_size[1], pad.thickness / 2), rgba=PAD)
+    return _geom(pad.name, shape, _pad_frame(pad))
 
 
 def body_tree(d: RobotDescription) -> BodyView:

@@ -1,8 +1,8 @@
 """The robot interface on MuJoCo (the primary engine).
 
 Arm joints: position servos with velocity feed-forward and gravity compensation of the
-arm's own links (industrial controllers do the same). Hand joints: affine servos whose
-gains are switched between a position servo and a pure force.
+arm's own links (industrial controllers do the same). Hand joints: affine actuators
+switched between a position servo (kp, kv) and a damped push (force - kv * speed).
 """
 
 from __future__ import annotations
@@ -55,10 +55,12 @@ class MujocoRobot(SimRobot):
             [m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, f"{p.name}_touch")] for p in d.hand.pads], int
         )
         self._pad_geom = np.array([_id(m, mujoco.mjtObj.mjOBJ_GEOM, p.name) for p in d.hand.pads], int)
+        self._pad_of_geom = np.full(m.ngeom, -1)
+        self._pad_of_geom[self._pad_geom] = np.arange(len(self._pad_geom))
+        self._untouched = (np.zeros(0, int), np.zeros((0, 2)), np.zeros(0))
         self._range_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "range")] if d.range_sensor else -1
         self._object_body = _id(m, mujoco.mjtObj.mjOBJ_BODY, "object")
-        self._object_qadr = m.jnt_qposadr[m.body_jntadr[self._object_body]] if self._object_body >= 0 else -1
-        self._force6 = np.zeros(6)
+        self._object_qadr = m.jnt_qposadr[m.body_jntadr[self._object_body]]  # meaningful only with an object
         self._renderer: mujoco.Renderer | None = None
         self._apply_arm(self._q_ref, self._dq_cmd)
 
@@ -90,7 +92,7 @@ class MujocoRobot(SimRobot):
         # as a real sensor's sample is; recomputing them would cost a third of a step.
         mujoco.mj_step(self.model, self.data, nstep=self.substeps)
 
-    def _jacobian(self) -> np.ndarray:
+    def jacobian(self) -> np.ndarray:
         mujoco.mj_jacSite(self.model, self.data, self._jacp, self._jacr, self._tcp_site)
         return np.vstack([self._jacp[:, self._arm_vadr], self._jacr[:, self._arm_vadr]])
 
@@ -110,26 +112,20 @@ class MujocoRobot(SimRobot):
 
     def _pad_contacts(self):
         d = self.data
-        touching = d.sensordata[self._touch_adr] > 0
-        if not touching.any() or d.ncon == 0:
-            return [None] * len(self._pad_geom)
-        geoms = d.contact.geom
-        result = []
-        for pad, geom, touch in zip(self.description.hand.pads, self._pad_geom, touching):
-            hits = np.flatnonzero((geoms[:, 0] == geom) | (geoms[:, 1] == geom)) if touch else ()
-            if len(hits) == 0:
-                result.append(None)
-                continue
-            points = np.empty((len(hits), 2))
-            forces = np.empty(len(hits))
-            rot = d.geom_xmat[geom].reshape(3, 3)
-            centre = d.geom_xpos[geom]
-            for k, c in enumerate(hits):
-                mujoco.mj_contactForce(self.model, d, c, self._force6)
-                forces[k] = abs(self._force6[0])
-                points[k] = (rot.T @ (d.contact.pos[c] - centre))[:2]
-            result.append((points, forces))
-        return result
+        if d.ncon == 0 or not (d.sensordata[self._touch_adr] > 0).any():
+            return self._untouched
+        contact = d.contact
+        geom = contact.geom
+        pad = np.maximum(self._pad_of_geom[geom[:, 0]], self._pad_of_geom[geom[:, 1]])
+        address = contact.efc_address
+        active = np.flatnonzero((pad >= 0) & (address >= 0))
+        pad = pad[active]
+        g = self._pad_geom[pad]
+        offset = contact.pos[active] - d.geom_xpos[g]
+        # Row vector times each pad's rotation: the point in that pad's frame.
+        xy = np.matmul(offset[:, None, :], d.geom_xmat[g].reshape(-1, 3, 3))[:, 0, :2]
+        # With elliptic cones a contact's first constraint row is its normal force.
+        return pad, xy, d.efc_force[address[active]]
 
     def _range(self) -> float:
         distance = float(self.data.sensordata[self._range_adr])
@@ -138,12 +134,16 @@ class MujocoRobot(SimRobot):
 
     # ---- test hooks ------------------------------------------------------------------
     def object_pose(self) -> np.ndarray:
+        if self._object_body < 0:
+            raise LookupError("the scene has no object")
         pose = np.eye(4)
         pose[:3, :3] = self.data.xmat[self._object_body].reshape(3, 3)
         pose[:3, 3] = self.data.xpos[self._object_body]
         return pose
 
     def place_object(self, pose: np.ndarray) -> None:
+        if self._object_body < 0:
+            raise LookupError("the scene has no object")
         quat = np.zeros(4)
         mujoco.mju_mat2Quat(quat, np.ascontiguousarray(pose[:3, :3]).ravel())
         a = self._object_qadr

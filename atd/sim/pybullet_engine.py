@@ -3,8 +3,7 @@
 Holding by friction needs (sim-notes.md): a small step, friction anchors, enough solver
 iterations. Bullet multiplies the friction of the two bodies in contact, so robot and
 table use 1 and the object's own coefficient (from the ATD) governs its contacts, as
-geom priority makes it do in MuJoCo. Hand joints follow their DOF with mimic targets;
-a force-mode joint gets its torque re-applied every physics step, as Bullet clears it.
+geom priority makes it do in MuJoCo. Hand joints follow their DOF with mimic targets.
 """
 
 from __future__ import annotations
@@ -29,7 +28,7 @@ from atd.sim.scene import (
 from atd.sim.simrobot import SimRobot
 from factories.description import RobotDescription
 
-SOLVER_ITERATIONS = 100
+SOLVER_ITERATIONS = 50
 ARM_POSITION_GAIN = 0.1
 HAND_POSITION_GAIN = 0.3
 
@@ -86,22 +85,26 @@ class PybulletRobot(SimRobot):
         self._movable = movable
         self._jac_columns = [movable.index(i) for i in self._arm]
         self._hand_link = index["link:" + d.hand_root]
-        self._ft_joint = self._hand_link  # the hand root's weld to the flange
-        pb.enableJointForceTorqueSensor(self.body, self._ft_joint, True, physicsClientId=c)
+        self._pad_links = [index["link:" + p.name] for p in d.hand.pads]
+        self._hand_links = [index["link:" + n] for n in d.hand_links if n != d.hand_root] + self._pad_links
+        self._hand_set = {self._hand_link, *self._hand_links}
+        self._pad_of_link = {link: k for k, link in enumerate(self._pad_links)}
+        self._untouched = (np.zeros(0, int), np.zeros((0, 2)), np.zeros(0))
+        self._hand_weights = np.array(  # z of each hand link's weight, root first
+            [-9.81 * pb.getDynamicsInfo(self.body, i, physicsClientId=c)[0] for i in [self._hand_link, *self._hand_links]]
+        )
+        self._contact_cache: tuple | None = None
+        self._root_cache: np.ndarray | None = None
         hand_root = d.links_by_name[d.hand_root]
         self._tcp_offset = d.tcp.origin.matrix()
-        self._hand_com = np.asarray(hand_root.centre_of_mass)
-        self._tcp_from_com = np.asarray(d.tcp.origin.xyz) - self._hand_com
+        self._hand_com_h = np.append(hand_root.centre_of_mass, 1.0)
+        self._tcp_in_link = list(d.tcp.origin.xyz)  # calculateJacobian takes it in the URDF link frame
         self._range_offset = d.range_sensor.origin.matrix() if d.range_sensor else None
         self._range_link = index["link:" + d.range_sensor.link] if d.range_sensor else -1
-        self._pad_links = [index["link:" + p.name] for p in d.hand.pads]
         self._arm_effort = [d.joints[n].effort for n in d.arm_joints]
-        self._hand_effort = [d.joints[n].effort for n in self.hand_joints]
+        self._hand_effort = np.array([d.joints[n].effort for n in self.hand_joints])
+        self._hand_kv = np.array([d.joints[n].servo.kv for n in self.hand_joints])
         self._arm_gain = [ARM_POSITION_GAIN] * len(self._arm)
-        self._hand_gain = [HAND_POSITION_GAIN] * len(self._hand)
-        self._force_joints: list[int] = []
-        self._forces: list[float] = []
-        self._hand_force = np.zeros(len(self._hand), bool)
 
         home = dict(zip(d.arm_joints, d.home)) | d.hand_joint_targets(self.info.hand.open)
         for name, i in zip(joints, self._joints):
@@ -112,6 +115,7 @@ class PybulletRobot(SimRobot):
         self._apply_hand(np.zeros(len(self._hand), bool), np.array([home[n] for n in self.hand_joints]))
 
     def _set_joints(self, positions: dict[str, float]) -> None:
+        self._contact_cache = self._root_cache = None
         for name, q in positions.items():
             pb.resetJointState(self.body, self._index[name], q, 0.0, physicsClientId=self.client)
 
@@ -156,82 +160,94 @@ class PybulletRobot(SimRobot):
         )
 
     def _apply_hand(self, force: np.ndarray, values: np.ndarray) -> None:
+        """Position joints get a servo; force joints a motor that runs at F/kv pushing with at
+        most F: in free space it closes at the speed where MuJoCo's damped force balances, and
+        against an object it pushes with F, as MuJoCo's does; it also stops the finger being
+        pushed back by less than F (a self-locking drive; Bullet has no joint friction)."""
         c = self.client
-        servo = ~force
-        if servo.any():
-            idx = np.flatnonzero(servo)
+        servo = np.flatnonzero(~force)
+        if len(servo):
             pb.setJointMotorControlArray(
-                self.body, [self._hand[i] for i in idx], pb.POSITION_CONTROL,
-                targetPositions=values[idx].tolist(), forces=[self._hand_effort[i] for i in idx],
-                positionGains=[self._hand_gain[i] for i in idx], physicsClientId=c,
+                self.body, [self._hand[i] for i in servo], pb.POSITION_CONTROL, targetPositions=values[servo].tolist(),
+                forces=self._hand_effort[servo].tolist(), positionGains=[HAND_POSITION_GAIN] * len(servo),
+                physicsClientId=c,
             )
-        newly = force & ~self._hand_force
-        if newly.any():  # a motor left on would fight the torque: switch it off
-            idx = np.flatnonzero(newly)
+        pushed = np.flatnonzero(force)
+        if len(pushed):
+            push = np.clip(values[pushed], -self._hand_effort[pushed], self._hand_effort[pushed])
             pb.setJointMotorControlArray(
-                self.body, [self._hand[i] for i in idx], pb.VELOCITY_CONTROL, forces=[0.0] * len(idx), physicsClientId=c
+                self.body, [self._hand[i] for i in pushed], pb.VELOCITY_CONTROL,
+                targetVelocities=(push / self._hand_kv[pushed]).tolist(), forces=np.abs(push).tolist(), physicsClientId=c,
             )
-        self._hand_force = force.copy()
-        limits = np.array(self._hand_effort)
-        self._force_joints = [self._hand[i] for i in np.flatnonzero(force)]
-        self._forces = np.clip(values[force], -limits[force], limits[force]).tolist()
 
     def _advance(self) -> None:
-        c = self.client
+        self._contact_cache = self._root_cache = None
         for _ in range(self.substeps):
-            if self._force_joints:
-                pb.setJointMotorControlArray(
-                    self.body, self._force_joints, pb.TORQUE_CONTROL, forces=self._forces, physicsClientId=c
-                )
-            pb.stepSimulation(physicsClientId=c)
+            pb.stepSimulation(physicsClientId=self.client)
 
-    def _jacobian(self) -> np.ndarray:
+    def jacobian(self) -> np.ndarray:
         q = [s[0] for s in pb.getJointStates(self.body, self._movable, physicsClientId=self.client)]
         zeros = [0.0] * len(q)
         lin, ang = pb.calculateJacobian(
-            self.body, self._hand_link, self._tcp_from_com.tolist(), q, zeros, zeros, physicsClientId=self.client
+            self.body, self._hand_link, self._tcp_in_link, q, zeros, zeros, physicsClientId=self.client
         )
         return np.vstack([np.asarray(lin)[:, self._jac_columns], np.asarray(ang)[:, self._jac_columns]])
 
     def _joint_state(self):
         states = pb.getJointStates(self.body, self._joints, physicsClientId=self.client)
-        q = np.array([s[0] for s in states])
-        dq = np.array([s[1] for s in states])
-        effort = np.array([s[3] for s in states])
-        if self._force_joints:  # Bullet reports no motor torque under torque control
-            n = len(self._arm)
-            effort[n:][self._hand_force] = self._forces
+        q, dq, effort = np.array([(s[0], s[1], s[3]) for s in states]).T
         return q, dq, effort
 
     def _link_pose(self, link: int) -> np.ndarray:
         state = pb.getLinkState(self.body, link, computeForwardKinematics=True, physicsClientId=self.client)
         return _matrix(state[4], state[5])
 
+    def _contacts(self) -> tuple:
+        """This tick's contact points with the robot as body A (shared by F/T and tactile)."""
+        if self._contact_cache is None:
+            self._contact_cache = pb.getContactPoints(bodyA=self.body, physicsClientId=self.client)
+        return self._contact_cache
+
+    def _hand_root(self) -> np.ndarray:
+        if self._root_cache is None:
+            self._root_cache = self._link_pose(self._hand_link)
+        return self._root_cache
+
     def _tcp(self) -> np.ndarray:
-        return self._link_pose(self._hand_link) @ self._tcp_offset
+        return self._hand_root() @ self._tcp_offset
 
     def _wrench(self) -> np.ndarray:
-        # Bullet reports what the arm exerts on the hand, about the hand root's centre of
-        # mass (Bullet's link frame); the interface wants the reverse, about the sensor.
-        reaction = pb.getJointState(self.body, self._ft_joint, physicsClientId=self.client)[2]
-        force = -np.array(reaction[:3])
-        torque = -np.array(reaction[3:]) + np.cross(self._hand_com, force)
-        return np.concatenate([force, torque])
+        """The hand's weight plus every contact force on it, about the sensor, in the hand frame.
+
+        Bullet's own reaction force at the weld is wrong while the arm moves (fz off by
+        about 7 N at 5 cm/s, measured here), so the sensor is modelled quasi-statically:
+        the hand's inertia (mass times acceleration, a fraction of a newton here) is left out.
+        """
+        root = self._hand_root()
+        origin = root[:3, 3]
+        states = pb.getLinkStates(self.body, self._hand_links, physicsClientId=self.client)
+        # Weights pull along -z: r x (0, 0, w) = (r_y w, -r_x w, 0).
+        arms = np.array([(root @ self._hand_com_h)[:3], *(s[0] for s in states)]) - origin
+        torque = np.array([arms[:, 1] @ self._hand_weights, -(arms[:, 0] @ self._hand_weights), 0.0])
+        force = np.array([0.0, 0.0, self._hand_weights.sum()])
+        hits = [p for p in self._contacts() if p[3] in self._hand_set]
+        if hits:
+            c = np.array([(*p[5], *p[7], p[9], p[10], *p[11], p[12], *p[13]) for p in hits])
+            f = c[:, 3:6] * c[:, 6:7] + c[:, 8:11] * c[:, 7:8] + c[:, 12:15] * c[:, 11:12]
+            r = c[:, 0:3] - origin
+            force += f.sum(axis=0)
+            torque += (r[:, [1, 2, 0]] * f[:, [2, 0, 1]] - r[:, [2, 0, 1]] * f[:, [1, 2, 0]]).sum(axis=0)
+        rot = root[:3, :3]
+        return np.concatenate([force @ rot, torque @ rot])
 
     def _pad_contacts(self):
-        c = self.client
-        contacts = pb.getContactPoints(bodyA=self.body, physicsClientId=c)
-        result = []
-        for link in self._pad_links:
-            hits = [p for p in contacts if p[3] == link]
-            if not hits:
-                result.append(None)
-                continue
-            pose = self._link_pose(link)
-            world = np.array([p[5] for p in hits])
-            local = (world - pose[:3, 3]) @ pose[:3, :3]
-            result.append((local[:, :2], np.array([p[9] for p in hits])))
-        return result
+        hits = [(self._pad_of_link[p[3]], p) for p in self._contacts() if p[3] in self._pad_of_link]
+        if not hits:
+            return self._untouched
+        pad = np.array([k for k, _ in hits])
+        frames = {k: self._link_pose(self._pad_links[k]) for k in set(pad.tolist())}
+        xy = np.array([(np.asarray(p[5]) - frames[k][:3, 3]) @ frames[k][:3, :2] for k, p in hits])
+        return pad, xy, np.array([p[9] for _, p in hits])
 
     def _range(self) -> float:
         pose = self._link_pose(self._range_link) @ self._range_offset
@@ -242,12 +258,17 @@ class PybulletRobot(SimRobot):
 
     # ---- test hooks ------------------------------------------------------------------
     def object_pose(self) -> np.ndarray:
+        if self.object < 0:
+            raise LookupError("the scene has no object")
         position, xyzw = pb.getBasePositionAndOrientation(self.object, physicsClientId=self.client)
         return _matrix(position, xyzw)
 
     def place_object(self, pose: np.ndarray) -> None:
+        if self.object < 0:
+            raise LookupError("the scene has no object")
         pb.resetBasePositionAndOrientation(self.object, pose[:3, 3].tolist(), _xyzw(pose), physicsClientId=self.client)
         pb.resetBaseVelocity(self.object, [0, 0, 0], [0, 0, 0], physicsClientId=self.client)
+        self._contact_cache = None
 
     def render(self, width: int, height: int) -> np.ndarray:
         """An RGB picture of the scene from the same viewpoint as MuJoCo's (software renderer)."""

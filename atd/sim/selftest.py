@@ -162,23 +162,13 @@ def check_grasp(d: RobotDescription, engine: str, seed: int, record: Recorder | 
     try:
         box = robot.object_pose()[:3, 3]
         orientation = d.tcp_pose(info.home, hand.open)[:3, :3]
-        shape = d.hand.test_grasp
-        preshape, grasp = hand.postures[f"{shape}_preshape"], hand.postures[shape]
-        robot.command_hand(preshape, HandMode.POSITION)
-        _move_tcp(robot, _pose(orientation, box + (0, 0, LIFT)), tick)
-        _move_tcp(robot, _pose(orientation, box), tick, speed=0.05)
-        # The DOFs the grasp posture moves push with a fixed effort; the others hold.
-        moving = (hand.closing != 0) & ~np.isclose(grasp, preshape)
-        command = np.where(moving, hand.closing * GRIP_FRACTION * hand.effort_limit, preshape)
-        robot.command_hand(command, [HandMode.FORCE if m else HandMode.POSITION for m in moving])
-        for _ in range(int(1.0 / info.control_period)):
-            tick()
+        moving = close_on_box(robot, orientation, tick)
         r = robot.read()
         pads = r.pad_force.copy()
         taxel_ok = all(img is None or img.sum() > 0 for img, f in zip(r.taxels.values(), pads) if f > 0)
         touching = _pads_moved(d, [dof for dof, m in zip(d.hand.dofs, moving) if m])
         start = robot.object_pose()[2, 3]
-        _move_tcp(robot, _pose(orientation, box + (0, 0, LIFT)), tick, speed=0.1)
+        move_tcp(robot, pose(orientation, box + (0, 0, LIFT)), tick, speed=0.1)
         lifted = robot.object_pose()[2, 3] - start
         held = np.linalg.inv(robot.read().tcp) @ robot.object_pose()
         robot.command_arm_velocity(np.zeros(info.arm_dof))
@@ -203,6 +193,25 @@ def check_grasp(d: RobotDescription, engine: str, seed: int, record: Recorder | 
     )
 
 
+def close_on_box(robot: Robot, orientation: np.ndarray, tick: Callable[[], None]) -> np.ndarray:
+    """The scripted, non-reactive grasp: the hand's `test_grasp` preshape, down onto the
+    scene's box from 10 cm above it, then a fixed push for 1 s on the DOFs that the grasp
+    posture moves (the others hold). Returns which DOFs push."""
+    hand = robot.info.hand
+    shape = robot.description.hand.test_grasp
+    preshape, grasp = hand.postures[f"{shape}_preshape"], hand.postures[shape]
+    box = robot.object_pose()[:3, 3]
+    robot.command_hand(preshape, HandMode.POSITION)
+    move_tcp(robot, pose(orientation, box + (0, 0, LIFT)), tick)
+    move_tcp(robot, pose(orientation, box), tick, speed=0.05)
+    moving = (hand.closing != 0) & ~np.isclose(grasp, preshape)
+    command = np.where(moving, hand.closing * GRIP_FRACTION * hand.effort_limit, preshape)
+    robot.command_hand(command, [HandMode.FORCE if m else HandMode.POSITION for m in moving])
+    for _ in range(int(1.0 / robot.info.control_period)):
+        tick()
+    return moving
+
+
 def _pads_moved(d: RobotDescription, dofs) -> np.ndarray:
     """Which pads ride on a finger that one of `dofs` moves (those must feel the object)."""
     driven = {joint for dof in dofs for joint, _ in dof.joints}
@@ -217,14 +226,14 @@ def _pads_moved(d: RobotDescription, dofs) -> np.ndarray:
     return np.array(moved)
 
 
-def _pose(rotation: np.ndarray, position) -> np.ndarray:
+def pose(rotation: np.ndarray, position) -> np.ndarray:
     m = np.eye(4)
     m[:3, :3] = rotation
     m[:3, 3] = position
     return m
 
 
-def _move_tcp(robot: Robot, target: np.ndarray, tick: Callable[[], None], speed: float = 0.2, timeout: float = 6.0) -> None:
+def move_tcp(robot: Robot, target: np.ndarray, tick: Callable[[], None], speed: float = 0.2, timeout: float = 6.0) -> None:
     """Straight-line Cartesian move by twist commands, as an arm primitive would make it."""
     period = robot.info.control_period
     for _ in range(int(timeout / period)):

@@ -25,36 +25,57 @@ class NoisySensor:
         self._resolution = model.resolution
 
     def __call__(self, true: np.ndarray) -> np.ndarray:
-        x = true + self._std * self._rng.standard_normal(self._size) if self._std is not None else true.copy()
+        """The reported reading, worked out in place: `true` must be a fresh array."""
+        x = true
+        if self._std is not None:
+            x += self._std * self._rng.standard_normal(self._size)
         if self._bias is not None:
             x += self._bias
         if self._alpha is not None:
             if self._state is None:
-                self._state = x
+                self._state = x.copy()
             else:
-                self._state = self._state + self._alpha * (x - self._state)
-            x = self._state.copy()
+                self._state += self._alpha * (x - self._state)
+            x[:] = self._state
         if self._resolution:
-            x = np.round(x / self._resolution) * self._resolution
+            np.rint(x / self._resolution, out=x)
+            x *= self._resolution
         return x
 
 
-class TaxelGrid:
-    """A pad's sensor array: each contact's normal force goes to the taxel under it.
+class TaxelImages:
+    """The pads' sensor arrays, all at once: each contact's normal force goes to the taxel
+    under it. Contact points come in their pad's frame (x across, y along the finger);
+    points past the edge count on the edge taxel, as a real pad's rim still loads its
+    outer cells. One pass over all contacts keeps this cheap enough for every tick."""
 
-    Contact points come in the pad frame (x across, y along the finger); points past the
-    edge count on the edge taxel, as a real pad's rim still loads its outer cells.
-    """
+    def __init__(self, pads: tuple[FingerPad, ...]):
+        self._names = [p.name for p in pads]
+        self._arrays = [p.taxels is not None for p in pads]
+        rows = np.array([(p.taxels or (1, 1))[0] for p in pads])
+        cols = np.array([(p.taxels or (1, 1))[1] for p in pads])
+        half = np.array([p.half_size for p in pads], float).reshape(-1, 2)
+        cells = np.stack([cols, rows], axis=1)
+        self._scale = cells / (2 * half)  # pad coordinates to (column, row) cell coordinates
+        self._centre = cells / 2
+        self._cols, self._last_col, self._last_row = cols, cols - 1, rows - 1
+        self._offset = np.concatenate([[0], np.cumsum(rows * cols)[:-1]]).astype(int)
+        self._layout = list(zip(self._offset, rows, cols))
+        self._size = int((rows * cols).sum())
 
-    def __init__(self, pad: FingerPad):
-        self.shape = pad.taxels or (1, 1)
-        self._half = np.array(pad.half_size)
-
-    def image(self, xy: np.ndarray, forces: np.ndarray) -> np.ndarray:
-        rows, cols = self.shape
-        grid = np.zeros(self.shape)
-        u = (xy / (2 * self._half) + 0.5) * (cols, rows)
-        c = np.clip(u[:, 0].astype(int), 0, cols - 1)
-        r = np.clip(u[:, 1].astype(int), 0, rows - 1)
-        np.add.at(grid, (r, c), forces)
-        return grid
+    def __call__(self, pad: np.ndarray, xy: np.ndarray, force: np.ndarray) -> tuple[dict[str, np.ndarray | None], np.ndarray]:
+        """Images by pad name (None for a pad without an array) and the force on each pad."""
+        n = len(self._names)
+        if len(pad) == 0:
+            flat, total = np.zeros(self._size), np.zeros(n)
+        else:
+            u = (xy * self._scale[pad] + self._centre[pad]).astype(int)
+            col = np.minimum(np.maximum(u[:, 0], 0), self._last_col[pad])
+            row = np.minimum(np.maximum(u[:, 1], 0), self._last_row[pad])
+            flat = np.bincount(self._offset[pad] + row * self._cols[pad] + col, weights=force, minlength=self._size)
+            total = np.bincount(pad, weights=force, minlength=n)
+        images = {
+            name: flat[o : o + r * c].reshape(r, c) if array else None
+            for name, array, (o, r, c) in zip(self._names, self._arrays, self._layout)
+        }
+        return images, total

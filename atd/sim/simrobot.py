@@ -14,7 +14,7 @@ from typing import Sequence
 import numpy as np
 
 from atd.sim.scene import Scene
-from atd.sim.sensors import NoisySensor, TaxelGrid
+from atd.sim.sensors import NoisySensor, TaxelImages
 from factories.description import RobotDescription, SensorModel
 from primitives.robot import SENSORS, HandInfo, HandMode, PadInfo, Readings, Robot, RobotInfo
 
@@ -24,7 +24,9 @@ REFERENCE_LEASH = 0.02
 #: Time to reach full speed from rest: the reference generator limits acceleration to
 #: speed limit / RAMP_TIME, as an industrial controller's does, and brakes before limits.
 RAMP_TIME = 0.2
-_MODE_CODE = {HandMode.POSITION: 0, HandMode.VELOCITY: 1, HandMode.FORCE: 2}
+# Hand modes as small integers, so a tick compares arrays instead of strings.
+POSITION, VELOCITY, FORCE = 0, 1, 2
+_MODE_CODE = {HandMode.POSITION: POSITION, HandMode.VELOCITY: VELOCITY, HandMode.FORCE: FORCE}
 
 
 def robot_info(d: RobotDescription) -> RobotInfo:
@@ -69,7 +71,6 @@ class SimRobot(Robot):
     def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0):
         d = description
         self.description = d
-        self.scene = scene
         self.info = robot_info(d)
         self.hand_joints = tuple(n for n in d.joints if n not in d.arm_joints)
         self.substeps = int(round(d.control_period / d.timestep))
@@ -85,18 +86,15 @@ class SimRobot(Robot):
                 i = self.hand_joints.index(joint)
                 self._joint_dof[i], self._joint_ratio[i] = k, ratio
                 self._joint_follows[i] = dof.geared and n > 0
-        hand_joint_specs = [d.joints[n] for n in self.hand_joints]
-        self._hand_joint_lower = np.array([min(j.lower, j.upper) for j in hand_joint_specs])
-        self._hand_joint_upper = np.array([max(j.lower, j.upper) for j in hand_joint_specs])
 
         rng = np.random.default_rng(seed)
         period = d.control_period
-        model = lambda key: d.sensors.get(key, SensorModel())  # noqa: E731
-        self._joint_sensor = NoisySensor(model("joints"), rng, n_arm + len(self.hand_joints), period)
-        self._wrench_sensor = NoisySensor(model("wrench"), rng, 6, period)
-        self._pad_sensor = NoisySensor(model("tactile"), rng, len(d.hand.pads), period)
-        self._range_sensor = NoisySensor(model("range"), rng, 1, period)
-        self._grids = [TaxelGrid(p) for p in d.hand.pads]
+        ideal = SensorModel()
+        self._joint_sensor = NoisySensor(d.sensors.get("joints", ideal), rng, n_arm + len(self.hand_joints), period)
+        self._wrench_sensor = NoisySensor(d.sensors.get("wrench", ideal), rng, 6, period)
+        self._pad_sensor = NoisySensor(d.sensors.get("tactile", ideal), rng, len(d.hand.pads), period)
+        self._range_sensor = NoisySensor(d.sensors.get("range", ideal), rng, 1, period)
+        self._taxels = TaxelImages(d.hand.pads)
         self._frozen: set[str] = set()
         self._seq = dict.fromkeys(SENSORS, 0)
 
@@ -107,6 +105,9 @@ class SimRobot(Robot):
         self._hand_modes = np.zeros(len(d.hand.dofs), int)
         self._hand_values = self.info.hand.open.copy()
         self._hand_target = self.info.hand.open.copy()  # position reference, also for velocity mode
+        self._hand_changes = True  # the hand's joint commands need working out on the next step
+        self._accel_step = self.info.arm_velocity_limit / RAMP_TIME * period
+        self._two_accel = 2 * self.info.arm_velocity_limit / RAMP_TIME
         self._last: Readings | None = None
 
     # ---- the robot interface -------------------------------------------------------
@@ -117,59 +118,64 @@ class SimRobot(Robot):
 
     def command_arm_velocity(self, dq: np.ndarray) -> None:
         limit = self.info.arm_velocity_limit
-        self._dq_cmd = np.clip(np.asarray(dq, float), -limit, limit)
+        self._dq_cmd = np.minimum(np.maximum(dq, -limit), limit)
 
     def command_hand(self, values: Sequence[float] | np.ndarray, modes: HandMode | Sequence[HandMode]) -> None:
-        n = len(self.info.hand.dofs)
-        values = np.asarray(values, float).reshape(n)
-        codes = np.full(n, _MODE_CODE[HandMode(modes)]) if isinstance(modes, str) else np.array([_MODE_CODE[HandMode(m)] for m in modes])
         hand = self.info.hand
-        was_force = self._hand_modes == 2
+        n = len(hand.dofs)
+        values = np.asarray(values, float)
+        modes = [modes] * n if isinstance(modes, str) else list(modes)
+        if values.shape != (n,) or len(modes) != n:
+            raise ValueError(f"{self.info.name}: give one hand value and mode per DOF ({', '.join(hand.dofs)})")
+        codes = np.array([_MODE_CODE[HandMode(m)] for m in modes])
+        was_force = self._hand_modes == FORCE
         self._hand_modes = codes
         self._hand_values = values
-        position = codes == 0
+        position = codes == POSITION
         self._hand_target[position] = np.clip(values[position], hand.lower[position], hand.upper[position])
         # A DOF leaving force mode, or starting to move at a velocity, starts from where it is.
-        restart = (codes == 1) | (was_force & (codes != 2))
+        restart = (codes == VELOCITY) | (was_force & (codes != FORCE))
         if restart.any():
             self._hand_target[restart] = self.read().hand_q[restart]
+        self._hand_changes = True
 
     def step(self) -> None:
-        info = self.info
-        period = info.control_period
+        period = self.info.control_period
         q = self.read().arm_q
-        accel = info.arm_velocity_limit / RAMP_TIME
-        dq = np.clip(self._dq_cmd, self._dq_ref - accel * period, self._dq_ref + accel * period)
-        # Brake so as to stop at a joint limit rather than run into it.
-        dq = np.clip(dq, -np.sqrt(2 * accel * np.maximum(self._q_ref - info.arm_lower, 0.0)),
-                     np.sqrt(2 * accel * np.maximum(info.arm_upper - self._q_ref, 0.0)))
-        q_ref = np.clip(self._q_ref + dq * period, info.arm_lower, info.arm_upper)
-        self._q_ref = np.clip(q_ref, q - REFERENCE_LEASH, q + REFERENCE_LEASH)
+        lower, upper, q_ref = self.info.arm_lower, self.info.arm_upper, self._q_ref
+        # This tick's speed: within the acceleration ramp, and slow enough to stop at a limit.
+        slowest = np.maximum(self._dq_ref - self._accel_step, -np.sqrt(self._two_accel * np.maximum(q_ref - lower, 0.0)))
+        fastest = np.minimum(self._dq_ref + self._accel_step, np.sqrt(self._two_accel * np.maximum(upper - q_ref, 0.0)))
+        dq = np.minimum(np.maximum(self._dq_cmd, slowest), fastest)
+        q_ref = np.maximum(q_ref + dq * period, np.maximum(lower, q - REFERENCE_LEASH))
+        self._q_ref = np.minimum(q_ref, np.minimum(upper, q + REFERENCE_LEASH))
         self._dq_ref = dq
         self._apply_arm(self._q_ref, dq)
+        if self._hand_changes:
+            self._update_hand()
+        self._advance()
+        self._time += period
+        self._last = self._sample()
 
-        hand = info.hand
-        velocity = self._hand_modes == 1
+    def _update_hand(self) -> None:
+        """Turn the DOF commands into joint commands; needed each tick only while a target
+        moves (velocity mode) or a geared joint follows its motor joint (force mode)."""
+        hand = self.info.hand
+        velocity = self._hand_modes == VELOCITY
         if velocity.any():
-            rate = np.clip(self._hand_values, -hand.velocity_limit, hand.velocity_limit)
-            self._hand_target[velocity] = np.clip(
-                self._hand_target[velocity] + rate[velocity] * period, hand.lower[velocity], hand.upper[velocity]
-            )
+            rate = np.minimum(np.maximum(self._hand_values, -hand.velocity_limit), hand.velocity_limit)
+            target = self._hand_target + rate * self.info.control_period
+            target = np.minimum(np.maximum(target, hand.lower), hand.upper)
+            self._hand_target = np.where(velocity, target, self._hand_target)
         dof = self._joint_dof
-        force_dof = self._hand_modes[dof] == 2
+        force_dof = self._hand_modes[dof] == FORCE
         # Under a force command a geared joint follows where its DOF's motor joint is.
         follows = force_dof & self._joint_follows
         joint_force = force_dof & ~follows
         reference = np.where(follows, self.read().hand_q[dof], self._hand_target[dof])
         joint_values = np.where(joint_force, self._hand_values[dof], reference) * self._joint_ratio
         self._apply_hand(joint_force, joint_values)
-
-        self._advance()
-        self._time += period
-        self._last = self._sample()
-
-    def jacobian(self) -> np.ndarray:
-        return self._jacobian()
+        self._hand_changes = bool(velocity.any() or follows.any())
 
     # ---- fault hooks, for tests of the layers above (not part of the interface) ---------
     def freeze(self, sensor: str) -> None:
@@ -225,10 +231,6 @@ class SimRobot(Robot):
         """Run the physics for one control period."""
 
     @abstractmethod
-    def _jacobian(self) -> np.ndarray:
-        """(6, n_arm) TCP Jacobian, world frame."""
-
-    @abstractmethod
     def _joint_state(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """True (q, dq, effort) of arm joints then `hand_joints`."""
 
@@ -241,8 +243,8 @@ class SimRobot(Robot):
         """True wrist wrench in the interface's convention."""
 
     @abstractmethod
-    def _pad_contacts(self) -> list[tuple[np.ndarray, np.ndarray] | None]:
-        """Per pad: contact points (k, 2) in the pad frame and their normal forces (k,), or None."""
+    def _pad_contacts(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Contacts on pads: pad index (k,), point in that pad's frame (k, 2), normal force (k,)."""
 
     @abstractmethod
     def _range(self) -> float:
@@ -263,9 +265,8 @@ class SimRobot(Robot):
             q, dq, eff = self._joint_state()
             q = self._joint_sensor(q)
             arm_q, arm_dq, arm_eff = q[:n], dq[:n], eff[:n]
-            hand_q = q[self._dof_joint] / self._dof_ratio
-            hand_dq = dq[self._dof_joint] / self._dof_ratio
-            hand_eff = eff[self._dof_joint] * self._dof_ratio
+            first, ratio = self._dof_joint, self._dof_ratio
+            hand_q, hand_dq, hand_eff = q[first] / ratio, dq[first] / ratio, eff[first] * ratio
             seq["joints"] += 1
 
         if "wrench" in frozen and prev is not None:
@@ -301,12 +302,5 @@ class SimRobot(Robot):
             squeeze = np.maximum(0.0, self.info.hand.closing * hand_effort)
             force = np.array([squeeze[0]] * len(pads))
             return dict.fromkeys((p.name for p in pads), None), self._pad_sensor(force)
-        images = {}
-        force = np.zeros(len(pads))
-        for i, (pad, grid, contact) in enumerate(zip(pads, self._grids, self._pad_contacts())):
-            if contact is None:
-                images[pad.name] = np.zeros(grid.shape)
-            else:
-                images[pad.name] = grid.image(*contact)
-                force[i] = contact[1].sum()
+        images, force = self._taxels(*self._pad_contacts())
         return images, self._pad_sensor(force)

@@ -39,6 +39,7 @@ _WRIST = Servo(kp=1000.0, kv=20.0)
 # 41.7 mm of travel spans a 26-68 mm opening, wide enough for the 5-6 cm class defaults.
 GRIPPER = JawSpec(
     prefix="gripper",
+    pad_prefix="gripper",
     body_half=(0.03, 0.05, 0.01),
     body_mass=0.3,
     finger_base_z=0.02,
@@ -54,6 +55,7 @@ GRIPPER = JawSpec(
     servo=Servo(kp=3000.0, kv=40.0),
 )
 
+HAND_MOUNT = Origin((0, 0, 0.025))  # gripper base on the hand link (electric-gripper xacro) [BAX]
 # Found with `inverse_kinematics`: TCP 15 cm above the middle of the work area, top-down.
 HOME = {
     "right": (0.5567, -0.6607, 0.9944, 1.9396, 2.1332, -0.8987, -1.8344),
@@ -81,12 +83,15 @@ def _arm(side: str) -> tuple[Link, ...]:
     return tuple(links)
 
 
+ARMS = ("right", "left")  # what `description(arm)` accepts (None = the first); its factory's arm names
+
+
 @lru_cache(maxsize=None)
 def description(arm: str | None = None) -> RobotDescription:
-    side = arm or "right"
-    if side not in HOME:
+    side = arm or ARMS[0]
+    if side not in ARMS:
         raise ValueError(f"Baxter has a 'left' and a 'right' arm; got '{arm}'")
-    hand_links, grip, pads, tcp_depth = parallel_jaw(GRIPPER, "hand", Origin((0, 0, 0.025)))
+    hand_links, grip, pads, tcp_depth = parallel_jaw(GRIPPER, "hand", HAND_MOUNT)
     hand = Hand(
         name="electric_gripper",
         dofs=(grip,),
@@ -125,5 +130,5 @@ def description(arm: str | None = None) -> RobotDescription:
         # The IR sensor looks along the approach axis beside the gripper body, clear of the fingers.
         range_sensor=Site("ir_range", "gripper_base", Origin((0.045, 0, 0.0))),
         range_limits=(0.04, 0.40),
-        extra_sites=(Site("attachment_site", "hand", Origin((0, 0, 0.025))),),
+        extra_sites=(Site("attachment_site", "hand", HAND_MOUNT),),
     )

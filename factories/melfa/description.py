@@ -14,7 +14,7 @@ from functools import lru_cache
 import numpy as np
 
 from factories.description import Hand, Joint, Link, Origin, RobotDescription, SensorModel, Servo, Site
-from factories.parts import DARK, JawSpec, box, capsule, cylinder, parallel_jaw
+from factories.parts import DARK, JawSpec, capsule, cylinder, parallel_jaw
 
 D = np.pi / 180
 
@@ -35,6 +35,7 @@ _WRIST = Servo(kp=1500.0, kv=40.0)
 # DSA-style 6 x 14 taxel pad (3.4 mm pitch), 34 mm stroke per jaw [PG70U].
 PG70 = JawSpec(
     prefix="pg70",
+    pad_prefix="tactile",
     body_half=(0.04, 0.05, 0.0465),
     body_mass=1.2,
     finger_base_z=0.093,
@@ -50,8 +51,10 @@ PG70 = JawSpec(
     servo=Servo(kp=20000.0, kv=300.0),
 )
 
-# Top-down TCP orientation: hand z down, jaws closing along world y.
-TOP_DOWN = np.diag([-1.0, 1.0, -1.0])
+# The gripper on the flange, past the JR3: Ry(90 deg) turns the hand's z (approach) along link6's x.
+HAND_MOUNT = Origin((0.03, 0, 0), (0, np.pi / 2, 0))
+# Found with `inverse_kinematics`: TCP 15 cm above the middle of the work area (0.125, 0), top-down.
+HOME = (0.0, 0.2059, 0.9627, 0.0, 0.4021, 0.0)
 
 
 def _arm() -> tuple[Link, ...]:
@@ -72,12 +75,14 @@ def _arm() -> tuple[Link, ...]:
     )
 
 
+ARMS = ("main",)  # what `description(arm)` accepts (None = the first); its factory's arm names
+
+
 @lru_cache(maxsize=None)
 def description(arm: str | None = None) -> RobotDescription:
-    if arm not in (None, "right"):
-        raise ValueError(f"the Melfa has one arm; got arm '{arm}' (leave --arm out)")
-    # Ry(90 deg) turns the hand's z (approach) along link6's x, out of the flange.
-    hand_links, grip, pads, tcp_depth = parallel_jaw(PG70, "link6", Origin((0.03, 0, 0), (0, np.pi / 2, 0)))
+    if arm not in (None, *ARMS):
+        raise ValueError(f"the Melfa has one arm, 'main'; got arm '{arm}' (leave --arm out)")
+    hand_links, grip, pads, tcp_depth = parallel_jaw(PG70, "link6", HAND_MOUNT)
     hand = Hand(
         name="wrt102",
         dofs=(grip,),
@@ -109,9 +114,5 @@ def description(arm: str | None = None) -> RobotDescription:
             "wrench": SensorModel(noise_std=(0.05, 0.05, 0.05, 0.002, 0.002, 0.002)),
             "tactile": SensorModel(noise_std=0.0, resolution=0.01),
         },
-        extra_sites=(Site("attachment_site", "link6", Origin((0.03, 0, 0), (0, np.pi / 2, 0))),),
+        extra_sites=(Site("attachment_site", "link6", HAND_MOUNT),),
     )
-
-
-# Found with `inverse_kinematics`: TCP 15 cm above the middle of the work area (0.125, 0), top-down.
-HOME = (0.0, 0.2059, 0.9627, 0.0, 0.4021, 0.0)

@@ -33,10 +33,11 @@ _PA10 = (
 # Length of each link along the arm (to the next joint; w2 to the flange 30 mm, then the JR3).
 _LENGTH = (0.117, 0.200, 0.250, 0.240, 0.240, 0.040, 0.030)
 JR3_THICKNESS = 0.033
+HAND_MOUNT = Origin((0, 0, _LENGTH[-1] + JR3_THICKNESS))  # on w2_link: flange, then the JR3
 _SERVO = {
     "s1": (Servo(20000.0, 500.0), 1.0), "s2": (Servo(20000.0, 500.0), 1.0),
-    "s3": (Servo(10000.0, 250.0), 0.5), "e1": (Servo(10000.0, 250.0), 0.5),
-    "e2": (Servo(4000.0, 50.0), 0.1), "w1": (Servo(4000.0, 50.0), 0.1), "w2": (Servo(4000.0, 50.0), 0.1),
+    "s3": (Servo(15000.0, 300.0), 0.5), "e1": (Servo(15000.0, 300.0), 0.5),
+    "e2": (Servo(6000.0, 60.0), 0.1), "w1": (Servo(6000.0, 60.0), 0.1), "w2": (Servo(6000.0, 60.0), 0.1),
 }
 # Arm bases on the torso sides, their axes horizontal and 120 degrees apart (60 degrees off
 # straight ahead): Ry(90 deg) lays the arm's z horizontal, the yaw turns it out.
@@ -72,7 +73,10 @@ def _pa10(side: str) -> tuple[Link, ...]:
 BH_DW, BH_AW, BH_A1, BH_A2, BH_A3 = 0.076, 0.025, 0.050, 0.070, 0.050
 BH_DISTAL_REST = 42 * D
 BH_COUPLING = 0.84 / 2.44
-_BH_FINGER = Servo(kp=20.0, kv=1.0)
+# The finger drives are self-locking (worm gears): modelled as dry friction on the motor
+# joint, so an object pushes a stalled finger back only with more than this (our value).
+BH_SELF_LOCK = 0.5
+_BH_FINGER = Servo(kp=20.0, kv=0.3)  # kv also limits the free closing speed under force to about 2 rad/s
 _BH_SPREAD = Servo(kp=20.0, kv=1.0)
 
 
@@ -80,7 +84,8 @@ def _barrett_finger(finger: str, parent: str, origin: Origin) -> tuple[tuple[Lin
     flex = (0.0, -1.0, 0.0)  # about -y: x (along the finger) turns towards +z (the approach side)
     proximal = Link(
         f"bh_{finger}_proximal", parent, origin, 0.1, (box((0.035, 0, 0), (0.035, 0.012, 0.009), METAL),),
-        Joint(f"bh_{finger}_proximal", "revolute", flex, 0.0, 2.44, 2.0, 3.0, _BH_FINGER, damping=0.05, armature=0.01),
+        Joint(f"bh_{finger}_proximal", "revolute", flex, 0.0, 2.44, 2.0, 3.0, _BH_FINGER, damping=0.05, armature=0.01,
+              friction=BH_SELF_LOCK),
     )
     distal = Link(
         f"bh_{finger}_distal", proximal.name, Origin((BH_A2, 0, 0), (0, -BH_DISTAL_REST, 0)), 0.05,
@@ -89,13 +94,13 @@ def _barrett_finger(finger: str, parent: str, origin: Origin) -> tuple[tuple[Lin
     )
     # Weiss pad on the grasping (+z) face of the distal link, 5 x 8 taxels (thesis A.1.2),
     # flush with the fingertip: a small object is touched by the pad's tip edge.
-    pad = FingerPad(f"{finger}_pad", distal.name, Origin((0.031, 0, 0.0085)), (0.019, 0.012), 0.003, (5, 8))
+    pad = FingerPad(f"tactile_{finger}", distal.name, Origin((0.031, 0, 0.0085)), (0.019, 0.012), 0.003, (5, 8))
     return (proximal, distal), pad
 
 
 def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
     links: list[Link] = [
-        Link("bh_palm", "w2_link", Origin((0, 0, _LENGTH[-1] + JR3_THICKNESS)), 0.6,
+        Link("bh_palm", "w2_link", HAND_MOUNT, 0.6,
              (box((0, 0, BH_DW / 2), (0.045, 0.065, BH_DW / 2), DARK),), com=(0, 0, 0.037)),
     ]
     pads = []
@@ -111,6 +116,8 @@ def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
     chain, pad = _barrett_finger("f3", "bh_palm", Origin((0, -BH_A1, BH_DW), (0, 0, -np.pi / 2)))
     links += chain
     pads.append(pad)
+    # Weiss 6 x 14 pad on the palm (thesis A.1.2), its columns across the palm.
+    pads.append(FingerPad("tactile_palm", "bh_palm", Origin((0, 0, BH_DW + 0.0015)), (0.035, 0.015), 0.003, (6, 14)))
 
     def finger(name: str) -> HandDof:
         return HandDof(name, ((f"bh_{name}_proximal", 1.0), (f"bh_{name}_distal", BH_COUPLING)), 1, 0.0, 2.44, geared=True)
@@ -149,7 +156,7 @@ _SDH_SERVO = Servo(kp=30.0, kv=1.0)
 _SDH_SPEED = 210 * D  # thesis A.1.2
 
 
-def _sdh_finger(finger: str, parent: str, origin: Origin) -> tuple[tuple[Link, ...], FingerPad]:
+def _sdh_finger(finger: str, parent: str, origin: Origin, pad_name: str | None = None) -> tuple[tuple[Link, ...], FingerPad]:
     curl = (0.0, 1.0, 0.0)  # about +y: z (along the finger) turns towards +x (inwards)
     proximal = Link(
         f"sdh_{finger}_proximal", parent, origin, 0.15,
@@ -165,13 +172,14 @@ def _sdh_finger(finger: str, parent: str, origin: Origin) -> tuple[tuple[Link, .
     )
     # Weiss pad on the inner (+x) face of the distal link, 6 x 13 taxels; Ry(90 deg) turns
     # the pad's normal to +x and its x down the finger.
-    pad = FingerPad(f"{finger}_pad", distal.name, Origin((0.0105, 0, 0.038), (0, np.pi / 2, 0)), (0.024, 0.009), 0.003, (6, 13))
+    pad = FingerPad(pad_name or f"tactile_{finger}", distal.name, Origin((0.0105, 0, 0.038), (0, np.pi / 2, 0)),
+                    (0.024, 0.009), 0.003, (6, 13))
     return (proximal, distal), pad
 
 
 def _sdh2() -> tuple[tuple[Link, ...], Hand, float]:
     links: list[Link] = [
-        Link("sdh_palm", "w2_link", Origin((0, 0, _LENGTH[-1] + JR3_THICKNESS)), 1.1,
+        Link("sdh_palm", "w2_link", HAND_MOUNT, 1.1,
              (cylinder((0, 0, 0), (0, 0, SDH_BASE_Z), 0.05, DARK),)),
     ]
     pads = []
@@ -185,7 +193,7 @@ def _sdh2() -> tuple[tuple[Link, ...], Hand, float]:
         chain, pad = _sdh_finger(finger, knuckle.name, Origin((0, 0, SDH_KNUCKLE)))
         links += [knuckle, *chain]
         pads.append(pad)
-    chain, pad = _sdh_finger("thumb", "sdh_palm", Origin((-0.038, 0, SDH_BASE_Z + SDH_KNUCKLE)))
+    chain, pad = _sdh_finger("thumb", "sdh_palm", Origin((-0.038, 0, SDH_BASE_Z + SDH_KNUCKLE)), pad_name="tactile_f3")
     links += chain
     pads.append(pad)
 
@@ -224,15 +232,18 @@ def _sdh2() -> tuple[tuple[Link, ...], Hand, float]:
 # Found with `inverse_kinematics` from many starts, keeping the solution farthest from
 # the joint limits: TCP 15 cm above the middle of the work area, top-down.
 HOME = {
-    "right": (2.0829, 0.9435, -0.5064, 1.6968, 1.9621, -1.3491, -1.698),
-    "left": (1.4878, -0.872, -0.1109, -1.6845, -1.6535, 1.7265, -1.5193),
+    "right": (2.0532, 0.9389, -0.4985, 1.7014, 1.9358, -1.3386, -1.6889),
+    "left": (1.502, -0.8841, -0.1818, -1.6711, -1.648, 1.7894, -1.5213),
 }
+
+
+ARMS = ("right", "left")  # what `description(arm)` accepts (None = the first); its factory's arm names
 
 
 @lru_cache(maxsize=None)
 def description(arm: str | None = None) -> RobotDescription:
-    side = arm or "right"
-    if side not in HOME:
+    side = arm or ARMS[0]
+    if side not in ARMS:
         raise ValueError(f"Tombatossals has a 'left' (Schunk SDH2) and a 'right' (Barrett) arm; got '{arm}'")
     hand_links, hand, tcp_depth = _barrett() if side == "right" else _sdh2()
     root = hand_links[0].name
@@ -254,5 +265,5 @@ def description(arm: str | None = None) -> RobotDescription:
             "wrench": SensorModel(noise_std=(0.05, 0.05, 0.05, 0.002, 0.002, 0.002)),
             "tactile": SensorModel(resolution=0.01),
         },
-        extra_sites=(Site("attachment_site", "w2_link", Origin((0, 0, _LENGTH[-1] + JR3_THICKNESS))),),
+        extra_sites=(Site("attachment_site", "w2_link", HAND_MOUNT),),
     )
