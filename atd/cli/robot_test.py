@@ -27,7 +27,7 @@ def robot_test(robot: str, arm: str | None, engine: str, seed: int, video: Path 
 
     try:
         description = load_description(robot, arm)
-    except UnknownRobot as exc:
+    except (UnknownRobot, ValueError) as exc:
         click.echo(f"error: {exc}", err=True)
         sys.exit(EXIT_INVALID)
     if video is not None and video.suffix.lower() != ".gif":

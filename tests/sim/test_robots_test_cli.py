@@ -27,7 +27,7 @@ def test_every_robot_passes_its_self_test(robot: str, arm: str | None, engine: s
 def test_unknown_robot_is_named_with_the_known_ones() -> None:
     result = CliRunner().invoke(main, ["robots", "test", "melfaa"])
     assert result.exit_code == 1
-    assert "no robot named 'melfaa'" in result.output
+    assert "no robot 'melfaa' is installed" in result.output
     assert "baxter, melfa, tombatossals" in result.output
 
 
