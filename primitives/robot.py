@@ -14,6 +14,8 @@ real one (5.4.2). Conventions, shared by every implementation:
 - Twists are (vx, vy, vz, wx, wy, wz) of the TCP in the world frame.
 - A hand DOF is one actuated motion (a Barrett finger with its coupled distal joint, the
   two mirrored jaws of a parallel gripper); `HandInfo.closing` says which way closes.
+- A tactile image has its rows along the finger and its columns across it; each taxel
+  holds the normal force (N) on it, and `pad_force` the pad's total.
 """
 
 from __future__ import annotations
