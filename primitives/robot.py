@@ -42,10 +42,12 @@ class HandMode(StrEnum):
 @dataclass(frozen=True)
 class PadInfo:
     """A tactile finger pad: `taxels` is (rows, cols) of its array, None where the
-    robot only measures one force for the finger."""
+    robot only measures one force for the finger; `dofs` are the hand DOFs that move it
+    (none for a palm pad), which is how a hand controller knows which finger a pad is on."""
 
     name: str
     taxels: tuple[int, int] | None
+    dofs: tuple[int, ...] = ()
 
 
 @dataclass(frozen=True)

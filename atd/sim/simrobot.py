@@ -29,6 +29,17 @@ POSITION, VELOCITY, FORCE = 0, 1, 2
 _MODE_CODE = {HandMode.POSITION: POSITION, HandMode.VELOCITY: VELOCITY, HandMode.FORCE: FORCE}
 
 
+def _moving_dofs(d: RobotDescription, link: str) -> tuple[int, ...]:
+    """The hand DOFs with a joint between the hand root and `link`."""
+    joints = set()
+    while link and link != d.hand_root:
+        body = d.links_by_name[link]
+        if body.joint is not None:
+            joints.add(body.joint.name)
+        link = body.parent
+    return tuple(k for k, dof in enumerate(d.hand.dofs) if any(j in joints for j, _ in dof.joints))
+
+
 def robot_info(d: RobotDescription) -> RobotInfo:
     """The static facts a primitive needs, taken from the description."""
     arm = [d.joints[n] for n in d.arm_joints]
@@ -46,7 +57,7 @@ def robot_info(d: RobotDescription) -> RobotInfo:
         open=np.array([dof.open for dof in d.hand.dofs]),
         closed=np.array([dof.closed for dof in d.hand.dofs]),
         postures={name: np.array(v) for name, v in d.hand.postures.items()},
-        pads=tuple(PadInfo(p.name, p.taxels) for p in d.hand.pads),
+        pads=tuple(PadInfo(p.name, p.taxels, _moving_dofs(d, p.link)) for p in d.hand.pads),
     )
     return RobotInfo(
         name=d.label,

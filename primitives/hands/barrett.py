@@ -7,7 +7,7 @@ DOFS = ("spread", "f1", "f2", "f3")
 
 # Finger bases in the hand frame, m (factories/tombatossals/description.py: knuckles at x = -/+25 mm,
 # the thumb 50 mm along -y).
-LAYOUT: FingerLayout = {"f1": (-0.025, 0.0), "f2": (0.025, 0.0), "f3": (0.0, -0.05)}
+LAYOUT: FingerLayout = {"tactile_f1": (-0.025, 0.0), "tactile_f2": (0.025, 0.0), "tactile_f3": (0.0, -0.05)}
 
 
 class BarrettRobustGrasp(RobustGraspHand):

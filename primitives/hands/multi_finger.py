@@ -27,7 +27,7 @@ from primitives.base import Context, ControlData, Controller, HandCommand, Statu
 from primitives.blackboard import CONTACT, FINGERS_STOPPED, SHIFT
 from primitives.robot import HandMode, Readings
 
-FingerLayout = Mapping[str, tuple[float, float]]  # finger -> (x, y) of its base in the hand frame, m
+FingerLayout = Mapping[str, tuple[float, float]]  # finger pad -> (x, y) of its finger's base in the hand frame, m
 
 CLOSING_SPEED = 0.3  # of each DOF's speed limit
 LEAD = 0.05  # of a DOF's range: how far a closing finger's reference may run ahead of it
@@ -63,9 +63,13 @@ class FingerGrasp(Controller):
         self.touch = float(self.params["contact_threshold"])
         self.range = hand.upper - hand.lower
         self.rate = CLOSING_SPEED * hand.velocity_limit
-        pad_of = {pad.name.removesuffix("_pad"): i for i, pad in enumerate(hand.pads)}
-        self.finger_of_dof = [next((f for f in pad_of if dof == f or dof.startswith(f + "_")), None) for dof in hand.dofs]
-        self.pad_of = pad_of
+        # A finger is known by its pad; a DOF belongs to the one finger whose pad it moves
+        # (a spread that moves two fingers, and a palm pad no DOF moves, belong to none).
+        self.pad_of = {pad.name: i for i, pad in enumerate(hand.pads)}
+        self.finger_of_dof = [
+            movers[0] if len(movers := [p.name for p in hand.pads if k in p.dofs]) == 1 else None
+            for k in range(len(hand.dofs))
+        ]
 
     # -- phases -------------------------------------------------------------------------
     def start(self, readings: Readings) -> None:

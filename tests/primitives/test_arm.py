@@ -180,7 +180,7 @@ def test_slide_presses_within_the_force_band_while_moving() -> None:
     target = (0.2, -0.06, FINGERTIP)
     estd = machine(
         Stage(use("cartesian_move", target=start), use("hand_shape", shape="closed"), both_done()),
-        Stage(use("slide", target=target, target_velocity=0.02), use("hold_position"), both_done(), seconds=15.0),
+        Stage(use("slide", target=target), use("hold_position"), both_done(), seconds=15.0),
     )
     pressing: list = []
 

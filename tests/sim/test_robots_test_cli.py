@@ -34,7 +34,7 @@ def test_unknown_robot_is_named_with_the_known_ones() -> None:
 def test_an_arm_the_robot_does_not_have_is_refused() -> None:
     result = CliRunner().invoke(main, ["robots", "test", "melfa", "--arm", "left"])
     assert result.exit_code == 1
-    assert "the Melfa has one arm, 'main'" in result.output
+    assert "robot 'melfa' has no arm 'left'; choose one of: main" in result.output
 
 
 def test_video_other_than_gif_is_refused_before_running(tmp_path) -> None:
