@@ -1,6 +1,6 @@
 """The factory interface: what the generic translator asks of each robot (thesis Fig. 7.3b).
 
-A factory knows one robot: its arms, hands, sensors and workspace, and how each abstract
+A factory knows one robot: its arms, hands, sensors and physical description, and how each abstract
 primitive and abstract event becomes concrete controllers and conditions on it. It is
 asked about one node or one event at a time, with the task's object and environment
 information (thesis 7.2.2), and answers with vocabulary from `atd.model.controllers`.
@@ -8,15 +8,17 @@ When it cannot, it raises `Unmappable` with the reason; the translator turns tha
 a diagnostic with the ATD file:line.
 
 The generic parts every robot shares live here: hand-shape fallback, motion targets
-from the object information, the workspace check, and the events any robot detects the
+from the object information, the reach check, and the events any robot detects the
 same way (timeout, success, error, hardware failure).
 """
 
 from __future__ import annotations
 
-import math
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
+from functools import cached_property
+from importlib import import_module
+from importlib.util import find_spec
 from pathlib import Path
 from typing import ClassVar, Mapping
 
@@ -25,6 +27,8 @@ from atd.model.estd import Condition, ConditionGroup, Controller
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
 from atd.model.vocabulary import EventType, HandShape, Movement, StateType
 from factories.config import RobotConfig, load_config
+from factories.description import RobotDescription
+from factories.reach import Reach
 
 ConditionNode = Condition | ConditionGroup
 
@@ -49,31 +53,6 @@ class Sensor:
 
 
 @dataclass(frozen=True)
-class Workspace:
-    """Where the TCP can go with the hand pointing down: a shell around the shoulder.
-
-    The wrist centre sits `tool_length` above a top-down TCP; it must lie between
-    `min_reach` and `max_reach` from the shoulder point (ATD world frame).
-    """
-
-    shoulder: Vec3
-    min_reach: float
-    max_reach: float
-    tool_length: float
-    basis: str  # where the numbers come from
-
-    def reach_problem(self, point: Vec3) -> str | None:
-        wrist = (point[0], point[1], point[2] + self.tool_length)
-        distance = math.dist(wrist, self.shoulder)
-        if self.min_reach <= distance <= self.max_reach:
-            return None
-        where = "beyond" if distance > self.max_reach else "inside"
-        return (f"target ({point[0]:g}, {point[1]:g}, {point[2]:g}) is outside the reachable workspace: its wrist "
-                f"point is {distance:.3f} m from the shoulder, {where} the {self.min_reach:g}..{self.max_reach:g} m "
-                "shell")
-
-
-@dataclass(frozen=True)
 class Hand:
     name: str
     kind: str  # "multi-finger" or "parallel jaw"
@@ -91,7 +70,6 @@ class Arm:
     description: str
     hand: Hand
     sensors: tuple[Sensor, ...]
-    workspace: Workspace
 
     def sensors_of(self, kind: SensorKind) -> tuple[str, ...]:
         return tuple(s.name for s in self.sensors if s.kind is kind)
@@ -223,12 +201,30 @@ class Factory(ABC):
         made = hand.closest[wanted]
         return made, (f"the {hand.name} cannot make '{wanted.value}'; using the closest shape '{made.value}'",)
 
+    @cached_property
+    def robot(self) -> RobotDescription:
+        """The physical robot (its one source of truth, which the simulator also builds):
+        `description()` in the `description.py` beside the factory's module, or beside the
+        module of the factory it extends; for this arm."""
+        arm = self.arm.name if len(self.arms) > 1 else None
+        for cls in type(self).__mro__:
+            package = cls.__module__.rpartition(".")[0]
+            if package and find_spec(f"{package}.description") is not None:
+                return import_module(f"{package}.description").description(arm)
+        raise LookupError(f"factory '{self.name}' has no description.py beside it")
+
     def check_reach(self, *points: Vec3) -> None:
+        """Each point must be reachable by the TCP with the hand pointing down."""
         for point in points:
-            problem = self.arm.workspace.reach_problem(point)
-            if problem:
-                raise Unmappable(f"{problem} of the {self.arm.description}",
-                                 "move the target into the work area, or choose a robot or arm that reaches it")
+            if not self._reach.reachable(point):
+                raise Unmappable(
+                    f"target ({point[0]:g}, {point[1]:g}, {point[2]:g}) is out of reach of the "
+                    f"{self.arm.description} with the hand pointing down",
+                    "move the target into the work area, or choose a robot or arm that reaches it")
+
+    @cached_property
+    def _reach(self) -> Reach:
+        return Reach(self.robot)
 
     def motion(self, state: State, context: MappingContext) -> tuple[Vec3, tuple[Vec3, ...]]:
         """Target and via points of an arm primitive: the path, or derived from the object."""

@@ -9,6 +9,8 @@ from atd.cli import validate as _validate  # noqa: F401  (registers `atd validat
 from atd.cli import translate as _translate  # noqa: F401  (registers `atd translate`)
 from atd.cli import check as _check  # noqa: F401  (registers `atd check`)
 from atd.cli import robots_command as _robots  # noqa: F401  (registers `atd robots list|show`)
+from atd.cli import robot_test as _robot_test  # noqa: F401  (registers `atd robots test`)
+from atd.cli import run as _run  # noqa: F401  (registers `atd run`)
 from atd.cli import graph as _graph  # noqa: F401  (registers `atd graph`)
 
 __all__ = ["main", "robots"]

@@ -64,11 +64,12 @@ def show(robot: str, arm: str | None) -> None:
     factory = make_factory(robot, arm, None)
     click.echo(f"{factory.name}: {factory.description}\n")
     for a in factory.arms:
-        w = a.workspace
         click.echo(f"arm '{a.name}': {a.description} ({a.hand.kind} hand)")
         click.echo(f"  sensors: {', '.join(f'{s.name} ({s.kind.value})' for s in a.sensors)}")
-        click.echo(f"  workspace: shoulder {w.shoulder}, wrist reach {w.min_reach:g}..{w.max_reach:g} m, "
-                   f"tool {w.tool_length:g} m; {w.basis}")
+    base = factory.robot.base.xyz
+    click.echo(f"  placed with its base at ({base[0]:g}, {base[1]:g}, {base[2]:g}) in the ATD world frame; "
+               "reach is checked by inverse kinematics on factories/"
+               f"{factory.name}/description.py with the hand pointing down")
     click.echo(f"\nprimitives ({factory.arm.name} arm):\n{mapping_table(factory)}\n")
     click.echo("events:")
     for label, text in event_rows(factory):

@@ -146,6 +146,19 @@ _ARM_CONTROLLERS = (
         },
     ),
     ControllerSpec(
+        "naive_grasp_approach", Role.ARM,
+        "Baseline grasp without corrections: move forward along the grasp direction until a contact or "
+        "`distance`, then stay.",
+        "thesis 3.4.1 (naive grasping primitive)",
+        {
+            "grasp_direction": _p(VEC, "approach direction in the hand frame", (0.0, 0.0, 1.0), length=3),
+            "distance": _p(NUM, "how far to move forward (thesis: 10 cm)", 0.1, unit="m"),
+            "force_threshold": _p(NUM, "contact force on the wrist (ours, as the robust grasp's)", 2.0, unit="N"),
+            "velocity": _p(NUM, "forward speed (ours)", 0.01, unit="m/s"),
+            "filter_time": _FILTER,
+        },
+    ),
+    ControllerSpec(
         "place", Role.ARM,
         "Bring the held object over the target, then descend along -surface_normal until the wrist "
         "feels the surface.",
@@ -216,6 +229,18 @@ _HAND_CONTROLLERS = (
             "grasp_force": _p(NUM, "fingertip force after force adaptation (ours)", 5.0, unit="N"),
             "contact_threshold": _p(NUM, "pad force counted as finger contact (ours)", 0.3, unit="N"),
             "finger_lost_correction": _p(FLAG, "reopen and shift when a finger misses (thesis 3.3.1)", True),
+        },
+    ),
+    ControllerSpec(
+        "naive_grasp_hand", Role.HAND,
+        "Baseline grasp without corrections: once the arm has stopped, close, stopping each finger that "
+        "touches, then squeeze slightly.",
+        "thesis 3.4.1 (naive grasping primitive)",
+        {
+            "preshape": _p(WORD, "starting hand configuration; unset = current"),
+            "grasp_shape": _p(WORD, "the grasp to close into (multi-finger hands; a gripper just closes)"),
+            "contact_threshold": _p(NUM, "pad force counted as finger contact (ours)", 0.3, unit="N"),
+            "squeeze": _p(NUM, "effort added at the end, fraction of each finger's effort limit (ours)", 0.1),
         },
     ),
     ControllerSpec(

@@ -1,1 +1,1 @@
-"""The baxter factory."""
+"""The baxter robot: its factory (factory.py) and its physical description (description.py)."""

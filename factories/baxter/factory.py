@@ -23,7 +23,6 @@ from factories.base import (
     NodeMapping,
     Sensor,
     Unmappable,
-    Workspace,
     all_of,
     any_of,
     arm_motion_flags,
@@ -32,25 +31,14 @@ from factories.base import (
     parallel_jaw_closest,
 )
 
-# Baxter: the base frame sits 0.93 m above the floor and a lab table top about 0.78 m
-# (robot-facts.md 7, 8), so we place the base 0.15 m above the table top, 0.40 m behind the
-# work-area origin. Shoulder = S0 axis at S1 height, base + (0.064, -/+0.259, 0.400); from there
-# S0-S1 offset 0.069 + upper arm 0.364 + forearm 0.374 = 0.808 m to W1. W1 to TCP: 0.116 (W1-W2)
-# + 0.114 (W2-hand) + 0.025 (gripper base) + 0.090 (to mid-finger) = 0.345 m.
-_BASIS = ("Baxter URDF link lengths (robot-facts.md 7); base placed (ours) at world (-0.40, 0, 0.15), 0.15 m above "
-          "the table top")
-
-
-def _arm(side: str, y: float) -> Arm:
+def _arm(side: str) -> Arm:
     sensors = (
         Sensor("wrist_ft", SensorKind.FORCE_TORQUE,
                "virtual 6-axis wrench computed from joint torques: noisy, for contact detection only"),
         Sensor("gripper", SensorKind.GRIPPER, "gripper jaw opening and motor force"),
         Sensor("ir_range", SensorKind.RANGE, "IR range sensor in the hand, looking along the approach axis"),
     )
-    workspace = Workspace(shoulder=(-0.336, y, 0.55), min_reach=0.25, max_reach=0.808, tool_length=0.345,
-                          basis=_BASIS)
-    return Arm(side, f"Baxter {side} 7-DOF arm with the light parallel gripper", _GRIPPER, sensors, workspace)
+    return Arm(side, f"Baxter {side} 7-DOF arm with the light parallel gripper", _GRIPPER, sensors)
 
 
 _GRIPPER = Hand("Baxter light parallel gripper", "parallel jaw", PARALLEL_JAW_SHAPES,
@@ -61,7 +49,7 @@ class BaxterFactory(Factory):
     name = "baxter"
     description = ("Rethink Baxter: 7-DOF compliant arms, light parallel gripper, noisy virtual wrist "
                    "force-torque sensor, IR range sensor in the hand; no tactile pads (thesis A.4)")
-    arms = (_arm("right", -0.259), _arm("left", +0.259))
+    arms = (_arm("right"), _arm("left"))
     primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
                             StateType.PLACE, StateType.SLIDE, StateType.RELEASE})
     node_table = (

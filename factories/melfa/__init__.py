@@ -1,1 +1,1 @@
-"""The melfa factory."""
+"""The melfa robot: its factory (factory.py) and its physical description (description.py)."""

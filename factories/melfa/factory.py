@@ -22,20 +22,11 @@ from factories.base import (
     NodeMapping,
     Sensor,
     Unmappable,
-    Workspace,
     all_of,
     any_of,
     arm_motion_flags,
     PARALLEL_JAW_SHAPES,
     parallel_jaw_closest,
-)
-
-# RV-3SB: base on the table top at world (-0.35, 0, 0); J2 is 0.350 m up and 0.095 m forward of
-# the base (DH d1, a1), and the arm reaches 0.642 m from J2 to the J5 wrist centre
-# (robot-facts.md 4). J5 to TCP: flange 0.085 + JR3 0.030 + PG70 body 0.093 + half finger 0.030.
-_WORKSPACE = Workspace(
-    shoulder=(-0.255, 0.0, 0.35), min_reach=0.20, max_reach=0.642, tool_length=0.238,
-    basis="RV-3SB DH d1 = 0.350, a1 = 0.095, reach 0.642 m J2 to J5 (robot-facts.md 4); base at world (-0.35, 0, 0)",
 )
 
 _PADS = ("tactile_left", "tactile_right")
@@ -50,8 +41,7 @@ class MelfaFactory(Factory):
     arms = (
         Arm("main", "Melfa RV-3SB arm with the WRT-102 gripper", _WRT102,
             (Sensor("wrist_ft", SensorKind.FORCE_TORQUE, "JR3 6-axis force-torque sensor between arm and gripper"),
-             *(Sensor(p, SensorKind.TACTILE, f"Weiss tactile pad on the {p.split('_')[1]} finger") for p in _PADS)),
-            _WORKSPACE),
+             *(Sensor(p, SensorKind.TACTILE, f"Weiss tactile pad on the {p.split('_')[1]} finger") for p in _PADS))),
     )
     primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
                             StateType.PLACE, StateType.RELEASE})

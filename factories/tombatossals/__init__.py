@@ -1,1 +1,1 @@
-"""The tombatossals factory."""
+"""The tombatossals robot: its factory (factory.py) and its physical description (description.py)."""

@@ -23,24 +23,10 @@ from factories.base import (
     NodeMapping,
     Sensor,
     Unmappable,
-    Workspace,
     arm_motion_flags,
     grasp_width,
     obstacle_params,
 )
-
-# PA10-7C: shoulder (S2) to elbow 0.45 m, elbow to wrist (W1) 0.48 m (robot-facts.md 1), so the
-# wrist centre reaches 0.93 m; the elbow folds to 137 deg at most, which keeps it 0.34 m out.
-# Placement (ours): the torso stands behind the table, shoulders 0.45 m above the table top,
-# 0.40 m behind the work-area origin and 0.25 m to either side.
-_PA10_BASIS = ("PA10-7C links 0.45 + 0.48 m (robot-facts.md 1); shoulders placed (ours) at x = -0.40, "
-               "y = -/+0.25, z = 0.45 in the ATD frame")
-
-
-def _workspace(side: float, tool_length: float) -> Workspace:
-    return Workspace(shoulder=(-0.40, 0.25 * side, 0.45), min_reach=0.34, max_reach=0.93,
-                     tool_length=tool_length, basis=_PA10_BASIS)
-
 
 _WRIST_FT = Sensor("wrist_ft", SensorKind.FORCE_TORQUE, "JR3 6-axis force-torque sensor between arm and hand")
 
@@ -57,7 +43,9 @@ _SDH2 = Hand(
     cannot_grasp={HandShape.HOOK_GRASP: _SDH2_NO_HOOK, HandShape.HOOK_GRASP_PRESHAPE: _SDH2_NO_HOOK},
 )
 
-# Which pads hold an object (finger pads), and which count as any finger contact.
+# Which pads hold an object (finger pads), and which count as any finger contact. The names
+# are the pads' names in the hands' descriptions (the SDH2's thumb carries 'tactile_f3');
+# a test checks every tactile sensor here is a pad of the simulated hand.
 _FINGER_PADS = ("tactile_f1", "tactile_f2", "tactile_f3")
 _BARRETT_SENSORS = (
     _WRIST_FT,
@@ -87,10 +75,8 @@ class TombatossalsFactory(Factory):
     description = ("UJI humanoid torso: two PA10-7C 7-DOF arms with JR3 wrist force-torque sensors; Barrett "
                    "BH8-280 hand (right) or Schunk SDH2 (left), both with Weiss tactile pads (thesis A.1)")
     arms = (
-        Arm("right", "right PA10-7C arm with the Barrett BH8-280 hand", _BARRETT, _BARRETT_SENSORS,
-            _workspace(-1.0, tool_length=0.225)),
-        Arm("left", "left PA10-7C arm with the Schunk SDH2 hand", _SDH2, _SDH2_SENSORS,
-            _workspace(+1.0, tool_length=0.255)),
+        Arm("right", "right PA10-7C arm with the Barrett BH8-280 hand", _BARRETT, _BARRETT_SENSORS),
+        Arm("left", "left PA10-7C arm with the Schunk SDH2 hand", _SDH2, _SDH2_SENSORS),
     )
     primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
                             StateType.PLACE, StateType.SLIDE, StateType.RELEASE})

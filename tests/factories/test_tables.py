@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
+
+from atd.model.controllers import SensorKind
 
 from atd.model import Environment, HandShape, Movement, Obstacle, State, StateType
 from atd.model.estd import describe
@@ -126,16 +129,17 @@ def test_sdh2_refuses_a_hook_grasp(field, shape):
 def test_a_target_outside_the_workspace_is_refused_for_every_robot():
     for factory in every_factory():
         state = State(name="far", type=StateType.MOVE, path=at(0.10, 0.10, 1.50))
-        with pytest.raises(Unmappable, match=r"target \(0.1, 0.1, 1.5\) is outside the reachable workspace"):
+        with pytest.raises(Unmappable, match=r"target \(0.1, 0.1, 1.5\) is out of reach of the .* hand pointing down"):
             factory.map_node(state, MappingContext(one_state_task(state)))
 
 
 def test_the_shared_work_area_is_reachable_by_every_robot_and_arm():
+    """x in [0, 0.2], y in [-0.15, 0.15], z in [0.02, 0.25]: where the examples work (docs/atd-format.md)."""
     for factory in every_factory():
         for x in (0.0, 0.2):
             for y in (-0.15, 0.15):
                 for z in (0.02, 0.25):
-                    assert factory.arm.workspace.reach_problem((x, y, z)) is None, (factory.name, x, y, z)
+                    factory.check_reach((x, y, z))  # raises Unmappable when out of reach
 
 
 @pytest.mark.parametrize("kind", [StateType.PUSH, StateType.SLIDE])
@@ -206,3 +210,23 @@ def test_each_mapping_table_row_says_what_the_factory_does():
             else:
                 assert factory.map_node(state, MappingContext(one_state_task(state))).primitive == row.concrete
         assert {StateType(r.abstract) for r in factory.node_table if r.concrete != "-"} == factory.primitives
+
+
+def test_reach_is_judged_on_the_simulated_robot_itself():
+    """A point the arm can just reach is accepted, one a little beyond its stretched arm is not,
+    and the answer comes from the same description the simulator builds."""
+    from factories.reach import Reach
+    factory = create("melfa")
+    reach = Reach(factory.robot)
+    assert reach.reachable((0.1, 0.0, 0.1))
+    far = reach.shoulder + (reach.stretched + 0.01) * np.array([1.0, 0.0, 0.0])
+    assert not reach.reachable(tuple(far))
+
+
+def test_every_tactile_sensor_a_factory_names_is_a_pad_of_the_simulated_hand():
+    from primitives.conditions import pad_indices
+    from atd.sim.simrobot import robot_info
+    for factory in every_factory():
+        names = factory.arm.sensors_of(SensorKind.TACTILE)
+        hand = robot_info(factory.robot).hand
+        assert len(set(pad_indices(hand, names))) == len(names), (factory.name, factory.arm.name)

@@ -1,0 +1,119 @@
+"""`atd run`: execute a task on a simulated robot and report the outcome in ATD terms."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import click
+
+from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, EXIT_UNTRANSLATABLE, EXIT_USAGE, main
+from atd.model import has_errors, load_task
+from atd.model.diagnostics import render_all
+from atd.model.estd import Estd
+from atd.model.estd_xml import read_estd
+from atd.runtime.report import summary
+from atd.runtime.session import ENGINES, Run, RunError, Unrunnable
+from factories.base import Factory
+from factories.registry import UnknownRobot, create
+from translator import translate
+
+
+def _fail(message: str, code: int) -> None:
+    click.echo(message, err=True)
+    raise SystemExit(code)
+
+
+def _is_estd(path: Path) -> bool:
+    """ESTD files are `<estd>` documents (XML) or JSON; anything else is read as an ATD."""
+    try:
+        head = path.read_bytes()[:4096].lstrip()
+    except OSError:
+        return False
+    return head.startswith(b"{") or b"<estd" in head
+
+
+def _factory(robot: str, arm: str | None) -> Factory:
+    try:
+        return create(robot, arm)
+    except (UnknownRobot, ValueError) as exc:
+        _fail(f"error: {exc.args[0]}", EXIT_USAGE)
+        raise
+
+
+def _load(task: Path, robot: str | None, arm: str | None) -> tuple[Estd, Factory]:
+    """The ESTD to run and its robot's factory: read as is, or translated from an ATD."""
+    if _is_estd(task):
+        estd, found = read_estd(task)
+        if estd is None:
+            _fail(render_all(found), EXIT_INVALID)
+        if robot and robot != estd.robot:
+            _fail(f"error: {task} was translated for '{estd.robot}', not '{robot}'; "
+                  f"translate the ATD again with --robot {robot}", EXIT_USAGE)
+        return estd, _factory(estd.robot, estd.arm)
+    if robot is None:
+        _fail(f"error: {task} is an ATD; say which robot runs it with --robot (see `atd robots list`)", EXIT_USAGE)
+    factory = _factory(robot, arm)
+    atd_task, found = load_task(task)
+    if atd_task is None or has_errors(found):
+        _fail(render_all(found), EXIT_INVALID)
+    result = translate(atd_task, factory)
+    if result.estd is None:
+        _fail(render_all(result.diagnostics) + f"\n{task}: {robot} cannot do this task", EXIT_UNTRANSLATABLE)
+    return result.estd, factory
+
+
+class _Progress:
+    """One line per state entered, with simulated time and real-time factor; on a terminal
+    the line also updates in place while the state runs."""
+
+    def __init__(self, quiet: bool) -> None:
+        self.quiet = quiet
+        self.tty = sys.stderr.isatty()
+        self.state = ""
+
+    def __call__(self, state: str, sim: float, wall: float) -> None:
+        if self.quiet:
+            return
+        line = f"[{sim:7.2f} s  {sim / wall if wall else 0:5.1f}x real time]  {state}"
+        if state != self.state:
+            self.state = state
+            click.echo(("\r" if self.tty else "") + line, err=True)
+        elif self.tty:
+            click.echo("\r" + line, err=True, nl=False)
+
+
+@main.command()
+@click.argument("task", type=click.Path(path_type=Path, exists=True, dir_okay=False))
+@click.option("--robot", "-r", default=None, help="the robot (required for an ATD; an ESTD names its own)")
+@click.option("--arm", default=None, help="which arm, for robots with more than one")
+@click.option("--engine", type=click.Choice(ENGINES), default="mujoco", show_default=True)
+@click.option("--seed", type=int, default=0, show_default=True, help="seeds sensor noise: same seed, same trace")
+@click.option("--trace", "trace_path", type=click.Path(path_type=Path, dir_okay=False), default=None,
+              help="write every state entry, exit and event as JSON lines")
+@click.option("--realtime", is_flag=True, help="run no faster than real time")
+@click.option("--budget", type=float, default=300.0, show_default=True,
+              help="watchdog: simulated seconds before the run is stopped as a failure")
+@click.option("--quiet", "-q", is_flag=True, help="no live progress")
+def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, trace_path: Path | None,
+        realtime: bool, budget: float, quiet: bool) -> None:
+    """Run TASK (an ATD, translated on the fly, or an ESTD) on a simulated robot.
+
+    Exit status: 0 the task ended in a success state, 3 in a failure state (or the watchdog
+    stopped it), 1 invalid input, 2 usage error, 4 the robot cannot do the task.
+    """
+    estd, factory = _load(task, robot, arm)
+    try:
+        session = Run(estd, factory, engine=engine, seed=seed, trace_path=trace_path, realtime=realtime, budget=budget)
+    except Unrunnable as exc:
+        _fail(f"error: {exc}", EXIT_UNTRANSLATABLE)
+    except RunError as exc:
+        _fail(f"error: {exc}", EXIT_USAGE)
+    outcome = session.execute(_Progress(quiet))
+    title = f"{task.name} on {estd.robot} ({estd.arm} arm) in {engine}, seed {seed}"
+    click.echo(summary(outcome, session.trace.records, title))
+    x, y, z = session.object_position
+    click.echo(f"the object rests at ({x:.3f}, {y:.3f}, {z:.3f})")
+    if trace_path:
+        click.echo(f"trace: {trace_path}")
+    raise SystemExit(EXIT_OK if outcome.succeeded else EXIT_TASK_FAILED)

@@ -1,0 +1,299 @@
+"""The executor: runs an ESTD as a hybrid automaton on a robot (D5 2.2.4).
+
+Each control tick: read every sensor once; check the current state's transitions (in
+document order, the first whose events all hold is taken); run the state's arm and hand
+controllers; merge their outputs in the arbitrator; send one command; step the robot.
+A sub-task state runs its own machine inside it. A watchdog ends any run that outlives
+its time budget, so nothing hangs.
+"""
+
+from __future__ import annotations
+
+import time as wallclock
+from dataclasses import dataclass, field, replace
+from typing import Callable
+
+import numpy as np
+
+from atd.model.estd import Condition as Leaf
+from atd.model.estd import ConditionGroup, Estd, EstdEvent, EstdState, EstdTransition
+from atd.model.vocabulary import StateType
+from atd.runtime.arbitrator import arbitrate
+from atd.runtime.trace import Trace
+from primitives.base import Condition, Context, ControlData, Status, StateView
+from primitives.registry import BuildError, build_condition, build_controller
+from primitives.robot import Readings, Robot, dls_joint_velocities
+
+
+class ConditionTree:
+    """An event's `all`/`any` tree of leaf conditions, evaluated without short-circuit so
+    that every debounce timer sees every tick."""
+
+    def __init__(self, node: Leaf | ConditionGroup, ctx: Context) -> None:
+        self.node = node
+        if isinstance(node, Leaf):
+            self.leaf: Condition | None = build_condition(node, ctx)
+            self.children: list[ConditionTree] = []
+        else:
+            self.leaf = None
+            self.children = [ConditionTree(child, ctx) for child in node.children]
+
+    def start(self, readings: Readings) -> None:
+        if self.leaf:
+            self.leaf.start(readings)
+        for child in self.children:
+            child.start(readings)
+
+    def holds(self, readings: Readings, view: StateView, dt: float) -> bool:
+        if self.leaf:
+            return self.leaf.holds(readings, view, dt)
+        verdicts = [child.holds(readings, view, dt) for child in self.children]
+        return all(verdicts) if self.node.op == "all" else any(verdicts)
+
+    def evidence(self) -> list[dict]:
+        """The leaves behind a verdict, with the readings each recorded."""
+        if self.leaf:
+            return [{"kind": self.node.kind, "atd": self.node.atd, "sensors": list(self.node.sensors),
+                     **self.leaf.evidence}]
+        return [item for child in self.children for item in child.evidence()]
+
+
+@dataclass
+class Edge:
+    transition: EstdTransition
+    events: list[tuple[EstdEvent, ConditionTree]]
+
+
+@dataclass
+class Visit:
+    """One stay in a state, for the run's summary."""
+
+    path: str
+    atd: str
+    entered: float
+    left: float | None = None
+    left_by: str | None = None  # ATD id of the transition taken
+    left_on: list[str] = field(default_factory=list)  # the abstract events of that transition
+
+
+class Machine:
+    """One (sub-)machine being run: its current state and what runs in it."""
+
+    def __init__(self, estd: Estd, prefix: str, base: Context, trace: Trace, visits: list[Visit]) -> None:
+        self.estd = estd
+        self.prefix = prefix
+        self.base = base
+        self.trace = trace
+        self.visits = visits
+        self.states = {s.name: s for s in estd.states}
+        self.ended: EstdState | None = None
+        self.current: EstdState | None = None
+        self.last_exit: Visit | None = None  # the visit left by the latest transition
+
+    # -- entering a state ---------------------------------------------------------------
+    def enter(self, name: str, readings: Readings) -> None:
+        state = self.states[name]
+        self.current = state
+        self.entered = readings.time
+        ctx = replace(self.base, blackboard={})
+        self.arm = build_controller(state.arm, "arm", ctx) if state.arm else None
+        self.hand = build_controller(state.hand, "hand", ctx) if state.hand else None
+        self.edges = [
+            Edge(t, [(e, ConditionTree(e.condition, ctx)) for e in t.events])
+            for t in self.estd.transitions if t.origin == name
+        ]
+        self.visit = Visit(self.prefix + name, state.atd, readings.time)
+        self.visits.append(self.visit)
+        self.trace.write("enter", readings.time, state=self.visit.path, atd=state.atd, primitive=state.primitive)
+        for controller in (self.arm, self.hand):
+            if controller:
+                controller.start(readings)
+        for edge in self.edges:
+            for _, tree in edge.events:
+                tree.start(readings)
+        self.sub = Machine(state.machine, f"{self.visit.path}/", self.base, self.trace, self.visits) \
+            if state.machine is not None else None
+        if self.sub:
+            self.sub.enter(state.machine.initial, readings)
+        if state.type.is_end:
+            self.ended = state
+            self.trace.write("end", readings.time, state=self.visit.path, atd=state.atd, outcome=state.type.value)
+
+    # -- one tick -------------------------------------------------------------------------
+    def _view(self, readings: Readings) -> StateView:
+        sub = None
+        if self.sub and self.sub.ended:
+            sub = Status.DONE if self.sub.ended.type is StateType.SUCCESS else Status.ERROR
+        return StateView(
+            elapsed=readings.time - self.entered,
+            arm=self.arm.status if self.arm else Status.DONE,
+            hand=self.hand.status if self.hand else Status.DONE,
+            subtask=sub,
+            reasons={k: c.reason for k, c in (("arm", self.arm), ("hand", self.hand)) if c and c.reason},
+        )
+
+    def _fired(self, readings: Readings, dt: float) -> Edge | None:
+        view = self._view(readings)
+        fired = None
+        for edge in self.edges:
+            verdicts = [tree.holds(readings, view, dt) for _, tree in edge.events]
+            if fired is None and all(verdicts):
+                fired = edge
+        return fired
+
+    def tick(self, readings: Readings, dt: float) -> list[ControlData]:
+        """Take a transition if one fires, then return the current state's control outputs."""
+        if self.ended:
+            return []
+        if self.sub and not self.sub.ended:
+            outputs = self.sub.tick(readings, dt)
+        else:
+            outputs = []
+        edge = self._fired(readings, dt)
+        if edge is not None:
+            self._take(edge, readings)
+            if self.ended:
+                return []
+            outputs = self.sub.tick(readings, dt) if self.sub else []
+        for controller in (self.arm, self.hand):
+            if controller:
+                outputs.append(controller.update(readings, dt))
+        return outputs
+
+    def _take(self, edge: Edge, readings: Readings) -> None:
+        t = edge.transition
+        for event, tree in edge.events:
+            self.trace.write("event", readings.time, state=self.visit.path, event=event.type.value, atd=event.atd,
+                             transition=t.atd, conditions=tree.evidence())
+        self.visit.left, self.visit.left_by = readings.time, t.atd
+        self.visit.left_on = [e.type.value for e in t.events]
+        self.last_exit = self.visit
+        self.trace.write("exit", readings.time, state=self.visit.path, atd=self.current.atd, transition=t.atd,
+                         destination=t.destination, duration=readings.time - self.entered)
+        self.enter(t.destination, readings)
+
+    def innermost(self) -> Machine:
+        return self.sub.innermost() if self.sub and not self.sub.ended else self
+
+
+@dataclass
+class Outcome:
+    """How a run ended, in the ATD's terms."""
+
+    succeeded: bool
+    summary: str
+    end_state: str | None
+    visits: list[Visit]
+    sim_time: float
+    wall_time: float
+    ticks: int
+
+    @property
+    def real_time_factor(self) -> float:
+        return self.sim_time / self.wall_time if self.wall_time > 0 else float("inf")
+
+
+Progress = Callable[[str, float, float], None]  # (current state path, sim time, wall time)
+Observer = Callable[[float], None]  # called after every control step with the simulated time
+
+
+def build_problems(estd: Estd, base: Context) -> list[str]:
+    """Everything in the ESTD this robot cannot build (a controller its hand does not have,
+    a sensor it lacks), found before the run starts rather than in the middle of it."""
+    problems = []
+    for prefix, machine in estd.walk():
+        ctx = replace(base, blackboard={})
+        for state in machine.states:
+            for role, use in (("arm", state.arm), ("hand", state.hand)):
+                if use is not None:
+                    try:
+                        build_controller(use, role, ctx)
+                    except BuildError as exc:
+                        problems.append(f"state '{prefix}{state.name}': {exc}")
+        for transition in machine.transitions:
+            for event in transition.events:
+                try:
+                    ConditionTree(event.condition, ctx)
+                except BuildError as exc:
+                    problems.append(f"transition '{prefix}{transition.atd}' event '{event.type.value}': {exc}")
+    return problems
+
+
+class Executor:
+    """Runs one ESTD on one robot until an end state, or the watchdog, stops it."""
+
+    def __init__(self, estd: Estd, robot: Robot, base: Context, trace: Trace | None = None,
+                 budget: float = 300.0, wall_budget: float = 600.0) -> None:
+        self.estd = estd
+        self.robot = robot
+        self.trace = trace or Trace()
+        self.visits: list[Visit] = []
+        self.machine = Machine(estd, "", base, self.trace, self.visits)
+        self.budget = budget
+        self.wall_budget = wall_budget
+
+    def _apply(self, outputs: list[ControlData]) -> None:
+        info = self.robot.info
+        command = arbitrate(outputs, info.arm_dof, len(info.hand.dofs))
+        dq = command.joint_velocity
+        if np.any(command.twist):
+            dq = dq + dls_joint_velocities(self.robot.jacobian(), command.twist, self.robot.twist_damping)
+        self.robot.command_arm_velocity(dq)
+        if command.hand_values is not None:
+            self.robot.command_hand(command.hand_values, command.hand_modes)
+
+    def run(self, progress: Progress | None = None, every: int = 200,
+            observers: tuple[Observer, ...] = ()) -> Outcome:
+        started = wallclock.perf_counter()
+        dt = self.robot.info.control_period
+        readings = self.robot.read()
+        self.machine.enter(self.estd.initial, readings)
+        ticks = 0
+        shown = ""
+        verdict: str | None = None
+        while not self.machine.ended:
+            readings = self.robot.read()
+            wall = wallclock.perf_counter() - started
+            if readings.time >= self.budget or wall >= self.wall_budget:
+                verdict = self._watchdog(readings, wall)
+                break
+            self._apply(self.machine.tick(readings, dt))
+            if self.machine.ended:
+                break
+            self.robot.step()
+            ticks += 1
+            for observe in observers:
+                observe(readings.time + dt)
+            if progress:
+                where = self.machine.innermost().visit.path
+                if where != shown or ticks % every == 0:
+                    shown = where
+                    progress(where, readings.time, wall)
+        wall = wallclock.perf_counter() - started
+        self.trace.close()
+        end = self.machine.ended
+        return Outcome(
+            succeeded=end is not None and end.type is StateType.SUCCESS,
+            summary=verdict or self._summary(),
+            end_state=end.name if end else None,
+            visits=self.visits,
+            sim_time=readings.time,
+            wall_time=wall,
+            ticks=ticks,
+        )
+
+    def _watchdog(self, readings: Readings, wall: float) -> str:
+        where = self.machine.innermost().visit
+        limit = (f"{self.budget:g} s of simulated time" if readings.time >= self.budget
+                 else f"{self.wall_budget:g} s of wall-clock time")
+        self.trace.write("watchdog", readings.time, state=where.path, atd=where.atd, limit=limit)
+        return f"failed: the watchdog stopped the run in '{where.path}' after {limit}"
+
+    def _summary(self) -> str:
+        end, last = self.machine.ended, self.machine.last_exit
+        if end.type is StateType.SUCCESS:
+            return f"succeeded: reached '{end.name}'"
+        if last is None:
+            return f"failed: started in failure state '{end.name}'"
+        return (f"failed in '{last.path}' on {' and '.join(last.left_on)}, "
+                f"abstract edge {last.left_by.replace('->', ' -> ')}")

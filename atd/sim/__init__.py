@@ -1,0 +1,44 @@
+"""Simulated robots: one robot description, rendered for MuJoCo or PyBullet, behind the
+robot interface of `primitives.robot`."""
+
+from __future__ import annotations
+
+import os
+
+# Headless pictures (videos of runs): MuJoCo picks its OpenGL backend when first imported.
+os.environ.setdefault("MUJOCO_GL", "egl")
+
+from atd.sim.scene import Scene, box_scene
+from atd.sim.simrobot import SimRobot
+from factories.description import RobotDescription
+from factories.registry import UnknownRobot, create, installed
+
+__all__ = ["ENGINES", "UnknownRobot", "load_description", "make_robot", "variants"]
+
+ENGINES = ("mujoco", "pybullet")
+
+
+def variants() -> list[tuple[str, str]]:
+    """Every (robot, arm) model the installed factories offer."""
+    return [(name, arm.name) for name, entry in installed().items() for arm in entry.load().arms]
+
+
+def load_description(robot: str, arm: str | None = None) -> RobotDescription:
+    """The physical description of an installed robot (and arm), as its factory knows it.
+
+    Raises UnknownRobot for a robot nobody installed, ValueError for an arm it lacks."""
+    return create(robot, arm).robot
+
+
+def make_robot(description: RobotDescription, scene: Scene | None = None, engine: str = "mujoco", seed: int = 0) -> SimRobot:
+    """A simulated robot in `scene` (default: a 5 cm box in the work area) on the named engine."""
+    scene = scene if scene is not None else box_scene()
+    if engine == "mujoco":
+        from atd.sim.mujoco_engine import MujocoRobot
+
+        return MujocoRobot(description, scene, seed)
+    if engine == "pybullet":
+        from atd.sim.pybullet_engine import PybulletRobot
+
+        return PybulletRobot(description, scene, seed)
+    raise ValueError(f"unknown engine '{engine}'; use one of {', '.join(ENGINES)}")

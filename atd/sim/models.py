@@ -1,0 +1,173 @@
+"""One robot description rendered to the two engines' formats (MJCF and URDF) with jinja2.
+
+The templates only print; everything they need (poses as quaternions or rpy, pad
+geometry, which links gravity-compensate) is worked out here once, so the two models
+cannot drift apart.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+import jinja2
+import numpy as np
+
+from atd.sim.scene import TABLE_CENTRE, TABLE_HALF, Body, Scene
+from factories.description import FingerPad, Link, Origin, RobotDescription, Shape
+from factories.parts import PAD
+
+def matrix_to_quat(r: np.ndarray) -> tuple[float, float, float, float]:
+    """(w, x, y, z) of a rotation matrix."""
+    w = np.sqrt(max(0.0, 1.0 + r[0, 0] + r[1, 1] + r[2, 2])) / 2
+    x = np.copysign(np.sqrt(max(0.0, 1.0 + r[0, 0] - r[1, 1] - r[2, 2])) / 2, r[2, 1] - r[1, 2])
+    y = np.copysign(np.sqrt(max(0.0, 1.0 - r[0, 0] + r[1, 1] - r[2, 2])) / 2, r[0, 2] - r[2, 0])
+    z = np.copysign(np.sqrt(max(0.0, 1.0 - r[0, 0] - r[1, 1] + r[2, 2])) / 2, r[1, 0] - r[0, 1])
+    return (float(w), float(x), float(y), float(z))
+
+
+def matrix_to_rpy(r: np.ndarray) -> tuple[float, float, float]:
+    """URDF roll, pitch, yaw of a rotation matrix."""
+    pitch = np.arctan2(-r[2, 0], np.hypot(r[0, 0], r[1, 0]))
+    if abs(np.cos(pitch)) < 1e-9:  # gimbal lock: put everything in yaw
+        return (0.0, float(pitch), float(np.arctan2(-r[0, 1], r[1, 1])))
+    return (float(np.arctan2(r[2, 1], r[2, 2])), float(pitch), float(np.arctan2(r[1, 0], r[0, 0])))
+
+
+def _fmt(values) -> str:
+    return " ".join(f"{float(v):.6g}" for v in values)
+
+
+@dataclass
+class Placed:
+    """A pose ready for either format."""
+
+    pos: str
+    quat: str
+    rpy: str
+
+    @classmethod
+    def of(cls, m: np.ndarray) -> Placed:
+        return cls(_fmt(m[:3, 3]), _fmt(matrix_to_quat(m[:3, :3])), _fmt(matrix_to_rpy(m[:3, :3])))
+
+
+@dataclass
+class GeomView:
+    name: str
+    kind: str
+    mjcf_size: str
+    urdf_size: dict[str, str]
+    at: Placed
+    rgba: str
+
+
+@dataclass
+class BodyView:
+    link: Link
+    at: Placed
+    geoms: list[GeomView]
+    sites: list[tuple[str, Placed]]
+    pads: list[tuple[FingerPad, GeomView]]
+    gravcomp: bool
+    children: list[BodyView] = field(default_factory=list)
+
+
+def _geom(name: str, shape: Shape, frame: np.ndarray | None = None) -> GeomView:
+    m = shape.origin.matrix() if frame is None else frame
+    s = shape.size
+    if shape.kind == "box":
+        urdf = {"size": _fmt(2 * v for v in s)}
+    elif shape.kind == "sphere":
+        urdf = {"radius": _fmt(s)}
+    else:  # URDF lengths are whole (PyBullet's capsule length excludes the caps, as MJCF's does)
+        urdf = {"radius": _fmt(s[:1]), "length": _fmt([2 * s[1]])}
+    return GeomView(name, shape.kind, _fmt(s), urdf, Placed.of(m), _fmt(shape.rgba))
+
+
+def _pad_frame(pad: FingerPad) -> np.ndarray:
+    """Centre of the pad's box in its link: half a thickness behind the sensing surface."""
+    shift = np.eye(4)
+    shift[2, 3] = -pad.thickness / 2
+    return pad.origin.matrix() @ shift
+
+
+def _pad_geom(pad: FingerPad) -> GeomView:
+    shape = Shape("box", (pad.half_size[0], pad.half_size[1], pad.thickness / 2), rgba=PAD)
+    return _geom(pad.name, shape, _pad_frame(pad))
+
+
+def body_tree(d: RobotDescription) -> BodyView:
+    """The description's links as a tree, with sites and pads hung on their links."""
+    arm_moved: set[str] = set()  # links the arm carries, hand excluded: gravity-compensated like a real arm's servo
+    for link in d.links:
+        moved = (link.joint is not None and link.joint.name in d.arm_joints) or link.parent in arm_moved
+        if moved and link.name not in d.hand_links:
+            arm_moved.add(link.name)
+    views: dict[str, BodyView] = {}
+    root = None
+    for link in d.links:
+        view = BodyView(
+            link=link,
+            at=Placed.of((d.base if link.parent is None else link.origin).matrix()),
+            geoms=[_geom(f"{link.name}_{i}", s) for i, s in enumerate(link.shapes)],
+            sites=[(s.name, Placed.of(s.origin.matrix())) for s in d.sites if s.link == link.name],
+            pads=[(p, _pad_geom(p)) for p in d.hand.pads if p.link == link.name],
+            gravcomp=link.name in arm_moved,
+        )
+        views[link.name] = view
+        if link.parent is None:
+            root = view
+        else:
+            views[link.parent].children.append(view)
+    assert root is not None
+    return root
+
+
+def _depth_first(view: BodyView):
+    """Bodies in MJCF order, which is also the order of their joints in qpos."""
+    yield view
+    for child in view.children:
+        yield from _depth_first(child)
+
+
+_ENV = jinja2.Environment(
+    loader=jinja2.PackageLoader("atd.sim", "templates"),
+    undefined=jinja2.StrictUndefined,
+    trim_blocks=True,
+    lstrip_blocks=True,
+    keep_trailing_newline=True,
+)
+
+
+def _body(body: Body) -> dict:
+    return {"body": body, "at": Placed.of(body.pose), "size": _fmt(body.half_extents), "inertia": _fmt(body.inertia())}
+
+
+def mjcf(d: RobotDescription, scene: Scene) -> str:
+    """The whole MuJoCo world: options, defaults, table, object, obstacles, robot, sensors, home key."""
+    hand_home = d.hand_joint_targets(np.array([dof.open for dof in d.hand.dofs]))
+    hand_joints = [name for name in d.joints if name not in d.arm_joints]
+    home = dict(zip(d.arm_joints, d.home)) | hand_home
+    root = body_tree(d)
+    qpos = [home.get(b.link.joint.name, 0.0) for b in _depth_first(root) if b.link.joint]
+    if scene.object is not None:
+        o = scene.object
+        qpos += list(o.pose[:3, 3]) + list(matrix_to_quat(o.pose[:3, :3]))
+    return _ENV.get_template("scene.mjcf.j2").render(
+        d=d,
+        root=root,
+        table={"pos": _fmt(TABLE_CENTRE), "size": _fmt(TABLE_HALF)} if scene.table else None,
+        object=_body(scene.object) if scene.object else None,
+        obstacles=[_body(b) for b in scene.obstacles],
+        hand_joints=hand_joints,
+        key_qpos=_fmt(qpos),
+        key_ctrl=_fmt([home.get(name, 0.0) for name in list(d.arm_joints) + hand_joints]),
+        fmt=_fmt,
+    )
+
+
+def urdf(d: RobotDescription) -> str:
+    """The robot alone (PyBullet places it at `d.base` and builds the scene itself).
+
+    Pads become links of their own, welded to their finger, so that PyBullet's
+    contact reports (which name links, not shapes) tell pad contacts apart.
+    """
+    return _ENV.get_template("robot.urdf.j2").render(d=d, root=body_tree(d), origin=Placed.of(Origin().matrix()), fmt=_fmt)

@@ -1,0 +1,168 @@
+"""The robot interface on MuJoCo (the primary engine).
+
+Arm joints: position servos with velocity feed-forward and gravity compensation of the
+arm's own links (industrial controllers do the same). Hand joints: affine actuators
+switched between a position servo (kp, kv) and a damped push (force - kv * speed).
+"""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from atd.sim.models import mjcf
+from atd.sim.scene import CAMERA_AZIMUTH, CAMERA_DISTANCE, CAMERA_ELEVATION, CAMERA_TARGET, Scene
+from atd.sim.simrobot import SimRobot
+from factories.description import RobotDescription
+
+
+def _id(m: mujoco.MjModel, kind: mujoco.mjtObj, name: str) -> int:
+    return mujoco.mj_name2id(m, kind, name)
+
+
+class MujocoRobot(SimRobot):
+    engine = "mujoco"
+
+    def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0):
+        super().__init__(description, scene, seed)
+        d = description
+        self.xml = mjcf(d, scene)
+        self.model = m = mujoco.MjModel.from_xml_string(self.xml)
+        self.data = mujoco.MjData(m)
+        mujoco.mj_resetDataKeyframe(m, self.data, 0)
+        mujoco.mj_forward(m, self.data)
+
+        joints = list(d.arm_joints) + list(self.hand_joints)
+        jid = [_id(m, mujoco.mjtObj.mjOBJ_JOINT, n) for n in joints]
+        self._qadr = np.array([m.jnt_qposadr[j] for j in jid])
+        self._vadr = np.array([m.jnt_dofadr[j] for j in jid])
+        self._arm_vadr = self._vadr[: len(d.arm_joints)]
+        n_arm = len(d.arm_joints)
+        self._arm_act = np.arange(n_arm)
+        self._hand_act = np.arange(n_arm, n_arm + len(self.hand_joints))
+        # Velocity feed-forward through the position servo: kp (ref + kv/kp dq) - kp q - kv dq.
+        self._kv_over_kp = np.array([d.joints[n].servo.kv / d.joints[n].servo.kp for n in d.arm_joints])
+        self._hand_kp = np.array([d.joints[n].servo.kp for n in self.hand_joints])
+        self._hand_force = np.zeros(len(self.hand_joints), bool)
+
+        self._tcp_site = _id(m, mujoco.mjtObj.mjOBJ_SITE, d.tcp.name)
+        self._jacp = np.zeros((3, m.nv))
+        self._jacr = np.zeros((3, m.nv))
+        force_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "wrist_force")]
+        torque_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "wrist_torque")]
+        self._wrench_idx = np.r_[force_adr : force_adr + 3, torque_adr : torque_adr + 3]
+        self._touch_adr = np.array(
+            [m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, f"{p.name}_touch")] for p in d.hand.pads], int
+        )
+        self._pad_geom = np.array([_id(m, mujoco.mjtObj.mjOBJ_GEOM, p.name) for p in d.hand.pads], int)
+        self._pad_of_geom = np.full(m.ngeom, -1)
+        self._pad_of_geom[self._pad_geom] = np.arange(len(self._pad_geom))
+        self._untouched = (np.zeros(0, int), np.zeros((0, 2)), np.zeros(0))
+        self._range_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "range")] if d.range_sensor else -1
+        self._object_body = _id(m, mujoco.mjtObj.mjOBJ_BODY, "object")
+        self._object_qadr = m.jnt_qposadr[m.body_jntadr[self._object_body]]  # meaningful only with an object
+        self._renderer: mujoco.Renderer | None = None
+        self._apply_arm(self._q_ref, self._dq_cmd)
+
+    # ---- engine part ------------------------------------------------------------------
+    def _apply_arm(self, q_ref: np.ndarray, dq_ff: np.ndarray) -> None:
+        self.data.ctrl[self._arm_act] = q_ref + self._kv_over_kp * dq_ff
+
+    def _apply_hand(self, force: np.ndarray, values: np.ndarray) -> None:
+        if (force != self._hand_force).any():
+            m = self.model
+            for i in np.flatnonzero(force != self._hand_force):
+                act = self._hand_act[i]
+                kp = 1.0 if force[i] else self._hand_kp[i]
+                m.actuator_gainprm[act, 0] = kp
+                m.actuator_biasprm[act, 1] = 0.0 if force[i] else -kp
+            self._hand_force = force.copy()
+        self.data.ctrl[self._hand_act] = values
+
+    def _set_joints(self, positions: dict[str, float]) -> None:
+        m, d = self.model, self.data
+        for name, q in positions.items():
+            j = _id(m, mujoco.mjtObj.mjOBJ_JOINT, name)
+            d.qpos[m.jnt_qposadr[j]] = q
+            d.qvel[m.jnt_dofadr[j]] = 0.0
+        mujoco.mj_forward(m, d)
+
+    def _advance(self) -> None:
+        # Sensors and site poses come from the start of the last physics step (1 ms old),
+        # as a real sensor's sample is; recomputing them would cost a third of a step.
+        mujoco.mj_step(self.model, self.data, nstep=self.substeps)
+
+    def jacobian(self) -> np.ndarray:
+        mujoco.mj_jacSite(self.model, self.data, self._jacp, self._jacr, self._tcp_site)
+        return np.vstack([self._jacp[:, self._arm_vadr], self._jacr[:, self._arm_vadr]])
+
+    def _joint_state(self):
+        d = self.data
+        return d.qpos[self._qadr], d.qvel[self._vadr], d.qfrc_actuator[self._vadr]
+
+    def _tcp(self) -> np.ndarray:
+        pose = np.eye(4)
+        pose[:3, :3] = self.data.site_xmat[self._tcp_site].reshape(3, 3)
+        pose[:3, 3] = self.data.site_xpos[self._tcp_site]
+        return pose
+
+    def _wrench(self) -> np.ndarray:
+        # MuJoCo reports what the arm exerts on the hand; the interface wants the reverse.
+        return -self.data.sensordata[self._wrench_idx]
+
+    def _pad_contacts(self):
+        d = self.data
+        if d.ncon == 0 or not (d.sensordata[self._touch_adr] > 0).any():
+            return self._untouched
+        contact = d.contact
+        geom = contact.geom
+        pad = np.maximum(self._pad_of_geom[geom[:, 0]], self._pad_of_geom[geom[:, 1]])
+        address = contact.efc_address
+        active = np.flatnonzero((pad >= 0) & (address >= 0))
+        pad = pad[active]
+        g = self._pad_geom[pad]
+        offset = contact.pos[active] - d.geom_xpos[g]
+        # Row vector times each pad's rotation: the point in that pad's frame.
+        xy = np.matmul(offset[:, None, :], d.geom_xmat[g].reshape(-1, 3, 3))[:, 0, :2]
+        # With elliptic cones a contact's first constraint row is its normal force.
+        return pad, xy, d.efc_force[address[active]]
+
+    def _range(self) -> float:
+        distance = float(self.data.sensordata[self._range_adr])
+        low, high = self.description.range_limits
+        return distance if low <= distance <= high else np.inf
+
+    # ---- test hooks ------------------------------------------------------------------
+    def object_pose(self) -> np.ndarray:
+        if self._object_body < 0:
+            raise LookupError("the scene has no object")
+        pose = np.eye(4)
+        pose[:3, :3] = self.data.xmat[self._object_body].reshape(3, 3)
+        pose[:3, 3] = self.data.xpos[self._object_body]
+        return pose
+
+    def place_object(self, pose: np.ndarray) -> None:
+        if self._object_body < 0:
+            raise LookupError("the scene has no object")
+        quat = np.zeros(4)
+        mujoco.mju_mat2Quat(quat, np.ascontiguousarray(pose[:3, :3]).ravel())
+        a = self._object_qadr
+        self.data.qpos[a : a + 7] = np.concatenate([pose[:3, 3], quat])
+        dof = self.model.jnt_dofadr[self.model.body_jntadr[self._object_body]]
+        self.data.qvel[dof : dof + 6] = 0.0
+        mujoco.mj_forward(self.model, self.data)
+
+    def render(self, width: int, height: int) -> np.ndarray:
+        """An RGB picture of the scene (needs an OpenGL backend, e.g. MUJOCO_GL=egl)."""
+        if self._renderer is None:
+            self._renderer = mujoco.Renderer(self.model, height, width)
+        camera = mujoco.MjvCamera()
+        camera.lookat[:] = CAMERA_TARGET
+        camera.distance, camera.azimuth, camera.elevation = CAMERA_DISTANCE, CAMERA_AZIMUTH, CAMERA_ELEVATION
+        self._renderer.update_scene(self.data, camera)
+        return self._renderer.render()
+
+    def close(self) -> None:
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None

@@ -1,0 +1,285 @@
+"""The robot interface on PyBullet, same scene, frames and signs as MuJoCo.
+
+Holding by friction needs (sim-notes.md): a small step, friction anchors, enough solver
+iterations. Bullet multiplies the friction of the two bodies in contact, so robot and
+table use 1 and the object's own coefficient (from the ATD) governs its contacts, as
+geom priority makes it do in MuJoCo. Hand joints follow their DOF with mimic targets.
+"""
+
+from __future__ import annotations
+
+import os
+import tempfile
+
+import numpy as np
+import pybullet as pb
+
+from atd.sim.models import matrix_to_quat, urdf
+from atd.sim.scene import (
+    CAMERA_AZIMUTH,
+    CAMERA_DISTANCE,
+    CAMERA_ELEVATION,
+    CAMERA_TARGET,
+    TABLE_CENTRE,
+    TABLE_HALF,
+    Body,
+    Scene,
+)
+from atd.sim.simrobot import SimRobot
+from factories.description import RobotDescription
+
+SOLVER_ITERATIONS = 50
+ARM_POSITION_GAIN = 0.1
+HAND_POSITION_GAIN = 0.3
+
+
+def _xyzw(m: np.ndarray) -> list[float]:
+    w, x, y, z = matrix_to_quat(m[:3, :3])
+    return [x, y, z, w]
+
+
+def _matrix(position, xyzw) -> np.ndarray:
+    m = np.eye(4)
+    m[:3, :3] = np.array(pb.getMatrixFromQuaternion(xyzw)).reshape(3, 3)
+    m[:3, 3] = position
+    return m
+
+
+class PybulletRobot(SimRobot):
+    engine = "pybullet"
+
+    def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0):
+        super().__init__(description, scene, seed)
+        d = description
+        self.client = c = pb.connect(pb.DIRECT)
+        pb.setTimeStep(d.timestep, physicsClientId=c)
+        pb.setGravity(0, 0, -9.81, physicsClientId=c)
+        pb.setPhysicsEngineParameter(numSolverIterations=SOLVER_ITERATIONS, physicsClientId=c)
+
+        self.urdf = urdf(d)
+        fd, path = tempfile.mkstemp(suffix=".urdf")
+        try:
+            with os.fdopen(fd, "w") as f:
+                f.write(self.urdf)
+            base = d.base.matrix()
+            self.body = pb.loadURDF(
+                path, base[:3, 3].tolist(), _xyzw(base), useFixedBase=True,
+                flags=pb.URDF_USE_INERTIA_FROM_FILE, physicsClientId=c,
+            )
+        finally:
+            os.unlink(path)
+
+        index = {}
+        for i in range(pb.getNumJoints(self.body, physicsClientId=c)):
+            info = pb.getJointInfo(self.body, i, physicsClientId=c)
+            index[info[1].decode()] = i
+            index["link:" + info[12].decode()] = i
+            pb.changeDynamics(self.body, i, lateralFriction=1.0, frictionAnchor=1, physicsClientId=c)
+        self._index = index
+        joints = list(d.arm_joints) + list(self.hand_joints)
+        self._joints = [index[n] for n in joints]
+        self._arm = self._joints[: len(d.arm_joints)]
+        self._hand = self._joints[len(d.arm_joints):]
+        movable = [i for i in range(pb.getNumJoints(self.body, physicsClientId=c))
+                   if pb.getJointInfo(self.body, i, physicsClientId=c)[2] != pb.JOINT_FIXED]
+        self._movable = movable
+        self._jac_columns = [movable.index(i) for i in self._arm]
+        self._hand_link = index["link:" + d.hand_root]
+        self._pad_links = [index["link:" + p.name] for p in d.hand.pads]
+        self._hand_links = [index["link:" + n] for n in d.hand_links if n != d.hand_root] + self._pad_links
+        self._hand_set = {self._hand_link, *self._hand_links}
+        self._pad_of_link = {link: k for k, link in enumerate(self._pad_links)}
+        self._untouched = (np.zeros(0, int), np.zeros((0, 2)), np.zeros(0))
+        self._hand_weights = np.array(  # z of each hand link's weight, root first
+            [-9.81 * pb.getDynamicsInfo(self.body, i, physicsClientId=c)[0] for i in [self._hand_link, *self._hand_links]]
+        )
+        self._contact_cache: tuple | None = None
+        self._root_cache: np.ndarray | None = None
+        hand_root = d.links_by_name[d.hand_root]
+        self._tcp_offset = d.tcp.origin.matrix()
+        self._hand_com_h = np.append(hand_root.centre_of_mass, 1.0)
+        self._tcp_in_link = list(d.tcp.origin.xyz)  # calculateJacobian takes it in the URDF link frame
+        self._range_offset = d.range_sensor.origin.matrix() if d.range_sensor else None
+        self._range_link = index["link:" + d.range_sensor.link] if d.range_sensor else -1
+        self._arm_effort = [d.joints[n].effort for n in d.arm_joints]
+        self._hand_effort = np.array([d.joints[n].effort for n in self.hand_joints])
+        self._hand_kv = np.array([d.joints[n].servo.kv for n in self.hand_joints])
+        self._arm_gain = [ARM_POSITION_GAIN] * len(self._arm)
+
+        home = dict(zip(d.arm_joints, d.home)) | d.hand_joint_targets(self.info.hand.open)
+        for name, i in zip(joints, self._joints):
+            pb.resetJointState(self.body, i, home.get(name, 0.0), physicsClientId=c)
+
+        self._build_scene(scene)
+        self._apply_arm(self._q_ref, self._dq_cmd)
+        self._apply_hand(np.zeros(len(self._hand), bool), np.array([home[n] for n in self.hand_joints]))
+
+    def _set_joints(self, positions: dict[str, float]) -> None:
+        self._contact_cache = self._root_cache = None
+        for name, q in positions.items():
+            pb.resetJointState(self.body, self._index[name], q, 0.0, physicsClientId=self.client)
+
+    def _build_scene(self, scene: Scene) -> None:
+        c = self.client
+        if scene.table:
+            table = pb.createCollisionShape(pb.GEOM_BOX, halfExtents=TABLE_HALF, physicsClientId=c)
+            self.table = pb.createMultiBody(0, table, basePosition=TABLE_CENTRE, physicsClientId=c)
+            pb.changeDynamics(self.table, -1, lateralFriction=1.0, frictionAnchor=1, physicsClientId=c)
+        for obstacle in scene.obstacles:
+            self._make(obstacle, fixed=True)
+        self.object = self._make(scene.object, fixed=False) if scene.object else -1
+
+    def _make(self, body: Body, fixed: bool) -> int:
+        c = self.client
+        half = body.half_extents
+        if body.kind == "box":
+            shape = pb.createCollisionShape(pb.GEOM_BOX, halfExtents=half, physicsClientId=c)
+        elif body.kind == "cylinder":
+            shape = pb.createCollisionShape(pb.GEOM_CYLINDER, radius=half[0], height=2 * half[1], physicsClientId=c)
+        elif body.kind == "sphere":
+            shape = pb.createCollisionShape(pb.GEOM_SPHERE, radius=half[0], physicsClientId=c)
+        else:
+            shape = pb.createCollisionShape(pb.GEOM_MESH, fileName=str(body.mesh), physicsClientId=c)
+        uid = pb.createMultiBody(
+            0 if fixed else body.mass, shape, basePosition=body.pose[:3, 3].tolist(),
+            baseOrientation=_xyzw(body.pose), physicsClientId=c,
+        )
+        pb.changeDynamics(uid, -1, lateralFriction=body.friction, frictionAnchor=1, physicsClientId=c)
+        if not fixed:
+            pb.changeDynamics(
+                uid, -1, spinningFriction=0.01 * body.friction, rollingFriction=0.0001,
+                localInertiaDiagonal=body.inertia(), physicsClientId=c,
+            )
+        return uid
+
+    # ---- engine part ------------------------------------------------------------------
+    def _apply_arm(self, q_ref: np.ndarray, dq_ff: np.ndarray) -> None:
+        pb.setJointMotorControlArray(
+            self.body, self._arm, pb.POSITION_CONTROL, targetPositions=q_ref.tolist(), targetVelocities=dq_ff.tolist(),
+            forces=self._arm_effort, positionGains=self._arm_gain, physicsClientId=self.client,
+        )
+
+    def _apply_hand(self, force: np.ndarray, values: np.ndarray) -> None:
+        """Position joints get a servo; force joints a motor that runs at F/kv pushing with at
+        most F: in free space it closes at the speed where MuJoCo's damped force balances, and
+        against an object it pushes with F, as MuJoCo's does; it also stops the finger being
+        pushed back by less than F (a self-locking drive; Bullet has no joint friction)."""
+        c = self.client
+        servo = np.flatnonzero(~force)
+        if len(servo):
+            pb.setJointMotorControlArray(
+                self.body, [self._hand[i] for i in servo], pb.POSITION_CONTROL, targetPositions=values[servo].tolist(),
+                forces=self._hand_effort[servo].tolist(), positionGains=[HAND_POSITION_GAIN] * len(servo),
+                physicsClientId=c,
+            )
+        pushed = np.flatnonzero(force)
+        if len(pushed):
+            push = np.clip(values[pushed], -self._hand_effort[pushed], self._hand_effort[pushed])
+            pb.setJointMotorControlArray(
+                self.body, [self._hand[i] for i in pushed], pb.VELOCITY_CONTROL,
+                targetVelocities=(push / self._hand_kv[pushed]).tolist(), forces=np.abs(push).tolist(), physicsClientId=c,
+            )
+
+    def _advance(self) -> None:
+        self._contact_cache = self._root_cache = None
+        for _ in range(self.substeps):
+            pb.stepSimulation(physicsClientId=self.client)
+
+    def jacobian(self) -> np.ndarray:
+        q = [s[0] for s in pb.getJointStates(self.body, self._movable, physicsClientId=self.client)]
+        zeros = [0.0] * len(q)
+        lin, ang = pb.calculateJacobian(
+            self.body, self._hand_link, self._tcp_in_link, q, zeros, zeros, physicsClientId=self.client
+        )
+        return np.vstack([np.asarray(lin)[:, self._jac_columns], np.asarray(ang)[:, self._jac_columns]])
+
+    def _joint_state(self):
+        states = pb.getJointStates(self.body, self._joints, physicsClientId=self.client)
+        q, dq, effort = np.array([(s[0], s[1], s[3]) for s in states]).T
+        return q, dq, effort
+
+    def _link_pose(self, link: int) -> np.ndarray:
+        state = pb.getLinkState(self.body, link, computeForwardKinematics=True, physicsClientId=self.client)
+        return _matrix(state[4], state[5])
+
+    def _contacts(self) -> tuple:
+        """This tick's contact points with the robot as body A (shared by F/T and tactile)."""
+        if self._contact_cache is None:
+            self._contact_cache = pb.getContactPoints(bodyA=self.body, physicsClientId=self.client)
+        return self._contact_cache
+
+    def _hand_root(self) -> np.ndarray:
+        if self._root_cache is None:
+            self._root_cache = self._link_pose(self._hand_link)
+        return self._root_cache
+
+    def _tcp(self) -> np.ndarray:
+        return self._hand_root() @ self._tcp_offset
+
+    def _wrench(self) -> np.ndarray:
+        """The hand's weight plus every contact force on it, about the sensor, in the hand frame.
+
+        Bullet's own reaction force at the weld is wrong while the arm moves (fz off by
+        about 7 N at 5 cm/s, measured here), so the sensor is modelled quasi-statically:
+        the hand's inertia (mass times acceleration, a fraction of a newton here) is left out.
+        """
+        root = self._hand_root()
+        origin = root[:3, 3]
+        states = pb.getLinkStates(self.body, self._hand_links, physicsClientId=self.client)
+        # Weights pull along -z: r x (0, 0, w) = (r_y w, -r_x w, 0).
+        arms = np.array([(root @ self._hand_com_h)[:3], *(s[0] for s in states)]) - origin
+        torque = np.array([arms[:, 1] @ self._hand_weights, -(arms[:, 0] @ self._hand_weights), 0.0])
+        force = np.array([0.0, 0.0, self._hand_weights.sum()])
+        hits = [p for p in self._contacts() if p[3] in self._hand_set]
+        if hits:
+            c = np.array([(*p[5], *p[7], p[9], p[10], *p[11], p[12], *p[13]) for p in hits])
+            f = c[:, 3:6] * c[:, 6:7] + c[:, 8:11] * c[:, 7:8] + c[:, 12:15] * c[:, 11:12]
+            r = c[:, 0:3] - origin
+            force += f.sum(axis=0)
+            torque += (r[:, [1, 2, 0]] * f[:, [2, 0, 1]] - r[:, [2, 0, 1]] * f[:, [1, 2, 0]]).sum(axis=0)
+        rot = root[:3, :3]
+        return np.concatenate([force @ rot, torque @ rot])
+
+    def _pad_contacts(self):
+        hits = [(self._pad_of_link[p[3]], p) for p in self._contacts() if p[3] in self._pad_of_link]
+        if not hits:
+            return self._untouched
+        pad = np.array([k for k, _ in hits])
+        frames = {k: self._link_pose(self._pad_links[k]) for k in set(pad.tolist())}
+        xy = np.array([(np.asarray(p[5]) - frames[k][:3, 3]) @ frames[k][:3, :2] for k, p in hits])
+        return pad, xy, np.array([p[9] for _, p in hits])
+
+    def _range(self) -> float:
+        pose = self._link_pose(self._range_link) @ self._range_offset
+        low, high = self.description.range_limits
+        start = pose[:3, 3] + pose[:3, 2] * low
+        hit = pb.rayTest(start.tolist(), (pose[:3, 3] + pose[:3, 2] * high).tolist(), physicsClientId=self.client)[0]
+        return low + hit[2] * (high - low) if hit[0] >= 0 else np.inf
+
+    # ---- test hooks ------------------------------------------------------------------
+    def object_pose(self) -> np.ndarray:
+        if self.object < 0:
+            raise LookupError("the scene has no object")
+        position, xyzw = pb.getBasePositionAndOrientation(self.object, physicsClientId=self.client)
+        return _matrix(position, xyzw)
+
+    def place_object(self, pose: np.ndarray) -> None:
+        if self.object < 0:
+            raise LookupError("the scene has no object")
+        pb.resetBasePositionAndOrientation(self.object, pose[:3, 3].tolist(), _xyzw(pose), physicsClientId=self.client)
+        pb.resetBaseVelocity(self.object, [0, 0, 0], [0, 0, 0], physicsClientId=self.client)
+        self._contact_cache = None
+
+    def render(self, width: int, height: int) -> np.ndarray:
+        """An RGB picture of the scene from the same viewpoint as MuJoCo's (software renderer)."""
+        az, el = np.radians(CAMERA_AZIMUTH), np.radians(CAMERA_ELEVATION)
+        forward = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+        eye = np.asarray(CAMERA_TARGET) - CAMERA_DISTANCE * forward  # as MuJoCo places its free camera
+        view = pb.computeViewMatrix(eye.tolist(), CAMERA_TARGET, [0, 0, 1], physicsClientId=self.client)
+        projection = pb.computeProjectionMatrixFOV(45.0, width / height, 0.05, 5.0, physicsClientId=self.client)
+        image = pb.getCameraImage(width, height, view, projection, renderer=pb.ER_TINY_RENDERER, physicsClientId=self.client)[2]
+        return np.asarray(image, np.uint8).reshape(height, width, 4)[:, :, :3]
+
+    def close(self) -> None:
+        if pb.isConnected(self.client):
+            pb.disconnect(self.client)

@@ -1,0 +1,317 @@
+"""What both engines share behind the robot interface: command bookkeeping (velocity to
+servo references, limits, hand modes), sensor models, and the fault hooks for tests.
+
+An engine subclass only moves numbers in and out of its physics: it applies servo
+references, advances the physics, and reports true joint states, the TCP pose, the
+wrist wrench in the interface's convention, contacts on pads and the IR range.
+"""
+
+from __future__ import annotations
+
+from abc import abstractmethod
+from typing import Sequence
+
+import numpy as np
+
+from atd.sim.scene import Scene
+from atd.sim.sensors import NoisySensor, TaxelImages
+from factories.description import RobotDescription, SensorModel
+from primitives.robot import SENSORS, HandInfo, HandMode, PadInfo, Readings, Robot, RobotInfo
+
+#: How far (rad or m) an arm servo reference may run ahead of the joint: a blocked arm
+#: pushes with a bounded force instead of winding up without end.
+REFERENCE_LEASH = 0.02
+#: Time to reach full speed from rest: the reference generator limits acceleration to
+#: speed limit / RAMP_TIME, as an industrial controller's does, and brakes before limits.
+RAMP_TIME = 0.2
+# Hand modes as small integers, so a tick compares arrays instead of strings.
+POSITION, VELOCITY, FORCE = 0, 1, 2
+_MODE_CODE = {HandMode.POSITION: POSITION, HandMode.VELOCITY: VELOCITY, HandMode.FORCE: FORCE}
+
+
+def _moving_dofs(d: RobotDescription, link: str) -> tuple[int, ...]:
+    """The hand DOFs with a joint between the hand root and `link`."""
+    joints = set()
+    while link and link != d.hand_root:
+        body = d.links_by_name[link]
+        if body.joint is not None:
+            joints.add(body.joint.name)
+        link = body.parent
+    return tuple(k for k, dof in enumerate(d.hand.dofs) if any(j in joints for j, _ in dof.joints))
+
+
+def robot_info(d: RobotDescription) -> RobotInfo:
+    """The static facts a primitive needs, taken from the description."""
+    arm = [d.joints[n] for n in d.arm_joints]
+    hand_limits = [d.joints[dof.joints[0][0]] for dof in d.hand.dofs]
+    ratios = np.array([abs(dof.joints[0][1]) for dof in d.hand.dofs])
+    lower = np.array([min(j.lower / r, j.upper / r) for j, r in zip(hand_limits, ratios)])
+    upper = np.array([max(j.lower / r, j.upper / r) for j, r in zip(hand_limits, ratios)])
+    hand = HandInfo(
+        dofs=tuple(dof.name for dof in d.hand.dofs),
+        lower=lower,
+        upper=upper,
+        velocity_limit=np.array([j.velocity for j in hand_limits]) / ratios,
+        effort_limit=np.array([j.effort for j in hand_limits]) * ratios,
+        closing=np.array([dof.closing for dof in d.hand.dofs], float),
+        open=np.array([dof.open for dof in d.hand.dofs]),
+        closed=np.array([dof.closed for dof in d.hand.dofs]),
+        postures={name: np.array(v) for name, v in d.hand.postures.items()},
+        pads=tuple(PadInfo(p.name, p.taxels, _moving_dofs(d, p.link)) for p in d.hand.pads),
+    )
+    return RobotInfo(
+        name=d.label,
+        control_period=d.control_period,
+        arm_joints=d.arm_joints,
+        arm_lower=np.array([j.lower for j in arm]),
+        arm_upper=np.array([j.upper for j in arm]),
+        arm_velocity_limit=np.array([j.velocity for j in arm]),
+        arm_effort_limit=np.array([j.effort for j in arm]),
+        home=np.array(d.home, float),
+        hand=hand,
+        has_range=d.range_sensor is not None,
+        range_limits=d.range_limits,
+    )
+
+
+class SimRobot(Robot):
+    """A simulated arm and hand; subclasses bind it to one physics engine."""
+
+    engine = ""
+
+    def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0):
+        d = description
+        self.description = d
+        self.info = robot_info(d)
+        self.hand_joints = tuple(n for n in d.joints if n not in d.arm_joints)
+        self.substeps = int(round(d.control_period / d.timestep))
+        n_arm = len(d.arm_joints)
+        # Hand DOF k is read from its first joint; its command spreads over all its joints.
+        self._dof_joint = np.array([n_arm + self.hand_joints.index(dof.joints[0][0]) for dof in d.hand.dofs])
+        self._dof_ratio = np.array([dof.joints[0][1] for dof in d.hand.dofs])
+        self._joint_dof = np.zeros(len(self.hand_joints), int)
+        self._joint_ratio = np.zeros(len(self.hand_joints))
+        self._joint_follows = np.zeros(len(self.hand_joints), bool)  # geared to its DOF's first joint
+        for k, dof in enumerate(d.hand.dofs):
+            for n, (joint, ratio) in enumerate(dof.joints):
+                i = self.hand_joints.index(joint)
+                self._joint_dof[i], self._joint_ratio[i] = k, ratio
+                self._joint_follows[i] = dof.geared and n > 0
+
+        rng = np.random.default_rng(seed)
+        period = d.control_period
+        ideal = SensorModel()
+        self._joint_sensor = NoisySensor(d.sensors.get("joints", ideal), rng, n_arm + len(self.hand_joints), period)
+        self._wrench_sensor = NoisySensor(d.sensors.get("wrench", ideal), rng, 6, period)
+        self._pad_sensor = NoisySensor(d.sensors.get("tactile", ideal), rng, len(d.hand.pads), period)
+        self._range_sensor = NoisySensor(d.sensors.get("range", ideal), rng, 1, period)
+        self._taxels = TaxelImages(d.hand.pads)
+        self._frozen: set[str] = set()
+        self._seq = dict.fromkeys(SENSORS, 0)
+
+        self._time = 0.0
+        self._q_ref = self.info.home.copy()
+        self._dq_cmd = np.zeros(n_arm)
+        self._dq_ref = np.zeros(n_arm)  # the command after acceleration and limit shaping
+        self._hand_modes = np.zeros(len(d.hand.dofs), int)
+        self._hand_values = self.info.hand.open.copy()
+        self._hand_target = self.info.hand.open.copy()  # position reference, also for velocity mode
+        self._hand_changes = True  # the hand's joint commands need working out on the next step
+        self._accel_step = self.info.arm_velocity_limit / RAMP_TIME * period
+        self._two_accel = 2 * self.info.arm_velocity_limit / RAMP_TIME
+        self._last: Readings | None = None
+
+    # ---- the robot interface -------------------------------------------------------
+    def read(self) -> Readings:
+        if self._last is None:
+            self._last = self._sample()
+        return self._last
+
+    def command_arm_velocity(self, dq: np.ndarray) -> None:
+        limit = self.info.arm_velocity_limit
+        self._dq_cmd = np.minimum(np.maximum(dq, -limit), limit)
+
+    def command_hand(self, values: Sequence[float] | np.ndarray, modes: HandMode | Sequence[HandMode]) -> None:
+        hand = self.info.hand
+        n = len(hand.dofs)
+        values = np.asarray(values, float)
+        modes = [modes] * n if isinstance(modes, str) else list(modes)
+        if values.shape != (n,) or len(modes) != n:
+            raise ValueError(f"{self.info.name}: give one hand value and mode per DOF ({', '.join(hand.dofs)})")
+        codes = np.array([_MODE_CODE[HandMode(m)] for m in modes])
+        was_force = self._hand_modes == FORCE
+        self._hand_modes = codes
+        self._hand_values = values
+        position = codes == POSITION
+        self._hand_target[position] = np.clip(values[position], hand.lower[position], hand.upper[position])
+        # A DOF leaving force mode, or starting to move at a velocity, starts from where it is.
+        restart = (codes == VELOCITY) | (was_force & (codes != FORCE))
+        if restart.any():
+            self._hand_target[restart] = self.read().hand_q[restart]
+        self._hand_changes = True
+
+    def step(self) -> None:
+        period = self.info.control_period
+        q = self.read().arm_q
+        lower, upper, q_ref = self.info.arm_lower, self.info.arm_upper, self._q_ref
+        # This tick's speed: within the acceleration ramp, and slow enough to stop at a limit.
+        slowest = np.maximum(self._dq_ref - self._accel_step, -np.sqrt(self._two_accel * np.maximum(q_ref - lower, 0.0)))
+        fastest = np.minimum(self._dq_ref + self._accel_step, np.sqrt(self._two_accel * np.maximum(upper - q_ref, 0.0)))
+        dq = np.minimum(np.maximum(self._dq_cmd, slowest), fastest)
+        q_ref = np.maximum(q_ref + dq * period, np.maximum(lower, q - REFERENCE_LEASH))
+        self._q_ref = np.minimum(q_ref, np.minimum(upper, q + REFERENCE_LEASH))
+        self._dq_ref = dq
+        self._apply_arm(self._q_ref, dq)
+        if self._hand_changes:
+            self._update_hand()
+        self._advance()
+        self._time += period
+        self._last = self._sample()
+
+    def _update_hand(self) -> None:
+        """Turn the DOF commands into joint commands; needed each tick only while a target
+        moves (velocity mode) or a geared joint follows its motor joint (force mode)."""
+        hand = self.info.hand
+        velocity = self._hand_modes == VELOCITY
+        if velocity.any():
+            rate = np.minimum(np.maximum(self._hand_values, -hand.velocity_limit), hand.velocity_limit)
+            target = self._hand_target + rate * self.info.control_period
+            target = np.minimum(np.maximum(target, hand.lower), hand.upper)
+            self._hand_target = np.where(velocity, target, self._hand_target)
+        dof = self._joint_dof
+        force_dof = self._hand_modes[dof] == FORCE
+        # Under a force command a geared joint follows where its DOF's motor joint is.
+        follows = force_dof & self._joint_follows
+        joint_force = force_dof & ~follows
+        reference = np.where(follows, self.read().hand_q[dof], self._hand_target[dof])
+        joint_values = np.where(joint_force, self._hand_values[dof], reference) * self._joint_ratio
+        self._apply_hand(joint_force, joint_values)
+        self._hand_changes = bool(velocity.any() or follows.any())
+
+    # ---- fault hooks, for tests of the layers above (not part of the interface) ---------
+    def freeze(self, sensor: str) -> None:
+        """Stop a sensor stream updating, as a stuck driver would."""
+        if sensor not in SENSORS:
+            raise ValueError(f"unknown sensor '{sensor}'; one of {', '.join(SENSORS)}")
+        self._frozen.add(sensor)
+
+    def unfreeze(self, sensor: str) -> None:
+        self._frozen.discard(sensor)
+
+    def reset_arm(self, q: np.ndarray) -> None:
+        """Teleport the arm to `q`, at rest, holding there."""
+        q = np.asarray(q, float)
+        self._set_joints(dict(zip(self.info.arm_joints, q)))
+        self._q_ref = q.copy()
+        self._dq_cmd = np.zeros_like(q)
+        self._dq_ref = np.zeros_like(q)
+        self._apply_arm(self._q_ref, self._dq_ref)
+        self._last = self._sample()
+
+    @abstractmethod
+    def object_pose(self) -> np.ndarray:
+        """True 4x4 pose of the scene's object (for checks, not for primitives)."""
+
+    @abstractmethod
+    def place_object(self, pose: np.ndarray) -> None:
+        """Teleport the object, at rest (moving it away removes it from the task)."""
+
+    @abstractmethod
+    def render(self, width: int, height: int) -> np.ndarray:
+        """An RGB picture (height, width, 3) of the scene, for videos."""
+
+    @abstractmethod
+    def close(self) -> None:
+        """Release the engine."""
+
+    # ---- the engine's part --------------------------------------------------------------
+    @abstractmethod
+    def _apply_arm(self, q_ref: np.ndarray, dq_ff: np.ndarray) -> None:
+        """Servo references for the arm joints, with velocity feed-forward."""
+
+    @abstractmethod
+    def _apply_hand(self, force: np.ndarray, values: np.ndarray) -> None:
+        """Per hand joint: a force (where `force`) or a position reference."""
+
+    @abstractmethod
+    def _set_joints(self, positions: dict[str, float]) -> None:
+        """Teleport joints, at rest, and bring poses and sensors up to date."""
+
+    @abstractmethod
+    def _advance(self) -> None:
+        """Run the physics for one control period."""
+
+    @abstractmethod
+    def _joint_state(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """True (q, dq, effort) of arm joints then `hand_joints`."""
+
+    @abstractmethod
+    def _tcp(self) -> np.ndarray:
+        """True TCP pose."""
+
+    @abstractmethod
+    def _wrench(self) -> np.ndarray:
+        """True wrist wrench in the interface's convention."""
+
+    @abstractmethod
+    def _pad_contacts(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Contacts on pads: pad index (k,), point in that pad's frame (k, 2), normal force (k,)."""
+
+    @abstractmethod
+    def _range(self) -> float:
+        """True distance along the IR sensor's axis, inf when nothing is in range."""
+
+    # ---- sampling --------------------------------------------------------------------------
+    def _sample(self) -> Readings:
+        prev = self._last
+        seq = self._seq
+        frozen = self._frozen
+        n = len(self.info.arm_joints)
+
+        if "joints" in frozen and prev is not None:
+            arm_q, arm_dq, arm_eff, hand_q, hand_dq, hand_eff = (
+                prev.arm_q, prev.arm_dq, prev.arm_effort, prev.hand_q, prev.hand_dq, prev.hand_effort
+            )
+        else:
+            q, dq, eff = self._joint_state()
+            q = self._joint_sensor(q)
+            arm_q, arm_dq, arm_eff = q[:n], dq[:n], eff[:n]
+            first, ratio = self._dof_joint, self._dof_ratio
+            hand_q, hand_dq, hand_eff = q[first] / ratio, dq[first] / ratio, eff[first] * ratio
+            seq["joints"] += 1
+
+        if "wrench" in frozen and prev is not None:
+            wrench = prev.wrench
+        else:
+            wrench = self._wrench_sensor(self._wrench())
+            seq["wrench"] += 1
+
+        if "tactile" in frozen and prev is not None:
+            taxels, pad_force = prev.taxels, prev.pad_force
+        else:
+            taxels, pad_force = self._tactile(hand_eff)
+            seq["tactile"] += 1
+
+        rng = None
+        if self.info.has_range:
+            if "range" in frozen and prev is not None:
+                rng = prev.range
+            else:
+                rng = float(self._range_sensor(np.array([self._range()]))[0])
+                seq["range"] += 1
+
+        return Readings(
+            time=self._time, arm_q=arm_q, arm_dq=arm_dq, arm_effort=arm_eff,
+            hand_q=hand_q, hand_dq=hand_dq, hand_effort=hand_eff, tcp=self._tcp(), wrench=wrench,
+            taxels=taxels, pad_force=pad_force, range=rng, seq=dict(seq),
+        )
+
+    def _tactile(self, hand_effort: np.ndarray) -> tuple[dict[str, np.ndarray | None], np.ndarray]:
+        pads = self.description.hand.pads
+        if self.description.hand.pad_force_from_effort:
+            # No tactile array: each finger reports the grip force its DOF measures.
+            squeeze = np.maximum(0.0, self.info.hand.closing * hand_effort)
+            force = np.array([squeeze[0]] * len(pads))
+            return dict.fromkeys((p.name for p in pads), None), self._pad_sensor(force)
+        images, force = self._taxels(*self._pad_contacts())
+        return images, self._pad_sensor(force)

@@ -1,0 +1,101 @@
+"""What the robot interface costs over bare engine stepping, per robot and engine.
+
+For each robot model and engine, the same simulated world is advanced twice for the same
+simulated time: by the engine alone (the physics steps of each control tick, with the
+servo references left as they are), and through the robot interface (a velocity command,
+`step()` and a `read()` of every sensor each 5 ms tick). Both run while the hand holds the
+5 cm test box in the air, where contacts make sensing dearest. Prints steps per second,
+the real-time factor through the interface and the overhead ratio (target: at most 1.25).
+
+    python benchmarks/bench_robot_interface.py [--seconds 2] [--repeat 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from atd.sim import ENGINES, load_description, make_robot, variants  # noqa: E402
+from atd.sim.selftest import close_on_box, move_tcp, pose  # noqa: E402
+from atd.sim.simrobot import SimRobot  # noqa: E402
+
+
+def holding(robot: SimRobot) -> None:
+    """Grip the test box as the self-test does and lift it 5 cm."""
+    orientation = robot.read().tcp[:3, :3]
+    box = robot.object_pose()[:3, 3]
+    close_on_box(robot, orientation, robot.step)
+    move_tcp(robot, pose(orientation, box + (0, 0, 0.05)), robot.step, speed=0.1)
+
+
+def bare_loop(robot: SimRobot, ticks: int) -> float:
+    """Seconds for the engine alone to run `ticks` control periods."""
+    n = robot.substeps
+    if robot.engine == "mujoco":
+        import mujoco
+
+        m, d = robot.model, robot.data
+        start = time.perf_counter()
+        for _ in range(ticks):
+            mujoco.mj_step(m, d, nstep=n)
+        return time.perf_counter() - start
+    import pybullet as pb
+
+    client = robot.client
+    start = time.perf_counter()
+    for _ in range(ticks):
+        for _ in range(n):
+            pb.stepSimulation(physicsClientId=client)
+    return time.perf_counter() - start
+
+
+def interface_loop(robot: SimRobot, ticks: int) -> float:
+    """Seconds to run `ticks` control periods through the interface, reading everything."""
+    still = np.zeros(robot.info.arm_dof)
+    start = time.perf_counter()
+    for _ in range(ticks):
+        robot.command_arm_velocity(still)
+        robot.step()
+        robot.read()
+    return time.perf_counter() - start
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--seconds", type=float, default=2.0, help="simulated seconds per measurement")
+    parser.add_argument("--repeat", type=int, default=3, help="measurements per loop; the fastest counts")
+    args = parser.parse_args()
+
+    print(f"{'robot':<20} {'engine':<9} {'bare steps/s':>13} {'interface steps/s':>18} {'x real time':>12} {'overhead':>9}")
+    worst = 0.0
+    for robot_name, arm in variants():
+        description = load_description(robot_name, arm)
+        for engine in ENGINES:
+            robot = make_robot(description, engine=engine)
+            try:
+                holding(robot)
+                ticks = round(args.seconds / robot.info.control_period)
+                steps = ticks * robot.substeps
+                # Interleaved, so that both loops see the same states of the held box.
+                times = [(bare_loop(robot, ticks), interface_loop(robot, ticks)) for _ in range(args.repeat)]
+                bare = min(t[0] for t in times)
+                through = min(t[1] for t in times)
+            finally:
+                robot.close()
+            ratio = through / bare
+            worst = max(worst, ratio)
+            print(
+                f"{description.label:<20} {engine:<9} {steps / bare:>13,.0f} {steps / through:>18,.0f} "
+                f"{args.seconds / through:>12.1f} {ratio:>9.2f}"
+            )
+    print(f"worst overhead ratio {worst:.2f} (target <= 1.25)")
+
+
+if __name__ == "__main__":
+    main()

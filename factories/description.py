@@ -1,0 +1,322 @@
+"""A robot description: the one source of truth from which every simulation model is made.
+
+Frames follow URDF: a link's frame is its joint's frame, placed by `origin` in the parent
+link's frame; shapes, sites and the centre of mass are given in the link frame. Capsules
+and cylinders lie along their local z axis. One description is one arm with its hand
+(plus the fixed body it is mounted on), placed in the ATD world frame by `base`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Literal
+
+import numpy as np
+
+Vec3 = tuple[float, float, float]
+GRAVITY = 9.81
+
+
+def rotation_rpy(rpy: Vec3) -> np.ndarray:
+    """URDF fixed-axis roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll)."""
+    r, p, y = rpy
+    cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
+    return np.array(
+        [
+            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+            [-sp, cp * sr, cp * cr],
+        ]
+    )
+
+
+def axis_rotation(axis: np.ndarray, angle: float) -> np.ndarray:
+    """Rodrigues' rotation about a unit axis."""
+    x, y, z = axis
+    k = np.array([[0, -z, y], [z, 0, -x], [-y, x, 0]])
+    return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * (k @ k)
+
+
+@dataclass(frozen=True)
+class Origin:
+    xyz: Vec3 = (0.0, 0.0, 0.0)
+    rpy: Vec3 = (0.0, 0.0, 0.0)
+
+    def matrix(self) -> np.ndarray:
+        m = np.eye(4)
+        m[:3, :3] = rotation_rpy(self.rpy)
+        m[:3, 3] = self.xyz
+        return m
+
+
+@dataclass(frozen=True)
+class Shape:
+    """A collision primitive. `size`: box = half extents (3); capsule and cylinder =
+    (radius, half length of the axis); sphere = (radius,)."""
+
+    kind: Literal["box", "capsule", "cylinder", "sphere"]
+    size: tuple[float, ...]
+    origin: Origin = Origin()
+    rgba: tuple[float, float, float, float] = (0.6, 0.6, 0.65, 1.0)
+
+    def inertia(self, mass: float) -> Vec3:
+        """Principal moments of a solid of this shape about its own centre, along its axes."""
+        if self.kind == "box":
+            a, b, c = (2 * s for s in self.size)
+            return (mass * (b * b + c * c) / 12, mass * (a * a + c * c) / 12, mass * (a * a + b * b) / 12)
+        if self.kind == "sphere":
+            i = 0.4 * mass * self.size[0] ** 2
+            return (i, i, i)
+        r, half = self.size
+        length = 2 * half + (4 / 3 * r if self.kind == "capsule" else 0)  # caps as extra length, roughly
+        side = mass * (3 * r * r + length * length) / 12
+        return (side, side, mass * r * r / 2)
+
+
+@dataclass(frozen=True)
+class Servo:
+    """A joint's position/velocity servo: stiffness kp (N m/rad or N/m) and damping kv."""
+
+    kp: float
+    kv: float
+
+
+@dataclass(frozen=True)
+class Joint:
+    name: str
+    kind: Literal["revolute", "prismatic"]
+    axis: Vec3
+    lower: float
+    upper: float
+    velocity: float  # rad/s or m/s
+    effort: float  # N m or N
+    servo: Servo
+    damping: float = 0.0
+    armature: float = 0.0  # reflected rotor inertia, kg m^2 (kg for prismatic)
+    friction: float = 0.0  # dry friction, N m or N: a self-locking drive resists being pushed back
+
+
+@dataclass(frozen=True)
+class Link:
+    """A rigid body. `joint` None means it is welded to its parent."""
+
+    name: str
+    parent: str | None
+    origin: Origin
+    mass: float
+    shapes: tuple[Shape, ...] = ()
+    joint: Joint | None = None
+    com: Vec3 | None = None  # default: the centre of the first shape
+    inertia: Vec3 | None = None  # principal moments; default: the first shape as a solid
+
+    @property
+    def centre_of_mass(self) -> Vec3:
+        if self.com is not None:
+            return self.com
+        return self.shapes[0].origin.xyz if self.shapes else (0.0, 0.0, 0.0)
+
+    @property
+    def inertia_diagonal(self) -> Vec3:
+        """Moments along the link axes; a rotated first shape is handled through its rotation."""
+        if self.inertia is not None:
+            return self.inertia
+        if not self.shapes:
+            i = 1e-5 * max(self.mass, 1e-3)
+            return (i, i, i)
+        shape = self.shapes[0]
+        r = rotation_rpy(shape.origin.rpy)
+        full = r @ np.diag(shape.inertia(self.mass)) @ r.T
+        return tuple(float(v) for v in np.diag(full))  # type: ignore[return-value]
+
+
+@dataclass(frozen=True)
+class Site:
+    """A frame of interest on a link (TCP, wrist sensor, IR sensor, attachment)."""
+
+    name: str
+    link: str
+    origin: Origin = Origin()
+
+
+@dataclass(frozen=True)
+class FingerPad:
+    """A tactile pad: a thin box on a finger whose +z face is the sensing surface.
+
+    `half_size` = (x, y) half extents of the surface, `taxels` = (rows along y, cols
+    along x) of its sensor array, or None where only one force is measured.
+    """
+
+    name: str
+    link: str
+    origin: Origin
+    half_size: tuple[float, float]
+    thickness: float
+    taxels: tuple[int, int] | None
+
+
+@dataclass(frozen=True)
+class HandDof:
+    """One actuated motion: the joints it drives, each with its ratio to the DOF value.
+
+    `geared`: the first joint carries the motor and the others follow it through a
+    linkage (a Barrett finger's distal joint), so under a force command only the first
+    is pushed; otherwise every joint is pushed alike (the two jaws of a parallel gripper).
+    """
+
+    name: str
+    joints: tuple[tuple[str, float], ...]
+    closing: int  # +1 / -1: direction that closes the hand; 0: does not close it
+    open: float
+    closed: float
+    geared: bool = False
+
+
+@dataclass(frozen=True)
+class Hand:
+    name: str
+    dofs: tuple[HandDof, ...]
+    pads: tuple[FingerPad, ...]
+    postures: dict[str, tuple[float, ...]] = field(default_factory=dict)  # D5 hand shape -> DOF values
+    pad_force_from_effort: bool = False  # no tactile array: pad force = measured finger effort
+    test_grasp: str = "power_grasp"  # the hand shape (with its preshape) `atd robots test` lifts a 5 cm box with
+
+
+@dataclass(frozen=True)
+class SensorModel:
+    """How a sensor differs from the truth: white noise, constant bias, a first-order
+    low-pass filter (cutoff in Hz, None = unfiltered) and quantisation (0 = none).
+    Noise and bias are one number for every axis or one per axis (force then torque)."""
+
+    noise_std: float | tuple[float, ...] = 0.0
+    bias: float | tuple[float, ...] = 0.0
+    cutoff_hz: float | None = None
+    resolution: float = 0.0
+
+
+@dataclass(frozen=True)
+class RobotDescription:
+    name: str
+    arm: str | None  # which arm of a two-arm robot; None for one-arm robots
+    links: tuple[Link, ...]  # parents before children; the first is the fixed base
+    arm_joints: tuple[str, ...]  # joint names, base to flange
+    hand_root: str  # first hand link: its weld to the arm is where the wrist F/T sensor sits
+    hand: Hand
+    tcp: Site
+    wrist_sensor: Site  # on hand_root, oriented like the hand frame
+    base: Origin  # placement of the base link in the ATD world frame
+    home: tuple[float, ...]  # arm joint positions
+    sensors: dict[str, SensorModel] = field(default_factory=dict)  # keys: joints, wrench, tactile, range
+    range_sensor: Site | None = None
+    range_limits: tuple[float, float] = (0.0, 0.0)
+    extra_sites: tuple[Site, ...] = ()
+    control_period: float = 0.005
+    timestep: float = 0.001
+
+    @property
+    def label(self) -> str:
+        return f"{self.name}/{self.arm}" if self.arm else self.name
+
+    @cached_property
+    def links_by_name(self) -> dict[str, Link]:
+        return {link.name: link for link in self.links}
+
+    @cached_property
+    def joints(self) -> dict[str, Joint]:
+        """Every joint by name, in tree order."""
+        return {link.joint.name: link.joint for link in self.links if link.joint is not None}
+
+    @cached_property
+    def joint_link(self) -> dict[str, str]:
+        """The link each joint moves."""
+        return {link.joint.name: link.name for link in self.links if link.joint is not None}
+
+    @cached_property
+    def hand_links(self) -> tuple[str, ...]:
+        """hand_root and everything below it."""
+        names = [self.hand_root]
+        for link in self.links:
+            if link.parent in names:
+                names.append(link.name)
+        return tuple(names)
+
+    @property
+    def hand_mass(self) -> float:
+        return sum(self.links_by_name[n].mass for n in self.hand_links)
+
+    @property
+    def sites(self) -> tuple[Site, ...]:
+        found = (self.tcp, self.wrist_sensor) + ((self.range_sensor,) if self.range_sensor else ())
+        return found + self.extra_sites
+
+    def hand_joint_targets(self, dof_values: np.ndarray) -> dict[str, float]:
+        """Joint positions that put the hand DOFs at `dof_values`."""
+        return {
+            joint: ratio * float(value)
+            for dof, value in zip(self.hand.dofs, dof_values)
+            for joint, ratio in dof.joints
+        }
+
+    def link_poses(self, joints: dict[str, float]) -> dict[str, np.ndarray]:
+        """Forward kinematics: world pose of every link for the given joint positions (missing = 0)."""
+        poses: dict[str, np.ndarray] = {}
+        for link in self.links:
+            parent = poses[link.parent] if link.parent else self.base.matrix()
+            pose = parent @ link.origin.matrix()
+            if link.joint is not None:
+                q = joints.get(link.joint.name, 0.0)
+                motion = np.eye(4)
+                axis = np.asarray(link.joint.axis, float)
+                if link.joint.kind == "revolute":
+                    motion[:3, :3] = axis_rotation(axis, q)
+                else:
+                    motion[:3, 3] = axis * q
+                pose = pose @ motion
+            poses[link.name] = pose
+        return poses
+
+    def site_pose(self, site: Site, joints: dict[str, float]) -> np.ndarray:
+        return self.link_poses(joints)[site.link] @ site.origin.matrix()
+
+    def tcp_pose(self, arm_q: np.ndarray, hand_dofs: np.ndarray | None = None) -> np.ndarray:
+        joints = dict(zip(self.arm_joints, (float(v) for v in arm_q)))
+        if hand_dofs is not None:
+            joints.update(self.hand_joint_targets(hand_dofs))
+        return self.site_pose(self.tcp, joints)
+
+    def tcp_jacobian(self, arm_q: np.ndarray) -> np.ndarray:
+        """(6, n) geometric Jacobian of the TCP in the world frame, from this description alone."""
+        joints = dict(zip(self.arm_joints, (float(v) for v in arm_q)))
+        poses = self.link_poses(joints)
+        tcp = (poses[self.tcp.link] @ self.tcp.origin.matrix())[:3, 3]
+        columns = []
+        for name in self.arm_joints:
+            pose = poses[self.joint_link[name]]
+            joint = self.joints[name]
+            axis = pose[:3, :3] @ np.asarray(joint.axis, float)
+            if joint.kind == "revolute":
+                columns.append(np.concatenate([np.cross(axis, tcp - pose[:3, 3]), axis]))
+            else:
+                columns.append(np.concatenate([axis, np.zeros(3)]))
+        return np.array(columns).T
+
+    def inverse_kinematics(
+        self, target: np.ndarray, start: np.ndarray, iterations: int = 300, tolerance: float = 1e-5
+    ) -> tuple[np.ndarray, float]:
+        """Arm joints that put the TCP at the 4x4 `target`, by damped least squares within
+        the joint limits; returns them with the remaining position error (m)."""
+        lower = np.array([self.joints[n].lower for n in self.arm_joints])
+        upper = np.array([self.joints[n].upper for n in self.arm_joints])
+        q = np.clip(np.asarray(start, float), lower, upper)
+        error = np.inf
+        for _ in range(iterations):
+            pose = self.tcp_pose(q)
+            rot_err = 0.5 * sum(np.cross(pose[:3, i], target[:3, i]) for i in range(3))
+            e = np.concatenate([target[:3, 3] - pose[:3, 3], rot_err])
+            error = float(np.linalg.norm(e[:3]))
+            if np.linalg.norm(e) < tolerance:
+                break
+            jac = self.tcp_jacobian(q)
+            step = jac.T @ np.linalg.solve(jac @ jac.T + 1e-4 * np.eye(6), e)
+            q = np.clip(q + step, lower, upper)
+        return q, error

@@ -1,0 +1,153 @@
+"""The arm side of the grasps: the robust grasp (thesis 3.3.1) with its approach and
+alignment (Eq. 3.1), sliding grasp (Eq. 3.2) and the moves the hand side asks for
+(finger-lost correction); and the naive baseline grasp of thesis 3.4.1.
+
+Both talk with the hand side through the blackboard: they raise CONTACT when the hand may
+close; the robust one also watches FINGERS_STOPPED to end the sliding grasp and carries
+out SHIFT requests.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from primitives.arm.motion import GAIN, orientation_twist
+from primitives.arm.move import arm_output
+from primitives.base import Context, ControlData, Controller, Status
+from primitives.blackboard import CONTACT, FINGERS_STOPPED, SHIFT
+from primitives.filters import ContactWrench
+from primitives.robot import Readings
+
+SHIFT_TOLERANCE = 0.002  # m: a requested shift counts as made
+BACK_OFF = 0.002  # m: the naive approach settles this far short of its contact
+SHIFT_TIME = 2.0  # s: a shift that has not arrived by then is blocked; the grasp goes on from there
+
+
+class RobustGraspApproach(Controller):
+    """Approach along GRASP_DIRECTION until the wrist feels a contact, align on it, then
+    ride the supporting surface while the fingers close.
+
+    Alignment (Eq. 3.1, hand frame): while in contact, T_y > T_t moves v_x - v_z,
+    T_y < -T_t moves -v_x - v_z; out of contact the hand approaches at v_z; contact with
+    |T_y| <= T_t ends the alignment, as does covering MAX_DISTANCE without a contact.
+    Sliding grasp (Eq. 3.2), with the wrench tared when it starts: F_z <= -F_t (fingers
+    pushing on the surface) backs off, F_z >= F_t (the contact taken at the start is
+    lost) moves forward, otherwise the arm stays; it ends when the fingers stop.
+    """
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        p = self.params
+        direction = np.asarray(p["grasp_direction"], float)
+        self.direction = direction / np.linalg.norm(direction)
+        self.max_distance = float(p["max_distance"])
+        self.force_threshold = float(p["force_threshold"])
+        self.torque_threshold = float(p["torque_threshold"])
+        self.speed = float(p["correction_velocity"])
+        self.contact = ContactWrench(float(p["filter_time"]))
+        self.side = np.array([1.0, 0.0, 0.0])  # v_x of Eq. 3.1
+
+    def start(self, readings: Readings) -> None:
+        self.contact.start(readings)
+        self.origin = readings.tcp[:3, 3].copy()
+        self.rotation = readings.tcp[:3, :3].copy()
+        self.phase = "approach"
+        self.goal: np.ndarray | None = None  # where to stay, or to shift to
+        self.ctx.blackboard[CONTACT] = False
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        board = self.ctx.blackboard
+        wrench = self.contact.update(readings, dt)
+        rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
+        if board.get(SHIFT) is not None and self.phase != "shift":
+            shift = np.asarray(board[SHIFT], float)
+            self.phase, self.goal = "shift", position + rotation @ shift
+            # A shift along the approach looks for the object, so a contact ends it; a
+            # sideways one drags the fingertips over the surface, which is no reason to stop.
+            self.probing = float(shift @ self.direction) > 0.0
+            self.contact.start(readings)
+            self.shift_started = readings.time
+        v = np.zeros(3)  # hand frame
+        if self.phase == "approach":
+            v = self._align(readings, wrench)
+        if self.phase == "slide":
+            if board.get(FINGERS_STOPPED):
+                self.phase, self.goal = "hold", position.copy()
+                self.finish(Status.DONE, "the fingers closed")
+            elif wrench[2] <= -self.force_threshold:
+                v = -self.speed * self.direction
+            elif wrench[2] >= self.force_threshold:
+                v = self.speed * self.direction
+        world = rotation @ v
+        if self.phase in ("hold", "shift"):
+            world = GAIN * (self.goal - position)
+            if self.phase == "shift" and (np.linalg.norm(self.goal - position) < SHIFT_TOLERANCE
+                                          or (self.probing and self.contact.force >= self.force_threshold)
+                                          or readings.time - self.shift_started > SHIFT_TIME):
+                board[SHIFT] = None  # made, or as far as the surface or the object allows
+                self._slide(readings)
+        w, _ = orientation_twist(self.rotation, rotation)
+        return arm_output(np.concatenate([world, w]))
+
+    def _align(self, readings: Readings, wrench: np.ndarray) -> np.ndarray:
+        """Eq. 3.1; switches to the sliding grasp when the alignment is over."""
+        if self.contact.force >= self.force_threshold:
+            torque = float(wrench[4])
+            if torque > self.torque_threshold:
+                return self.speed * (self.side - self.direction)
+            if torque < -self.torque_threshold:
+                return self.speed * (-self.side - self.direction)
+            self._slide(readings)
+            return np.zeros(3)
+        travelled = float((readings.tcp[:3, 3] - self.origin) @ (readings.tcp[:3, :3] @ self.direction))
+        if travelled >= self.max_distance:
+            self._slide(readings)
+            return np.zeros(3)
+        return self.speed * self.direction
+
+    def _slide(self, readings: Readings) -> None:
+        self.contact.start(readings)
+        self.phase = "slide"
+        self.ctx.blackboard[CONTACT] = True
+
+
+class NaiveGraspApproach(Controller):
+    """The naive grasp's arm (thesis 3.4.1): forward along the grasp direction until the
+    wrist feels a contact or `distance` is covered, then stay (BACK_OFF short of where it
+    stopped, so the fingers do not close while pressing on what they hit) and let the
+    hand close. No alignment, no riding the surface: the baseline the robust grasp is
+    measured by."""
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        p = self.params
+        direction = np.asarray(p["grasp_direction"], float)
+        self.direction = direction / np.linalg.norm(direction)
+        self.distance = float(p["distance"])
+        self.threshold = float(p["force_threshold"])
+        self.velocity = float(p["velocity"])
+        self.contact = ContactWrench(float(p["filter_time"]))
+
+    def start(self, readings: Readings) -> None:
+        self.contact.start(readings)
+        self.origin = readings.tcp[:3, 3].copy()
+        self.rotation = readings.tcp[:3, :3].copy()
+        self.ctx.blackboard[CONTACT] = False
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        self.contact.update(readings, dt)
+        rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
+        if self.status is Status.RUNNING:
+            travelled = float((position - self.origin) @ (rotation @ self.direction))
+            if self.contact.force >= self.threshold:
+                self._stop(position, rotation, f"contact after {travelled * 100:.1f} cm")
+            elif travelled >= self.distance:
+                self._stop(position, rotation, f"moved {travelled * 100:.1f} cm without a contact")
+        v = GAIN * (self.goal - position) if self.status is Status.DONE else rotation @ (self.velocity * self.direction)
+        w, _ = orientation_twist(self.rotation, rotation)
+        return arm_output(np.concatenate([v, w]))
+
+    def _stop(self, position: np.ndarray, rotation: np.ndarray, reason: str) -> None:
+        self.goal = position - BACK_OFF * (rotation @ self.direction)
+        self.ctx.blackboard[CONTACT] = True
+        self.finish(Status.DONE, reason)

@@ -1,0 +1,155 @@
+"""Cartesian velocity building blocks shared by every arm controller.
+
+Thesis 3.3.2: a Cartesian velocity law v = n (x_target - x_current), kept inside velocity
+limits, resolved to joint velocities by the robot (damped least squares). Here too: the
+proportional law with its gains, orientation errors, the twist shaper that enforces
+velocity and acceleration limits, and the detour around known obstacles.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Sequence
+
+import numpy as np
+
+GAIN = 4.0  # 1/s: linear P gain; 3 mm from the target the TCP still moves at 12 mm/s
+ROTATION_GAIN = 3.0  # 1/s
+MAX_ANGULAR_SPEED = 1.0  # rad/s
+ORIENTATION_TOLERANCE = math.radians(2.0)
+
+# Our smoothing, always on: a velocity step of 0.15 m/s in one 5 ms tick would shake the
+# hand with tens of newtons of inertial force, which the wrist sensor cannot tell from a
+# contact. 1 m/s^2 costs 0.15 s of ramp and keeps inertial forces near 1.5 N.
+LINEAR_ACCELERATION = 1.0  # m/s^2
+ANGULAR_ACCELERATION = 4.0  # rad/s^2
+
+WORLD_DOWN = np.array([0.0, 0.0, -1.0])
+
+
+def top_down(rotation: np.ndarray) -> np.ndarray:
+    """The top-down hand orientation nearest `rotation`: hand z = world -z, the hand's x
+    axis kept as it points now (projected on the table plane), so the grasp keeps its yaw."""
+    x = rotation[:, 0] - rotation[2, 0] * np.array([0.0, 0.0, 1.0])
+    if np.linalg.norm(x) < 1e-6:  # hand x points straight up or down: take hand y's yaw
+        x = np.cross(rotation[:, 1], WORLD_DOWN)
+    x /= np.linalg.norm(x)
+    z = WORLD_DOWN
+    return np.column_stack([x, np.cross(z, x), z])
+
+
+def rotation_error(goal: np.ndarray, current: np.ndarray) -> np.ndarray:
+    """World-frame rotation vector (axis * angle) that turns `current` into `goal`."""
+    r = (goal @ current.T).tolist()  # plain floats: nine element reads cost less than on an array
+    cos = max(-1.0, min(1.0, (r[0][0] + r[1][1] + r[2][2] - 1.0) / 2.0))
+    angle = math.acos(cos)
+    if angle < 1e-9:
+        return np.zeros(3)
+    if math.pi - angle < 1e-6:  # half a turn: the axis is the eigenvector of r for eigenvalue 1
+        return np.sqrt(np.maximum(0.0, (np.array([r[0][0], r[1][1], r[2][2]]) + 1.0) / 2.0)) * angle
+    scale = angle / (2.0 * math.sin(angle))
+    return np.array([r[2][1] - r[1][2], r[0][2] - r[2][0], r[1][0] - r[0][1]]) * scale
+
+
+def norm(v: np.ndarray) -> float:
+    """Euclidean norm of a short vector (a fraction of np.linalg.norm's cost, every tick)."""
+    return math.sqrt(float(v @ v))
+
+
+def clamp_norm(v: np.ndarray, limit: float) -> np.ndarray:
+    n = norm(v)
+    return v * (limit / n) if n > limit > 0.0 else v
+
+
+def orientation_twist(goal: np.ndarray, current: np.ndarray) -> tuple[np.ndarray, float]:
+    """Angular velocity towards `goal`, and the angle still to turn."""
+    err = rotation_error(goal, current)
+    angle = norm(err)
+    return clamp_norm(ROTATION_GAIN * err, MAX_ANGULAR_SPEED), angle
+
+
+class TwistShaper:
+    """Keeps a commanded twist within the velocity and acceleration limits (thesis 3.3.2
+    VELOCITY_LIMITS, ACCELERATION_LIMITS: per axis, zero = no limit), and always within
+    our gentle acceleration ramp."""
+
+    def __init__(self, velocity_limits: Sequence[float] = (0.0,) * 6,
+                 acceleration_limits: Sequence[float] = (0.0,) * 6) -> None:
+        vel = np.asarray(velocity_limits, float)
+        acc = np.asarray(acceleration_limits, float)
+        self._vel = np.where(vel > 0.0, vel, np.inf) if (vel > 0.0).any() else None
+        self._acc = np.where(acc > 0.0, acc, np.inf) if (acc > 0.0).any() else None
+        self.last = np.zeros(6)
+
+    def stop(self) -> np.ndarray:
+        """An immediate stop (a contact does not wait for a ramp)."""
+        self.last = np.zeros(6)
+        return self.last
+
+    def __call__(self, twist: np.ndarray, dt: float) -> np.ndarray:
+        wanted = twist if self._vel is None else np.minimum(np.maximum(twist, -self._vel), self._vel)
+        change = wanted - self.last
+        if self._acc is not None:
+            step = self._acc * dt
+            change = np.minimum(np.maximum(change, -step), step)
+        change[:3] = clamp_norm(change[:3], LINEAR_ACCELERATION * dt)
+        change[3:] = clamp_norm(change[3:], ANGULAR_ACCELERATION * dt)
+        self.last = self.last + change
+        return self.last
+
+
+class ObstacleDetour:
+    """Routes around known box obstacles (thesis 3.3.2 OBSTACLES): up, across, down.
+
+    Each box is grown by `clearance` (the hand's reach around the TCP). A straight leg
+    that would cross a grown box is replaced by a climb to just above the highest box in
+    the way, a level leg, and a descent onto the goal. Obstacles stand on the table, so
+    over the top is always a way round, and unlike a repulsive field this cannot stall
+    in a local minimum in front of a box. A box that holds the leg's start or goal (a
+    goal right beside an obstacle) cannot be kept clear of and is not routed around.
+    """
+
+    def __init__(self, centres: Sequence[Sequence[float]], sizes: Sequence[Sequence[float]],
+                 clearance: float = 0.05) -> None:
+        centres = np.asarray(centres, float).reshape(-1, 3)
+        sizes = np.asarray(sizes, float).reshape(-1, 3) if len(sizes) else np.zeros_like(centres)
+        self._low = centres - sizes / 2 - clearance
+        self._high = centres + sizes / 2 + clearance
+
+    def route(self, start: np.ndarray, goal: np.ndarray) -> list[np.ndarray]:
+        """The points to visit after `start`, ending with `goal`."""
+        blocking = self._crossed(start, goal)
+        if not blocking:
+            return [goal]
+        height = max(start[2], goal[2])
+        while blocking:  # raise the level leg until it crosses nothing
+            height = max(height, max(self._high[i][2] for i in blocking))
+            up = np.array([start[0], start[1], height])
+            over = np.array([goal[0], goal[1], height])
+            blocking = [i for i in self._crossed(up, over) if self._high[i][2] > height]
+        return [up, over, goal]
+
+    def _crossed(self, a: np.ndarray, b: np.ndarray) -> list[int]:
+        """Boxes the segment a-b passes through, other than those holding a or b (slab test)."""
+        crossed = []
+        d = b - a
+        for i, (low, high) in enumerate(zip(self._low, self._high)):
+            if _inside(a, low, high) or _inside(b, low, high):
+                continue
+            enter, leave = 0.0, 1.0
+            for k in range(3):
+                if abs(d[k]) < 1e-12:
+                    if not low[k] <= a[k] <= high[k]:
+                        break
+                    continue
+                t0, t1 = sorted(((low[k] - a[k]) / d[k], (high[k] - a[k]) / d[k]))
+                enter, leave = max(enter, t0), min(leave, t1)
+                if enter > leave:
+                    break
+            else:
+                crossed.append(i)
+        return crossed
+
+
+def _inside(p: np.ndarray, low: np.ndarray, high: np.ndarray) -> bool:
+    return bool(np.all(p >= low) and np.all(p <= high))

@@ -1,0 +1,151 @@
+"""Moving the TCP: holding still, and the move/transport controller (thesis 3.3.2, Eq. 3.3).
+
+The same Cartesian controller serves every arm (thesis 7.3) and every ATD movement type
+(thesis 7.2): free (any path: straight at the goal, or over the top of known obstacles), guarded
+(along the straight Cartesian line, ending on contact), constrained (the hand's
+orientation held all along, inside the velocity and acceleration limits).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from primitives.arm.motion import (
+    GAIN,
+    ORIENTATION_TOLERANCE,
+    ObstacleDetour,
+    TwistShaper,
+    clamp_norm,
+    norm,
+    orientation_twist,
+    top_down,
+)
+from primitives.base import ArmCommand, Context, ControlData, Controller, Status
+from primitives.blackboard import ARM_NUDGE
+from primitives.filters import ContactWrench
+from primitives.robot import Readings
+
+VIA_TOLERANCE = 0.01  # m: a via point counts as passed this close
+STALL_TIME = 2.0  # s without getting 1 mm closer: the target cannot be reached
+STALL_PROGRESS = 0.001  # m
+
+
+def arm_output(twist: np.ndarray) -> ControlData:
+    return ControlData(arm=ArmCommand(twist=twist))
+
+
+class Hold(Controller):
+    """Keep the TCP where it was when the state began (D5 2.2.4: the arm idles while the
+    hand works). Done at once. Follows the hand side's ARM_NUDGE, so a gripper can
+    re-centre itself on the object by moving the arm."""
+
+    def start(self, readings: Readings) -> None:
+        self.position = readings.tcp[:3, 3].copy()
+        self.rotation = readings.tcp[:3, :3].copy()
+        self.finish(Status.DONE, "holding the pose")
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        nudge = self.ctx.blackboard.get(ARM_NUDGE)
+        v = np.zeros(3)
+        if nudge is not None:
+            v = np.asarray(nudge, float)
+            self.position = self.position + v * dt
+        v = v + GAIN * (self.position - readings.tcp[:3, 3])
+        w, _ = orientation_twist(self.rotation, readings.tcp[:3, :3])
+        return arm_output(np.concatenate([v, w]))
+
+
+class CartesianMove(Controller):
+    """Move the TCP through the waypoints to the target; stop on a contact (Eq. 3.3).
+
+    v = n (x_goal - x) while ||F|| < FORCE_THRESHOLD, else 0, with n keeping v within the
+    speed limit. On a guarded move the contact is what the motion looks for, so stopping
+    on it is success; on any other move it is unexpected and the controller gives up
+    (status ERROR), leaving the collision event to say what happened. The hand ends
+    top-down (hand z = world -z) with the yaw it started with.
+    """
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        p = self.params
+        self.via = [np.asarray(w, float) for w in p.get("waypoints", ())] + [np.asarray(p["target"], float)]
+        self.straight = bool(p["straight_line"])
+        self.keep_orientation = bool(p["keep_orientation"])
+        self.threshold = float(p["force_threshold"])
+        self.max_speed = float(p["max_speed"])
+        self.tolerance = float(p["tolerance"])
+        self.contact = ContactWrench(float(p["filter_time"]))
+        self.shaper = TwistShaper(p["velocity_limits"], p["acceleration_limits"])
+        self.detour = ObstacleDetour(p.get("obstacles", ()), p.get("obstacle_sizes", ()))
+        self.rest: np.ndarray | None = None  # where to stay once finished; None = stand still
+
+    def start(self, readings: Readings) -> None:
+        self.contact.start(readings)
+        self.rotation = top_down(readings.tcp[:3, :3])
+        self.leg = 0
+        self.leg_start = readings.tcp[:3, 3].copy()
+        self.points = []
+        for point in self.via:
+            self.points += self.detour.route(self.points[-1] if self.points else self.leg_start, point)
+        self._reset_progress(readings.time)
+
+    def _reset_progress(self, now: float) -> None:
+        self.best = np.inf
+        self.best_time = now
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        if self.status is not Status.RUNNING:
+            return self._stay(readings)
+        self.contact.update(readings, dt)
+        force = self.contact.force
+        if force >= self.threshold:
+            self.shaper.stop()
+            status = Status.DONE if self.straight else Status.ERROR
+            what = "stopped on contact" if self.straight else "unexpected contact"
+            self.finish(status, f"{what}: |F| = {force:.1f} N >= {self.threshold:g} N")
+            return self._stay(readings)
+
+        position = readings.tcp[:3, 3]
+        goal = self.points[self.leg]
+        distance = norm(goal - position)
+        if self.leg < len(self.points) - 1 and distance < VIA_TOLERANCE:
+            self.leg_start, self.leg = goal, self.leg + 1
+            self._reset_progress(readings.time)
+            goal = self.points[self.leg]
+            distance = norm(goal - position)
+
+        w, angle = orientation_twist(self.rotation, readings.tcp[:3, :3])
+        if self.leg == len(self.points) - 1 and distance < self.tolerance and angle < ORIENTATION_TOLERANCE:
+            self.rest = goal
+            self.finish(Status.DONE, f"reached the target ({distance * 1000:.1f} mm)")
+            return self._stay(readings)
+        if distance < self.best - STALL_PROGRESS:
+            self.best, self.best_time = distance, readings.time
+        elif readings.time - self.best_time > STALL_TIME:
+            self.shaper.stop()
+            self.finish(Status.ERROR, f"no progress for {STALL_TIME:g} s, {distance:.3f} m from "
+                                      f"({goal[0]:.3f}, {goal[1]:.3f}, {goal[2]:.3f})")
+            return self._stay(readings)
+
+        v = self._line(position, goal) if self.straight else clamp_norm(GAIN * (goal - position), self.max_speed)
+        if self.keep_orientation and angle > ORIENTATION_TOLERANCE:
+            v = v * (ORIENTATION_TOLERANCE / angle)  # turn back first, then move on
+        return arm_output(self.shaper(np.concatenate([v, w]), dt))
+
+    def _line(self, position: np.ndarray, goal: np.ndarray) -> np.ndarray:
+        """Along the straight line from the leg's start to its goal, pulled back onto it."""
+        leg = goal - self.leg_start
+        length = norm(leg)
+        if length < 1e-6:
+            return clamp_norm(GAIN * (goal - position), self.max_speed)
+        u = leg / length
+        s = float((position - self.leg_start) @ u)
+        on_line = self.leg_start + min(max(s, 0.0), length) * u
+        along = max(-self.max_speed, min(self.max_speed, GAIN * (length - s)))
+        return clamp_norm(u * along + GAIN * (on_line - position), self.max_speed)
+
+    def _stay(self, readings: Readings) -> ControlData:
+        if self.rest is None:
+            return arm_output(np.zeros(6))
+        w, _ = orientation_twist(self.rotation, readings.tcp[:3, :3])
+        return arm_output(np.concatenate([GAIN * (self.rest - readings.tcp[:3, 3]), w]))

@@ -1,0 +1,22 @@
+"""The keys of `Context.blackboard`: how the arm and hand sides of one primitive talk.
+
+D5 2.2.4 runs an arm controller and a hand controller side by side in one state; some
+primitives need them to coordinate (the robust grasp closes the fingers only once the
+arm has found the object; a parallel gripper re-centres by asking the arm to move).
+The executor runs the arm controller before the hand controller each tick, so a value
+the hand writes is read by the arm one tick (5 ms) later, and the reverse in the same tick.
+"""
+
+ARM_NUDGE = "arm_nudge"
+"""Hand -> arm: (3,) world-frame TCP velocity, m/s, to add to the arm's own motion."""
+
+CONTACT = "contact"
+"""Arm -> hand: True once the arm's approach has ended (object found, or nothing within
+reach): the hand may close."""
+
+FINGERS_STOPPED = "fingers_stopped"
+"""Hand -> arm: True once the fingers can close no further (object held, or limits)."""
+
+SHIFT = "shift"
+"""Hand -> arm: (3,) hand-frame displacement, m, for the arm to make before the hand
+tries again (finger-lost correction); the arm sets it back to None when done."""

@@ -1,0 +1,256 @@
+"""Leaf conditions: every condition kind of the vocabulary, from the robot's own sensors.
+
+Each leaf answers `holds` every control tick (the executor never short-circuits, so
+debounce timers see every tick) and keeps in `evidence` the readings behind its latest
+verdict, which the trace records when the event fires. Sensor names in a leaf are the
+factory's (`tactile_left`, `wrist_ft`, `gripper`, ...); `pad_indices` finds the robot's
+pad behind each tactile name.
+"""
+
+from __future__ import annotations
+
+import math
+from abc import abstractmethod
+
+import numpy as np
+
+from primitives.base import Condition, Context, StateView, Status
+from primitives.filters import ContactWrench, Debounce
+from primitives.robot import HandInfo, Readings
+
+# hardware_failure ingredients (ours)
+STALE_TIME = 0.05  # s a sensor stream may go without an update before it counts as frozen
+LIMIT_MARGIN = 1e-3  # rad or m: a joint this close to a limit sits on it
+LIMIT_TIME = 0.2  # s on a limit before it counts as stuck there
+RUNAWAY_SPEED = 3.0  # times the joint speed limit: the physics has run away
+RUNAWAY_FORCE = 1e4  # N on the wrist
+RUNAWAY_DISTANCE = 10.0  # m of the TCP from the world origin
+
+
+def pad_indices(hand: HandInfo, sensors: tuple[str, ...]) -> list[int]:
+    """The robot pads behind the factory's tactile sensor names.
+
+    A sensor `tactile_X` is the pad named `tactile_X`, `X` or `X_pad` (so the factory's
+    `tactile_left` is the simulated `left_pad`).
+    """
+    names = [p.name for p in hand.pads]
+    found = []
+    for sensor in sensors:
+        stem = sensor.removeprefix("tactile_")
+        match = next((names.index(n) for n in (sensor, stem, f"{stem}_pad") if n in names), None)
+        if match is None:
+            raise ValueError(f"tactile sensor '{sensor}' names no pad of this hand (pads: {', '.join(names) or 'none'})")
+        found.append(match)
+    return found
+
+
+class StatusIs(Condition):
+    """A controller (or sub-task) has reached a status: the `*_done`, `*_error`,
+    `subtask_*` kinds."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...], which: str, status: Status) -> None:
+        super().__init__(ctx, sensors)
+        self.which, self.status = which, status
+
+    def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
+        actual = getattr(state, self.which)
+        if actual is not self.status:
+            return False
+        self.evidence = {self.which: actual.value, "reason": state.reasons.get(self.which, "")}
+        return True
+
+
+class Timeout(Condition):
+    def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
+        limit = float(self.params["seconds"])
+        self.evidence = {"elapsed": state.elapsed, "seconds": limit}
+        return state.elapsed >= limit - 1e-9
+
+
+class Fault(Condition):
+    """A hardware failure on one side: its controller reports FAULT, one of its sensor
+    streams stopped updating (`Readings.seq`), or (arm) a joint is stuck on a limit."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...], side: str, streams: tuple[str, ...]) -> None:
+        super().__init__(ctx, sensors)
+        self.side, self.streams = side, streams
+        info = ctx.info
+        self.lower = info.arm_lower + LIMIT_MARGIN
+        self.upper = info.arm_upper - LIMIT_MARGIN
+        self.on_limit = Debounce(LIMIT_TIME)
+
+    def start(self, readings: Readings) -> None:
+        self.seq = {s: readings.seq.get(s, 0) for s in self.streams}
+        self.updated = dict.fromkeys(self.streams, readings.time)
+        self.on_limit.reset()
+
+    def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
+        if getattr(state, self.side) is Status.FAULT:
+            self.evidence = {self.side: "fault", "reason": state.reasons.get(self.side, "")}
+            return True
+        now = readings.time
+        for stream in self.streams:
+            seq = readings.seq.get(stream, 0)
+            if seq != self.seq[stream]:
+                self.seq[stream], self.updated[stream] = seq, now
+            elif now - self.updated[stream] > STALE_TIME:
+                self.evidence = {"frozen_sensor": stream, "seq": seq, "last_update": self.updated[stream]}
+                return True
+        if self.side == "arm":
+            q = readings.arm_q
+            stuck = (q <= self.lower) | (q >= self.upper)
+            if self.on_limit(bool(stuck.any()), dt):
+                joint = self.ctx.info.arm_joints[int(np.argmax(stuck))]
+                self.evidence = {"joint_on_limit": joint, "q": q[np.argmax(stuck)], "for": self.on_limit.held}
+                return True
+        return False
+
+
+class SimulationUnstable(Condition):
+    """The physics diverged: a non-finite reading, or joints, wrench or TCP far beyond
+    anything a working robot shows. A joint that jumps further in one tick than its speed
+    allows counts too: an engine that meets NaNs may reset its state (MuJoCo does), and
+    the jump is all a sensor sees of that."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...] = ()) -> None:
+        super().__init__(ctx, sensors)
+        self.max_speed = RUNAWAY_SPEED * ctx.info.arm_velocity_limit
+
+    def start(self, readings: Readings) -> None:
+        self.last_q = readings.arm_q
+
+    def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
+        r = readings
+        parts = (r.arm_q, r.arm_dq, r.hand_q, r.wrench, r.tcp[:3, 3])
+        if not math.isfinite(sum(float(p.sum()) for p in parts)):  # a NaN or inf anywhere spoils the sum
+            names = ("arm_q", "arm_dq", "hand_q", "wrench", "tcp")
+            self.evidence = {name: p for name, p in zip(names, parts) if not np.isfinite(p).all()}
+            self.evidence["non_finite"] = ", ".join(self.evidence)
+            return True
+        jump, self.last_q = np.abs(r.arm_q - self.last_q), r.arm_q
+        if float((np.maximum(np.abs(r.arm_dq), jump / dt) - self.max_speed).max()) > 0.0:
+            self.evidence = {"runaway_joint_speed": r.arm_dq, "joint_jump": jump}
+            return True
+        force, where = r.wrench[:3], r.tcp[:3, 3]
+        if float(force @ force) > RUNAWAY_FORCE ** 2 or float(where @ where) > RUNAWAY_DISTANCE ** 2:
+            self.evidence = {"runaway_wrench": r.wrench, "tcp": where}
+            return True
+        return False
+
+
+class Debounced(Condition):
+    """A sensor test that must hold for `for_time` without a break."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...]) -> None:
+        super().__init__(ctx, sensors)
+        self.debounce = Debounce(float(self.params.get("for_time", 0.0)))
+
+    def start(self, readings: Readings) -> None:
+        self.debounce.reset()
+
+    def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
+        verdict = self.debounce(self.test(readings, dt), dt)
+        self.evidence["held_for"] = max(self.debounce.held, 0.0)
+        return verdict
+
+    @abstractmethod
+    def test(self, readings: Readings, dt: float) -> bool:
+        """The undebounced verdict; sets `evidence`."""
+
+
+class TactileForce(Debounced):
+    """At least `min_pads` of the named pads read >= `force_threshold` (above), or fewer
+    do (below)."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...], above: bool) -> None:
+        super().__init__(ctx, sensors)
+        self.pads = pad_indices(ctx.info.hand, sensors)
+        self.threshold = float(self.params["force_threshold"])
+        self.min_pads = int(self.params["min_pads"])
+        self.above = above
+
+    def test(self, readings: Readings, dt: float) -> bool:
+        forces = readings.pad_force[self.pads]
+        touching = int((forces >= self.threshold).sum())
+        self.evidence = {"pad_force": dict(zip(self.sensors, forces)), "threshold": self.threshold,
+                         "min_pads": self.min_pads}
+        return (touching >= self.min_pads) == self.above
+
+
+class TactileLoadChange(Debounced):
+    """The summed pad force moved by more than `force_change` since the state began: the
+    held object touched something."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...]) -> None:
+        super().__init__(ctx, sensors)
+        self.pads = pad_indices(ctx.info.hand, sensors)
+        self.change = float(self.params["force_change"])
+
+    def start(self, readings: Readings) -> None:
+        super().start(readings)
+        self.initial = float(readings.pad_force[self.pads].sum())
+
+    def test(self, readings: Readings, dt: float) -> bool:
+        total = float(readings.pad_force[self.pads].sum())
+        self.evidence = {"pad_force_sum": total, "at_start": self.initial, "force_change": self.change}
+        return abs(total - self.initial) > self.change
+
+
+class WristForceAbove(Debounced):
+    """The contact wrench (tared at the state's start, filtered) exceeds the threshold:
+    its force norm, or minus its hand-z force (the hand pushed back)."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...]) -> None:
+        super().__init__(ctx, sensors)
+        self.threshold = float(self.params["force_threshold"])
+        self.axis = str(self.params["axis"])
+        self.contact = ContactWrench(float(self.params["filter_time"]))
+
+    def start(self, readings: Readings) -> None:
+        super().start(readings)
+        self.contact.start(readings)
+
+    def test(self, readings: Readings, dt: float) -> bool:
+        wrench = self.contact.update(readings, dt)
+        value = self.contact.force if self.axis == "norm" else -float(wrench[2])
+        self.evidence = {"force": value, "axis": self.axis, "threshold": self.threshold, "contact_wrench": wrench}
+        return value > self.threshold
+
+
+class Gripper(Debounced):
+    """A parallel gripper's own sensing: motor force (N, along closing) or jaw opening
+    (m between the pads, beyond the closed gap), compared with a threshold."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...], quantity: str, above: bool) -> None:
+        super().__init__(ctx, sensors)
+        hand = ctx.info.hand
+        if len(hand.dofs) != 1:
+            raise ValueError(f"gripper sensing needs a one-DOF parallel gripper; this hand has {len(hand.dofs)} DOFs")
+        self.closing, self.closed = float(hand.closing[0]), float(hand.closed[0])
+        self.quantity, self.above = quantity, above
+        self.threshold = float(self.params["force_threshold" if quantity == "force" else "width"])
+
+    def test(self, readings: Readings, dt: float) -> bool:
+        if self.quantity == "force":
+            value = max(0.0, self.closing * float(readings.hand_effort[0]))
+        else:
+            value = 2.0 * abs(float(readings.hand_q[0]) - self.closed)  # both jaws move
+        self.evidence = {self.quantity: value, "threshold": self.threshold}
+        return (value > self.threshold) if self.above else (value < self.threshold)
+
+
+class Range(Debounced):
+    """The range sensor along the approach axis reads below / above a distance (inf =
+    nothing in range)."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...], above: bool) -> None:
+        super().__init__(ctx, sensors)
+        if not ctx.info.has_range:
+            raise ValueError("this robot has no range sensor")
+        self.distance = float(self.params["distance"])
+        self.above = above
+
+    def test(self, readings: Readings, dt: float) -> bool:
+        value = math.inf if readings.range is None else float(readings.range)
+        self.evidence = {"range": value if math.isfinite(value) else "out of range", "distance": self.distance}
+        return (value > self.distance) if self.above else (value < self.distance)

@@ -1,0 +1,85 @@
+"""Signal conditioning shared by controllers and conditions: taring, low-pass, debounce.
+
+A wrist sensor reads the hand's own weight, and whatever it holds, all the time; a
+threshold on the raw reading would fire at rest. Controllers and conditions therefore
+look at the *contact* wrench: the reading minus what it was when the state began, with
+the weight turned with the hand so that a rotating wrist does not look like a contact.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from primitives.robot import Readings
+
+
+class LowPass:
+    """First-order low-pass with time constant `tau` (0 = pass through)."""
+
+    def __init__(self, tau: float) -> None:
+        self.tau = tau
+        self.value: np.ndarray | None = None
+
+    def reset(self, value: np.ndarray) -> None:
+        self.value = np.array(value, float)
+
+    def __call__(self, x: np.ndarray, dt: float) -> np.ndarray:
+        if self.value is None or self.tau <= 0.0:
+            self.value = np.array(x, float)
+        else:
+            self.value += (1.0 - math.exp(-dt / self.tau)) * (x - self.value)
+        return self.value
+
+
+class ContactWrench:
+    """The wrench that contacts add since `start`: tared, gravity turned with the hand, filtered.
+
+    At `start` the reading is taken to be pure load (hand plus held object). Its force is
+    a fixed vector in the world, so at a later hand rotation R it reads R^T R0 f0 in the
+    hand frame; what is left over is contact. Torques are tared in the hand frame only
+    (the load's centre of mass is not known), which is exact as long as the hand keeps
+    its orientation, as every primitive here does while it watches for contact.
+    """
+
+    def __init__(self, filter_time: float = 0.0) -> None:
+        self._filter = LowPass(filter_time)
+        self._load_world = np.zeros(3)
+        self._torque0 = np.zeros(3)
+        self.value = np.zeros(6)
+
+    def start(self, readings: Readings) -> None:
+        self._load_world = readings.tcp[:3, :3] @ readings.wrench[:3]
+        self._torque0 = readings.wrench[3:].copy()
+        self._filter.reset(np.zeros(6))
+        self.value = np.zeros(6)
+
+    def update(self, readings: Readings, dt: float) -> np.ndarray:
+        raw = readings.wrench
+        contact = np.empty(6)
+        contact[:3] = raw[:3] - readings.tcp[:3, :3].T @ self._load_world
+        contact[3:] = raw[3:] - self._torque0
+        self.value = self._filter(contact, dt)
+        return self.value
+
+    @property
+    def force(self) -> float:
+        """||F|| of the contact force, N."""
+        f = self.value
+        return math.sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
+
+
+class Debounce:
+    """True once its input has been true for `for_time` without a break (0 = at once)."""
+
+    def __init__(self, for_time: float) -> None:
+        self.for_time = for_time
+        self.held = -1.0  # s the input has been true; -1 = it is false
+
+    def reset(self) -> None:
+        self.held = -1.0
+
+    def __call__(self, value: bool, dt: float) -> bool:
+        self.held = (self.held + dt if self.held >= 0.0 else 0.0) if value else -1.0
+        return self.held >= self.for_time - 1e-9

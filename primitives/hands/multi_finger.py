@@ -1,0 +1,249 @@
+"""Grasps of three-finger hands: the hand side of the robust grasp (thesis 3.3.1; D5
+appendix), and the naive baseline grasp of thesis 3.4.1 it is measured against.
+
+The robust grasp: preshape, wait for the arm to find the object (blackboard CONTACT),
+close every grasping finger until it can close no further, then judge the grasp by the
+pads:
+
+- every grasping finger touches: force adaptation raises each finger's effort until its
+  pad feels GRASP_FORCE; the grasp succeeds only then, with the object held;
+- some fingers touch and others closed on nothing (finger lost): reopen and ask the arm
+  to shift the hand towards the fingers that touched, then close again;
+- no finger touches (object lost, D5 security reflex): reopen, move a little further
+  along the approach, close again.
+
+Each hand kind gives where its fingers stand on the palm (`FingerLayout`), which is all
+the finger-lost correction needs to know which way "towards the contacts" is.
+"""
+
+from __future__ import annotations
+
+from abc import abstractmethod
+from typing import Mapping
+
+import numpy as np
+
+from primitives.base import Context, ControlData, Controller, HandCommand, Status
+from primitives.blackboard import CONTACT, FINGERS_STOPPED, SHIFT
+from primitives.robot import HandMode, Readings
+
+FingerLayout = Mapping[str, tuple[float, float]]  # finger pad -> (x, y) of its finger's base in the hand frame, m
+
+CLOSING_SPEED = 0.3  # of each DOF's speed limit
+LEAD = 0.05  # of a DOF's range: how far a closing finger's reference may run ahead of it
+TOUCH_EFFORT = 0.05  # of the effort limit: where force adaptation starts, a light touch
+SETTLE_TIME = 0.1  # s every pad must feel the grasp force (within 10 %) before the object counts as held
+ADAPT_GAIN = 0.05  # effort (fraction of the limit) per N of missing pad force, per s
+HELD = 0.9  # within 10 % of GRASP_FORCE on every grasping pad: the object is held
+STALL_TIME = 0.3  # s a finger may stand still before it counts as stopped
+REACHED = 0.02  # of a DOF's range
+FINGER_LOST_SHIFT = 0.015  # m towards the fingers that touched, per correction
+OBJECT_LOST_STEP = 0.01  # m further along the approach, per retry (D5: "a little bit down")
+RETRIES = 3
+
+
+class FingerGrasp(Controller):
+    """What every grasp of a multi-finger hand shares: which DOFs grasp (those the grasp
+    posture moves), which pad each one's finger carries, and the phases preshape, wait
+    for the arm's CONTACT, close, and hold; subclasses say how to close and how to hold."""
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        hand = ctx.info.hand
+        postures = hand.postures
+        shapes = [s for s in (self.params.get("preshape"), self.params.get("grasp_shape")) if s is not None]
+        for shape in shapes:
+            if shape not in postures:
+                raise ValueError(f"the hand cannot make the shape '{shape}'; it makes: {', '.join(sorted(postures))}")
+        if self.params.get("grasp_shape") is None:
+            raise ValueError("a multi-finger grasp needs grasp_shape")
+        self.grasp = np.asarray(postures[self.params["grasp_shape"]], float)
+        self.preshape = np.asarray(postures[self.params["preshape"]], float) if self.params.get("preshape") else None
+        self.size = self.params.get("pregrasp_size")
+        self.touch = float(self.params["contact_threshold"])
+        self.range = hand.upper - hand.lower
+        self.rate = CLOSING_SPEED * hand.velocity_limit
+        # A finger is known by its pad; a DOF belongs to the one finger whose pad it moves
+        # (a spread that moves two fingers, and a palm pad no DOF moves, belong to none).
+        self.pad_of = {pad.name: i for i, pad in enumerate(hand.pads)}
+        self.finger_of_dof = [
+            movers[0] if len(movers := [p.name for p in hand.pads if k in p.dofs]) == 1 else None
+            for k in range(len(hand.dofs))
+        ]
+
+    # -- phases -------------------------------------------------------------------------
+    def start(self, readings: Readings) -> None:
+        hand = self.ctx.info.hand
+        pre = readings.hand_q.copy() if self.preshape is None else self.preshape.copy()
+        moving = (hand.closing != 0) & ~np.isclose(self.grasp, pre, atol=1e-4)
+        if self.size is not None:  # open at least this far; closing past the preshape could catch the object
+            sized = hand.closed + float(self.size) * (hand.open - hand.closed)
+            wider = hand.closing * (pre - sized) > 0
+            pre[moving & wider] = sized[moving & wider]
+        self.pre, self.moving = pre, moving
+        self.fingers = sorted({self.finger_of_dof[i] for i in np.flatnonzero(moving)} - {None})
+        self.reference = readings.hand_q.copy()
+        self.effort = np.zeros_like(self.reference)
+        self.pressing = moving  # the DOFs pressed by force once holding
+        self.retries = 0
+        self.phase = "preshape"
+        self.still = np.zeros_like(self.reference)
+        self.ctx.blackboard[FINGERS_STOPPED] = False
+        if not self.fingers:
+            self.finish(Status.ERROR, "from this posture the grasp shape moves no finger that has a tactile pad")
+            self.phase = "failed"
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        board = self.ctx.blackboard
+        q = readings.hand_q
+        if self.phase == "preshape":
+            if self._ramp(self.pre, dt, q) or self._blocked(readings, dt):
+                self.phase = "wait"
+        elif self.phase == "wait" and board.get(CONTACT):
+            self._begin_closing(board)
+        elif self.phase == "close":
+            self._close(readings, dt, board)
+        elif self.phase == "reopen":
+            if self._ramp(self.pre, dt, q) or self._blocked(readings, dt):
+                board[SHIFT] = self.shift
+                self.phase = "shift"
+        elif self.phase == "shift" and board.get(SHIFT) is None:
+            self.retries += 1
+            self._begin_closing(board)
+        elif self.phase == "hold":
+            self._hold(readings, dt)
+        return self._command()
+
+    @abstractmethod
+    def _close(self, readings: Readings, dt: float, board: dict) -> None:
+        """One tick of closing; ends by setting FINGERS_STOPPED and the next phase."""
+
+    @abstractmethod
+    def _hold(self, readings: Readings, dt: float) -> None:
+        """One tick of holding the object once the fingers have closed."""
+
+    def _begin_closing(self, board: dict) -> None:
+        self.phase = "close"
+        self.still[:] = 0.0
+        board[FINGERS_STOPPED] = False
+
+    def _closed(self, readings: Readings, dt: float) -> bool:
+        """One tick of closing: every grasping finger closes until it stands still (on the
+        object, or blocked) or reaches its limit; true once all have. A pad touching on
+        the way (a fingertip sliding on the table) does not stop a finger: only where the
+        fingers end up counts, as a Barrett finger's clutch stops it only when blocked."""
+        hand = self.ctx.info.hand
+        q, moving = readings.hand_q, self.moving
+        step = self.rate * dt
+        self.reference[moving] += np.clip(hand.closed[moving] - self.reference[moving], -step[moving], step[moving])
+        lead = LEAD * self.range  # how far the reference may run ahead of a blocked finger
+        self.reference = np.clip(self.reference, q - lead, q + lead)
+        at_limit = np.abs(q - hand.closed) < REACHED * self.range
+        self._blocked(readings, dt)
+        return bool((at_limit | (self.still > STALL_TIME))[moving].all())
+
+    def _touching(self, readings: Readings) -> list[str]:
+        pads = readings.pad_force
+        return [f for f in self.fingers if pads[self.pad_of[f]] >= self.touch]
+
+    def _blocked(self, readings: Readings, dt: float) -> bool:
+        """Counts how long each DOF has stood still; true once every moving one has, for
+        STALL_TIME (a preshape that meets the object stops there)."""
+        hand = self.ctx.info.hand
+        self.still = np.where(np.abs(readings.hand_dq) < 0.05 * hand.velocity_limit, self.still + dt, 0.0)
+        return bool((self.still[self.moving] > STALL_TIME).all())
+
+    # -- commands -----------------------------------------------------------------------
+    def _ramp(self, goal: np.ndarray, dt: float, q: np.ndarray) -> bool:
+        step = self.rate * dt
+        self.reference += np.clip(goal - self.reference, -step, step)
+        return bool((np.abs(goal - q) < REACHED * self.range + 1e-3).all())
+
+    def _command(self) -> ControlData:
+        hand = self.ctx.info.hand
+        pressing = self.pressing & (self.phase == "hold")
+        values = np.where(pressing, hand.closing * self.effort, self.reference)
+        modes = tuple(HandMode.FORCE if p else HandMode.POSITION for p in pressing)
+        return ControlData(hand=HandCommand(values=values, modes=modes))
+
+
+class RobustGraspHand(FingerGrasp):
+    """The robust grasp's hand side; `layout` comes from the hand kind's module."""
+
+    layout: FingerLayout = {}
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        self.grasp_force = float(self.params["grasp_force"])
+        self.correct = bool(self.params["finger_lost_correction"])
+
+    def _close(self, readings: Readings, dt: float, board: dict) -> None:
+        if self._closed(readings, dt):
+            board[FINGERS_STOPPED] = True
+            self.effort = np.where(self.moving, TOUCH_EFFORT * self.ctx.info.hand.effort_limit, 0.0)
+            self.settled = 0.0
+            self._judge(readings)
+
+    def _judge(self, readings: Readings) -> None:
+        touching = self._touching(readings)
+        lost = [f for f in self.fingers if f not in touching]
+        if not lost:
+            self.phase = "hold"
+            return
+        if self.retries >= RETRIES or (touching and not self.correct):
+            what = f"finger {', '.join(lost)} missed the object" if touching else "nothing between the fingers"
+            self.finish(Status.ERROR, f"{what} after {self.retries} corrections")
+            self.phase = "failed"
+            return
+        if touching:  # finger lost: shift towards the fingers that touched
+            toward = np.mean([self.layout[f] for f in touching], axis=0) - np.mean([self.layout[f] for f in lost], axis=0)
+            self.shift = np.array([*toward / np.linalg.norm(toward), 0.0]) * FINGER_LOST_SHIFT
+        else:  # object lost: a little further along the approach
+            self.shift = np.array([0.0, 0.0, OBJECT_LOST_STEP])
+        self.effort[:] = 0.0
+        self.still[:] = 0.0
+        self.phase = "reopen"
+
+    def _hold(self, readings: Readings, dt: float) -> None:
+        """Force adaptation: from a light touch, each grasping finger's effort rises until
+        its pad feels the grasp force, and keeps it there; the object is held once every
+        pad has felt it for SETTLE_TIME."""
+        hand = self.ctx.info.hand
+        pads = readings.pad_force
+        held = True
+        for i in np.flatnonzero(self.moving):
+            force = pads[self.pad_of[self.finger_of_dof[i]]] if self.finger_of_dof[i] else self.grasp_force
+            limit = hand.effort_limit[i]
+            self.effort[i] = min(limit, max(0.0, self.effort[i] + ADAPT_GAIN * limit * (self.grasp_force - force) * dt))
+            held &= abs(force - self.grasp_force) <= (1.0 - HELD) * self.grasp_force
+        self.settled = self.settled + dt if held else 0.0
+        if self.settled >= SETTLE_TIME and self.status is Status.RUNNING:
+            forces = ", ".join(f"{f} {pads[self.pad_of[f]]:.1f} N" for f in self.fingers)
+            self.finish(Status.DONE, f"object held after {self.retries} corrections: {forces}")
+
+
+class NaiveGraspHand(FingerGrasp):
+    """The naive grasp's hand (thesis 3.4.1): close until every finger stops, then add a
+    little effort (`squeeze`) to the fingers whose pads touch. No judging, no
+    corrections, no force adaptation: only closing on nothing at all is an error."""
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        self.squeeze = float(self.params["squeeze"])
+
+    def _close(self, readings: Readings, dt: float, board: dict) -> None:
+        if not self._closed(readings, dt):
+            return
+        board[FINGERS_STOPPED] = True
+        touching = self._touching(readings)
+        if not touching:
+            self.finish(Status.ERROR, "nothing between the fingers")
+            self.phase = "failed"
+            return
+        self.pressing = self.moving & np.array([f in touching for f in self.finger_of_dof])
+        self.effort = np.where(self.pressing, self.squeeze * self.ctx.info.hand.effort_limit, 0.0)
+        self.phase = "hold"
+        self.finish(Status.DONE, f"closed; touching: {', '.join(touching)}")
+
+    def _hold(self, readings: Readings, dt: float) -> None:
+        """The squeeze stays as set."""

@@ -1,0 +1,166 @@
+"""Parallel-jaw grippers (Melfa's WRT-102, Baxter's gripper): two mirrored jaws on one DOF.
+
+Thesis 7.3: the Melfa grasp closes until the tactile pads feel the grasp force, and the
+transport keeps squeezing so the object does not loosen. The grip force comes from the
+pads (the smaller of the two: both must press) or from the jaw motor's own effort.
+
+Jaw layout, as `factories.parts.parallel_jaw` builds it: the jaws close along the hand's
+y axis, the pad named `left...` on +y and `right...` on -y.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from primitives.base import Context, ControlData, Controller, HandCommand, Status
+from primitives.blackboard import ARM_NUDGE, CONTACT
+from primitives.hands.posture import position_command
+from primitives.robot import HandMode, Readings
+
+TOUCH = 0.5  # N on a pad: that finger touches the object
+MOTOR_TOUCH = 0.25  # of the grasp force, on the jaw motor: the jaws meet resistance
+CONFIRM = 0.95  # of the grasp force: the grip is there
+NAIVE_SPEED = 0.5  # of the jaws' speed limit, for the naive grasp
+EMPTY = 0.001  # m from fully closed: the jaws closed on nothing
+SQUEEZE_GAIN = 5.0  # 1/s: how fast the squeeze corrects the motor force towards the pad force wanted
+SQUEEZE_TRIM = 0.5  # the correction stays within +-50 % of the grasp force
+
+
+class Jaws:
+    """Reads a parallel gripper: grip force by pads or motor, which pad touches."""
+
+    def __init__(self, ctx: Context, source: str) -> None:
+        hand = ctx.info.hand
+        if len(hand.dofs) != 1:
+            raise ValueError(f"a parallel-jaw controller needs a one-DOF gripper; this hand has {len(hand.dofs)} DOFs")
+        self.source = source
+        self.closing = float(hand.closing[0])
+        self.closed = float(hand.closed[0])
+        sides = [1.0 if "left" in pad.name else -1.0 if "right" in pad.name else 0.0 for pad in hand.pads]
+        if source == "tactile" and (len(sides) != 2 or sorted(sides) != [-1.0, 1.0]):
+            raise ValueError("tactile grip force needs a 'left' and a 'right' finger pad; this hand has: "
+                             + (", ".join(p.name for p in hand.pads) or "none"))
+        self.sides = np.array(sides)
+
+    def force(self, readings: Readings) -> float:
+        if self.source == "tactile":
+            return float(readings.pad_force.min())
+        return max(0.0, self.closing * float(readings.hand_effort[0]))
+
+    def both_touch(self, readings: Readings, grasp_force: float) -> bool:
+        """Both jaws are on the object: both pads feel it, or the motor meets resistance."""
+        if self.source == "tactile":
+            return bool((readings.pad_force > TOUCH).all())
+        return self.force(readings) > MOTOR_TOUCH * grasp_force
+
+    def empty(self, readings: Readings) -> bool:
+        return abs(float(readings.hand_q[0]) - self.closed) < EMPTY
+
+    def command(self, force: float) -> ControlData:
+        """Press the jaws together with `force` N."""
+        return ControlData(hand=HandCommand(values=np.array([self.closing * force]), modes=(HandMode.FORCE,)))
+
+
+class CloseUntilForce(Controller):
+    """Close at `closing_speed` until both jaws touch, then press with `grasp_force`;
+    done once the force source feels it (within 5 %).
+
+    Pressing is done by force, not by driving the jaws further: a small object stops the
+    jaws near their closed limit, where a position servo has no travel left to build
+    force with. Re-centring: while only one pad touches, the object sits off-centre and
+    closing further would push it across the table; the gripper asks the arm to move
+    towards the touching pad as fast as that jaw closes, so the touching pad stands still
+    on the object while the other comes to meet it.
+    """
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        self.grasp_force = float(self.params["grasp_force"])
+        self.speed = float(self.params["closing_speed"])
+        self.jaws = Jaws(ctx, str(self.params["force_source"]))
+
+    def start(self, readings: Readings) -> None:
+        self.reference = float(readings.hand_q[0])
+        self.pressing = False
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        board = self.ctx.blackboard
+        if self.status is Status.RUNNING:
+            force = self.jaws.force(readings)
+            if self.pressing and force >= CONFIRM * self.grasp_force:
+                self.finish(Status.DONE, f"grip force {force:.1f} N (asked {self.grasp_force:g} N)")
+            elif not self.pressing and self.jaws.both_touch(readings, self.grasp_force):
+                self.pressing = True
+            elif not self.pressing and self.jaws.empty(readings):
+                self.finish(Status.ERROR, "the jaws closed on nothing")
+        if self.pressing:
+            board[ARM_NUDGE] = None
+            return self.jaws.command(self.grasp_force)
+        if self.status is Status.ERROR:
+            board[ARM_NUDGE] = None
+            return position_command(np.array([self.reference]))
+        board[ARM_NUDGE] = self._nudge(readings)
+        self.reference += self.jaws.closing * self.speed * dt
+        return position_command(np.array([self.reference]))
+
+    def _nudge(self, readings: Readings) -> np.ndarray | None:
+        if self.jaws.source != "tactile":
+            return None
+        touching = readings.pad_force > TOUCH
+        if touching.sum() != 1:
+            return None
+        side = float(self.jaws.sides[touching][0])
+        return readings.tcp[:3, 1] * (side * self.speed)
+
+
+class Squeeze(Controller):
+    """Keep pressing with `grasp_force` while the arm moves (thesis 7.3 transport).
+
+    With the pads as force source, the motor force is trimmed until the pads feel the
+    grasp force (within +-50 %: a pad that feels nothing must not drive the motor to its
+    limit). Done at once: squeezing has no end of its own.
+    """
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        self.grasp_force = float(self.params["grasp_force"])
+        self.jaws = Jaws(ctx, str(self.params["force_source"]))
+        self.trim = 0.0
+
+    def start(self, readings: Readings) -> None:
+        self.finish(Status.DONE, f"squeezing with {self.grasp_force:g} N")
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        if self.jaws.source == "tactile":
+            limit = SQUEEZE_TRIM * self.grasp_force
+            error = self.grasp_force - self.jaws.force(readings)
+            self.trim = min(limit, max(-limit, self.trim + SQUEEZE_GAIN * error * dt))
+        return self.jaws.command(self.grasp_force + self.trim)
+
+
+class NaiveJawGrasp(Controller):
+    """The naive grasp of thesis 3.4.1 on a gripper: once the arm has stopped (CONTACT),
+    close until the jaw motor meets the object, then press with `squeeze` of its effort
+    limit. No tactile sensing, no re-centring, no force check: the baseline."""
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        self.jaws = Jaws(ctx, "motor")
+        self.force = float(self.params["squeeze"]) * float(ctx.info.hand.effort_limit[0])
+        self.speed = NAIVE_SPEED * float(ctx.info.hand.velocity_limit[0])
+
+    def start(self, readings: Readings) -> None:
+        self.reference = float(readings.hand_q[0])
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        if self.status is Status.DONE:
+            return self.jaws.command(self.force)
+        if self.status is Status.RUNNING and self.ctx.blackboard.get(CONTACT):
+            if self.jaws.both_touch(readings, self.force):
+                self.finish(Status.DONE, "closed on the object")
+                return self.jaws.command(self.force)
+            if self.jaws.empty(readings):
+                self.finish(Status.ERROR, "the jaws closed on nothing")
+            else:
+                self.reference += self.jaws.closing * self.speed * dt
+        return position_command(np.array([self.reference]))

@@ -1,0 +1,107 @@
+"""Hand postures every hand can take, whatever its kind: stay, go to a named D5 hand shape,
+open to a fraction of the stroke. They only move DOF values between the limits and the
+postures `RobotInfo.hand` gives, so one implementation serves every hand."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from primitives.base import Context, ControlData, Controller, HandCommand, Status
+from primitives.robot import HandMode, Readings
+
+REACHED = 0.02  # of a DOF's range: close enough to the goal
+STALL_TIME = 1.0  # s stopped short of the goal: something blocks the fingers
+STILL_SPEED = 0.05  # of a DOF's speed limit: a finger slower than this has stopped
+LOADED = 0.05  # of a DOF's effort limit, in the closing direction: the finger presses on something
+
+
+def position_command(values: np.ndarray) -> ControlData:
+    return ControlData(hand=HandCommand(values=values, modes=(HandMode.POSITION,) * len(values)))
+
+
+class PostureDrive(Controller):
+    """Ramp every DOF's position reference to `goal` at `speed` times its speed limit.
+
+    Done when every DOF is within 2 % of its range of the goal. If the fingers stop
+    short of it for a second, something is in the way: the controller gives up.
+    """
+
+    goal: np.ndarray
+
+    def __init__(self, ctx: Context, speed: float = 1.0) -> None:
+        super().__init__(ctx)
+        hand = ctx.info.hand
+        self.rate = speed * hand.velocity_limit
+        self.tolerance = np.maximum(REACHED * (hand.upper - hand.lower), 1e-4)
+        self.still = STILL_SPEED * hand.velocity_limit
+
+    def start(self, readings: Readings) -> None:
+        self.reference = readings.hand_q.copy()
+        self.stopped = 0.0
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        step = self.rate * dt
+        self.reference = self.reference + np.clip(self.goal - self.reference, -step, step)
+        if self.status is Status.RUNNING:
+            short = np.abs(self.goal - readings.hand_q) > self.tolerance
+            if not short.any():
+                self.finish(Status.DONE, "reached the hand posture")
+            elif np.array_equal(self.reference, self.goal) and (np.abs(readings.hand_dq) < self.still).all():
+                self.stopped += dt
+                if self.stopped >= STALL_TIME:
+                    where = ", ".join(f"{n} {q:.4g}" for n, q, s in zip(self.ctx.info.hand.dofs, readings.hand_q, short) if s)
+                    self.finish(Status.ERROR, f"fingers blocked short of the posture ({where})")
+            else:
+                self.stopped = 0.0
+        return position_command(self.reference)
+
+
+class HoldPosition(PostureDrive):
+    """Keep the fingers where they were when the state began (D5 2.2.4: hand idle).
+
+    A finger pressing on something when the state begins keeps pressing with the effort
+    it had, as a Barrett's worm drive keeps its torque: holding it at its measured
+    position would take the grip off a grasped object.
+    """
+
+    def start(self, readings: Readings) -> None:
+        super().start(readings)
+        hand = self.ctx.info.hand
+        self.goal = readings.hand_q.copy()
+        self.loaded = (hand.closing * readings.hand_effort) > LOADED * hand.effort_limit
+        self.effort = readings.hand_effort.copy()
+        self.finish(Status.DONE, "holding the fingers")
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        values = np.where(self.loaded, self.effort, self.goal)
+        modes = tuple(HandMode.FORCE if loaded else HandMode.POSITION for loaded in self.loaded)
+        return ControlData(hand=HandCommand(values=values, modes=modes))
+
+
+class HandShape(PostureDrive):
+    """Drive the fingers to a named D5 hand shape (2.2.2) this hand can make."""
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx, float(ctx.params["speed"]))
+        shape = str(self.params["shape"])
+        postures = ctx.info.hand.postures
+        if shape not in postures:
+            raise ValueError(f"the hand cannot make the shape '{shape}'; it makes: {', '.join(sorted(postures))}")
+        self.goal = np.asarray(postures[shape], float)
+
+
+class OpenTo(PostureDrive):
+    """Open the hand to HAND_TARGET_POSITION: 0 = closed, 1 = fully open (thesis 3.3.4).
+
+    Only the closing DOFs move: a Barrett's spread or an SDH2's finger rotation stays as
+    it is, since swinging the fingers round beside the object could knock it over.
+    """
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx, float(ctx.params["speed"]))
+
+    def start(self, readings: Readings) -> None:
+        super().start(readings)
+        hand = self.ctx.info.hand
+        opening = float(self.params["hand_position"])
+        self.goal = np.where(hand.closing != 0, hand.closed + opening * (hand.open - hand.closed), readings.hand_q)

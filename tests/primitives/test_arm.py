@@ -1,0 +1,198 @@
+"""The shared arm controllers on the simulated Melfa: what a user would see the arm do."""
+
+from __future__ import annotations
+
+import math
+
+import mujoco
+
+import numpy as np
+
+from atd.model.vocabulary import EventType
+from atd.sim.scene import DEFAULT_FRICTION, Body, Scene, box_scene
+from tests.primitives.conftest import Stage, both_done, execute, last_reasons, leaf, machine, melfa, tcp, use
+
+FINGERTIP = 0.0238  # m from the Melfa's TCP down to its fingertips (PG70 pad half length)
+ASIDE = box_scene(xy=(0.0, 0.22))  # the box out of the way
+
+
+def test_guarded_move_stops_on_contact_with_the_table() -> None:
+    robot = melfa(ASIDE)
+    estd = machine(
+        Stage(use("cartesian_move", target=(0.2, -0.1, 0.1)), use("hold_position"), both_done()),
+        Stage(use("cartesian_move", target=(0.2, -0.1, -0.05), straight_line=True), use("hold_position"), both_done()),
+    )
+    outcome, executor = execute(estd, robot)
+    assert outcome.succeeded, outcome.summary
+    assert any("stopped on contact" in r for r in last_reasons(executor))
+    fingertip = tcp(robot)[2] - FINGERTIP
+    assert -0.004 < fingertip < 0.002, f"fingertips {fingertip * 1000:.1f} mm from the table top"
+    assert abs(tcp(robot)[0] - 0.2) < 0.003 and abs(tcp(robot)[1] + 0.1) < 0.003  # it came straight down
+
+
+def _recorder(path: list) -> callable:
+    def hook(robot, state, time):
+        path.append((state, time, robot.read().tcp.copy()))
+    return hook
+
+
+def test_free_move_reaches_the_target_top_down() -> None:
+    robot = melfa(ASIDE)
+    estd = machine(Stage(use("cartesian_move", target=(0.05, 0.12, 0.22)), use("hold_position"), both_done()))
+    outcome, _ = execute(estd, robot)
+    assert outcome.succeeded, outcome.summary
+    pose = robot.read().tcp
+    assert np.linalg.norm(pose[:3, 3] - (0.05, 0.12, 0.22)) < 0.0035
+    assert pose[:3, 2] @ (0, 0, -1) > math.cos(math.radians(2))  # hand z points down
+    assert outcome.sim_time < 3.0
+
+
+def test_waypoints_are_visited_in_order() -> None:
+    robot = melfa(ASIDE)
+    via = ((0.2, 0.1, 0.15), (0.2, -0.1, 0.15))
+    estd = machine(Stage(use("cartesian_move", target=(0.05, -0.1, 0.1), waypoints=via), use("hold_position"),
+                         both_done()))
+    path: list = []
+    outcome, _ = execute(estd, robot, _recorder(path))
+    assert outcome.succeeded, outcome.summary
+    positions = np.array([pose[:3, 3] for _, _, pose in path])
+    visits = [int(np.argmin(np.linalg.norm(positions - p, axis=1))) for p in via]
+    assert all(np.linalg.norm(positions[i] - p) < 0.012 for i, p in zip(visits, via))
+    assert visits[0] < visits[1]
+
+
+def test_guarded_move_keeps_to_the_straight_line() -> None:
+    robot = melfa(ASIDE)
+    start, goal = np.array((0.125, 0.0, 0.15)), np.array((0.05, 0.15, 0.08))
+    estd = machine(Stage(use("cartesian_move", target=tuple(goal), straight_line=True), use("hold_position"),
+                         both_done()))
+    path: list = []
+    outcome, _ = execute(estd, robot, _recorder(path))
+    assert outcome.succeeded, outcome.summary
+    u = (goal - start) / np.linalg.norm(goal - start)
+    off = [np.linalg.norm((p[:3, 3] - start) - ((p[:3, 3] - start) @ u) * u) for _, _, p in path]
+    assert max(off) < 0.003, f"strayed {max(off) * 1000:.1f} mm from the line"
+
+
+def test_constrained_move_keeps_within_velocity_and_acceleration_limits() -> None:
+    robot = melfa(ASIDE)
+    limits = (0.04, 0.04, 0.04, 0.0, 0.0, 0.0)
+    estd = machine(Stage(use("cartesian_move", target=(0.05, 0.12, 0.1), keep_orientation=True,
+                             velocity_limits=limits, acceleration_limits=(0.2,) * 3 + (0.0,) * 3),
+                         use("hold_position"), both_done()))
+    path: list = []
+    outcome, _ = execute(estd, robot, _recorder(path))
+    assert outcome.succeeded, outcome.summary
+    times = np.array([t for _, t, _ in path])
+    positions = np.array([p[:3, 3] for _, _, p in path])
+    velocity = np.diff(positions, axis=0) / np.diff(times)[:, None]
+    assert np.abs(velocity).max() < 0.04 * 1.1
+    tilt = max(math.degrees(math.acos(min(1.0, -p[2, 2]))) for _, _, p in path)
+    assert tilt < 2.0, f"the hand tilted {tilt:.1f} deg"
+    assert np.abs(velocity).max(axis=0)[0] > 0.035  # it did use the speed it was allowed
+
+
+def _wall_scene() -> Scene:
+    """A 10 cm high block standing between the hand and a target on the far side."""
+    wall = np.eye(4)
+    wall[:3, 3] = (0.125, -0.1, 0.05)
+    return Scene(box_scene(xy=(0.0, 0.22)).object, (Body("obstacle0", "box", (0.12, 0.04, 0.1), wall, 1.0,
+                                                         DEFAULT_FRICTION),))
+
+
+def test_free_move_bends_around_a_known_obstacle() -> None:
+    robot = melfa(_wall_scene())
+    target = (0.125, -0.25, 0.1)
+    blocked = machine(Stage(use("cartesian_move", target=target), use("hold_position"), both_done()),
+                      failures={"s0": (EventType.ERROR, leaf("arm_error"))})
+    outcome, executor = execute(blocked, robot)
+    assert not outcome.succeeded
+    assert any("unexpected contact" in r for r in last_reasons(executor)), outcome.summary
+
+    robot = melfa(_wall_scene())
+    around = machine(Stage(use("cartesian_move", target=target, obstacles=((0.125, -0.1, 0.05),),
+                               obstacle_sizes=((0.12, 0.04, 0.1),)), use("hold_position"), both_done()))
+    path: list = []
+    outcome, _ = execute(around, robot, _recorder(path))
+    assert outcome.succeeded, outcome.summary
+    lowest_over_wall = min(p[2, 3] - FINGERTIP for _, _, p in path if abs(p[1, 3] + 0.1) < 0.03)
+    assert lowest_over_wall > 0.1, "the fingers passed through the top of the block"
+
+
+def _grasp_box() -> list[Stage]:
+    """Down onto the box under the hand, close on it, lift it 5 cm."""
+    return [
+        Stage(use("cartesian_move", target=(0.125, 0.0, 0.03), straight_line=True), use("hand_shape", shape="open"),
+              both_done()),
+        Stage(use("hold"), use("close_until_force", grasp_force=15.0), both_done()),
+        Stage(use("cartesian_move", target=(0.125, 0.0, 0.08), straight_line=True), use("squeeze", grasp_force=15.0),
+              both_done()),
+    ]
+
+
+def test_place_descends_until_the_object_touches_the_surface() -> None:
+    robot = melfa()
+    target = (0.125, 0.1, 0.025)
+    estd = machine(*_grasp_box(),
+                   Stage(use("place", target=target, approach_height=0.02), use("squeeze", grasp_force=15.0),
+                         both_done()),
+                   Stage(use("release_retreat"), use("open_to"), both_done()))
+    path: list = []
+    outcome, executor = execute(estd, robot, _recorder(path))
+    assert outcome.succeeded, outcome.summary
+    place = next(v for v in outcome.visits if v.path == "s3")
+    assert any(r.startswith("placed") for r in _reasons_leaving(executor, "s3"))
+    box = robot.object_pose()[:3, 3]
+    assert np.linalg.norm(box[:2] - target[:2]) < 0.005
+    assert abs(box[2] - 0.025) < 0.002  # resting on the table
+    # the last 2 cm are a slow descent at VELOCITY (5 mm/s): at least 2 s for 1 cm
+    assert place.left - place.entered > 2.0
+
+
+def _reasons_leaving(executor, state: str) -> list[str]:
+    fired = [r for r in executor.trace.records if r["type"] == "event" and r["state"] == state]
+    return [c.get("reason", "") for r in fired for c in r["conditions"]]
+
+
+def test_release_retreat_backs_off_only_while_pushed() -> None:
+    robot = melfa(ASIDE)
+    hand = mujoco.mj_name2id(robot.model, mujoco.mjtObj.mjOBJ_BODY, "pg70_base")
+    start = tcp(robot)
+
+    def push_from_below(robot, state, time):
+        # fingers pressing on a surface: 20 N up on the hand for the first second
+        robot.data.xfrc_applied[hand, 2] = 20.0 if time < 1.0 else 0.0
+
+    estd = machine(Stage(use("release_retreat", velocity=0.01), use("hold_position"), leaf("timeout", seconds=2.0),
+                         seconds=5.0))
+    heights: list = []
+    outcome, _ = execute(estd, robot, lambda r, s, t: (push_from_below(r, s, t), heights.append((t, tcp(r)[2]))))
+    assert outcome.succeeded
+    risen_while_pushed = max(z for t, z in heights if t < 1.0) - start[2]
+    assert 0.007 < risen_while_pushed < 0.013  # about 1 s at 0.01 m/s
+    after = [z for t, z in heights if t > 1.2]
+    assert max(after) - min(after) < 0.001  # holds still once the push is gone
+
+
+def test_slide_presses_within_the_force_band_while_moving() -> None:
+    robot = melfa(ASIDE)
+    start = (0.2, -0.1, FINGERTIP + 0.003)
+    target = (0.2, -0.06, FINGERTIP)
+    estd = machine(
+        Stage(use("cartesian_move", target=start), use("hand_shape", shape="closed"), both_done()),
+        Stage(use("slide", target=target), use("hold_position"), both_done(), seconds=15.0),
+    )
+    pressing: list = []
+
+    def record(robot, state, time):
+        if state == "s1":
+            r = robot.read()
+            pressing.append((time, r.tcp[:3, 3].copy(), r.wrench.copy()))
+
+    outcome, _ = execute(estd, robot, record)
+    assert outcome.succeeded, outcome.summary
+    assert abs(tcp(robot)[1] - target[1]) < 0.006
+    load = pressing[0][2][2]
+    forces = np.array([load - w[2] for _, p, w in pressing if p[1] > start[1] + 0.005])  # hand z down: pressing lowers fz
+    assert 5.0 < np.median(forces) < 9.0
+    assert np.mean((forces > 3.0) & (forces < 11.0)) > 0.8

@@ -1,0 +1,86 @@
+"""The robot interface a primitive uses: hand modes, the DLS solver, the static facts."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from atd.model import HandShape
+from atd.sim import load_description, variants
+from atd.sim.scene import Scene
+from primitives.robot import HandMode, dls_joint_velocities
+
+
+@given(st.integers(0, 10_000))
+@settings(max_examples=50, deadline=None)
+def test_dls_tracks_a_twist_exactly_away_from_singularities(seed: int) -> None:
+    rng = np.random.default_rng(seed)
+    jacobian = rng.normal(size=(6, 7))
+    twist = rng.normal(size=6)
+    np.testing.assert_allclose(jacobian @ dls_joint_velocities(jacobian, twist, 0.0), twist, atol=1e-9)
+
+
+def test_dls_damping_bounds_joint_speed_at_a_singularity() -> None:
+    jacobian = np.zeros((6, 6))
+    jacobian[:5, :5] = np.eye(5)
+    jacobian[5, 5] = 1e-6  # one direction nearly lost
+    twist = np.array([0, 0, 0, 0, 0, 0.1])
+    assert np.abs(dls_joint_velocities(jacobian, twist, 0.0)).max() > 1e4
+    assert np.abs(dls_joint_velocities(jacobian, twist, 0.02)).max() < 1e-2
+
+
+def test_engine_jacobian_matches_the_descriptions(robot_of, engine) -> None:
+    for robot, arm in variants():
+        d = load_description(robot, arm)
+        r = robot_of(d, engine, Scene(None, table=False))
+        np.testing.assert_allclose(r.jacobian(), d.tcp_jacobian(np.array(d.home)), atol=2e-3)
+
+
+def test_hand_position_velocity_and_force_modes(melfa, robot_of, run, engine) -> None:
+    robot = robot_of(melfa, engine, Scene(None, table=False))
+    robot.command_hand([0.01], HandMode.POSITION)
+    run(robot, 1.0)
+    assert robot.read().hand_q[0] == pytest.approx(0.01, abs=5e-4)
+    robot.command_hand([0.01], HandMode.VELOCITY)  # opening at 1 cm/s
+    run(robot, 1.0)
+    assert robot.read().hand_q[0] == pytest.approx(0.02, abs=1.5e-3)
+    robot.command_hand([-20.0], HandMode.FORCE)  # closes until the jaws meet
+    run(robot, 1.0)
+    r = robot.read()
+    assert r.hand_q[0] == pytest.approx(0.0, abs=1e-3)
+    assert r.hand_effort[0] == pytest.approx(-20.0, rel=0.05)
+
+
+def test_a_hand_velocity_beyond_the_limit_is_clamped(melfa, robot_of, run, engine) -> None:
+    robot = robot_of(melfa, engine, Scene(None, table=False))
+    start = robot.read().hand_q[0]
+    robot.command_hand([-1.0], HandMode.VELOCITY)
+    run(robot, 0.2)
+    moved = start - robot.read().hand_q[0]
+    assert moved == pytest.approx(0.2 * robot.info.hand.velocity_limit[0], rel=0.2)
+
+
+def test_static_facts_describe_each_hand() -> None:
+    for robot, arm in variants():
+        info_hand = load_description(robot, arm).hand
+        names = set(info_hand.postures)
+        assert {"open", "closed"} <= names
+        assert names <= {shape.value for shape in HandShape}, f"{robot}: postures must be D5 hand shapes"
+        for values in info_hand.postures.values():
+            assert len(values) == len(info_hand.dofs)
+    barrett = load_description("tombatossals", "right").hand
+    assert [d.name for d in barrett.dofs] == ["spread", "f1", "f2", "f3"]
+    assert "hook_grasp" in barrett.postures
+    assert "hook_grasp" not in load_description("tombatossals", "left").hand.postures  # SDH2 cannot (thesis A.1.2)
+
+
+def test_the_object_can_be_teleported_or_taken_away(melfa, robot_of, run, engine) -> None:
+    """Fault hook for the layers above: the object vanishes from the hand as a real one may slip out."""
+    robot = robot_of(melfa, engine)
+    away = np.eye(4)
+    away[:3, 3] = (0.4, -0.4, 0.025)
+    robot.place_object(away)
+    run(robot, 0.2)
+    np.testing.assert_allclose(robot.object_pose()[:3, 3], away[:3, 3], atol=1e-3)

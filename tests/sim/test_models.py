@@ -1,0 +1,63 @@
+"""One description, two models: the MJCF and the URDF say the same, in Menagerie's style."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+import pytest
+from lxml import etree
+
+from atd.sim import load_description, variants
+from atd.sim.models import mjcf, urdf
+from atd.sim.scene import box_scene
+
+
+@pytest.mark.parametrize(("robot", "arm"), variants())
+def test_mjcf_and_urdf_have_the_same_joints_axes_and_limits(robot, arm) -> None:
+    d = load_description(robot, arm)
+    model = mujoco.MjModel.from_xml_string(mjcf(d, box_scene()))
+    tree = etree.fromstring(urdf(d).encode())
+    moving = {j.get("name"): j for j in tree.iter("joint") if j.get("type") != "fixed"}
+    assert set(moving) == set(d.joints)
+    for name, joint in d.joints.items():
+        urdf_joint = moving[name]
+        limit = urdf_joint.find("limit")
+        assert (float(limit.get("lower")), float(limit.get("upper"))) == (joint.lower, joint.upper)
+        assert tuple(float(v) for v in urdf_joint.find("axis").get("xyz").split()) == joint.axis
+        j = model.joint(name)
+        np.testing.assert_allclose(j.range, (joint.lower, joint.upper))
+        np.testing.assert_allclose(model.jnt_axis[j.id], joint.axis)
+
+
+def test_mujoco_model_follows_menagerie_conventions(melfa) -> None:
+    model = mujoco.MjModel.from_xml_string(mjcf(melfa, box_scene()))
+    groups = {int(g) for g in model.geom_group}
+    assert {2, 3} <= groups  # visual and collision geoms apart
+    visual = model.geom_group == 2
+    assert not model.geom_contype[visual].any() and not model.geom_conaffinity[visual].any()
+    assert model.site("attachment_site").id >= 0
+    key = model.key("home")
+    arm = [model.joint(n).qposadr[0] for n in melfa.arm_joints]
+    np.testing.assert_allclose(key.qpos[arm], melfa.home)
+    assert model.opt.cone == mujoco.mjtCone.mjCONE_ELLIPTIC and model.opt.impratio == 10
+    assert model.opt.integrator == mujoco.mjtIntegrator.mjINT_IMPLICITFAST
+    pads = [model.geom(p.name).id for p in melfa.hand.pads]
+    assert all(model.geom_condim[g] == 4 for g in pads)
+
+
+def test_robot_geoms_touch_the_world_but_not_each_other(melfa) -> None:
+    model = mujoco.MjModel.from_xml_string(mjcf(melfa, box_scene()))
+    robot = [g for g in range(model.ngeom) if model.geom_group[g] == 3]
+    table = model.geom("table").id
+    for g in robot:
+        assert model.geom_contype[g] & model.geom_conaffinity[table]
+        assert not model.geom_contype[g] & model.geom_conaffinity[g]
+
+
+def test_links_have_plausible_masses_and_positive_inertias() -> None:
+    for robot, arm in variants():
+        d = load_description(robot, arm)
+        for link in d.links:
+            assert link.mass > 0, link.name
+            assert min(link.inertia_diagonal) > 0, link.name
+        assert 0.3 < d.hand_mass < 2.5, d.label  # grippers of 0.4 kg to an SDH2 of about 2 kg

@@ -1,0 +1,53 @@
+"""`atd robots test` passes for every robot and hand on both engines, and says why when it cannot run."""
+
+from __future__ import annotations
+
+import pytest
+from click.testing import CliRunner
+
+from atd.cli import main
+from atd.sim import variants
+
+
+def test_the_three_robots_and_both_tombatossals_hands_are_there() -> None:
+    assert variants() == [
+        ("baxter", "right"), ("baxter", "left"), ("melfa", "main"), ("tombatossals", "right"), ("tombatossals", "left"),
+    ]
+
+
+@pytest.mark.parametrize(("robot", "arm"), variants())
+def test_every_robot_passes_its_self_test(robot: str, arm: str | None, engine: str) -> None:
+    args = ["robots", "test", robot, "--engine", engine] + (["--arm", arm] if arm else [])
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 0, result.output
+    assert "7/7 checks passed" in result.output
+    assert "FAIL" not in result.output
+
+
+def test_unknown_robot_is_named_with_the_known_ones() -> None:
+    result = CliRunner().invoke(main, ["robots", "test", "melfaa"])
+    assert result.exit_code == 1
+    assert "no robot 'melfaa' is installed" in result.output
+    assert "baxter, melfa, tombatossals" in result.output
+
+
+def test_an_arm_the_robot_does_not_have_is_refused() -> None:
+    result = CliRunner().invoke(main, ["robots", "test", "melfa", "--arm", "left"])
+    assert result.exit_code == 1
+    assert "robot 'melfa' has no arm 'left'; choose one of: main" in result.output
+
+
+def test_video_other_than_gif_is_refused_before_running(tmp_path) -> None:
+    result = CliRunner().invoke(main, ["robots", "test", "melfa", "--video", str(tmp_path / "run.mp4")])
+    assert result.exit_code == 1
+    assert "name the file *.gif" in result.output
+
+
+def test_video_is_written_as_an_animated_gif(tmp_path) -> None:
+    video = tmp_path / "grasp.gif"
+    result = CliRunner().invoke(main, ["robots", "test", "melfa", "--video", str(video)])
+    assert result.exit_code == 0, result.output
+    data = video.read_bytes()
+    assert data.startswith(b"GIF89a") and data.endswith(b"\x3b")
+    frames = int(result.output.split("frames")[0].rsplit("(", 1)[1])
+    assert data.count(b"\x21\xf9\x04") == frames > 50  # one graphic control block per frame
