@@ -228,13 +228,36 @@ class Factory(ABC):
 
     def motion(self, state: State, context: MappingContext) -> tuple[Vec3, tuple[Vec3, ...]]:
         """Target and via points of an arm primitive: the path, or derived from the object."""
+        drop = self.fist_drop(state)
         if state.path:
-            points = [w.position for w in state.path]
+            points = [(x, y, z - drop) for x, y, z in (w.position for w in state.path)]
             self.check_reach(*points)
             return points[-1], tuple(points[:-1])
-        target = derived_target(state, context.object)
+        x, y, z = derived_target(state, context.object)
+        target = (x, y, z - drop)
         self.check_reach(target)
         return target, ()
+
+    def arm_motion(self, state: State, target: Vec3, via: tuple[Vec3, ...], **extra: ParamValue) -> Controller:
+        """The arm controller of a move-like state: `push` for an ATD push (a guarded move
+        that must feel the object), `cartesian_move` with the ATD's movement type otherwise."""
+        flags = arm_motion_flags(state)
+        if state.type is StateType.PUSH:
+            return self.controller("push", target=target, waypoints=via, keep_orientation=flags["keep_orientation"])
+        return self.controller("cartesian_move", target=target, waypoints=via, **{**flags, **extra})
+
+    def fist_drop(self, state: State) -> float:
+        """How far below the task's path to take the TCP in a move or push with the hand closed.
+
+        A closed hand holds nothing, and one that curls its fingers into a fist has no
+        point between its fingertips: its lowest point stands in for the TCP, so a push
+        meets the object where the path says (a closed Barrett ends 2.7 cm short of its
+        TCP, a closed SDH2 9.3 cm). A closed gripper reaches past its TCP: no change.
+        """
+        if state.type not in (StateType.MOVE, StateType.PUSH) or state.hand_shape is not HandShape.CLOSED:
+            return 0.0
+        made, _ = self.shape(HandShape.CLOSED)
+        return max(0.0, -self.robot.hand_reach(made.value))
 
 
 def derived_target(state: State, obj: ObjectInfo | None) -> Vec3:
