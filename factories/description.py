@@ -194,6 +194,9 @@ class Hand:
     postures: dict[str, tuple[float, ...]] = field(default_factory=dict)  # D5 hand shape -> DOF values
     pad_force_from_effort: bool = False  # no tactile array: pad force = measured finger effort
     test_grasp: str = "power_grasp"  # the hand shape (with its preshape) `atd robots test` lifts a 5 cm box with
+    # Hand shapes that close somewhere else than on the TCP -> where they close, hand frame,
+    # relative to the TCP (a pinch between two fingers that stand off the palm centre).
+    grasp_centres: dict[str, Vec3] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)

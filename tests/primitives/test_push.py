@@ -52,4 +52,4 @@ def test_a_closed_barrett_pushes_with_its_lowest_point_at_the_path_height() -> N
     reach = factory.robot.hand_reach("closed")
     assert reach < -0.02  # the fist ends short of the TCP
     assert push.arm.name == "push"
-    assert push.arm.params["target"][2] == pytest.approx(0.035 + reach)
+    assert push.arm.params["target"][2] == pytest.approx(0.035 + reach, abs=1e-6)
