@@ -170,8 +170,9 @@ class Push(CartesianMove):
     motion. The wrist also reads the arm's own dynamics in free motion (inertia while the
     TCP speeds up, and a steady drag that differs per robot and speed), so the push force
     is the force against the motion over its free-motion level, measured over
-    baseline_time once the TCP cruises, low-passed over push_time, and read only while the
-    TCP cruises. An object that resists with force_threshold is stuck: the push fails.
+    baseline_time once the TCP cruises (once, on the first leg), low-passed over push_time,
+    and read only while the TCP cruises. An object that resists with force_threshold is
+    stuck: the push fails.
     """
 
     def __init__(self, ctx: Context) -> None:
@@ -208,7 +209,11 @@ class Push(CartesianMove):
         self.finish(Status.ERROR, f"the object does not give way: |F| = {force:.1f} N >= {self.threshold:g} N")
 
     def arrived(self, distance: float) -> None:
-        if self.pushed < self.push_force:
+        if self.baseline_for < self.baseline_time:
+            self.finish(Status.ERROR, f"reached the target before measuring the free-motion force "
+                                      f"({self.baseline_time:g} s at {self.cruise_speed:g} m/s or more): "
+                                      f"start the push further from the object")
+        elif self.pushed < self.push_force:
             self.finish(Status.ERROR, f"reached the target without pushing anything: at most {self.pushed:.2f} N "
                                       f"against the motion, {self.push_force:g} N needed")
         else:

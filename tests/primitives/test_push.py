@@ -8,8 +8,10 @@ from pathlib import Path
 import pytest
 
 from atd.model import load_task
+from atd.model.vocabulary import EventType
 from factories.registry import create
-from tests.primitives.conftest import EXAMPLES, events, run_example
+from tests.primitives.conftest import (EXAMPLES, Stage, both_done, events, execute, last_reasons, leaf, machine,
+                                       melfa, run_example, tcp, use)
 from translator import translate
 
 PUSH = EXAMPLES / "push_object.xml"
@@ -53,3 +55,13 @@ def test_a_closed_barrett_pushes_with_its_lowest_point_at_the_path_height() -> N
     assert reach < -0.02  # the fist ends short of the TCP
     assert push.arm.name == "push"
     assert push.arm.params["target"][2] == pytest.approx(0.035 + reach, abs=1e-6)
+
+
+def test_a_push_too_short_to_measure_its_free_motion_says_to_start_further_away() -> None:
+    robot = melfa()
+    start = tcp(robot)
+    short = machine(Stage(use("push", target=tuple(start + (0.0, 0.01, 0.0))), use("hold_position"), both_done()),
+                    failures={"s0": (EventType.ERROR, leaf("arm_error"))})
+    outcome, executor = execute(short, robot)
+    assert not outcome.succeeded
+    assert any("start the push further from the object" in r for r in last_reasons(executor)), outcome.summary
