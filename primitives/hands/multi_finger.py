@@ -34,7 +34,7 @@ LEAD = 0.05  # of a DOF's range: how far a closing finger's reference may run ah
 TOUCH_EFFORT = 0.05  # of the effort limit: where force adaptation starts, a light touch
 SETTLE_TIME = 0.1  # s every pad must feel the grasp force (HELD) before the object counts as held
 ADAPT_GAIN = 0.05  # effort (fraction of the limit) per N of missing pad force, per s
-HELD = 0.9  # every grasping pad feels at least 90 % of GRASP_FORCE: the object is held
+HELD = 0.9  # the weakest grasping pad within 10 % of GRASP_FORCE: the object is held
 STALL_TIME = 0.3  # s a finger may stand still before it counts as stopped
 REACHED = 0.02  # of a DOF's range
 FINGER_LOST_SHIFT = 0.015  # m towards the fingers that touched, per correction
@@ -206,21 +206,22 @@ class RobustGraspHand(FingerGrasp):
 
     def _hold(self, readings: Readings, dt: float) -> None:
         """Force adaptation: from a light touch, each grasping finger's effort rises until
-        its pad feels the grasp force, and keeps it there; the object is held once every
-        pad has felt at least HELD of it for SETTLE_TIME.
-
-        Only a lower bound judges the grasp: opposed fingers share one squeeze, and where
-        they touch at different points along the fingers their pads read different forces
-        for it; a self-locking drive keeps a pad's force even when its finger's effort
-        drops, so an upper bound could wait for ever."""
+        its pad feels the grasp force, and keeps it there. The object is held once, for
+        SETTLE_TIME, the weakest grasping pad feels the grasp force (within 1 - HELD) and
+        none feels less: opposed fingers share one squeeze, yet where the table takes part
+        of it, or the fingers touch at different points, their pads read different forces,
+        and a self-locking drive keeps its pad's force even at no effort, so every pad at
+        the grasp force at once may never come. The weakest one at it (and not the squeeze
+        left over from closing, which is above it everywhere) is the grip asked for."""
         hand = self.ctx.info.hand
         pads = readings.pad_force
-        held = True
+        felt = []
         for i in np.flatnonzero(self.moving):
             force = pads[self.pad_of[self.finger_of_dof[i]]] if self.finger_of_dof[i] else self.grasp_force
             limit = hand.effort_limit[i]
             self.effort[i] = min(limit, max(0.0, self.effort[i] + ADAPT_GAIN * limit * (self.grasp_force - force) * dt))
-            held &= force >= HELD * self.grasp_force
+            felt.append(force)
+        held = abs(min(felt) - self.grasp_force) <= (1.0 - HELD) * self.grasp_force
         self.settled = self.settled + dt if held else 0.0
         if self.settled >= SETTLE_TIME and self.status is Status.RUNNING:
             forces = ", ".join(f"{f} {pads[self.pad_of[f]]:.1f} N" for f in self.fingers)
