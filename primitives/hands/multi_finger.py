@@ -36,6 +36,7 @@ SETTLE_TIME = 0.1  # s every pad must feel the grasp force (HELD) before the obj
 ADAPT_GAIN = 0.05  # effort (fraction of the limit) per N of missing pad force, per s
 HELD = 0.9  # the weakest grasping pad within 10 % of GRASP_FORCE: the object is held
 STALL_TIME = 0.3  # s a finger may stand still before it counts as stopped
+STILL_SPEED = 0.05  # of a DOF's speed limit: slower than this on average, a finger stands still
 REACHED = 0.02  # of a DOF's range
 FINGER_LOST_SHIFT = 0.015  # m towards the fingers that touched, per correction
 OBJECT_LOST_STEP = 0.01  # m further along the approach, per retry (D5: "a little bit down")
@@ -88,6 +89,7 @@ class FingerGrasp(Controller):
         self.retries = 0
         self.phase = "preshape"
         self.still = np.zeros_like(self.reference)
+        self.anchor = readings.hand_q.copy()  # where each DOF was when it last moved
         self.ctx.blackboard[FINGERS_STOPPED] = False
         if not self.fingers:
             self.finish(Status.ERROR, "from this posture the grasp shape moves no finger that has a tactile pad")
@@ -148,9 +150,15 @@ class FingerGrasp(Controller):
 
     def _blocked(self, readings: Readings, dt: float) -> bool:
         """Counts how long each DOF has stood still; true once every moving one has, for
-        STALL_TIME (a preshape that meets the object stops there)."""
+        STALL_TIME (a preshape that meets the object stops there). Still means it has not
+        moved away from where it stopped by more than STILL_SPEED would take it in
+        STALL_TIME: a finger pressed between the object and the table can shake in place
+        (seen in PyBullet, 5 mrad at 50 Hz), fast enough for its speed to never read zero."""
         hand = self.ctx.info.hand
-        self.still = np.where(np.abs(readings.hand_dq) < 0.05 * hand.velocity_limit, self.still + dt, 0.0)
+        q = readings.hand_q
+        moved = np.abs(q - self.anchor) > STILL_SPEED * hand.velocity_limit * STALL_TIME
+        self.anchor = np.where(moved, q, self.anchor)
+        self.still = np.where(moved, 0.0, self.still + dt)
         return bool((self.still[self.moving] > STALL_TIME).all())
 
     # -- commands -----------------------------------------------------------------------
