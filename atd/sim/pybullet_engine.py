@@ -164,11 +164,11 @@ class PybulletRobot(SimRobot):
 
     # ---- engine part ------------------------------------------------------------------
     def _apply_arm(self, q_ref: np.ndarray, dq_ff: np.ndarray) -> None:
-        """The servo pushes like MuJoCo's: gravity compensated, plus at most what its kp and kv
-        make of the reference's lead in position and speed. Bullet's position motor alone is rigid up to the joint's effort
-        limit, so an arm whose fingertips touch the table pressed them on it with 60 N in
-        one tick (measured) where MuJoCo's pressed with 5 N, and the sliding grasp tared
-        that in as its reference contact."""
+        """The servo pushes like MuJoCo's: gravity compensated (`_advance`), plus at most what
+        its kp and kv make of the reference's lead in position and speed. Bullet's position
+        motor alone is rigid up to the joint's effort limit: fingertips meeting the table at
+        5 mm/s pressed on it with 64 N within one tick (measured) where MuJoCo's pressed with
+        about 5 N, and the sliding grasp tared that in as its contact."""
         c = self.client
         states = pb.getJointStates(self.body, self._movable, physicsClientId=c)
         q = np.array([s[0] for s in states])

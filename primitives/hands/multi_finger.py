@@ -214,13 +214,13 @@ class RobustGraspHand(FingerGrasp):
 
     def _hold(self, readings: Readings, dt: float) -> None:
         """Force adaptation: from a light touch, each grasping finger's effort rises until
-        its pad feels the grasp force, and keeps it there. The object is held once, for
-        SETTLE_TIME, the weakest grasping pad feels the grasp force (within 1 - HELD) and
-        none feels less: opposed fingers share one squeeze, yet where the table takes part
-        of it, or the fingers touch at different points, their pads read different forces,
-        and a self-locking drive keeps its pad's force even at no effort, so every pad at
-        the grasp force at once may never come. The weakest one at it (and not the squeeze
-        left over from closing, which is above it everywhere) is the grip asked for."""
+        its pad feels the grasp force, and keeps it there. The object is held once the
+        weakest grasping pad has felt the grasp force (within 1 - HELD) for SETTLE_TIME.
+        Not every pad: opposed fingers share one squeeze, yet where the table takes part of
+        it, or the fingers touch at different points, their pads read different forces, and
+        a self-locking drive keeps its pad's force even at no effort, so all pads at the
+        grasp force at once may never come. Not the strongest either: the squeeze left over
+        from closing is above the grasp force on every pad until adaptation has let it go."""
         hand = self.ctx.info.hand
         pads = readings.pad_force
         felt = []
