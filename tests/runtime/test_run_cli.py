@@ -1,0 +1,81 @@
+"""`atd run` as a user meets it: the real command, its summary, trace and exit codes."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+from tests.conftest import EXAMPLES
+
+PICK_AND_PLACE = str(EXAMPLES / "pick_and_place.xml")
+
+
+def atd(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "atd", *args], capture_output=True, text=True, timeout=300)
+
+
+def test_the_flagship_demo_succeeds_and_reports_in_task_terms():
+    result = atd("run", PICK_AND_PLACE, "--robot", "melfa")
+    assert result.returncode == 0, result.stdout + result.stderr
+    out = result.stdout
+    assert "outcome: succeeded: reached 'done'" in out
+    assert "left on success & grasp_stable (grasp->lift)" in out
+    assert "grasp->lift/grasp_stable: tactile_force_above(" in out
+    rests = next(line for line in out.splitlines() if line.startswith("the object rests at"))
+    x, y, z = (float(v) for v in rests.split("(")[1].rstrip(")").split(","))
+    assert ((x - 0.10) ** 2 + (y - 0.10) ** 2) ** 0.5 < 0.02 and abs(z - 0.025) < 0.005
+    assert "[" in result.stderr and "approach" in result.stderr  # live progress, one line per state
+
+
+def test_same_seed_same_trace_and_every_record_traces_back_to_the_atd(tmp_path):
+    traces = []
+    for name in ("a.jsonl", "b.jsonl"):
+        path = tmp_path / name
+        assert atd("run", PICK_AND_PLACE, "--robot", "melfa", "--seed", "3", "--trace", str(path), "-q").returncode == 0
+        traces.append(path.read_bytes())
+    assert traces[0] == traces[1]
+    records = [json.loads(line) for line in traces[0].splitlines()]
+    states = {"approach", "descend", "grasp", "lift", "carry", "put_down", "let_go", "retreat", "done"}
+    assert {r["atd"] for r in records if r["type"] in ("enter", "exit", "end")} == states
+    events = [r for r in records if r["type"] == "event"]
+    assert all(r["atd"].startswith(r["transition"] + "/") for r in events)
+    assert all(c["atd"] == r["atd"] for r in events for c in r["conditions"])
+    assert records[-1]["type"] == "end" and records[-1]["outcome"] == "success"
+    assert not list(tmp_path.glob(".*partial"))  # the trace was moved into place whole
+
+
+def test_an_estd_file_runs_as_is(tmp_path):
+    estd = tmp_path / "pp.estd.xml"
+    assert atd("translate", PICK_AND_PLACE, "--robot", "melfa", "-o", str(estd), "-q").returncode == 0
+    assert atd("run", str(estd), "-q").returncode == 0
+    wrong = atd("run", str(estd), "--robot", "baxter", "-q")
+    assert wrong.returncode == 2 and "was translated for 'melfa', not 'baxter'" in wrong.stderr
+
+
+def test_the_watchdog_ends_a_run_that_outlives_its_budget():
+    result = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--budget", "1", "-q")
+    assert result.returncode == 3
+    assert "outcome: failed: the watchdog stopped the run in 'descend' after 1 s of simulated time" in result.stdout
+
+
+def test_a_task_the_robot_cannot_do_exits_4_with_the_reason(atd_file):
+    path = atd_file(f"""
+        <statemachine>
+          <state name="wipe" type="slide"><path><position>0.1 0.1 0.02</position></path></state>
+          <state name="done" type="success"/>
+          <transition origin="wipe" destination="done"><success/></transition>
+        </statemachine>""")
+    result = atd("run", str(path), "--robot", "melfa", "-q")
+    assert result.returncode == 4
+    assert "the Melfa has no slide primitive" in result.stderr and "Traceback" not in result.stderr
+
+
+def test_bad_input_gives_a_diagnostic_not_a_traceback(atd_file):
+    broken = atd_file("<statemachine><state name='a' type='move'/>")
+    result = atd("run", str(broken), "--robot", "melfa")
+    assert result.returncode == 1 and "error[ATD003]" in result.stderr and "Traceback" not in result.stderr
+    no_robot = atd("run", PICK_AND_PLACE)
+    assert no_robot.returncode == 2 and "--robot" in no_robot.stderr
+    unknown = atd("run", PICK_AND_PLACE, "--robot", "r2d2")
+    assert unknown.returncode == 2 and "no robot 'r2d2' is installed" in unknown.stderr
