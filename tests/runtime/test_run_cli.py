@@ -79,3 +79,28 @@ def test_bad_input_gives_a_diagnostic_not_a_traceback(atd_file):
     assert no_robot.returncode == 2 and "--robot" in no_robot.stderr
     unknown = atd("run", PICK_AND_PLACE, "--robot", "r2d2")
     assert unknown.returncode == 2 and "no robot 'r2d2' is installed" in unknown.stderr
+
+
+def test_video_is_an_animated_gif_of_the_run(tmp_path, atd_file):
+    path = atd_file("""
+        <statemachine>
+          <state name="reach" type="move"><path><position>0.10 0.0 0.20</position></path></state>
+          <state name="done" type="success"/>
+          <transition origin="reach" destination="done"><success/></transition>
+        </statemachine>""")
+    gif = tmp_path / "run.gif"
+    result = atd("run", str(path), "--robot", "melfa", "--video", str(gif), "-q")
+    assert result.returncode == 0, result.stderr
+    data = gif.read_bytes()
+    assert data.startswith(b"GIF89a") and data.endswith(b"\x3b")
+    frames = data.count(b"\x21\xf9\x04")
+    assert f"video: {gif} ({frames} frames)" in result.stdout and frames >= 3
+
+
+def test_video_and_viewer_refusals_are_clear(tmp_path, monkeypatch):
+    mp4 = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--video", str(tmp_path / "run.mp4"), "-q")
+    assert mp4.returncode == 2 and "only GIF is written" in mp4.stderr and not (tmp_path / "run.mp4").exists()
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    viewer = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--viewer", "-q")
+    assert viewer.returncode == 2 and "--viewer needs a display" in viewer.stderr
