@@ -116,8 +116,9 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
     outcome = session.execute(_Progress(quiet))
     title = f"{task.name} on {estd.robot} ({estd.arm} arm) in {engine}, seed {seed}"
     click.echo(summary(outcome, session.trace.records, title))
-    x, y, z = session.object_position
-    click.echo(f"the object rests at ({x:.3f}, {y:.3f}, {z:.3f})")
+    if session.object_position is not None:
+        x, y, z = session.object_position
+        click.echo(f"the object rests at ({x:.3f}, {y:.3f}, {z:.3f})")
     if trace_path:
         click.echo(f"trace: {trace_path}")
     for note in session.notes:

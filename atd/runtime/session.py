@@ -122,10 +122,12 @@ class Run:
         self.notes: list[str] = []  # what became of the video, for the user
 
     def execute(self, progress: Progress | None = None) -> Outcome:
-        """Run to the end; afterwards `object_position` is where the object came to rest."""
+        """Run to the end; afterwards `object_position` is where the object came to rest
+        (None when the task has no object)."""
         try:
             outcome = self.executor.run(progress, observers=tuple(self.observers))
-            self.object_position = tuple(float(v) for v in self.robot.object_pose()[:3, 3])
+            self.object_position = (tuple(float(v) for v in self.robot.object_pose()[:3, 3])
+                                    if self.robot.scene.object is not None else None)
             if self.video:
                 self.notes.append(self.video.write())
             return outcome
