@@ -98,6 +98,7 @@ class Run:
         except SceneError as exc:
             raise RunError(str(exc)) from None
         self.robot = make_robot(factory.robot, scene, engine, seed)
+        self.has_object = scene.object is not None
         context = Context(info=self.robot.info, params={}, object=estd.object, environment=estd.environment,
                           rng=np.random.default_rng(seed))
         problems = build_problems(estd, context)
@@ -127,7 +128,7 @@ class Run:
         try:
             outcome = self.executor.run(progress, observers=tuple(self.observers))
             self.object_position = (tuple(float(v) for v in self.robot.object_pose()[:3, 3])
-                                    if self.robot.scene.object is not None else None)
+                                    if self.has_object else None)
             if self.video:
                 self.notes.append(self.video.write())
             return outcome
