@@ -104,3 +104,18 @@ def test_video_and_viewer_refusals_are_clear(tmp_path, monkeypatch):
     monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
     viewer = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--viewer", "-q")
     assert viewer.returncode == 2 and "--viewer needs a display" in viewer.stderr
+
+
+def test_empty_the_box_loops_over_its_sub_task_until_nothing_is_left(tmp_path):
+    """Thesis 3.4.3: pick-and-place rounds as a sub-task; the round that finds nothing ends the loop."""
+    trace = tmp_path / "t.jsonl"
+    result = atd("run", str(EXAMPLES / "empty_the_box.xml"), "--robot", "melfa", "--trace", str(trace), "-q")
+    assert result.returncode == 0, result.stdout
+    assert "outcome: succeeded: reached 'box_empty'" in result.stdout
+    records = [json.loads(line) for line in trace.read_text().splitlines()]
+    rounds = [r for r in records if r["type"] == "enter" and r["state"] == "pick_one"]
+    ends = [r["state"] for r in records if r["type"] == "end"]
+    assert len(rounds) == 2 and ends == ["pick_one/placed", "pick_one/nothing_there", "box_empty"]
+    rests = next(line for line in result.stdout.splitlines() if line.startswith("the object rests at"))
+    y = float(rests.split(",")[1])
+    assert y > 0.05  # outside the box, whose walls span y = -0.16 .. 0.0
