@@ -35,23 +35,12 @@ def holding(robot: SimRobot) -> None:
 
 
 def bare_loop(robot: SimRobot, ticks: int) -> float:
-    """Seconds for the engine alone to run `ticks` control periods."""
-    n = robot.substeps
-    if robot.engine == "mujoco":
-        import mujoco
-
-        m, d = robot.model, robot.data
-        start = time.perf_counter()
-        for _ in range(ticks):
-            mujoco.mj_step(m, d, nstep=n)
-        return time.perf_counter() - start
-    import pybullet as pb
-
-    client = robot.client
+    """Seconds for the engine alone to run `ticks` control periods: its physics step with
+    the robot's actuator model (inside `mj_step` in MuJoCo; in PyBullet partly Python: the
+    servo force limits and the torques of gravity compensation and self-locking drives)."""
     start = time.perf_counter()
     for _ in range(ticks):
-        for _ in range(n):
-            pb.stepSimulation(physicsClientId=client)
+        robot._advance()
     return time.perf_counter() - start
 
 

@@ -91,12 +91,15 @@ class _Progress:
 @click.option("--seed", type=int, default=0, show_default=True, help="seeds sensor noise: same seed, same trace")
 @click.option("--trace", "trace_path", type=click.Path(path_type=Path, dir_okay=False), default=None,
               help="write every state entry, exit and event as JSON lines")
+@click.option("--video", type=click.Path(path_type=Path, dir_okay=False), default=None,
+              help="record the run as an animated .gif from an offscreen camera")
+@click.option("--viewer", is_flag=True, help="open MuJoCo's window (needs a display; runs in real time)")
 @click.option("--realtime", is_flag=True, help="run no faster than real time")
 @click.option("--budget", type=float, default=300.0, show_default=True,
               help="watchdog: simulated seconds before the run is stopped as a failure")
 @click.option("--quiet", "-q", is_flag=True, help="no live progress")
 def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, trace_path: Path | None,
-        realtime: bool, budget: float, quiet: bool) -> None:
+        video: Path | None, viewer: bool, realtime: bool, budget: float, quiet: bool) -> None:
     """Run TASK (an ATD, translated on the fly, or an ESTD) on a simulated robot.
 
     Exit status: 0 the task ended in a success state, 3 in a failure state (or the watchdog
@@ -104,7 +107,8 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
     """
     estd, factory = _load(task, robot, arm)
     try:
-        session = Run(estd, factory, engine=engine, seed=seed, trace_path=trace_path, realtime=realtime, budget=budget)
+        session = Run(estd, factory, engine=engine, seed=seed, trace_path=trace_path, realtime=realtime,
+                      budget=budget, video=video, viewer=viewer)
     except Unrunnable as exc:
         _fail(f"error: {exc}", EXIT_UNTRANSLATABLE)
     except RunError as exc:
@@ -112,8 +116,11 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
     outcome = session.execute(_Progress(quiet))
     title = f"{task.name} on {estd.robot} ({estd.arm} arm) in {engine}, seed {seed}"
     click.echo(summary(outcome, session.trace.records, title))
-    x, y, z = session.object_position
-    click.echo(f"the object rests at ({x:.3f}, {y:.3f}, {z:.3f})")
+    if session.object_position is not None:
+        x, y, z = session.object_position
+        click.echo(f"the object rests at ({x:.3f}, {y:.3f}, {z:.3f})")
     if trace_path:
         click.echo(f"trace: {trace_path}")
+    for note in session.notes:
+        click.echo(note)
     raise SystemExit(EXIT_OK if outcome.succeeded else EXIT_TASK_FAILED)

@@ -1,8 +1,9 @@
 """One simulated run: the robot and scene an ESTD asks for, the executor, and what
-watches the run (trace, real-time pacing)."""
+watches the run (trace, video, viewer, real-time pacing)."""
 
 from __future__ import annotations
 
+import os
 import time
 from pathlib import Path
 
@@ -14,6 +15,7 @@ from atd.runtime.executor import Executor, Observer, Outcome, Progress, build_pr
 from atd.runtime.trace import Trace
 from atd.sim import ENGINES, make_robot
 from atd.sim.scene import SceneError, scene_from_task
+from atd.sim.video import Recorder, write_gif
 from factories.base import Factory
 from primitives.base import Context
 
@@ -32,6 +34,47 @@ class Unrunnable(RunError):
         self.problems = problems
 
 
+class _Video:
+    """Keeps a frame every 0.1 s of simulated time; written as a GIF when the run ends."""
+
+    def __init__(self, robot, path: Path) -> None:
+        self.robot, self.path, self.recorder = robot, path, Recorder()
+
+    def __call__(self, sim_time: float) -> None:
+        self.recorder(self.robot)
+
+    def write(self) -> str:
+        """What became of the video, for the user."""
+        if self.recorder.error or not self.recorder.frames:
+            return (f"no video written to {self.path}: offscreen rendering failed "
+                    f"({self.recorder.error or 'no frames'}); try MUJOCO_GL=egl or MUJOCO_GL=osmesa")
+        write_gif(self.path, self.recorder.frames)
+        return f"video: {self.path} ({len(self.recorder.frames)} frames)"
+
+
+class _Viewer:
+    """MuJoCo's interactive window, kept in step with the run about 60 times a second."""
+
+    def __init__(self, robot) -> None:
+        if robot.engine != "mujoco":
+            raise RunError("--viewer opens MuJoCo's window; run with --engine mujoco")
+        if not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")):
+            raise RunError("--viewer needs a display (none is set: DISPLAY is empty); "
+                           "record a --video run.gif instead")
+        import mujoco.viewer
+
+        self.window = mujoco.viewer.launch_passive(robot.model, robot.data)
+        self.next = 0.0
+
+    def __call__(self, sim_time: float) -> None:
+        if sim_time >= self.next:
+            self.window.sync()
+            self.next = sim_time + 1 / 60
+
+    def close(self) -> None:
+        self.window.close()
+
+
 class _Pacer:
     """Holds the run back to real time, for watching it."""
 
@@ -46,7 +89,8 @@ class _Pacer:
 
 class Run:
     def __init__(self, estd: Estd, factory: Factory, engine: str = "mujoco", seed: int = 0,
-                 trace_path: Path | None = None, realtime: bool = False, budget: float = 300.0) -> None:
+                 trace_path: Path | None = None, realtime: bool = False, budget: float = 300.0,
+                 video: Path | None = None, viewer: bool = False) -> None:
         """`factory` is the robot's factory: it knows the physical robot the ESTD was made for."""
         try:
             source = Path(estd.source) if estd.source else Path("task.xml")
@@ -54,6 +98,7 @@ class Run:
         except SceneError as exc:
             raise RunError(str(exc)) from None
         self.robot = make_robot(factory.robot, scene, engine, seed)
+        self.has_object = scene.object is not None
         context = Context(info=self.robot.info, params={}, object=estd.object, environment=estd.environment,
                           rng=np.random.default_rng(seed))
         problems = build_problems(estd, context)
@@ -62,16 +107,35 @@ class Run:
             raise Unrunnable(problems)
         self.trace = Trace(trace_path)
         self.executor = Executor(estd, self.robot, context, self.trace, budget=budget)
-        self.observers: list[Observer] = [_Pacer()] if realtime else []
+        if video is not None and video.suffix.lower() != ".gif":
+            self.robot.close()
+            raise RunError(f"--video {video}: only GIF is written (no video encoder is installed); "
+                           "name the file *.gif")
+        self.video = _Video(self.robot, video) if video is not None else None
+        try:
+            self.viewer = _Viewer(self.robot) if viewer else None
+        except RunError:
+            self.robot.close()
+            raise
+        self.observers: list[Observer] = [o for o in (self.video, self.viewer) if o]
+        if realtime or viewer:
+            self.observers.append(_Pacer())
+        self.notes: list[str] = []  # what became of the video, for the user
 
     def execute(self, progress: Progress | None = None) -> Outcome:
-        """Run to the end; afterwards `object_position` is where the object came to rest."""
+        """Run to the end; afterwards `object_position` is where the object came to rest
+        (None when the task has no object)."""
         try:
             outcome = self.executor.run(progress, observers=tuple(self.observers))
-            self.object_position = tuple(float(v) for v in self.robot.object_pose()[:3, 3])
+            self.object_position = (tuple(float(v) for v in self.robot.object_pose()[:3, 3])
+                                    if self.has_object else None)
+            if self.video:
+                self.notes.append(self.video.write())
             return outcome
         except BaseException:
             self.trace.discard()
             raise
         finally:
+            if self.viewer:
+                self.viewer.close()
             self.robot.close()

@@ -101,9 +101,19 @@ class PybulletRobot(SimRobot):
         self._tcp_in_link = list(d.tcp.origin.xyz)  # calculateJacobian takes it in the URDF link frame
         self._range_offset = d.range_sensor.origin.matrix() if d.range_sensor else None
         self._range_link = index["link:" + d.range_sensor.link] if d.range_sensor else -1
-        self._arm_effort = [d.joints[n].effort for n in d.arm_joints]
+        self._arm_effort = np.array([d.joints[n].effort for n in d.arm_joints])
+        self._arm_kp = np.array([d.joints[n].servo.kp for n in d.arm_joints])
+        self._arm_kv = np.array([d.joints[n].servo.kv for n in d.arm_joints])
+        self._gravity = np.zeros(len(d.arm_joints))  # arm joint torques that carry the robot's weight
         self._hand_effort = np.array([d.joints[n].effort for n in self.hand_joints])
         self._hand_kv = np.array([d.joints[n].servo.kv for n in self.hand_joints])
+        self._hand_kp = np.array([d.joints[n].servo.kp for n in self.hand_joints])
+        self._hand_friction = np.array([d.joints[n].friction for n in self.hand_joints])
+        self._driven = np.zeros(0, int)  # self-locking hand joints under a force command, their forces and torques
+        self._drive = np.zeros(0)
+        self._drive_torque = np.zeros(0)
+        self._servo = np.zeros(0, int)  # hand joints under a position servo, and their references
+        self._servo_ref = np.zeros(0)
         self._arm_gain = [ARM_POSITION_GAIN] * len(self._arm)
 
         home = dict(zip(d.arm_joints, d.home)) | d.hand_joint_targets(self.info.hand.open)
@@ -154,35 +164,90 @@ class PybulletRobot(SimRobot):
 
     # ---- engine part ------------------------------------------------------------------
     def _apply_arm(self, q_ref: np.ndarray, dq_ff: np.ndarray) -> None:
+        """The servo pushes like MuJoCo's: gravity compensated (`_advance`), plus at most what
+        its kp and kv make of the reference's lead in position and speed. Bullet's position
+        motor alone is rigid up to the joint's effort limit: fingertips meeting the table at
+        5 mm/s pressed on it with 64 N within one tick (measured) where MuJoCo's pressed with
+        about 5 N, and the sliding grasp tared that in as its contact."""
+        c = self.client
+        states = pb.getJointStates(self.body, self._movable, physicsClientId=c)
+        q = np.array([s[0] for s in states])
+        dq = np.array([states[i][1] for i in self._jac_columns])
+        zeros = [0.0] * len(q)
+        self._gravity = np.asarray(pb.calculateInverseDynamics(self.body, q.tolist(), zeros, zeros,
+                                                               physicsClientId=c))[self._jac_columns]
+        push = self._arm_kp * np.abs(q_ref - q[self._jac_columns]) + self._arm_kv * np.abs(dq_ff - dq)
         pb.setJointMotorControlArray(
             self.body, self._arm, pb.POSITION_CONTROL, targetPositions=q_ref.tolist(), targetVelocities=dq_ff.tolist(),
-            forces=self._arm_effort, positionGains=self._arm_gain, physicsClientId=self.client,
+            forces=np.minimum(self._arm_effort, push).tolist(), positionGains=self._arm_gain,
+            physicsClientId=c,
         )
 
     def _apply_hand(self, force: np.ndarray, values: np.ndarray) -> None:
-        """Position joints get a servo; force joints a motor that runs at F/kv pushing with at
-        most F: in free space it closes at the speed where MuJoCo's damped force balances, and
-        against an object it pushes with F, as MuJoCo's does; it also stops the finger being
-        pushed back by less than F (a self-locking drive; Bullet has no joint friction)."""
+        """Position joints get a servo (`_servo_hand`). A force joint with a velocity motor that
+        runs at F/kv pushing with at most F: in free space it closes at the speed where
+        MuJoCo's damped force balances, and against an object it pushes with F, as MuJoCo's
+        does. That motor resists being pushed back with F only, so two opposed fingers
+        pushing with F are in neutral balance and a held box drifts out; a self-locking
+        drive (a joint with dry friction) is therefore modelled as MuJoCo models it: the
+        torque F - kv*speed each physics step (`_drive_hand`) against a motor holding still
+        with at most the friction."""
         c = self.client
-        servo = np.flatnonzero(~force)
-        if len(servo):
+        push = np.clip(values, -self._hand_effort, self._hand_effort)
+        self._servo = np.flatnonzero(~force)
+        self._servo_ref = values[self._servo]
+        locking = force & (self._hand_friction > 0)
+        self._driven = np.flatnonzero(locking)
+        self._drive = push[self._driven]
+        self._drive_torque = self._drive.copy()
+        if len(self._driven):
             pb.setJointMotorControlArray(
-                self.body, [self._hand[i] for i in servo], pb.POSITION_CONTROL, targetPositions=values[servo].tolist(),
-                forces=self._hand_effort[servo].tolist(), positionGains=[HAND_POSITION_GAIN] * len(servo),
+                self.body, [self._hand[i] for i in self._driven], pb.VELOCITY_CONTROL,
+                targetVelocities=[0.0] * len(self._driven), forces=self._hand_friction[self._driven].tolist(),
                 physicsClientId=c,
             )
-        pushed = np.flatnonzero(force)
+        pushed = np.flatnonzero(force & ~locking)
         if len(pushed):
-            push = np.clip(values[pushed], -self._hand_effort[pushed], self._hand_effort[pushed])
             pb.setJointMotorControlArray(
                 self.body, [self._hand[i] for i in pushed], pb.VELOCITY_CONTROL,
-                targetVelocities=(push / self._hand_kv[pushed]).tolist(), forces=np.abs(push).tolist(), physicsClientId=c,
+                targetVelocities=(push[pushed] / self._hand_kv[pushed]).tolist(), forces=np.abs(push[pushed]).tolist(),
+                physicsClientId=c,
             )
+
+    def _drive_hand(self) -> None:
+        """One physics step of the self-locking drives' torque (Bullet clears it every step)."""
+        joints = [self._hand[i] for i in self._driven]
+        speed = np.array([s[1] for s in pb.getJointStates(self.body, joints, physicsClientId=self.client)])
+        self._drive_torque = self._drive - self._hand_kv[self._driven] * speed
+        pb.setJointMotorControlArray(self.body, joints, pb.TORQUE_CONTROL, forces=self._drive_torque.tolist(),
+                                     physicsClientId=self.client)
+
+    def _servo_hand(self) -> None:
+        """Bullet's position motor is rigid up to its force limit, where MuJoCo's servo is a
+        spring (kp): a finger whose reference runs ahead of it, blocked by the object or
+        the table, pushes with kp times the lag there but with its whole effort limit
+        here, and two opposed fingers at their limits squeeze a box out sideways. So each
+        tick the motor's force limit is what the spring would push with."""
+        servo = self._servo
+        if not len(servo):
+            return
+        joints = [self._hand[i] for i in servo]
+        q = np.array([s[0] for s in pb.getJointStates(self.body, joints, physicsClientId=self.client)])
+        limit = np.minimum(self._hand_effort[servo], self._hand_kp[servo] * np.abs(self._servo_ref - q))
+        pb.setJointMotorControlArray(
+            self.body, joints, pb.POSITION_CONTROL, targetPositions=self._servo_ref.tolist(),
+            forces=limit.tolist(), positionGains=[HAND_POSITION_GAIN] * len(servo), physicsClientId=self.client,
+        )
 
     def _advance(self) -> None:
         self._contact_cache = self._root_cache = None
+        self._servo_hand()
+        driven = len(self._driven) > 0
         for _ in range(self.substeps):
+            pb.setJointMotorControlArray(self.body, self._arm, pb.TORQUE_CONTROL, forces=self._gravity.tolist(),
+                                         physicsClientId=self.client)
+            if driven:
+                self._drive_hand()
             pb.stepSimulation(physicsClientId=self.client)
 
     def jacobian(self) -> np.ndarray:
@@ -196,6 +261,7 @@ class PybulletRobot(SimRobot):
     def _joint_state(self):
         states = pb.getJointStates(self.body, self._joints, physicsClientId=self.client)
         q, dq, effort = np.array([(s[0], s[1], s[3]) for s in states]).T
+        effort[len(self._arm) + self._driven] = self._drive_torque  # Bullet reports only its motors
         return q, dq, effort
 
     def _link_pose(self, link: int) -> np.ndarray:

@@ -32,10 +32,11 @@ FingerLayout = Mapping[str, tuple[float, float]]  # finger pad -> (x, y) of its 
 CLOSING_SPEED = 0.3  # of each DOF's speed limit
 LEAD = 0.05  # of a DOF's range: how far a closing finger's reference may run ahead of it
 TOUCH_EFFORT = 0.05  # of the effort limit: where force adaptation starts, a light touch
-SETTLE_TIME = 0.1  # s every pad must feel the grasp force (within 10 %) before the object counts as held
+SETTLE_TIME = 0.1  # s every pad must feel the grasp force (HELD) before the object counts as held
 ADAPT_GAIN = 0.05  # effort (fraction of the limit) per N of missing pad force, per s
-HELD = 0.9  # within 10 % of GRASP_FORCE on every grasping pad: the object is held
+HELD = 0.9  # the weakest grasping pad within 10 % of GRASP_FORCE: the object is held
 STALL_TIME = 0.3  # s a finger may stand still before it counts as stopped
+STILL_SPEED = 0.05  # of a DOF's speed limit: slower than this on average, a finger stands still
 REACHED = 0.02  # of a DOF's range
 FINGER_LOST_SHIFT = 0.015  # m towards the fingers that touched, per correction
 OBJECT_LOST_STEP = 0.01  # m further along the approach, per retry (D5: "a little bit down")
@@ -88,6 +89,7 @@ class FingerGrasp(Controller):
         self.retries = 0
         self.phase = "preshape"
         self.still = np.zeros_like(self.reference)
+        self.anchor = readings.hand_q.copy()  # where each DOF was when it last moved
         self.ctx.blackboard[FINGERS_STOPPED] = False
         if not self.fingers:
             self.finish(Status.ERROR, "from this posture the grasp shape moves no finger that has a tactile pad")
@@ -148,9 +150,15 @@ class FingerGrasp(Controller):
 
     def _blocked(self, readings: Readings, dt: float) -> bool:
         """Counts how long each DOF has stood still; true once every moving one has, for
-        STALL_TIME (a preshape that meets the object stops there)."""
+        STALL_TIME (a preshape that meets the object stops there). Still means it has not
+        moved away from where it stopped by more than STILL_SPEED would take it in
+        STALL_TIME: a finger pressed between the object and the table can shake in place
+        (seen in PyBullet, 5 mrad at 50 Hz), fast enough for its speed to never read zero."""
         hand = self.ctx.info.hand
-        self.still = np.where(np.abs(readings.hand_dq) < 0.05 * hand.velocity_limit, self.still + dt, 0.0)
+        q = readings.hand_q
+        moved = np.abs(q - self.anchor) > STILL_SPEED * hand.velocity_limit * STALL_TIME
+        self.anchor = np.where(moved, q, self.anchor)
+        self.still = np.where(moved, 0.0, self.still + dt)
         return bool((self.still[self.moving] > STALL_TIME).all())
 
     # -- commands -----------------------------------------------------------------------
@@ -206,16 +214,22 @@ class RobustGraspHand(FingerGrasp):
 
     def _hold(self, readings: Readings, dt: float) -> None:
         """Force adaptation: from a light touch, each grasping finger's effort rises until
-        its pad feels the grasp force, and keeps it there; the object is held once every
-        pad has felt it for SETTLE_TIME."""
+        its pad feels the grasp force, and keeps it there. The object is held once the
+        weakest grasping pad has felt the grasp force (within 1 - HELD) for SETTLE_TIME.
+        Not every pad: opposed fingers share one squeeze, yet where the table takes part of
+        it, or the fingers touch at different points, their pads read different forces, and
+        a self-locking drive keeps its pad's force even at no effort, so all pads at the
+        grasp force at once may never come. Not the strongest either: the squeeze left over
+        from closing is above the grasp force on every pad until adaptation has let it go."""
         hand = self.ctx.info.hand
         pads = readings.pad_force
-        held = True
+        felt = []
         for i in np.flatnonzero(self.moving):
             force = pads[self.pad_of[self.finger_of_dof[i]]] if self.finger_of_dof[i] else self.grasp_force
             limit = hand.effort_limit[i]
             self.effort[i] = min(limit, max(0.0, self.effort[i] + ADAPT_GAIN * limit * (self.grasp_force - force) * dt))
-            held &= abs(force - self.grasp_force) <= (1.0 - HELD) * self.grasp_force
+            felt.append(force)
+        held = abs(min(felt) - self.grasp_force) <= (1.0 - HELD) * self.grasp_force
         self.settled = self.settled + dt if held else 0.0
         if self.settled >= SETTLE_TIME and self.status is Status.RUNNING:
             forces = ", ".join(f"{f} {pads[self.pad_of[f]]:.1f} N" for f in self.fingers)

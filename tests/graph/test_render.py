@@ -5,6 +5,7 @@ from __future__ import annotations
 import re
 import shutil
 import stat
+import sys
 import struct
 import zlib
 
@@ -38,7 +39,7 @@ def fake_dot(tmp_path, monkeypatch, script: str) -> None:
     """Put an executable `dot` on PATH that runs `script` (Python) on the DOT it is given."""
     program = tmp_path / "bin" / "dot"
     program.parent.mkdir()
-    program.write_text(f"#!{shutil.which('python3') or '/usr/bin/env python3'}\nimport sys\n{script}\n")
+    program.write_text(f"#!{sys.executable}\nimport sys\n{script}\n")  # not a shim: PATH is only bin/
     program.chmod(program.stat().st_mode | stat.S_IEXEC)
     monkeypatch.setenv("PATH", str(program.parent))
 

@@ -87,13 +87,13 @@ def execute(estd: Estd, robot: SimRobot, hook: Hook | None = None, task=None) ->
 
 
 def run_example(path: Path, hook: Hook | None = None, robot: str = "melfa",
-                arm: str | None = None) -> tuple[Outcome, Executor, SimRobot]:
+                arm: str | None = None, engine: str = "mujoco") -> tuple[Outcome, Executor, SimRobot]:
     """Translate an ATD for a robot (the Melfa by default) and run it in its own scene."""
     task, diagnostics = load_task(path)
     assert task is not None, diagnostics
     translation = translate(task, create(robot, arm))
     assert translation.ok, translation.diagnostics
-    sim = make_robot(load_description(robot, arm), scene_from_task(task, path))
+    sim = make_robot(load_description(robot, arm), scene_from_task(task, path), engine)
     outcome, executor = execute(translation.estd, sim, hook, task)
     return outcome, executor, sim
 

@@ -120,3 +120,26 @@ def test_a_tilted_hand_reads_the_same_wrench_on_both_engines(melfa, robot_of, ru
     assert abs(mj[0]) > 3 and abs(mj[1]) > 2 and abs(mj[3]) > 0.1  # really tilted: weight on every axis
     np.testing.assert_allclose(mj[:3], pb[:3], atol=0.05)
     np.testing.assert_allclose(mj[3:], pb[3:], atol=0.005)
+
+
+def test_an_arm_meeting_the_table_pushes_like_a_servo_not_a_rigid_motor(melfa, robot_of) -> None:
+    """A guarded descent at the robust grasp's 5 mm/s feels the table with a force that builds
+    up over the servo's stiffness on both engines. PyBullet's position motor, left rigid up
+    to the joint's effort limit, struck it with about 800 N within one tick (MuJoCo: 5 N),
+    and a sliding grasp tared at that contact pressed the fingertips on the table for ever."""
+    fingertip_below_tcp = melfa.hand.pads[0].half_size[1]
+    for engine in ENGINES:
+        robot = robot_of(melfa, engine, box_scene(xy=(0.2, 0.2)))
+        rest = robot.read().wrench[2]
+        robot.command_arm_twist(np.array([0, 0, -0.05, 0, 0, 0]))
+        while robot.read().tcp[2, 3] > fingertip_below_tcp + 0.005:
+            robot.step()
+        robot.command_arm_twist(np.array([0, 0, -0.005, 0, 0, 0]))
+        forces: list[float] = []
+        while len(forces) < 5:  # from the first tick over 2 N on, 20 ms
+            robot.step()
+            assert robot.read().time < 10.0, f"{engine}: the table was never felt"
+            force = rest - robot.read().wrench[2]
+            if forces or force > 2.0:
+                forces.append(force)
+        assert max(forces) < 50.0, f"{engine}: the table was struck with {max(forces):.0f} N"

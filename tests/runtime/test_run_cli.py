@@ -1,0 +1,121 @@
+"""`atd run` as a user meets it: the real command, its summary, trace and exit codes."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+from tests.conftest import EXAMPLES
+
+PICK_AND_PLACE = str(EXAMPLES / "pick_and_place.xml")
+
+
+def atd(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "atd", *args], capture_output=True, text=True, timeout=300)
+
+
+def test_the_flagship_demo_succeeds_and_reports_in_task_terms():
+    result = atd("run", PICK_AND_PLACE, "--robot", "melfa")
+    assert result.returncode == 0, result.stdout + result.stderr
+    out = result.stdout
+    assert "outcome: succeeded: reached 'done'" in out
+    assert "left on success & grasp_stable (grasp->lift)" in out
+    assert "grasp->lift/grasp_stable: tactile_force_above(" in out
+    rests = next(line for line in out.splitlines() if line.startswith("the object rests at"))
+    x, y, z = (float(v) for v in rests.split("(")[1].rstrip(")").split(","))
+    assert ((x - 0.10) ** 2 + (y - 0.10) ** 2) ** 0.5 < 0.02 and abs(z - 0.025) < 0.005
+    assert "[" in result.stderr and "approach" in result.stderr  # live progress, one line per state
+
+
+def test_same_seed_same_trace_and_every_record_traces_back_to_the_atd(tmp_path):
+    traces = []
+    for name in ("a.jsonl", "b.jsonl"):
+        path = tmp_path / name
+        assert atd("run", PICK_AND_PLACE, "--robot", "melfa", "--seed", "3", "--trace", str(path), "-q").returncode == 0
+        traces.append(path.read_bytes())
+    assert traces[0] == traces[1]
+    records = [json.loads(line) for line in traces[0].splitlines()]
+    states = {"approach", "descend", "grasp", "lift", "carry", "put_down", "let_go", "retreat", "done"}
+    assert {r["atd"] for r in records if r["type"] in ("enter", "exit", "end")} == states
+    events = [r for r in records if r["type"] == "event"]
+    assert all(r["atd"].startswith(r["transition"] + "/") for r in events)
+    assert all(c["atd"] == r["atd"] for r in events for c in r["conditions"])
+    assert records[-1]["type"] == "end" and records[-1]["outcome"] == "success"
+    assert not list(tmp_path.glob(".*partial"))  # the trace was moved into place whole
+
+
+def test_an_estd_file_runs_as_is(tmp_path):
+    estd = tmp_path / "pp.estd.xml"
+    assert atd("translate", PICK_AND_PLACE, "--robot", "melfa", "-o", str(estd), "-q").returncode == 0
+    assert atd("run", str(estd), "-q").returncode == 0
+    wrong = atd("run", str(estd), "--robot", "baxter", "-q")
+    assert wrong.returncode == 2 and "was translated for 'melfa', not 'baxter'" in wrong.stderr
+
+
+def test_the_watchdog_ends_a_run_that_outlives_its_budget():
+    result = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--budget", "1", "-q")
+    assert result.returncode == 3
+    assert "outcome: failed: the watchdog stopped the run in 'descend' after 1 s of simulated time" in result.stdout
+
+
+def test_a_task_the_robot_cannot_do_exits_4_with_the_reason(atd_file):
+    path = atd_file(f"""
+        <statemachine>
+          <state name="wipe" type="slide"><path><position>0.1 0.1 0.02</position></path></state>
+          <state name="done" type="success"/>
+          <transition origin="wipe" destination="done"><success/></transition>
+        </statemachine>""")
+    result = atd("run", str(path), "--robot", "melfa", "-q")
+    assert result.returncode == 4
+    assert "the Melfa has no slide primitive" in result.stderr and "Traceback" not in result.stderr
+
+
+def test_bad_input_gives_a_diagnostic_not_a_traceback(atd_file):
+    broken = atd_file("<statemachine><state name='a' type='move'/>")
+    result = atd("run", str(broken), "--robot", "melfa")
+    assert result.returncode == 1 and "error[ATD003]" in result.stderr and "Traceback" not in result.stderr
+    no_robot = atd("run", PICK_AND_PLACE)
+    assert no_robot.returncode == 2 and "--robot" in no_robot.stderr
+    unknown = atd("run", PICK_AND_PLACE, "--robot", "r2d2")
+    assert unknown.returncode == 2 and "no robot 'r2d2' is installed" in unknown.stderr
+
+
+def test_video_is_an_animated_gif_of_the_run(tmp_path, atd_file):
+    path = atd_file("""
+        <statemachine>
+          <state name="reach" type="move"><path><position>0.10 0.0 0.20</position></path></state>
+          <state name="done" type="success"/>
+          <transition origin="reach" destination="done"><success/></transition>
+        </statemachine>""")
+    gif = tmp_path / "run.gif"
+    result = atd("run", str(path), "--robot", "melfa", "--video", str(gif), "-q")
+    assert result.returncode == 0, result.stderr
+    data = gif.read_bytes()
+    assert data.startswith(b"GIF89a") and data.endswith(b"\x3b")
+    frames = data.count(b"\x21\xf9\x04")
+    assert f"video: {gif} ({frames} frames)" in result.stdout and frames >= 3
+
+
+def test_video_and_viewer_refusals_are_clear(tmp_path, monkeypatch):
+    mp4 = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--video", str(tmp_path / "run.mp4"), "-q")
+    assert mp4.returncode == 2 and "only GIF is written" in mp4.stderr and not (tmp_path / "run.mp4").exists()
+    monkeypatch.delenv("DISPLAY", raising=False)
+    monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
+    viewer = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--viewer", "-q")
+    assert viewer.returncode == 2 and "--viewer needs a display" in viewer.stderr
+
+
+def test_empty_the_box_loops_over_its_sub_task_until_nothing_is_left(tmp_path):
+    """Thesis 3.4.3: pick-and-place rounds as a sub-task; the round that finds nothing ends the loop."""
+    trace = tmp_path / "t.jsonl"
+    result = atd("run", str(EXAMPLES / "empty_the_box.xml"), "--robot", "melfa", "--trace", str(trace), "-q")
+    assert result.returncode == 0, result.stdout
+    assert "outcome: succeeded: reached 'box_empty'" in result.stdout
+    records = [json.loads(line) for line in trace.read_text().splitlines()]
+    rounds = [r for r in records if r["type"] == "enter" and r["state"] == "pick_one"]
+    ends = [r["state"] for r in records if r["type"] == "end"]
+    assert len(rounds) == 2 and ends == ["pick_one/placed", "pick_one/nothing_there", "box_empty"]
+    rests = next(line for line in result.stdout.splitlines() if line.startswith("the object rests at"))
+    y = float(rests.split(",")[1])
+    assert y > 0.05  # outside the box, whose walls span y = -0.16 .. 0.0
