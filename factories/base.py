@@ -22,6 +22,8 @@ from importlib.util import find_spec
 from pathlib import Path
 from typing import ClassVar, Mapping
 
+import numpy as np
+
 from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamValue, SensorKind, defaults
 from atd.model.estd import Condition, ConditionGroup, Controller
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
@@ -227,14 +229,53 @@ class Factory(ABC):
         return Reach(self.robot)
 
     def motion(self, state: State, context: MappingContext) -> tuple[Vec3, tuple[Vec3, ...]]:
-        """Target and via points of an arm primitive: the path, or derived from the object."""
-        if state.path:
-            points = [w.position for w in state.path]
-            self.check_reach(*points)
-            return points[-1], tuple(points[:-1])
-        target = derived_target(state, context.object)
-        self.check_reach(target)
-        return target, ()
+        """Target and via points of an arm primitive: the path, or derived from the object,
+        for the point the state's hand shape acts at (`shape_offset`), turned into TCP points."""
+        dx, dy, dz = self.shape_offset(state)
+        points = [w.position for w in state.path] if state.path else [derived_target(state, context.object)]
+        # To the micrometre, so the ESTD's 9-digit numbers read back equal.
+        points = [(round(x - dx, 6), round(y - dy, 6), round(z - dz, 6)) for x, y, z in points]
+        self.check_reach(*points)
+        return points[-1], tuple(points[:-1])
+
+    def arm_motion(self, state: State, target: Vec3, via: tuple[Vec3, ...], **extra: ParamValue) -> Controller:
+        """The arm controller of a move-like state: `push` for an ATD push (a guarded move
+        that must feel the object), `cartesian_move` with the ATD's movement type otherwise."""
+        flags = arm_motion_flags(state)
+        if state.type is StateType.PUSH:
+            return self.controller("push", target=target, waypoints=via, keep_orientation=flags["keep_orientation"])
+        return self.controller("cartesian_move", target=target, waypoints=via, **{**flags, **extra})
+
+    def shape_offset(self, state: State) -> Vec3:
+        """Where the state's hand shape acts, from the TCP, in the world frame (the hand
+        pointing down with the yaw it has at home, which every arm controller keeps).
+
+        The task's positions are for that point. A pinch closes where the hand says
+        (`Hand.grasp_centres`: the SDH2's two fingers face each other 19 mm off its TCP).
+        A closed hand holds nothing, and one that curls into a fist has no point between
+        its fingertips: in a move or push its lowest point stands in for the TCP, so a
+        push meets the object where the path says (the closed Barrett ends 2.7 cm short of
+        its TCP, the closed SDH2 9.3 cm; a closed gripper reaches past its TCP: no change).
+        """
+        if state.hand_shape is None:
+            return (0.0, 0.0, 0.0)
+        made, _ = self.shape(state.hand_shape)
+        robot = self.robot
+        centre = robot.hand.grasp_centres.get(made.value, (0.0, 0.0, 0.0))
+        if made is HandShape.CLOSED and state.type in (StateType.MOVE, StateType.PUSH):
+            centre = (0.0, 0.0, min(0.0, robot.hand_reach(made.value)))
+        x, y, z = (float(v) for v in self._hand_down @ np.asarray(centre, float))
+        return (x, y, z)
+
+    @cached_property
+    def _hand_down(self) -> np.ndarray:
+        """The hand's rotation pointing down (hand z = world -z) with its home yaw."""
+        robot = self.robot
+        x = robot.tcp_pose(np.asarray(robot.home, float))[:3, 0].copy()
+        x[2] = 0.0
+        x /= np.linalg.norm(x)
+        z = np.array([0.0, 0.0, -1.0])
+        return np.column_stack([x, np.cross(z, x), z])
 
 
 def derived_target(state: State, obj: ObjectInfo | None) -> Vec3:

@@ -73,6 +73,20 @@ class Shape:
         side = mass * (3 * r * r + length * length) / 12
         return (side, side, mass * r * r / 2)
 
+    def support(self, link_pose: np.ndarray, direction: np.ndarray) -> float:
+        """How far the shape reaches along the unit `direction`: the largest p . direction
+        over its points p, with the shape on a link at `link_pose`."""
+        pose = link_pose @ self.origin.matrix()
+        d = np.abs(pose[:3, :3].T @ direction)  # the direction in the shape's own axes
+        centre = float(pose[:3, 3] @ direction)
+        if self.kind == "box":
+            return centre + float(d @ np.asarray(self.size))
+        if self.kind == "sphere":
+            return centre + self.size[0]
+        r, half = self.size
+        across = 1.0 if self.kind == "capsule" else float(np.sqrt(max(0.0, 1.0 - d[2] * d[2])))
+        return centre + half * float(d[2]) + r * across
+
 
 @dataclass(frozen=True)
 class Servo:
@@ -180,6 +194,9 @@ class Hand:
     postures: dict[str, tuple[float, ...]] = field(default_factory=dict)  # D5 hand shape -> DOF values
     pad_force_from_effort: bool = False  # no tactile array: pad force = measured finger effort
     test_grasp: str = "power_grasp"  # the hand shape (with its preshape) `atd robots test` lifts a 5 cm box with
+    # Hand shapes that close somewhere else than on the TCP -> where they close, hand frame,
+    # relative to the TCP (a pinch between two fingers that stand off the palm centre).
+    grasp_centres: dict[str, Vec3] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -277,6 +294,18 @@ class RobotDescription:
 
     def site_pose(self, site: Site, joints: dict[str, float]) -> np.ndarray:
         return self.link_poses(joints)[site.link] @ site.origin.matrix()
+
+    def hand_reach(self, posture: str) -> float:
+        """How far the hand's links reach past the TCP along the approach axis (hand z) in a
+        posture: about 0 when the fingertips end at the TCP, negative when the hand ends
+        short of it (a closed fist), so a hand pointing down has its lowest point that far
+        below the TCP. The thin tactile pads lie on the links and are left out."""
+        poses = self.link_poses(self.hand_joint_targets(np.asarray(self.hand.postures[posture], float)))
+        tcp = poses[self.tcp.link] @ self.tcp.origin.matrix()
+        approach = tcp[:3, 2]
+        farthest = max(shape.support(poses[name], approach)
+                       for name in self.hand_links for shape in self.links_by_name[name].shapes)
+        return farthest - float(tcp[:3, 3] @ approach)
 
     def tcp_pose(self, arm_q: np.ndarray, hand_dofs: np.ndarray | None = None) -> np.ndarray:
         joints = dict(zip(self.arm_joints, (float(v) for v in arm_q)))

@@ -16,7 +16,7 @@ from atd.model.controllers import ARM_CONTROLLERS, CONDITIONS, HAND_CONTROLLERS,
 from atd.model.estd import Condition as Leaf
 from atd.model.estd import Controller as Use
 from primitives.arm.grasp import NaiveGraspApproach, RobustGraspApproach
-from primitives.arm.move import CartesianMove, Hold
+from primitives.arm.move import CartesianMove, Hold, Push
 from primitives.arm.surface import Place, ReleaseRetreat, Slide
 from primitives.base import Condition, Context, Controller, Status
 from primitives.conditions import (
@@ -48,6 +48,7 @@ ConditionMaker = Callable[[Context, tuple[str, ...]], Condition]
 ARM: Mapping[str, ControllerClass] = {
     "hold": Hold,
     "cartesian_move": CartesianMove,
+    "push": Push,
     "place": Place,
     "slide": Slide,
     "release_retreat": ReleaseRetreat,

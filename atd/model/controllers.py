@@ -103,6 +103,26 @@ _FORCE_SOURCE = _p(WORD, "what measures the grip force: the tactile pads or the 
 _FOR = _p(NUM, "the condition must hold this long without a break before it fires (ours; 0 = at once)",
           0.0, unit="s")
 
+# cartesian_move's parameters; push takes them too, with its own defaults where it differs.
+_MOVE = {
+    "target": _TARGET,
+    "waypoints": _p(PTS, "via points before the target (thesis WAYPOINTS)", ()),
+    "obstacles": _p(PTS, "centres of boxes to keep clear of (thesis 3.3.2 OBSTACLES)", ()),
+    "obstacle_sizes": _p(PTS, "full x y z size of each obstacle box, same order as obstacles", ()),
+    "straight_line": _p(FLAG, "follow the straight Cartesian line (guarded motion, thesis 7.2)", False),
+    "keep_orientation": _p(FLAG, "hold the hand orientation all along (constrained motion, thesis 7.2); "
+                          "otherwise only the final orientation is the starting one", False),
+    "force_threshold": _p(NUM, "unexpected-contact force (thesis 3.3.2 FORCE_THRESHOLD)", 15.0, unit="N"),
+    "max_speed": _p(NUM, "TCP speed limit (ours; the thesis' VELOCITY_LIMITS zeros mean 'none')", 0.15,
+                    unit="m/s"),
+    "velocity_limits": _p(VEC, "linear and angular velocity limits; zeros = none (thesis 3.3.2)",
+                          (0.0,) * 6, length=6),
+    "acceleration_limits": _p(VEC, "linear and angular acceleration limits; zeros = none (thesis 3.3.2)",
+                              (0.0,) * 6, length=6),
+    "tolerance": _p(NUM, "distance to the target counted as reached (ours)", 0.003, unit="m"),
+    "filter_time": _FILTER,
+}
+
 _ARM_CONTROLLERS = (
     ControllerSpec("hold", Role.ARM, "Keep the TCP where it was when the state began.", "D5 2.2.4 (arm idle)"),
     ControllerSpec(
@@ -110,23 +130,27 @@ _ARM_CONTROLLERS = (
         "Move the TCP to the target through the waypoints with a Cartesian velocity law; stop on an "
         "unexpected contact (||F|| >= force_threshold).",
         "thesis 3.3.2, Eq. 3.3 (transport)",
+        _MOVE,
+    ),
+    ControllerSpec(
+        "push", Role.ARM,
+        "Push the object along the path: a guarded move that must feel the object, so reaching the target "
+        "without a force against the motion (push_force over its free-motion level) is an error, and so "
+        "is an object that does not give way (||F|| >= force_threshold).",
+        "thesis 3.3.2, Eq. 3.3 (guarded transport); Table 7.1 push",
         {
-            "target": _TARGET,
-            "waypoints": _p(PTS, "via points before the target (thesis WAYPOINTS)", ()),
-            "obstacles": _p(PTS, "centres of boxes to keep clear of (thesis 3.3.2 OBSTACLES)", ()),
-            "obstacle_sizes": _p(PTS, "full x y z size of each obstacle box, same order as obstacles", ()),
-            "straight_line": _p(FLAG, "follow the straight Cartesian line (guarded motion, thesis 7.2)", False),
-            "keep_orientation": _p(FLAG, "hold the hand orientation all along (constrained motion, thesis 7.2); "
-                                  "otherwise only the final orientation is the starting one", False),
-            "force_threshold": _p(NUM, "unexpected-contact force (thesis 3.3.2 FORCE_THRESHOLD)", 15.0, unit="N"),
-            "max_speed": _p(NUM, "TCP speed limit (ours; the thesis' VELOCITY_LIMITS zeros mean 'none')", 0.15,
-                            unit="m/s"),
-            "velocity_limits": _p(VEC, "linear and angular velocity limits; zeros = none (thesis 3.3.2)",
-                                  (0.0,) * 6, length=6),
-            "acceleration_limits": _p(VEC, "linear and angular acceleration limits; zeros = none (thesis 3.3.2)",
-                                      (0.0,) * 6, length=6),
-            "tolerance": _p(NUM, "distance to the target counted as reached (ours)", 0.003, unit="m"),
-            "filter_time": _FILTER,
+            **_MOVE,
+            "straight_line": _p(FLAG, "follow the straight Cartesian line (a push is a guarded motion)", True),
+            "force_threshold": _p(NUM, "the object does not give way: the push fails (thesis 3.3.2 "
+                                  "FORCE_THRESHOLD)", 15.0, unit="N"),
+            "max_speed": _p(NUM, "TCP speed limit: slow, so the object slides instead of being struck (ours)",
+                            0.05, unit="m/s"),
+            "push_force": _p(NUM, "force against the motion, over the level measured in free motion, that says "
+                             "the hand is pushing something (ours: a 0.1 kg box on the table resists with "
+                             "about 0.5 N)", 0.25, unit="N"),
+            "push_time": _p(NUM, "time constant of the low-pass on that force (ours)", 0.2, unit="s"),
+            "baseline_time": _p(NUM, "how long the free-motion level is measured once the TCP cruises, before "
+                                "the hand meets the object (ours)", 0.3, unit="s"),
         },
     ),
     ControllerSpec(

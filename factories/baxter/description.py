@@ -127,8 +127,9 @@ def description(arm: str | None = None) -> RobotDescription:
             "tactile": SensorModel(resolution=0.1),  # the gripper's force reading
             "range": SensorModel(noise_std=0.002, resolution=0.001),
         },
-        # The IR sensor looks along the approach axis beside the gripper body, clear of the fingers.
-        range_sensor=Site("ir_range", "gripper_base", Origin((0.045, 0, 0.0))),
+        # As on the real hand, the IR sensor looks out of the gripper's centre along the approach
+        # axis, from the face between the finger roots: a held object sits in its beam.
+        range_sensor=Site("ir_range", "gripper_base", Origin((0, 0, 2 * GRIPPER.body_half[2]))),
         range_limits=(0.04, 0.40),
         extra_sites=(Site("attachment_site", "hand", HAND_MOUNT),),
     )

@@ -25,7 +25,6 @@ from factories.base import (
     Unmappable,
     all_of,
     any_of,
-    arm_motion_flags,
     obstacle_params,
     PARALLEL_JAW_SHAPES,
     parallel_jaw_closest,
@@ -55,7 +54,7 @@ class BaxterFactory(Factory):
     node_table = (
         MappingRow("grasp", "grasp", "grasp force", "arm control, gripper force and opening, IR range"),
         MappingRow("move", "move", "-", "arm control, filtered virtual F/T"),
-        MappingRow("push", "move", "-", "arm control, filtered virtual F/T"),
+        MappingRow("push", "move", "-", "arm control, filtered virtual F/T (feels the object)"),
         MappingRow("transport", "transport", "obstacles, motion constraints", "arm control, gripper force"),
         MappingRow("place", "place", "contact threshold (raised, filtered)", "arm control, virtual F/T"),
         MappingRow("slide", "slide", "slide force thresholds (raised, filtered)", "arm control, virtual F/T"),
@@ -79,7 +78,7 @@ class BaxterFactory(Factory):
             return NodeMapping("slide", self.controller("slide", target=target),
                                self.controller("hand_shape", shape=HandShape.PINCH_GRASP.value))
         extra = obstacle_params(context) if kind is StateType.TRANSPORT else {}
-        arm = self.controller("cartesian_move", target=target, waypoints=via, **arm_motion_flags(state), **extra)
+        arm = self.arm_motion(state, target, via, **extra)
         if kind is StateType.TRANSPORT:
             return NodeMapping("transport", arm, self.controller("squeeze"))
         if state.hand_shape is None:

@@ -24,7 +24,6 @@ from factories.base import (
     Unmappable,
     all_of,
     any_of,
-    arm_motion_flags,
     PARALLEL_JAW_SHAPES,
     parallel_jaw_closest,
 )
@@ -48,7 +47,7 @@ class MelfaFactory(Factory):
     node_table = (  # thesis Table 7.4
         MappingRow("grasp", "grasp", "grasp force", "arm control, tactile sensors"),
         MappingRow("move", "move", "-", "arm control"),
-        MappingRow("push", "move", "-", "arm control"),
+        MappingRow("push", "move", "-", "arm control, force-torque sensor (feels the object)"),
         MappingRow("transport", "transport", "motion constraints", "arm control, tactile"),
         MappingRow("place", "transport", "motion constraints", "arm control, tactile"),
         MappingRow("slide", "-", "-", "-"),
@@ -69,10 +68,8 @@ class MelfaFactory(Factory):
             return NodeMapping("release", self.controller("hold"),
                                self.controller("open_to", hand_position=state.hand_opening))
         target, via = self.motion(state, context)
-        flags = arm_motion_flags(state)
-        if kind is StateType.PLACE:  # a transport that ends on contact: descend straight onto the surface
-            flags["straight_line"] = True
-        arm = self.controller("cartesian_move", target=target, waypoints=via, **flags)
+        # A place is a transport that ends on contact: it descends straight onto the surface.
+        arm = self.arm_motion(state, target, via, **({"straight_line": True} if kind is StateType.PLACE else {}))
         if kind in (StateType.TRANSPORT, StateType.PLACE):
             return NodeMapping("transport", arm, self.controller("squeeze"))
         if state.hand_shape is None:

@@ -152,6 +152,7 @@ def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
 # thumb (-38, 0) mm; knuckle 16.5 mm, proximal 86.5 mm, distal 68.5 mm (unconfirmed) [SDH].
 # Flexion 0 = straight out along the approach axis; positive curls the finger inwards.
 SDH_BASE_Z, SDH_KNUCKLE, SDH_PROXIMAL, SDH_DISTAL = 0.0745, 0.0165, 0.0865, 0.0685
+SDH_FINGER_X, SDH_FINGER_Y, SDH_THUMB_X = 0.019, 0.033, -0.038
 _SDH_SERVO = Servo(kp=30.0, kv=1.0)
 _SDH_SPEED = 210 * D  # thesis A.1.2
 
@@ -183,9 +184,9 @@ def _sdh2() -> tuple[tuple[Link, ...], Hand, float]:
              (cylinder((0, 0, 0), (0, 0, SDH_BASE_Z), 0.05, DARK),)),
     ]
     pads = []
-    for finger, y, axis in (("f1", 0.033, 1.0), ("f2", -0.033, -1.0)):
+    for finger, y, axis in (("f1", SDH_FINGER_Y, 1.0), ("f2", -SDH_FINGER_Y, -1.0)):
         knuckle = Link(
-            f"sdh_{finger}_knuckle", "sdh_palm", Origin((0.019, y, SDH_BASE_Z), (0, 0, np.pi)), 0.05,
+            f"sdh_{finger}_knuckle", "sdh_palm", Origin((SDH_FINGER_X, y, SDH_BASE_Z), (0, 0, np.pi)), 0.05,
             (cylinder((0, 0, 0), (0, 0, SDH_KNUCKLE), 0.014, METAL),),
             Joint(f"sdh_{finger}_rotation", "revolute", (0, 0, axis), 0.0, np.pi / 2, 80 * D, 2.0, _SDH_SERVO,
                   damping=0.05, armature=0.01),
@@ -193,7 +194,7 @@ def _sdh2() -> tuple[tuple[Link, ...], Hand, float]:
         chain, pad = _sdh_finger(finger, knuckle.name, Origin((0, 0, SDH_KNUCKLE)))
         links += [knuckle, *chain]
         pads.append(pad)
-    chain, pad = _sdh_finger("thumb", "sdh_palm", Origin((-0.038, 0, SDH_BASE_Z + SDH_KNUCKLE)), pad_name="tactile_f3")
+    chain, pad = _sdh_finger("thumb", "sdh_palm", Origin((SDH_THUMB_X, 0, SDH_BASE_Z + SDH_KNUCKLE)), pad_name="tactile_f3")
     links += chain
     pads.append(pad)
 
@@ -224,8 +225,14 @@ def _sdh2() -> tuple[tuple[Link, ...], Hand, float]:
         "pinch_grasp_preshape": shape(np.pi / 2, -0.3, 0.3, thumb=False),
         "pinch_grasp": shape(np.pi / 2, 0.5, 0.3, thumb=False),
     }
+    # The pinch closes the two fingers, turned to face each other, on the line through their
+    # bases, 19 mm off the TCP (the thumb's side of the palm is empty); the three-finger
+    # grasps close on the TCP, the centre of the circle the three fingers stand on.
+    pinch = (SDH_FINGER_X, 0.0, 0.0)
+    centres = {"pinch_grasp_preshape": pinch, "pinch_grasp": pinch}
     # Three fingers 120 degrees apart balance each other on a small box.
-    return tuple(links), Hand("schunk_sdh2", dofs, tuple(pads), postures, test_grasp="spherical_grasp"), 0.225
+    hand = Hand("schunk_sdh2", dofs, tuple(pads), postures, test_grasp="spherical_grasp", grasp_centres=centres)
+    return tuple(links), hand, 0.225
 
 
 # ---- the robot ---------------------------------------------------------------------------------

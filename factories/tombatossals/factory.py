@@ -23,7 +23,6 @@ from factories.base import (
     NodeMapping,
     Sensor,
     Unmappable,
-    arm_motion_flags,
     grasp_width,
     obstacle_params,
 )
@@ -83,7 +82,7 @@ class TombatossalsFactory(Factory):
     node_table = (  # thesis Table 7.3
         MappingRow("grasp", "robust_grasp", "pregrasp size", "arm control, FT and tactile sensors"),
         MappingRow("move", "transport", "-", "arm control"),
-        MappingRow("push", "transport", "-", "arm control"),
+        MappingRow("push", "transport", "-", "arm control, force-torque sensor (feels the object)"),
         MappingRow("transport", "transport", "obstacles, constraints", "arm control"),
         MappingRow("place", "place", "contact threshold", "arm control, force-torque sensor"),
         MappingRow("slide", "slide", "slide force threshold", "arm control, force-torque sensor"),
@@ -105,8 +104,7 @@ class TombatossalsFactory(Factory):
             shape, notes = self.shape(HandShape.HOOK_GRASP_PRESHAPE)
             return NodeMapping("slide", self.controller("slide", target=target),
                                self.controller("hand_shape", shape=shape.value), notes)
-        arm = self.controller("cartesian_move", target=target, waypoints=via, **arm_motion_flags(state),
-                              **(obstacle_params(context) if kind is StateType.TRANSPORT else {}))
+        arm = self.arm_motion(state, target, via, **(obstacle_params(context) if kind is StateType.TRANSPORT else {}))
         if kind is StateType.TRANSPORT:
             # The Barrett's worm drives and the SDH2's position control keep the grasp as it was.
             return NodeMapping("transport", arm, self.controller("hold_position"))

@@ -22,12 +22,13 @@ from primitives.arm.motion import (
 )
 from primitives.base import ArmCommand, Context, ControlData, Controller, Status
 from primitives.blackboard import ARM_NUDGE
-from primitives.filters import ContactWrench
+from primitives.filters import ContactWrench, LowPass
 from primitives.robot import Readings
 
 VIA_TOLERANCE = 0.01  # m: a via point counts as passed this close
 STALL_TIME = 2.0  # s without getting 1 mm closer: the target cannot be reached
 STALL_PROGRESS = 0.001  # m
+CRUISE = 0.9  # fraction of max_speed at which a push starts measuring its free-motion level
 
 
 def arm_output(twist: np.ndarray) -> ControlData:
@@ -100,9 +101,7 @@ class CartesianMove(Controller):
         force = self.contact.force
         if force >= self.threshold:
             self.shaper.stop()
-            status = Status.DONE if self.straight else Status.ERROR
-            what = "stopped on contact" if self.straight else "unexpected contact"
-            self.finish(status, f"{what}: |F| = {force:.1f} N >= {self.threshold:g} N")
+            self.stopped_by(force)
             return self._stay(readings)
 
         position = readings.tcp[:3, 3]
@@ -114,10 +113,11 @@ class CartesianMove(Controller):
             goal = self.points[self.leg]
             distance = norm(goal - position)
 
+        self.sense(readings, goal - self.leg_start, dt)
         w, angle = orientation_twist(self.rotation, readings.tcp[:3, :3])
         if self.leg == len(self.points) - 1 and distance < self.tolerance and angle < ORIENTATION_TOLERANCE:
             self.rest = goal
-            self.finish(Status.DONE, f"reached the target ({distance * 1000:.1f} mm)")
+            self.arrived(distance)
             return self._stay(readings)
         if distance < self.best - STALL_PROGRESS:
             self.best, self.best_time = distance, readings.time
@@ -131,6 +131,17 @@ class CartesianMove(Controller):
         if self.keep_orientation and angle > ORIENTATION_TOLERANCE:
             v = v * (ORIENTATION_TOLERANCE / angle)  # turn back first, then move on
         return arm_output(self.shaper(np.concatenate([v, w]), dt))
+
+    def stopped_by(self, force: float) -> None:
+        status = Status.DONE if self.straight else Status.ERROR
+        what = "stopped on contact" if self.straight else "unexpected contact"
+        self.finish(status, f"{what}: |F| = {force:.1f} N >= {self.threshold:g} N")
+
+    def sense(self, readings: Readings, leg: np.ndarray, dt: float) -> None:
+        """Watch the sensors on the way along `leg` (world frame); a plain move has nothing to watch."""
+
+    def arrived(self, distance: float) -> None:
+        self.finish(Status.DONE, f"reached the target ({distance * 1000:.1f} mm)")
 
     def _line(self, position: np.ndarray, goal: np.ndarray) -> np.ndarray:
         """Along the straight line from the leg's start to its goal, pulled back onto it."""
@@ -149,3 +160,62 @@ class CartesianMove(Controller):
             return arm_output(np.zeros(6))
         w, _ = orientation_twist(self.rotation, readings.tcp[:3, :3])
         return arm_output(np.concatenate([GAIN * (self.rest - readings.tcp[:3, 3]), w]))
+
+
+class Push(CartesianMove):
+    """Push the object along the path (Table 7.1 push): a guarded move that must feel it.
+
+    A hand that passes the object by (over it, around it) reaches the target as a plain
+    move would; so the push succeeds only if the wrist has felt the object resist the
+    motion. The wrist also reads the arm's own dynamics in free motion (inertia while the
+    TCP speeds up, and a steady drag that differs per robot and speed), so the push force
+    is the force against the motion over its free-motion level, measured over
+    baseline_time once the TCP cruises (once, on the first leg), low-passed over push_time,
+    and read only while the TCP cruises. An object that resists with force_threshold is
+    stuck: the push fails.
+    """
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        p = self.params
+        self.push_force = float(p["push_force"])
+        self.baseline_time = float(p["baseline_time"])
+        self.level = LowPass(float(p["push_time"]))
+        self.cruise_speed = CRUISE * self.max_speed
+        self.baseline_sum = 0.0
+        self.baseline_for = 0.0  # s of free motion measured so far
+        self.last_position: np.ndarray | None = None
+        self.pushed = 0.0  # the strongest push level so far, N
+
+    def sense(self, readings: Readings, leg: np.ndarray, dt: float) -> None:
+        position = readings.tcp[:3, 3]
+        speed = 0.0 if self.last_position is None else norm(position - self.last_position) / dt
+        self.last_position = position.copy()
+        length = norm(leg)
+        if length < 1e-6:
+            return
+        if speed < self.cruise_speed:  # speeding up or slowing down: the hand's inertia reads as force
+            return
+        against = -float((readings.tcp[:3, :3] @ self.contact.value[:3]) @ leg) / length
+        if self.baseline_for < self.baseline_time:
+            self.baseline_sum += against * dt
+            self.baseline_for += dt
+            self.level.reset(np.zeros(1))
+            return
+        level = float(self.level(np.array([against - self.baseline_sum / self.baseline_for]), dt)[0])
+        self.pushed = max(self.pushed, level)
+
+    def stopped_by(self, force: float) -> None:
+        self.finish(Status.ERROR, f"the object does not give way: |F| = {force:.1f} N >= {self.threshold:g} N")
+
+    def arrived(self, distance: float) -> None:
+        if self.baseline_for < self.baseline_time:
+            self.finish(Status.ERROR, f"reached the target before measuring the free-motion force "
+                                      f"({self.baseline_time:g} s at {self.cruise_speed:g} m/s or more): "
+                                      f"start the push further from the object")
+        elif self.pushed < self.push_force:
+            self.finish(Status.ERROR, f"reached the target without pushing anything: at most {self.pushed:.2f} N "
+                                      f"against the motion, {self.push_force:g} N needed")
+        else:
+            self.finish(Status.DONE, f"pushed the object to the target ({distance * 1000:.1f} mm; "
+                                     f"up to {self.pushed:.2f} N against the motion)")

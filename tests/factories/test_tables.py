@@ -32,7 +32,7 @@ def _map(robot: str, state: State, arm: str | None = None, environment=None):
 TABLE_7_3 = [
     (StateType.GRASP, "robust_grasp", "robust_grasp_approach", "robust_grasp_hand", ("hand", "pregrasp_size", 0.562)),
     (StateType.MOVE, "transport", "cartesian_move", "hold_position", ("arm", "force_threshold", 15.0)),
-    (StateType.PUSH, "transport", "cartesian_move", "hold_position", ("arm", "force_threshold", 15.0)),
+    (StateType.PUSH, "transport", "push", "hold_position", ("arm", "push_force", 1.0)),
     (StateType.TRANSPORT, "transport", "cartesian_move", "hold_position",
      ("arm", "obstacles", ((0.25, 0.22, 0.06),))),
     (StateType.PLACE, "place", "place", "hold_position", ("arm", "force_threshold", 5.0)),
@@ -64,7 +64,7 @@ def test_table_7_3_grasp_uses_wrist_force_torque_and_tactile():
 TABLE_7_4 = [
     (StateType.GRASP, "grasp", "hold", "close_until_force"),
     (StateType.MOVE, "move", "cartesian_move", "hold_position"),
-    (StateType.PUSH, "move", "cartesian_move", "hold_position"),
+    (StateType.PUSH, "move", "push", "hold_position"),
     (StateType.TRANSPORT, "transport", "cartesian_move", "squeeze"),
     (StateType.PLACE, "transport", "cartesian_move", "squeeze"),
     (StateType.RELEASE, "release", "hold", "open_to"),

@@ -18,6 +18,20 @@ def test_baxter_pushes_the_box() -> None:
     assert robot.object_pose()[1, 3] > 0.03
 
 
+def test_baxter_grasp_and_lift_holds_the_cylinder_up() -> None:
+    """The IR beam sees the held cylinder, so the grasp becomes stable and the lift follows."""
+    outcome, _, robot = run_example(EXAMPLES / "grasp_and_lift.xml", robot="baxter")
+    assert outcome.succeeded, outcome.summary
+    assert robot.object_pose()[2, 3] >= 0.04 + 0.08, "the cylinder was not lifted 8 cm"
+
+
+def test_baxter_pick_and_place_puts_the_box_at_the_place_target() -> None:
+    outcome, _, robot = run_example(EXAMPLES / "pick_and_place.xml", robot="baxter")
+    assert outcome.succeeded, outcome.summary
+    box = robot.object_pose()[:3, 3]
+    assert np.linalg.norm(box - (0.10, 0.10, 0.025)) < 0.02, f"the box ended at {box}"
+
+
 def test_baxter_grasps_by_motor_force_places_and_releases() -> None:
     robot = simulated("baxter", scene=box_scene())
     squeeze = use("squeeze", grasp_force=20.0, force_source="motor")

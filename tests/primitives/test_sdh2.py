@@ -1,0 +1,37 @@
+"""The SDH2 (Tombatossals' left hand) pinches between its two fingers, which face each other
+19 mm off the TCP: the factory puts that point, not the TCP, where the task says."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from atd.model import load_task
+from factories.registry import create
+from tests.primitives.conftest import EXAMPLES, run_example
+from translator import translate
+
+
+def test_sdh2_grasp_and_lift_lifts_the_cylinder_8_cm_without_pushing_it_aside() -> None:
+    outcome, _, robot = run_example(EXAMPLES / "grasp_and_lift.xml", robot="tombatossals", arm="left")
+    assert outcome.succeeded, outcome.summary
+    cylinder = robot.object_pose()[:3, 3]
+    assert cylinder[2] >= 0.04 + 0.08, f"the cylinder is at z = {cylinder[2]:.3f}"
+    assert np.hypot(cylinder[0] - 0.10, cylinder[1]) < 0.01, f"the cylinder was pushed to {cylinder[:2]}"
+
+
+def test_sdh2_pick_and_place_puts_the_box_within_2_cm_of_the_target() -> None:
+    outcome, _, robot = run_example(EXAMPLES / "pick_and_place.xml", robot="tombatossals", arm="left")
+    assert outcome.succeeded, outcome.summary
+    box = robot.object_pose()[:3, 3]
+    assert np.linalg.norm(box - (0.10, 0.10, 0.025)) < 0.02, f"the box ended at {box}"
+
+
+def test_a_pinch_puts_the_point_between_the_sdh2_fingers_where_the_task_says() -> None:
+    task, _ = load_task(EXAMPLES / "grasp_and_lift.xml")
+    estd = translate(task, create("tombatossals", "left")).estd
+    preshape = next(s for s in estd.states if s.atd == "preshape_hand")
+    # The hand's x points along world -x at home: the TCP goes 19 mm further out than the cylinder.
+    assert preshape.arm.params["target"][0] == pytest.approx(0.10 + 0.019)
+    barrett = translate(task, create("tombatossals", "right")).estd
+    assert next(s for s in barrett.states if s.atd == "preshape_hand").arm.params["target"][0] == pytest.approx(0.10)
