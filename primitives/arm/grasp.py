@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from primitives.arm.motion import GAIN, orientation_twist
+from primitives.arm.motion import GAIN, orientation_twist, unit
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import CONTACT, FINGERS_STOPPED, SHIFT
@@ -38,8 +38,7 @@ class RobustGraspApproach(Controller):
     def __init__(self, ctx: Context) -> None:
         super().__init__(ctx)
         p = self.params
-        direction = np.asarray(p["grasp_direction"], float)
-        self.direction = direction / np.linalg.norm(direction)
+        self.direction = unit(p["grasp_direction"])
         self.max_distance = float(p["max_distance"])
         self.force_threshold = float(p["force_threshold"])
         self.torque_threshold = float(p["torque_threshold"])
@@ -121,8 +120,7 @@ class NaiveGraspApproach(Controller):
     def __init__(self, ctx: Context) -> None:
         super().__init__(ctx)
         p = self.params
-        direction = np.asarray(p["grasp_direction"], float)
-        self.direction = direction / np.linalg.norm(direction)
+        self.direction = unit(p["grasp_direction"])
         self.distance = float(p["distance"])
         self.threshold = float(p["force_threshold"])
         self.velocity = float(p["velocity"])

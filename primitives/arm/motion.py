@@ -153,3 +153,9 @@ class ObstacleDetour:
 
 def _inside(p: np.ndarray, low: np.ndarray, high: np.ndarray) -> bool:
     return bool(np.all(p >= low) and np.all(p <= high))
+
+
+def unit(vector) -> np.ndarray:
+    """The vector scaled to length 1 (directions and normals come as any length)."""
+    v = np.asarray(vector, float)
+    return v / np.linalg.norm(v)

@@ -17,6 +17,7 @@ from primitives.arm.motion import (
     clamp_norm,
     orientation_twist,
     top_down,
+    unit,
 )
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
@@ -27,11 +28,6 @@ ARRIVAL_TOLERANCE = 0.003  # m: over the target, ready to descend
 # Slide: m/s of normal motion per N of force error. Small enough that a stiff contact
 # (2e5 N/m measured on the Melfa against the table) stays stable at 200 Hz: 5e-4 * 2e5 * 0.005 = 0.5.
 FORCE_GAIN = 5e-4
-
-
-def unit(vector) -> np.ndarray:
-    v = np.asarray(vector, float)
-    return v / np.linalg.norm(v)
 
 
 class Place(Controller):
