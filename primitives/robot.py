@@ -62,6 +62,8 @@ class HandInfo:
     closed: np.ndarray  # DOF positions of the fully closed, empty hand
     postures: Mapping[str, np.ndarray]  # D5 hand shape name -> DOF positions, only those this hand can make
     pads: tuple[PadInfo, ...]
+    stiffness: np.ndarray  # per DOF: the position servo's effort per unit of position error
+    self_locking: np.ndarray  # per DOF: a drive that keeps its torque when pushed back (a worm gear)
 
 
 @dataclass(frozen=True)

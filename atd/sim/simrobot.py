@@ -58,6 +58,8 @@ def robot_info(d: RobotDescription) -> RobotInfo:
         closed=np.array([dof.closed for dof in d.hand.dofs]),
         postures={name: np.array(v) for name, v in d.hand.postures.items()},
         pads=tuple(PadInfo(p.name, p.taxels, _moving_dofs(d, p.link)) for p in d.hand.pads),
+        stiffness=np.array([j.servo.kp for j in hand_limits]) * ratios**2,
+        self_locking=np.array([j.friction > 0 for j in hand_limits]),
     )
     return RobotInfo(
         name=d.label,

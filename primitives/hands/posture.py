@@ -60,21 +60,27 @@ class HoldPosition(PostureDrive):
     """Keep the fingers where they were when the state began (D5 2.2.4: hand idle).
 
     A finger pressing on something when the state begins keeps pressing with the effort
-    it had, as a Barrett's worm drive keeps its torque: holding it at its measured
-    position would take the grip off a grasped object.
+    it had: holding it at its measured position would take the grip off a grasped object.
+    A self-locking drive (a Barrett's worm gear) keeps that effort by a force command; any
+    other drive by its position servo, its reference set ahead of the finger by effort /
+    stiffness, so that it also resists being pushed back. A bare force command has no such
+    stiffness: lifting a cylinder pinched by the SDH2, whose distal joints held 0.23 N m,
+    folded them open 0.15 rad in 0.17 s in PyBullet and the cylinder fell out.
     """
 
     def start(self, readings: Readings) -> None:
         super().start(readings)
         hand = self.ctx.info.hand
-        self.goal = readings.hand_q.copy()
-        self.loaded = (hand.closing * readings.hand_effort) > LOADED * hand.effort_limit
+        loaded = (hand.closing * readings.hand_effort) > LOADED * hand.effort_limit
+        self.forced = loaded & hand.self_locking
+        preload = np.where(loaded & ~hand.self_locking, readings.hand_effort / hand.stiffness, 0.0)
+        self.goal = readings.hand_q + preload
         self.effort = readings.hand_effort.copy()
         self.finish(Status.DONE, "holding the fingers")
 
     def update(self, readings: Readings, dt: float) -> ControlData:
-        values = np.where(self.loaded, self.effort, self.goal)
-        modes = tuple(HandMode.FORCE if loaded else HandMode.POSITION for loaded in self.loaded)
+        values = np.where(self.forced, self.effort, self.goal)
+        modes = tuple(HandMode.FORCE if forced else HandMode.POSITION for forced in self.forced)
         return ControlData(hand=HandCommand(values=values, modes=modes))
 
 

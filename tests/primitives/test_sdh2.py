@@ -35,3 +35,17 @@ def test_a_pinch_puts_the_point_between_the_sdh2_fingers_where_the_task_says() -
     assert preshape.arm.params["target"][0] == pytest.approx(0.10 + 0.019)
     barrett = translate(task, create("tombatossals", "right")).estd
     assert next(s for s in barrett.states if s.atd == "preshape_hand").arm.params["target"][0] == pytest.approx(0.10)
+
+
+def test_sdh2_pinch_keeps_the_cylinder_through_the_lift_in_pybullet() -> None:
+    # The distal joints, servoed while the pinch closed, must keep resisting in the lift:
+    # under a bare force command PyBullet folded them open and the cylinder fell out.
+    outcome, _, robot = run_example(EXAMPLES / "grasp_and_lift.xml", robot="tombatossals", arm="left",
+                                    engine="pybullet")
+    try:
+        assert outcome.succeeded, outcome.summary
+        cylinder = robot.object_pose()[:3, 3]
+    finally:
+        robot.close()
+    assert cylinder[2] >= 0.04 + 0.08, f"the cylinder is at z = {cylinder[2]:.3f}"
+    assert np.hypot(cylinder[0] - 0.10, cylinder[1]) < 0.01, f"the cylinder was pushed to {cylinder[:2]}"
