@@ -34,6 +34,7 @@ from factories.reach import Reach
 
 ConditionNode = Condition | ConditionGroup
 
+GRASPS = ("robust", "naive")  # what a factory may be told to grasp with
 APPROACH_CLEARANCE = 0.10  # m above the object's top: where a free approach ends
 LIFT_HEIGHT = 0.10  # m: a transport without a path lifts the object this much
 
@@ -131,7 +132,10 @@ class Factory(ABC):
     primitives: ClassVar[frozenset[StateType]]
     node_table: ClassVar[tuple[MappingRow, ...]]  # thesis Tables 7.3 / 7.4 columns
 
-    def __init__(self, arm: str | None = None, config: Path | None = None) -> None:
+    def __init__(self, arm: str | None = None, config: Path | None = None, grasp: str = "robust") -> None:
+        if grasp not in GRASPS:
+            raise ValueError(f"grasp must be one of: {', '.join(GRASPS)}; got '{grasp}'")
+        self.grasp = grasp
         names = [a.name for a in self.arms]
         if arm is not None and arm not in names:
             raise ValueError(f"robot '{self.name}' has no arm '{arm}'; choose one of: {', '.join(names)}")
@@ -150,6 +154,19 @@ class Factory(ABC):
     undetectable_events: ClassVar[tuple[EventType, ...]] = ()
 
     # -- the two questions the translator asks --------------------------------------------
+    def map_state(self, state: State, context: MappingContext) -> NodeMapping:
+        """What the translator asks for a node: the robot's own mapping (`map_node`), except
+        that a factory made with grasp="naive" maps every grasp to the naive grasp of thesis
+        3.4.1, the baseline the robust grasp is measured by (same hand shape and checks)."""
+        mapping = self.map_node(state, context)
+        if self.grasp != "naive" or state.type is not StateType.GRASP:
+            return mapping
+        hand = mapping.hand.params
+        return NodeMapping("naive grasp", self.controller("naive_grasp_approach"),
+                           self.controller("naive_grasp_hand", preshape=hand.get("preshape"),
+                                           grasp_shape=hand.get("grasp_shape")),
+                           mapping.notes)
+
     @abstractmethod
     def map_node(self, state: State, context: MappingContext) -> NodeMapping:
         """The concrete primitive (arm and hand controllers) for one abstract primitive."""

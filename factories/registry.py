@@ -59,6 +59,6 @@ def factory_class(robot: str) -> type[Factory]:
     return robots[robot].load()
 
 
-def create(robot: str, arm: str | None = None, config: Path | None = None) -> Factory:
-    """A ready factory; raises UnknownRobot, ValueError (bad arm) or factories.config.ConfigError."""
-    return factory_class(robot)(arm=arm, config=config)
+def create(robot: str, arm: str | None = None, config: Path | None = None, grasp: str = "robust") -> Factory:
+    """A ready factory; raises UnknownRobot, ValueError (bad arm or grasp) or factories.config.ConfigError."""
+    return factory_class(robot)(arm=arm, config=config, grasp=grasp)

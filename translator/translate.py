@@ -120,7 +120,7 @@ class _Translator:
             machine = self.subtask(state, task, chain)
             return EstdState(**base, machine=machine) if machine else None
         try:
-            mapping = self.factory.map_node(state, context)
+            mapping = self.factory.map_state(state, context)
         except Unmappable as exc:
             self._refuse("TRN001", f"{state.type.value} state '{state.name}'", exc.reason, state.loc, exc.hint)
             return None

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import click
 
+from atd.cli.translate import GRASP_OPTION
 from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, EXIT_UNTRANSLATABLE, EXIT_USAGE, main
 from atd.model import has_errors, load_task
 from atd.model.diagnostics import render_all
@@ -33,15 +34,15 @@ def _is_estd(path: Path) -> bool:
     return head.startswith(b"{") or b"<estd" in head
 
 
-def _factory(robot: str, arm: str | None) -> Factory:
+def _factory(robot: str, arm: str | None, grasp: str = "robust") -> Factory:
     try:
-        return create(robot, arm)
+        return create(robot, arm, grasp=grasp)
     except (UnknownRobot, ValueError) as exc:
         _fail(f"error: {exc.args[0]}", EXIT_USAGE)
         raise
 
 
-def _load(task: Path, robot: str | None, arm: str | None) -> tuple[Estd, Factory]:
+def _load(task: Path, robot: str | None, arm: str | None, grasp: str) -> tuple[Estd, Factory]:
     """The ESTD to run and its robot's factory: read as is, or translated from an ATD."""
     if _is_estd(task):
         estd, found = read_estd(task)
@@ -53,7 +54,7 @@ def _load(task: Path, robot: str | None, arm: str | None) -> tuple[Estd, Factory
         return estd, _factory(estd.robot, estd.arm)
     if robot is None:
         _fail(f"error: {task} is an ATD; say which robot runs it with --robot (see `atd robots list`)", EXIT_USAGE)
-    factory = _factory(robot, arm)
+    factory = _factory(robot, arm, grasp)
     atd_task, found = load_task(task)
     if atd_task is None or has_errors(found):
         _fail(render_all(found), EXIT_INVALID)
@@ -97,15 +98,16 @@ class _Progress:
 @click.option("--realtime", is_flag=True, help="run no faster than real time")
 @click.option("--budget", type=float, default=300.0, show_default=True,
               help="watchdog: simulated seconds before the run is stopped as a failure")
+@GRASP_OPTION
 @click.option("--quiet", "-q", is_flag=True, help="no live progress")
 def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, trace_path: Path | None,
-        video: Path | None, viewer: bool, realtime: bool, budget: float, quiet: bool) -> None:
+        video: Path | None, viewer: bool, realtime: bool, budget: float, grasp: str, quiet: bool) -> None:
     """Run TASK (an ATD, translated on the fly, or an ESTD) on a simulated robot.
 
     Exit status: 0 the task ended in a success state, 3 in a failure state (or the watchdog
     stopped it), 1 invalid input, 2 usage error, 4 the robot cannot do the task.
     """
-    estd, factory = _load(task, robot, arm)
+    estd, factory = _load(task, robot, arm, grasp)
     try:
         session = Run(estd, factory, engine=engine, seed=seed, trace_path=trace_path, realtime=realtime,
                       budget=budget, video=video, viewer=viewer)

@@ -11,16 +11,21 @@ from atd.model import load_task, write_atomically
 from atd.model.diagnostics import Diagnostic, Severity, has_errors, render_all
 from atd.model.estd import Estd, describe
 from atd.model.estd_xml import estd_to_json, estd_to_xml
-from factories.base import Factory
+from factories.base import GRASPS, Factory
 from factories.config import ConfigError
 from factories.registry import UnknownRobot, create
 from translator import translate as translate_task
 
 
-def make_factory(robot: str, arm: str | None, config: Path | None) -> Factory:
+GRASP_OPTION = click.option(
+    "--grasp", type=click.Choice(GRASPS), default="robust", show_default=True,
+    help="robust: each robot's sensor-based grasp; naive: the thesis 3.4.1 baseline (close, squeeze)")
+
+
+def make_factory(robot: str, arm: str | None, config: Path | None, grasp: str = "robust") -> Factory:
     """The factory, or a clean exit naming what is wrong with the robot, arm or config."""
     try:
-        return create(robot, arm, config)
+        return create(robot, arm, config, grasp)
     except (UnknownRobot, ValueError) as exc:
         click.echo(f"error: {exc.args[0]}", err=True)
         raise SystemExit(EXIT_USAGE) from None
@@ -68,15 +73,16 @@ def _report(diagnostics: list[Diagnostic]) -> None:
 @click.option("-o", "--output", type=click.Path(path_type=Path), default=None,
               help="where to write the ESTD (default: TASK.<robot>.estd.xml beside the task)")
 @click.option("--format", "fmt", type=click.Choice(["xml", "json"]), default="xml", show_default=True)
+@GRASP_OPTION
 @click.option("--quiet", "-q", is_flag=True, help="no summary table")
 def translate(task: Path, robot: str, arm: str | None, config: Path | None, output: Path | None, fmt: str,
-              quiet: bool) -> None:
+              grasp: str, quiet: bool) -> None:
     """Translate the ATD in TASK into an ESTD for ROBOT.
 
     Exit status: 0 written, 1 the ATD is invalid, 2 usage error, 4 the robot cannot do the
     task (nothing written; every reason is listed with its file:line).
     """
-    factory = make_factory(robot, arm, config)
+    factory = make_factory(robot, arm, config, grasp)
     atd_task, found = load_task(task)
     if atd_task is None or has_errors(found):
         _report(found)

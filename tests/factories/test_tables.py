@@ -230,3 +230,17 @@ def test_every_tactile_sensor_a_factory_names_is_a_pad_of_the_simulated_hand():
         names = factory.arm.sensors_of(SensorKind.TACTILE)
         hand = robot_info(factory.robot).hand
         assert len(set(pad_indices(hand, names))) == len(names), (factory.name, factory.arm.name)
+
+
+def test_every_factory_can_be_told_to_use_the_naive_grasp():
+    """Thesis 3.4.1's baseline: grasp states become the naive grasp, everything else is unchanged."""
+    state = State(name="g", type=StateType.GRASP, hand_shape=HandShape.PINCH_GRASP)
+    move = State(name="m", type=StateType.MOVE, path=at(0.1, 0.0, 0.1))
+    for robot, arm in (("melfa", None), ("baxter", "right"), ("tombatossals", "right"), ("tombatossals", "left")):
+        naive, robust = create(robot, arm, grasp="naive"), create(robot, arm)
+        mapping = naive.map_state(state, MappingContext(one_state_task(state)))
+        assert (mapping.arm.name, mapping.hand.name) == ("naive_grasp_approach", "naive_grasp_hand")
+        context = MappingContext(one_state_task(move))
+        assert naive.map_state(move, context) == robust.map_state(move, context)
+    with pytest.raises(ValueError, match="grasp must be one of: robust, naive"):
+        create("melfa", grasp="clumsy")

@@ -119,3 +119,10 @@ def test_empty_the_box_loops_over_its_sub_task_until_nothing_is_left(tmp_path):
     rests = next(line for line in result.stdout.splitlines() if line.startswith("the object rests at"))
     y = float(rests.split(",")[1])
     assert y > 0.05  # outside the box, whose walls span y = -0.16 .. 0.0
+
+
+def test_the_naive_grasp_baseline_runs_from_the_command_line():
+    result = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--grasp", "naive", "-q")
+    assert result.returncode == 0, result.stdout
+    assert "grasp->lift/success: arm_done(arm=done" in result.stdout
+    assert atd("run", PICK_AND_PLACE, "--robot", "melfa", "--grasp", "clumsy", "-q").returncode == 2
