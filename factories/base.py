@@ -232,6 +232,26 @@ class Factory(ABC):
                 return import_module(f"{package}.description").description(arm)
         raise LookupError(f"factory '{self.name}' has no description.py beside it")
 
+    def check_object_reach(self, context: MappingContext) -> None:
+        """A grasp happens where the object is: refuse it when the arm cannot get there."""
+        if context.object is not None and context.object.pose is not None:
+            self.check_reach(context.object.pose.position)
+
+    def hand_for_motion(self, state: State) -> tuple[Controller, tuple[str, ...]]:
+        """The hand during an arm motion: the state's hand shape (or the closest this hand
+        makes, with a note), or kept as it is when the state names none."""
+        if state.hand_shape is None:
+            return self.controller("hold_position"), ()
+        shape, notes = self.shape(state.hand_shape)
+        return self.controller("hand_shape", shape=shape.value), notes
+
+    def jaw_grasp(self, state: State, context: MappingContext) -> NodeMapping:
+        """A parallel gripper's grasp (thesis 7.3, Melfa): the arm holds still while the jaws
+        close until the grip force is reached."""
+        notes = self.shape(state.hand_shape)[1] if state.hand_shape else ()
+        self.check_object_reach(context)
+        return NodeMapping("grasp", self.controller("hold"), self.controller("close_until_force"), notes)
+
     def check_reach(self, *points: Vec3) -> None:
         """Each point must be reachable by the TCP with the hand pointing down."""
         for point in points:

@@ -28,20 +28,13 @@ RUNAWAY_DISTANCE = 10.0  # m of the TCP from the world origin
 
 
 def pad_indices(hand: HandInfo, sensors: tuple[str, ...]) -> list[int]:
-    """The robot pads behind the factory's tactile sensor names.
-
-    A sensor `tactile_X` is the pad named `tactile_X`, `X` or `X_pad` (so the factory's
-    `tactile_left` is the simulated `left_pad`).
-    """
+    """The robot pads behind the factory's tactile sensor names (a factory names its
+    tactile sensors as the robot description names its pads)."""
     names = [p.name for p in hand.pads]
-    found = []
-    for sensor in sensors:
-        stem = sensor.removeprefix("tactile_")
-        match = next((names.index(n) for n in (sensor, stem, f"{stem}_pad") if n in names), None)
-        if match is None:
-            raise ValueError(f"tactile sensor '{sensor}' names no pad of this hand (pads: {', '.join(names) or 'none'})")
-        found.append(match)
-    return found
+    missing = [s for s in sensors if s not in names]
+    if missing:
+        raise ValueError(f"tactile sensor '{missing[0]}' names no pad of this hand (pads: {', '.join(names) or 'none'})")
+    return [names.index(s) for s in sensors]
 
 
 class StatusIs(Condition):

@@ -10,7 +10,7 @@ import click
 from atd.cli.app import robots
 from atd.cli.translate import make_factory
 from atd.model.controllers import format_value
-from atd.model.task import Event, Location, State, Task, Transition
+from atd.model.task import Event, State, Task, Transition
 from atd.model.vocabulary import EventType, StateType
 from atd.model.estd import describe
 from factories.base import Factory, MappingContext, Unmappable

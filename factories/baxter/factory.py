@@ -64,10 +64,7 @@ class BaxterFactory(Factory):
     def map_node(self, state: State, context: MappingContext) -> NodeMapping:
         kind = state.type
         if kind is StateType.GRASP:
-            notes = self.shape(state.hand_shape)[1] if state.hand_shape else ()
-            if context.object is not None and context.object.pose is not None:
-                self.check_reach(context.object.pose.position)
-            return NodeMapping("grasp", self.controller("hold"), self.controller("close_until_force"), notes)
+            return self.jaw_grasp(state, context)
         if kind is StateType.RELEASE:
             return NodeMapping("release", self.controller("release_retreat"),
                                self.controller("open_to", hand_position=state.hand_opening))
@@ -81,10 +78,7 @@ class BaxterFactory(Factory):
         arm = self.arm_motion(state, target, via, **extra)
         if kind is StateType.TRANSPORT:
             return NodeMapping("transport", arm, self.controller("squeeze"))
-        if state.hand_shape is None:
-            return NodeMapping("move", arm, self.controller("hold_position"))
-        shape, notes = self.shape(state.hand_shape)
-        return NodeMapping("move", arm, self.controller("hand_shape", shape=shape.value), notes)
+        return NodeMapping("move", arm, *self.hand_for_motion(state))
 
     def sensed_event(self, event_type: EventType, origin: State) -> ConditionNode:
         gripper, ir = ("gripper",), ("ir_range",)

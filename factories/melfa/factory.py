@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from atd.model.controllers import SensorKind
 from atd.model.task import State
-from atd.model.vocabulary import EventType, HandShape, StateType
+from atd.model.vocabulary import EventType, StateType
 from factories.base import (
     Arm,
     ConditionNode,
@@ -60,10 +60,7 @@ class MelfaFactory(Factory):
             raise Unmappable("the Melfa has no slide primitive (thesis Table 7.4)",
                              "push the object instead (type=\"push\"), or translate for tombatossals or baxter")
         if kind is StateType.GRASP:
-            notes = self.shape(state.hand_shape)[1] if state.hand_shape else ()
-            if context.object is not None and context.object.pose is not None:
-                self.check_reach(context.object.pose.position)
-            return NodeMapping("grasp", self.controller("hold"), self.controller("close_until_force"), notes)
+            return self.jaw_grasp(state, context)
         if kind is StateType.RELEASE:
             return NodeMapping("release", self.controller("hold"),
                                self.controller("open_to", hand_position=state.hand_opening))
@@ -72,10 +69,7 @@ class MelfaFactory(Factory):
         arm = self.arm_motion(state, target, via, **({"straight_line": True} if kind is StateType.PLACE else {}))
         if kind in (StateType.TRANSPORT, StateType.PLACE):
             return NodeMapping("transport", arm, self.controller("squeeze"))
-        if state.hand_shape is None:
-            return NodeMapping("move", arm, self.controller("hold_position"))
-        shape, notes = self.shape(state.hand_shape)
-        return NodeMapping("move", arm, self.controller("hand_shape", shape=shape.value), notes)
+        return NodeMapping("move", arm, *self.hand_for_motion(state))
 
     def success(self, origin: State) -> ConditionNode:
         if origin.type is not StateType.PLACE:

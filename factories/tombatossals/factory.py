@@ -10,7 +10,6 @@ cannot make a hook grasp (A.1.2): a grasp asking for one is refused.
 from __future__ import annotations
 
 from atd.model.controllers import SensorKind
-from atd.model.estd import Controller
 from atd.model.task import State
 from atd.model.vocabulary import EventType, HandShape, StateType
 from factories.base import (
@@ -108,14 +107,7 @@ class TombatossalsFactory(Factory):
         if kind is StateType.TRANSPORT:
             # The Barrett's worm drives and the SDH2's position control keep the grasp as it was.
             return NodeMapping("transport", arm, self.controller("hold_position"))
-        hand, notes = self._hand_for_motion(state)
-        return NodeMapping("transport", arm, hand, notes)
-
-    def _hand_for_motion(self, state: State) -> tuple[Controller, tuple[str, ...]]:
-        if state.hand_shape is None:
-            return self.controller("hold_position"), ()
-        shape, notes = self.shape(state.hand_shape)
-        return self.controller("hand_shape", shape=shape.value), notes
+        return NodeMapping("transport", arm, *self.hand_for_motion(state))
 
     def _grasp(self, state: State, context: MappingContext) -> NodeMapping:
         grasp = state.hand_shape or (_GRASP_OF.get(state.preshape) if state.preshape else None) or DEFAULT_GRASP
@@ -127,8 +119,7 @@ class TombatossalsFactory(Factory):
                                  "use the right arm (--arm right, Barrett hand) or another grasp shape")
         grasp, notes = self.shape(grasp)
         preshape_made, pre_notes = self.shape(preshape) if preshape else (None, ())
-        if context.object is not None and context.object.pose is not None:
-            self.check_reach(context.object.pose.position)
+        self.check_object_reach(context)
         hand = self.controller("robust_grasp_hand", grasp_shape=grasp.value,
                                preshape=preshape_made.value if preshape_made else None,
                                pregrasp_size=self._pregrasp_size(state, context))

@@ -11,7 +11,7 @@ from atd.model import Environment, HandShape, Movement, Obstacle, State, StateTy
 from atd.model.estd import describe
 from factories.base import MappingContext, Unmappable
 from factories.registry import create
-from tests.translator.helpers import BOX, at, every_factory, one_state_task
+from tests.translator.helpers import at, every_factory, one_state_task
 from translator import translate
 
 TARGET = at(0.10, 0.10, 0.025)

@@ -60,7 +60,7 @@ def test_the_watchdog_ends_a_run_that_outlives_its_budget():
 
 
 def test_a_task_the_robot_cannot_do_exits_4_with_the_reason(atd_file):
-    path = atd_file(f"""
+    path = atd_file("""
         <statemachine>
           <state name="wipe" type="slide"><path><position>0.1 0.1 0.02</position></path></state>
           <state name="done" type="success"/>
