@@ -12,7 +12,7 @@ from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, EXIT_UNTRANSLAT
 from atd.model import has_errors, load_task
 from atd.model.diagnostics import render_all
 from atd.model.estd import Estd
-from atd.model.estd_xml import read_estd
+from atd.model.estd_xml import is_estd_file, read_estd
 from atd.runtime.report import summary
 from atd.runtime.session import ENGINES, Run, RunError, Unrunnable
 from factories.base import Factory
@@ -25,15 +25,6 @@ def _fail(message: str, code: int) -> None:
     raise SystemExit(code)
 
 
-def _is_estd(path: Path) -> bool:
-    """ESTD files are `<estd>` documents (XML) or JSON; anything else is read as an ATD."""
-    try:
-        head = path.read_bytes()[:4096].lstrip()
-    except OSError:
-        return False
-    return head.startswith(b"{") or b"<estd" in head
-
-
 def _factory(robot: str, arm: str | None, grasp: str = "robust") -> Factory:
     try:
         return create(robot, arm, grasp=grasp)
@@ -44,7 +35,7 @@ def _factory(robot: str, arm: str | None, grasp: str = "robust") -> Factory:
 
 def _load(task: Path, robot: str | None, arm: str | None, grasp: str) -> tuple[Estd, Factory]:
     """The ESTD to run and its robot's factory: read as is, or translated from an ATD."""
-    if _is_estd(task):
+    if is_estd_file(task):
         estd, found = read_estd(task)
         if estd is None:
             _fail(render_all(found), EXIT_INVALID)

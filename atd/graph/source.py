@@ -6,13 +6,12 @@ from pathlib import Path
 
 from atd.graph.model import Graph, from_estd, from_task
 from atd.model.diagnostics import Diagnostic, error, has_errors
-from atd.model.estd_xml import read_estd
+from atd.model.estd_xml import is_estd_file, read_estd
 from atd.model.load import load_task
 from atd.model.task import Location
 from atd.model.xmlsafe import read_file
 
 ATD_ROOT = "statemachine"
-ESTD_ROOT = "estd"
 
 
 def read_graph(path: Path, conditions: bool = False, all_params: bool = False) -> tuple[Graph | None, list[Diagnostic]]:
@@ -21,7 +20,7 @@ def read_graph(path: Path, conditions: bool = False, all_params: bool = False) -
     Only a file that passes its language's checks is drawn, so a picture never shows a
     task that `atd translate` or `atd run` would refuse.
     """
-    if path.suffix == ".json":
+    if is_estd_file(path):
         return _estd(path, conditions, all_params)
     doc, found = read_file(path)
     if doc is None:
@@ -31,10 +30,8 @@ def read_graph(path: Path, conditions: bool = False, all_params: bool = False) -
         if task is None or has_errors(found):
             return None, found
         return from_task(task, str(path)), found
-    if doc.root.tag == ESTD_ROOT:
-        return _estd(path, conditions, all_params)
     return None, [error("GRF001", f"root element is <{doc.root.tag}>, neither <{ATD_ROOT}> (an ATD) nor "
-                        f"<{ESTD_ROOT}> (an ESTD)", doc.loc(doc.root),
+                        "<estd> (an ESTD)", doc.loc(doc.root),
                         "atd graph draws task files (see docs/atd-format.md) and the ESTDs atd translate writes")]
 
 

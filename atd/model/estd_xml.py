@@ -213,6 +213,16 @@ def _checked(estd: Estd, file: str) -> tuple[Estd | None, list[Diagnostic]]:
     return estd, []
 
 
+def is_estd_file(path: str | Path) -> bool:
+    """Whether a file holds an ESTD (JSON by its suffix, or XML with an <estd> root) rather
+    than an ATD; commands that take either ask this first."""
+    path = Path(path)
+    if path.suffix == ".json":
+        return True
+    doc, _ = read_file(path)
+    return doc is not None and doc.root.tag == ROOT
+
+
 def read_estd(path: str | Path) -> tuple[Estd | None, list[Diagnostic]]:
     """Read an ESTD file, XML or (by its `.json` suffix) JSON."""
     path = Path(path)
