@@ -110,15 +110,16 @@ class Readings:
     seq: Mapping[str, int] = field(default_factory=dict)
 
 
+_IDENTITY6 = np.eye(6)  # built once: adding it costs far less than indexing the diagonal every tick
+
+
 def dls_joint_velocities(jacobian: np.ndarray, twist: np.ndarray, damping: float) -> np.ndarray:
     """Damped least-squares inverse kinematics (thesis 6.3.2): dq = J^T (J J^T + l^2 I)^-1 v.
 
     The damping keeps joint speeds bounded near singularities at the price of a small
     tracking error there.
     """
-    jjt = jacobian @ jacobian.T
-    jjt[np.diag_indices_from(jjt)] += damping * damping
-    return jacobian.T @ np.linalg.solve(jjt, twist)
+    return jacobian.T @ np.linalg.solve(jacobian @ jacobian.T + (damping * damping) * _IDENTITY6, twist)
 
 
 class Robot(ABC):

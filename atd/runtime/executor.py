@@ -231,12 +231,13 @@ class Executor:
         self.machine = Machine(estd, "", base, self.trace, self.visits)
         self.budget = budget
         self.wall_budget = wall_budget
+        self._hand_dof = len(robot.info.hand.dofs)
+        self._still = np.zeros(robot.info.arm_dof)  # the arm's command when no controller moves it
 
     def _apply(self, outputs: list[ControlData]) -> None:
-        info = self.robot.info
-        command = arbitrate(outputs, info.arm_dof, len(info.hand.dofs))
-        dq = command.joint_velocity
-        if np.any(command.twist):
+        command = arbitrate(outputs, self._hand_dof)
+        dq = self._still if command.joint_velocity is None else command.joint_velocity
+        if command.twist is not None and command.twist.any():
             dq = dq + dls_joint_velocities(self.robot.jacobian(), command.twist, self.robot.twist_damping)
         self.robot.command_arm_velocity(dq)
         if command.hand_values is not None:
