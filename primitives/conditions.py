@@ -115,7 +115,7 @@ class SimulationUnstable(Condition):
     def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
         r = readings
         parts = (r.arm_q, r.arm_dq, r.hand_q, r.wrench, r.tcp[:3, 3])
-        if not math.isfinite(sum(float(p.sum()) for p in parts)):  # a NaN or inf anywhere spoils the sum
+        if not math.isfinite(float(np.concatenate(parts).sum())):  # a NaN or inf anywhere spoils the sum
             names = ("arm_q", "arm_dq", "hand_q", "wrench", "tcp")
             self.evidence = {name: p for name, p in zip(names, parts) if not np.isfinite(p).all()}
             self.evidence["non_finite"] = ", ".join(self.evidence)
@@ -125,7 +125,7 @@ class SimulationUnstable(Condition):
             self.evidence = {"runaway_joint_speed": r.arm_dq, "joint_jump": jump}
             return True
         force, where = r.wrench[:3], r.tcp[:3, 3]
-        if float(force @ force) > RUNAWAY_FORCE ** 2 or float(where @ where) > RUNAWAY_DISTANCE ** 2:
+        if float(force.dot(force)) > RUNAWAY_FORCE ** 2 or float(where.dot(where)) > RUNAWAY_DISTANCE ** 2:
             self.evidence = {"runaway_wrench": r.wrench, "tcp": where}
             return True
         return False
@@ -163,8 +163,8 @@ class TactileForce(Debounced):
         self.above = above
 
     def test(self, readings: Readings, dt: float) -> bool:
-        forces = readings.pad_force[self.pads]
-        touching = int((forces >= self.threshold).sum())
+        forces = readings.pad_force[self.pads].tolist()  # a few pads: plain floats are cheaper than array ops
+        touching = sum(force >= self.threshold for force in forces)
         self.evidence = {"pad_force": dict(zip(self.sensors, forces)), "threshold": self.threshold,
                          "min_pads": self.min_pads}
         return (touching >= self.min_pads) == self.above

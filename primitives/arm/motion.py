@@ -40,20 +40,20 @@ def top_down(rotation: np.ndarray) -> np.ndarray:
 
 def rotation_error(goal: np.ndarray, current: np.ndarray) -> np.ndarray:
     """World-frame rotation vector (axis * angle) that turns `current` into `goal`."""
-    r = (goal @ current.T).tolist()  # plain floats: nine element reads cost less than on an array
+    r = goal.dot(current.T).tolist()  # plain floats: nine element reads cost less than on an array
     cos = max(-1.0, min(1.0, (r[0][0] + r[1][1] + r[2][2] - 1.0) / 2.0))
     angle = math.acos(cos)
     if angle < 1e-9:
         return np.zeros(3)
     if math.pi - angle < 1e-6:  # half a turn: the axis is the eigenvector of r for eigenvalue 1
-        return np.sqrt(np.maximum(0.0, (np.array([r[0][0], r[1][1], r[2][2]]) + 1.0) / 2.0)) * angle
+        return np.array([math.sqrt(max(0.0, (r[k][k] + 1.0) / 2.0)) * angle for k in range(3)])
     scale = angle / (2.0 * math.sin(angle))
-    return np.array([r[2][1] - r[1][2], r[0][2] - r[2][0], r[1][0] - r[0][1]]) * scale
+    return np.array([(r[2][1] - r[1][2]) * scale, (r[0][2] - r[2][0]) * scale, (r[1][0] - r[0][1]) * scale])
 
 
 def norm(v: np.ndarray) -> float:
     """Euclidean norm of a short vector (a fraction of np.linalg.norm's cost, every tick)."""
-    return math.sqrt(float(v @ v))
+    return math.hypot(*v.tolist())
 
 
 def clamp_norm(v: np.ndarray, limit: float) -> np.ndarray:

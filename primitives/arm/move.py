@@ -150,10 +150,11 @@ class CartesianMove(Controller):
         if length < 1e-6:
             return clamp_norm(GAIN * (goal - position), self.max_speed)
         u = leg / length
-        s = float((position - self.leg_start) @ u)
-        on_line = self.leg_start + min(max(s, 0.0), length) * u
+        offset = position - self.leg_start
+        s = float(offset.dot(u))  # how far along the leg the TCP is
         along = max(-self.max_speed, min(self.max_speed, GAIN * (length - s)))
-        return clamp_norm(u * along + GAIN * (on_line - position), self.max_speed)
+        # The pull back onto the line is GAIN (leg_start + clamp(s) u - position), gathered along u.
+        return clamp_norm(u * (along + GAIN * min(max(s, 0.0), length)) - GAIN * offset, self.max_speed)
 
     def _stay(self, readings: Readings) -> ControlData:
         if self.rest is None:
