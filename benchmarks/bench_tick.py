@@ -1,0 +1,98 @@
+"""Where a control tick of `atd run examples/pick_and_place.xml` goes, layer by layer (MuJoCo).
+
+For each robot (and arm), four loops run as many control ticks as the pick-and-place takes:
+the engine alone (`bare`), the robot interface with a still arm (`interface`: a command,
+`step()` and a `read()` each tick), the executor running a state with no controllers that
+ends on a timeout (`empty executor`: the automaton, one condition, the arbitrator, the
+interface), and the whole task (`atd run`), with the time its physics steps took. Prints
+microseconds per tick and each loop's ratio to bare stepping: the empty executor's ratio is
+the floor under issue 5's target of 1.30 for this design in CPython, whatever the primitives
+cost; the task's own physics (contacts, a moving arm) already costs more than bare stepping.
+
+    python benchmarks/bench_tick.py [--repeat 3] [--robot melfa]
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from atd.model import Task, load_task  # noqa: E402
+from atd.model.estd import Condition, Estd, EstdEvent, EstdState, EstdTransition  # noqa: E402
+from atd.model.vocabulary import EventType, StateType  # noqa: E402
+from atd.runtime.executor import Executor, Outcome  # noqa: E402
+from atd.runtime.session import Run  # noqa: E402
+from atd.sim import make_robot, variants  # noqa: E402
+from atd.sim.scene import scene_from_task  # noqa: E402
+from benchmarks.bench_robot_interface import bare_loop, interface_loop  # noqa: E402
+from factories.registry import create  # noqa: E402
+from primitives.base import Context  # noqa: E402
+from translator import translate  # noqa: E402
+
+TASK = Path(__file__).resolve().parents[1] / "examples" / "pick_and_place.xml"
+
+
+def idle_machine(seconds: float) -> Estd:
+    """One state without controllers, left on a timeout: the executor with nothing to run."""
+    timeout = Condition(kind="timeout", params={"seconds": seconds})
+    return Estd(
+        robot="any", arm="any", initial="idle",
+        states=(EstdState(name="idle", type=StateType.MOVE, atd="idle"),
+                EstdState(name="done", type=StateType.SUCCESS, atd="done")),
+        transitions=(EstdTransition(origin="idle", destination="done", atd="idle->done",
+                                    events=(EstdEvent(type=EventType.TIMEOUT, atd="idle->done/timeout",
+                                                      condition=timeout),)),),
+    )
+
+
+def timed_run(estd: Estd, factory) -> tuple[Outcome, float]:
+    """The task run as `atd run` does, and the seconds its physics steps took: grasping and
+    carrying cost the engine more than the bare loop's robot standing still beside the box."""
+    run = Run(estd, factory)
+    advance, spent = run.robot._advance, [0.0]
+
+    def timed_advance() -> None:
+        start = time.perf_counter()
+        advance()
+        spent[0] += time.perf_counter() - start
+
+    run.robot._advance = timed_advance
+    return run.execute(), spent[0]
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--repeat", type=int, default=3, help="runs per measurement; the fastest counts")
+    parser.add_argument("--robot", help="only this robot (default: every robot and arm)")
+    args = parser.parse_args()
+    task, _ = load_task(TASK)
+    scene = scene_from_task(Task(object=task.object, environment=task.environment), TASK)
+    print(f"{'robot':<20} {'ticks':>6} {'bare':>14} {'interface':>14} {'empty executor':>15} {'atd run':>14} {'its physics':>16}   us/tick (x bare)")
+    for robot_name, arm in variants():
+        if args.robot and robot_name != args.robot:
+            continue
+        factory = create(robot_name, arm)
+        estd = translate(task, factory).estd
+        full, physics = min((timed_run(estd, factory) for _ in range(args.repeat)), key=lambda r: r[0].wall_time)
+        ticks = full.ticks
+        robot = make_robot(factory.robot, scene)
+        bare = min(bare_loop(robot, ticks) for _ in range(args.repeat))
+        interface = min(interface_loop(robot, ticks) for _ in range(args.repeat))
+        robot.close()
+        empty = []
+        for _ in range(args.repeat):
+            robot = make_robot(factory.robot, scene)
+            context = Context(info=robot.info, params={})
+            empty.append(Executor(idle_machine(ticks * robot.info.control_period), robot, context).run().wall_time)
+            robot.close()
+        cells = [f"{t / ticks * 1e6:6.1f} ({t / bare:4.2f})" for t in (bare, interface, min(empty), full.wall_time, physics)]
+        print(f"{robot_name + '/' + arm:<20} {ticks:>6} {cells[0]:>14} {cells[1]:>14} {cells[2]:>15} {cells[3]:>14} "
+              f"{cells[4]:>16}")
+
+
+if __name__ == "__main__":
+    main()
