@@ -53,7 +53,7 @@ def rotation_error(goal: np.ndarray, current: np.ndarray) -> np.ndarray:
 
 def norm(v: np.ndarray) -> float:
     """Euclidean norm of a short vector (a fraction of np.linalg.norm's cost, every tick)."""
-    return math.hypot(*v.tolist())
+    return math.sqrt(float(v.dot(v)))
 
 
 def clamp_norm(v: np.ndarray, limit: float) -> np.ndarray:

@@ -150,11 +150,10 @@ class CartesianMove(Controller):
         if length < 1e-6:
             return clamp_norm(GAIN * (goal - position), self.max_speed)
         u = leg / length
-        offset = position - self.leg_start
-        s = float(offset.dot(u))  # how far along the leg the TCP is
+        s = float((position - self.leg_start).dot(u))
+        on_line = self.leg_start + min(max(s, 0.0), length) * u
         along = max(-self.max_speed, min(self.max_speed, GAIN * (length - s)))
-        # The pull back onto the line is GAIN (leg_start + clamp(s) u - position), gathered along u.
-        return clamp_norm(u * (along + GAIN * min(max(s, 0.0), length)) - GAIN * offset, self.max_speed)
+        return clamp_norm(u * along + GAIN * (on_line - position), self.max_speed)
 
     def _stay(self, readings: Readings) -> ControlData:
         if self.rest is None:
