@@ -243,7 +243,14 @@ class Factory(ABC):
         if state.hand_shape is None:
             return self.controller("hold_position"), ()
         shape, notes = self.shape(state.hand_shape)
-        return self.controller("hand_shape", shape=shape.value), notes
+        return self.controller("hand_shape", shape=self.posture(shape, state)), notes
+
+    def posture(self, shape: HandShape, state: State) -> str:
+        """The hand's posture for a shape in a state: a closed hand holds nothing, so in a
+        move or push it takes the posture its description pushes with (`Hand.push_posture`)."""
+        if shape is HandShape.CLOSED and state.type in (StateType.MOVE, StateType.PUSH):
+            return self.robot.hand.push_posture
+        return shape.value
 
     def jaw_grasp(self, state: State, context: MappingContext) -> NodeMapping:
         """A parallel gripper's grasp (thesis 7.3, Melfa): the arm holds still while the jaws
@@ -297,10 +304,13 @@ class Factory(ABC):
         if state.hand_shape is None:
             return (0.0, 0.0, 0.0)
         made, _ = self.shape(state.hand_shape)
+        posture = self.posture(made, state)
         robot = self.robot
-        centre = robot.hand.grasp_centres.get(made.value, (0.0, 0.0, 0.0))
-        if made is HandShape.CLOSED and state.type in (StateType.MOVE, StateType.PUSH):
-            centre = (0.0, 0.0, min(0.0, robot.hand_reach(made.value)))
+        centre = robot.hand.grasp_centres.get(posture, (0.0, 0.0, 0.0))
+        if posture != made.value:  # a push posture: its lowest point, wherever it ends
+            centre = (centre[0], centre[1], robot.hand_reach(posture))
+        elif made is HandShape.CLOSED and state.type in (StateType.MOVE, StateType.PUSH):
+            centre = (0.0, 0.0, min(0.0, robot.hand_reach(posture)))
         x, y, z = (float(v) for v in self._hand_down @ np.asarray(centre, float))
         return (x, y, z)
 

@@ -197,6 +197,9 @@ class Hand:
     # Hand shapes that close somewhere else than on the TCP -> where they close, hand frame,
     # relative to the TCP (a pinch between two fingers that stand off the palm centre).
     grasp_centres: dict[str, Vec3] = field(default_factory=dict)
+    # The posture a closed hand takes to move and push (not a D5 shape): a hand whose fist
+    # meets an object with sloping links names one that leads with a vertical face.
+    push_posture: str = "closed"
 
 
 @dataclass(frozen=True)
