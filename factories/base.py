@@ -296,10 +296,10 @@ class Factory(ABC):
 
         The task's positions are for that point. A pinch closes where the hand says
         (`Hand.grasp_centres`: the SDH2's two fingers face each other 19 mm off its TCP).
-        A closed hand holds nothing, and one that curls into a fist has no point between
-        its fingertips: in a move or push its lowest point stands in for the TCP, so a
-        push meets the object where the path says (the closed Barrett ends 2.7 cm short of
-        its TCP, the closed SDH2 9.3 cm; a closed gripper reaches past its TCP: no change).
+        A closed hand holds nothing: in a move or push it takes its push posture. A gripper
+        pushes with its closed jaws: no change. A three-finger hand points one finger down,
+        and that finger's lowest point (`grasp_centres` off the TCP, `hand_reach` below it)
+        stands in for the TCP, so a push meets the object where the path says.
         """
         if state.hand_shape is None:
             return (0.0, 0.0, 0.0)
@@ -307,10 +307,8 @@ class Factory(ABC):
         posture = self.posture(made, state)
         robot = self.robot
         centre = robot.hand.grasp_centres.get(posture, (0.0, 0.0, 0.0))
-        if posture != made.value:  # a push posture: its lowest point, wherever it ends
+        if posture != made.value:  # a push posture of its own: its lowest point
             centre = (centre[0], centre[1], robot.hand_reach(posture))
-        elif made is HandShape.CLOSED and state.type in (StateType.MOVE, StateType.PUSH):
-            centre = (0.0, 0.0, min(0.0, robot.hand_reach(posture)))
         x, y, z = (float(v) for v in self._hand_down @ np.asarray(centre, float))
         return (x, y, z)
 

@@ -191,7 +191,7 @@ class Hand:
     name: str
     dofs: tuple[HandDof, ...]
     pads: tuple[FingerPad, ...]
-    postures: dict[str, tuple[float, ...]] = field(default_factory=dict)  # D5 hand shape -> DOF values
+    postures: dict[str, tuple[float, ...]] = field(default_factory=dict)  # D5 hand shape (or "push") -> DOF values
     pad_force_from_effort: bool = False  # no tactile array: pad force = measured finger effort
     test_grasp: str = "power_grasp"  # the hand shape (with its preshape) `atd robots test` lifts a 5 cm box with
     # Hand shapes that close somewhere else than on the TCP -> where they close, hand frame,
