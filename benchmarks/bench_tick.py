@@ -4,10 +4,12 @@ For each robot (and arm), four loops run as many control ticks as the pick-and-p
 the engine alone (`bare`), the robot interface with a still arm (`interface`: a command,
 `step()` and a `read()` each tick), the executor running a state with no controllers that
 ends on a timeout (`empty executor`: the automaton, one condition, the arbitrator, the
-interface), and the whole task (`atd run`), with the time its physics steps took. Prints
-microseconds per tick and each loop's ratio to bare stepping: the empty executor's ratio is
-the floor under issue 5's target of 1.30 for this design in CPython, whatever the primitives
-cost; the task's own physics (contacts, a moving arm) already costs more than bare stepping.
+interface), and the whole task (`atd run`), with the time its physics steps took and its
+executor's own time (all but the robot interface: conditions, controllers, arbitrator, DLS;
+the timers add about 2 microseconds a tick). Prints microseconds per tick and each one's
+ratio to bare stepping: the empty executor's ratio is the floor under issue 5's target of
+1.30 for this design in CPython, whatever the primitives cost; the task's own physics
+(contacts, a moving arm) already costs more than bare stepping.
 
     python benchmarks/bench_tick.py [--repeat 3] [--robot melfa]
 """
@@ -49,19 +51,26 @@ def idle_machine(seconds: float) -> Estd:
     )
 
 
-def timed_run(estd: Estd, factory) -> tuple[Outcome, float]:
-    """The task run as `atd run` does, and the seconds its physics steps took: grasping and
-    carrying cost the engine more than the bare loop's robot standing still beside the box."""
+def timed_run(estd: Estd, factory) -> tuple[Outcome, float, float]:
+    """The task run as `atd run` does, with the seconds spent in its physics steps and in the
+    robot interface (physics included); the rest of the wall time is the executor's own.
+    Grasping and carrying cost the engine more than the bare loop's robot standing still."""
     run = Run(estd, factory)
-    advance, spent = run.robot._advance, [0.0]
+    robot, spent = run.robot, {"physics": 0.0, "interface": 0.0}
 
-    def timed_advance() -> None:
-        start = time.perf_counter()
-        advance()
-        spent[0] += time.perf_counter() - start
+    def timing(method, account: str):
+        def timed(*args):
+            start = time.perf_counter()
+            result = method(*args)
+            spent[account] += time.perf_counter() - start
+            return result
+        return timed
 
-    run.robot._advance = timed_advance
-    return run.execute(), spent[0]
+    robot._advance = timing(robot._advance, "physics")
+    for name in ("read", "step", "jacobian", "command_arm_velocity", "command_hand"):
+        setattr(robot, name, timing(getattr(robot, name), "interface"))
+    outcome = run.execute()
+    return outcome, spent["physics"], outcome.wall_time - spent["interface"]
 
 
 def main() -> None:
@@ -71,13 +80,14 @@ def main() -> None:
     args = parser.parse_args()
     task, _ = load_task(TASK)
     scene = scene_from_task(Task(object=task.object, environment=task.environment), TASK)
-    print(f"{'robot':<20} {'ticks':>6} {'bare':>14} {'interface':>14} {'empty executor':>15} {'atd run':>14} {'its physics':>16}   us/tick (x bare)")
+    print(f"{'robot':<20} {'ticks':>6} {'bare':>14} {'interface':>14} {'empty executor':>15} {'atd run':>14} {'its physics':>14} "
+          f"{'its executor':>14}   us/tick (x bare)")
     for robot_name, arm in variants():
         if args.robot and robot_name != args.robot:
             continue
         factory = create(robot_name, arm)
         estd = translate(task, factory).estd
-        full, physics = min((timed_run(estd, factory) for _ in range(args.repeat)), key=lambda r: r[0].wall_time)
+        full, physics, own = min((timed_run(estd, factory) for _ in range(args.repeat)), key=lambda r: r[0].wall_time)
         ticks = full.ticks
         robot = make_robot(factory.robot, scene)
         bare = min(bare_loop(robot, ticks) for _ in range(args.repeat))
@@ -89,9 +99,10 @@ def main() -> None:
             context = Context(info=robot.info, params={})
             empty.append(Executor(idle_machine(ticks * robot.info.control_period), robot, context).run().wall_time)
             robot.close()
-        cells = [f"{t / ticks * 1e6:6.1f} ({t / bare:4.2f})" for t in (bare, interface, min(empty), full.wall_time, physics)]
+        cells = [f"{t / ticks * 1e6:6.1f} ({t / bare:4.2f})"
+                 for t in (bare, interface, min(empty), full.wall_time, physics, own)]
         print(f"{robot_name + '/' + arm:<20} {ticks:>6} {cells[0]:>14} {cells[1]:>14} {cells[2]:>15} {cells[3]:>14} "
-              f"{cells[4]:>16}")
+              f"{cells[4]:>14} {cells[5]:>14}")
 
 
 if __name__ == "__main__":
