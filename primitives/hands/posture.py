@@ -75,13 +75,13 @@ class HoldPosition(PostureDrive):
         self.forced = loaded & hand.self_locking
         preload = np.where(loaded & ~hand.self_locking, readings.hand_effort / hand.stiffness, 0.0)
         self.goal = readings.hand_q + preload
-        self.effort = readings.hand_effort.copy()
+        values = np.where(self.forced, readings.hand_effort, self.goal)
+        modes = tuple(HandMode.FORCE if forced else HandMode.POSITION for forced in self.forced)
+        self.command = ControlData(hand=HandCommand(values=values, modes=modes))  # the same every tick
         self.finish(Status.DONE, "holding the fingers")
 
     def update(self, readings: Readings, dt: float) -> ControlData:
-        values = np.where(self.forced, self.effort, self.goal)
-        modes = tuple(HandMode.FORCE if forced else HandMode.POSITION for forced in self.forced)
-        return ControlData(hand=HandCommand(values=values, modes=modes))
+        return self.command
 
 
 class HandShape(PostureDrive):
