@@ -31,11 +31,9 @@ from primitives.conditions import (
     WristForceAbove,
 )
 from primitives.hands import hand_kind
-from primitives.hands.barrett import BarrettRobustGrasp
-from primitives.hands.multi_finger import NaiveGraspHand
+from primitives.hands.multi_finger import NaiveGraspHand, RobustGraspHand
 from primitives.hands.parallel_jaw import CloseUntilForce, NaiveJawGrasp, Squeeze
 from primitives.hands.posture import HandShape, HoldPosition, OpenTo
-from primitives.hands.sdh2 import Sdh2RobustGrasp
 
 
 class BuildError(ValueError):
@@ -61,8 +59,7 @@ _POSTURES: Mapping[str, ControllerClass] = {"hold_position": HoldPosition, "hand
 HANDS: Mapping[str, Mapping[str, ControllerClass]] = {
     "parallel_jaw": {**_POSTURES, "close_until_force": CloseUntilForce, "squeeze": Squeeze,
                      "naive_grasp_hand": NaiveJawGrasp},
-    "barrett": {**_POSTURES, "robust_grasp_hand": BarrettRobustGrasp, "naive_grasp_hand": NaiveGraspHand},
-    "sdh2": {**_POSTURES, "robust_grasp_hand": Sdh2RobustGrasp, "naive_grasp_hand": NaiveGraspHand},
+    "multi_finger": {**_POSTURES, "robust_grasp_hand": RobustGraspHand, "naive_grasp_hand": NaiveGraspHand},
 }
 
 

@@ -43,11 +43,14 @@ class HandMode(StrEnum):
 class PadInfo:
     """A tactile finger pad: `taxels` is (rows, cols) of its array, None where the
     robot only measures one force for the finger; `dofs` are the hand DOFs that move it
-    (none for a palm pad), which is how a hand controller knows which finger a pad is on."""
+    (none for a palm pad), which is how a hand controller knows which finger a pad is on;
+    `base` is where that finger stands on the palm, (x, y) in the hand frame (m), which is
+    how it knows which way "towards this finger" is."""
 
     name: str
     taxels: tuple[int, int] | None
     dofs: tuple[int, ...] = ()
+    base: tuple[float, float] = (0.0, 0.0)
 
 
 @dataclass(frozen=True)
@@ -60,7 +63,7 @@ class HandInfo:
     closing: np.ndarray  # per DOF: +1 or -1 = the direction that closes the hand, 0 = not a closing DOF
     open: np.ndarray  # DOF positions of the fully open hand
     closed: np.ndarray  # DOF positions of the fully closed, empty hand
-    postures: Mapping[str, np.ndarray]  # D5 hand shape name -> DOF positions, only those this hand can make
+    postures: Mapping[str, np.ndarray]  # D5 hand shape name (or the hand's push posture) -> DOF positions
     pads: tuple[PadInfo, ...]
     stiffness: np.ndarray  # per DOF: the position servo's effort per unit of position error
     self_locking: np.ndarray  # per DOF: a drive that keeps its torque when pushed back (a worm gear)

@@ -40,11 +40,22 @@ def _moving_dofs(d: RobotDescription, link: str) -> tuple[int, ...]:
     return tuple(k for k, dof in enumerate(d.hand.dofs) if any(j in joints for j, _ in dof.joints))
 
 
+def _finger_base(d: RobotDescription, link: str, poses: dict[str, np.ndarray]) -> tuple[float, float]:
+    """Where the finger carrying `link` stands on the palm: its first link's origin, (x, y)
+    in the hand (TCP) frame; the palm's own pads stand where they are."""
+    while link != d.hand_root and d.links_by_name[link].parent != d.hand_root:
+        link = d.links_by_name[link].parent
+    tcp = poses[d.tcp.link] @ d.tcp.origin.matrix()
+    x, y, _ = tcp[:3, :3].T @ (poses[link][:3, 3] - tcp[:3, 3])
+    return (float(x), float(y))
+
+
 def robot_info(d: RobotDescription) -> RobotInfo:
     """The static facts a primitive needs, taken from the description."""
     arm = [d.joints[n] for n in d.arm_joints]
     hand_limits = [d.joints[dof.joints[0][0]] for dof in d.hand.dofs]
     ratios = np.array([abs(dof.joints[0][1]) for dof in d.hand.dofs])
+    open_hand = d.link_poses(d.hand_joint_targets(np.array([dof.open for dof in d.hand.dofs])))
     lower = np.array([min(j.lower / r, j.upper / r) for j, r in zip(hand_limits, ratios)])
     upper = np.array([max(j.lower / r, j.upper / r) for j, r in zip(hand_limits, ratios)])
     hand = HandInfo(
@@ -57,7 +68,8 @@ def robot_info(d: RobotDescription) -> RobotInfo:
         open=np.array([dof.open for dof in d.hand.dofs]),
         closed=np.array([dof.closed for dof in d.hand.dofs]),
         postures={name: np.array(v) for name, v in d.hand.postures.items()},
-        pads=tuple(PadInfo(p.name, p.taxels, _moving_dofs(d, p.link)) for p in d.hand.pads),
+        pads=tuple(PadInfo(p.name, p.taxels, _moving_dofs(d, p.link), _finger_base(d, p.link, open_hand))
+                   for p in d.hand.pads),
         stiffness=np.array([j.servo.kp for j in hand_limits]) * ratios**2,
         self_locking=np.array([j.friction > 0 for j in hand_limits]),
     )

@@ -1,17 +1,20 @@
-"""Hand controllers, one module per kind of hand (thesis 7.3: the hands differ too much
-to share their grasps); postures every hand can take live in `posture`."""
+"""Hand controllers, one module per kind of hand (thesis 7.3: a parallel jaw and a hand
+with fingers of its own grasp too differently to share one controller); postures every
+hand can take live in `posture`. What differs between hands of one kind (where the
+fingers stand, which postures they make) comes from the robot's description."""
 
 from __future__ import annotations
 
-from primitives.hands import barrett, sdh2
 from primitives.robot import HandInfo
 
 
 def hand_kind(hand: HandInfo) -> str:
-    """Which family of grasp controllers fits this hand, told by its DOFs."""
+    """Which family of grasp controllers fits this hand: one DOF moves both jaws of a
+    parallel gripper; a multi-finger hand (the Barrett, the SDH2) has pads on at least two
+    fingers that move on DOFs of their own."""
     if len(hand.dofs) == 1:
         return "parallel_jaw"
-    for kind, dofs in (("barrett", barrett.DOFS), ("sdh2", sdh2.DOFS)):
-        if hand.dofs == dofs:
-            return kind
-    raise ValueError(f"no hand controllers for a hand with the DOFs {', '.join(hand.dofs)}")
+    if len({pad.dofs for pad in hand.pads if pad.dofs}) >= 2:
+        return "multi_finger"
+    raise ValueError(f"no hand controllers for a hand with the DOFs {', '.join(hand.dofs)}: "
+                     "it has neither one jaw DOF nor tactile pads on two fingers")

@@ -12,22 +12,18 @@ pads:
 - no finger touches (object lost, D5 security reflex): reopen, move a little further
   along the approach, close again.
 
-Each hand kind gives where its fingers stand on the palm (`FingerLayout`), which is all
-the finger-lost correction needs to know which way "towards the contacts" is.
+Where each finger stands on the palm (`PadInfo.base`, from the robot's description) is
+all the finger-lost correction needs to know which way "towards the contacts" is.
 """
 
 from __future__ import annotations
 
 from abc import abstractmethod
-from typing import Mapping
-
 import numpy as np
 
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
 from primitives.blackboard import CONTACT, FINGERS_STOPPED, SHIFT
 from primitives.robot import HandMode, Readings
-
-FingerLayout = Mapping[str, tuple[float, float]]  # finger pad -> (x, y) of its finger's base in the hand frame, m
 
 CLOSING_SPEED = 0.3  # of each DOF's speed limit
 LEAD = 0.05  # of a DOF's range: how far a closing finger's reference may run ahead of it
@@ -176,12 +172,11 @@ class FingerGrasp(Controller):
 
 
 class RobustGraspHand(FingerGrasp):
-    """The robust grasp's hand side; `layout` comes from the hand kind's module."""
-
-    layout: FingerLayout = {}
+    """The robust grasp's hand side, for any three-finger hand."""
 
     def __init__(self, ctx: Context) -> None:
         super().__init__(ctx)
+        self.base = {pad.name: np.array(pad.base) for pad in ctx.info.hand.pads}
         self.grasp_force = float(self.params["grasp_force"])
         self.correct = bool(self.params["finger_lost_correction"])
 
@@ -204,7 +199,7 @@ class RobustGraspHand(FingerGrasp):
             self.phase = "failed"
             return
         if touching:  # finger lost: shift towards the fingers that touched
-            toward = np.mean([self.layout[f] for f in touching], axis=0) - np.mean([self.layout[f] for f in lost], axis=0)
+            toward = np.mean([self.base[f] for f in touching], axis=0) - np.mean([self.base[f] for f in lost], axis=0)
             self.shift = np.array([*toward / np.linalg.norm(toward), 0.0]) * FINGER_LOST_SHIFT
         else:  # object lost: a little further along the approach
             self.shift = np.array([0.0, 0.0, OBJECT_LOST_STEP])

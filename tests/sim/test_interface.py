@@ -78,6 +78,24 @@ def test_static_facts_describe_each_hand() -> None:
     assert "hook_grasp" not in load_description("tombatossals", "left").hand.postures  # SDH2 cannot (thesis A.1.2)
 
 
+def test_each_pad_knows_where_its_finger_stands_on_the_palm() -> None:
+    """The robust grasp's finger-lost correction shifts towards the fingers that touched;
+    where they stand comes from the description (thesis A.1.2's layouts), in the hand frame."""
+    from atd.sim.simrobot import robot_info
+
+    def bases(arm: str) -> dict[str, tuple[float, float]]:
+        return {p.name: p.base for p in robot_info(load_description("tombatossals", arm)).hand.pads}
+
+    barrett = bases("right")  # F1 and F2 either side of the palm centre, the thumb opposite
+    assert barrett["tactile_f1"] == pytest.approx((-0.025, 0.0), abs=1e-9)
+    assert barrett["tactile_f2"] == pytest.approx((0.025, 0.0), abs=1e-9)
+    assert barrett["tactile_f3"] == pytest.approx((0.0, -0.05), abs=1e-9)
+    sdh2 = bases("left")  # two fingers on one side of the rotation axis, the thumb on the other
+    assert sdh2["tactile_f1"] == pytest.approx((0.019, 0.033), abs=1e-9)
+    assert sdh2["tactile_f2"] == pytest.approx((0.019, -0.033), abs=1e-9)
+    assert sdh2["tactile_f3"] == pytest.approx((-0.038, 0.0), abs=1e-9)
+
+
 def test_the_object_can_be_teleported_or_taken_away(melfa, robot_of, run, engine) -> None:
     """Fault hook for the layers above: the object vanishes from the hand as a real one may slip out."""
     robot = robot_of(melfa, engine)
