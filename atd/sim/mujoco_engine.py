@@ -51,6 +51,7 @@ class MujocoRobot(SimRobot):
         self._hand_force = np.zeros(len(self.hand_joints), bool)
 
         self._tcp_site = _id(m, mujoco.mjtObj.mjOBJ_SITE, d.tcp.name)
+        self._identity = np.eye(4)
         self._jacp = np.zeros((3, m.nv))
         self._jacr = np.zeros((3, m.nv))
         force_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "wrist_force")]
@@ -109,10 +110,9 @@ class MujocoRobot(SimRobot):
         return self._qpos[self._qadr], self._qvel[self._vadr], self._qfrc_actuator[self._vadr]
 
     def _tcp(self) -> np.ndarray:
-        pose = np.empty((4, 4))
+        pose = self._identity.copy()
         pose[:3, :3] = self._site_xmat[self._tcp_site].reshape(3, 3)
         pose[:3, 3] = self._site_xpos[self._tcp_site]
-        pose[3] = (0.0, 0.0, 0.0, 1.0)
         return pose
 
     def _wrench(self) -> np.ndarray:

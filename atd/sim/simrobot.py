@@ -102,22 +102,29 @@ class SimRobot(Robot):
                 self._joint_follows[i] = dof.geared and n > 0
 
         # Every reading of a tick lands in one vector: the sensor-modelled streams first
-        # (joint positions, wrench, pad forces, range), then joint speeds and efforts.
+        # (joint positions, pad forces, wrench, range: encoders and pads are often quantised
+        # alike, the wrench and range noisy alike, so each model step is a slice), then
+        # joint speeds and efforts.
         n_joints = n_arm + len(self.hand_joints)
         n_pads = len(d.hand.pads)
-        streams = [("joints", n_joints), ("wrench", 6), ("tactile", n_pads)] + [("range", 1)] * self.info.has_range
+        streams = [("joints", n_joints), ("tactile", n_pads), ("wrench", 6)] + [("range", 1)] * self.info.has_range
         ideal = SensorModel()
         self._sensors = NoisySensors([(d.sensors.get(s, ideal), size) for s, size in streams], np.random.default_rng(seed),
                                      d.control_period)
         self._streams = tuple(s for s, _ in streams)
-        w, p = n_joints, n_joints + 6
+        p, w = n_joints, n_joints + n_pads
         dq, effort = self._sensors.size, self._sensors.size + n_joints
-        self._wrench_at, self._pads_at, self._range_at = slice(w, w + 6), slice(p, p + n_pads), p + n_pads
+        self._pads_at, self._wrench_at, self._range_at = slice(p, p + n_pads), slice(w, w + 6), w + 6
         self._arm_at = (slice(0, n_arm), slice(dq, dq + n_arm), slice(effort, effort + n_arm))
         # Hand DOF readings (q, dq, effort) from their first joints, in one gather and one scaling.
         self._hand_at = np.stack([self._dof_joint, dq + self._dof_joint, effort + self._dof_joint])
         self._hand_scale = np.stack([1 / self._dof_ratio, 1 / self._dof_ratio, self._dof_ratio])
         self._taxels = TaxelImages(d.hand.pads)
+        self._pad_names = tuple(p.name for p in d.hand.pads)
+        self._every_pad = np.ones(len(d.hand.pads))
+        # Where pads have no arrays: the first DOF's closing sense, joint and gear ratio.
+        first = (self.info.hand.closing[0], self._dof_joint[0], self._dof_ratio[0])
+        self._squeeze = first if d.hand.pad_force_from_effort else None
         self._frozen: set[str] = set()
         self._seq = dict.fromkeys(SENSORS, 0)
 
@@ -128,6 +135,8 @@ class SimRobot(Robot):
         self._hand_modes = np.zeros(len(d.hand.dofs), int)
         self._hand_given: HandMode | tuple[HandMode, ...] | None = None  # the modes as last commanded
         self._velocity_dofs = False
+        self._joint_force = np.zeros(len(self.hand_joints), bool)  # hand joints under a force command
+        self._following = np.zeros(0, int)  # geared hand joints that follow their DOF's motor joint
         self._hand_values = self.info.hand.open.copy()
         self._hand_target = self.info.hand.open.copy()  # position reference, also for velocity mode
         self._hand_changes = True  # the hand's joint commands need working out on the next step
@@ -166,6 +175,9 @@ class SimRobot(Robot):
         self._hand_modes = codes
         self._hand_values = values.copy()
         self._velocity_dofs = bool((codes == VELOCITY).any())
+        force_dof = codes[self._joint_dof] == FORCE
+        self._following = np.flatnonzero(force_dof & self._joint_follows)
+        self._joint_force = force_dof & ~self._joint_follows
         position = codes == POSITION
         self._hand_target[position] = np.clip(values[position], hand.lower[position], hand.upper[position])
         # A DOF leaving force mode, or starting to move at a velocity, starts from where it is.
@@ -197,21 +209,19 @@ class SimRobot(Robot):
         """Turn the DOF commands into joint commands; needed each tick only while a target
         moves (velocity mode) or a geared joint follows its motor joint (force mode)."""
         hand = self.info.hand
-        velocity = self._hand_modes == VELOCITY
-        if velocity.any():
+        if self._velocity_dofs:
+            velocity = self._hand_modes == VELOCITY
             rate = np.minimum(np.maximum(self._hand_values, -hand.velocity_limit), hand.velocity_limit)
             target = self._hand_target + rate * self.info.control_period
             target = np.minimum(np.maximum(target, hand.lower), hand.upper)
             self._hand_target = np.where(velocity, target, self._hand_target)
-        dof = self._joint_dof
-        force_dof = self._hand_modes[dof] == FORCE
-        # Under a force command a geared joint follows where its DOF's motor joint is.
-        follows = force_dof & self._joint_follows
-        joint_force = force_dof & ~follows
-        reference = np.where(follows, self.read().hand_q[dof], self._hand_target[dof])
-        joint_values = np.where(joint_force, self._hand_values[dof], reference) * self._joint_ratio
-        self._apply_hand(joint_force, joint_values)
-        self._hand_changes = bool(velocity.any() or follows.any())
+        dof, ratio, following = self._joint_dof, self._joint_ratio, self._following
+        joint_values = np.where(self._joint_force, self._hand_values[dof], self._hand_target[dof]) * ratio
+        if len(following):
+            # Under a force command a geared joint follows where its DOF's motor joint is.
+            joint_values[following] = self.read().hand_q[dof[following]] * ratio[following]
+        self._apply_hand(self._joint_force, joint_values)
+        self._hand_changes = self._velocity_dofs or len(following) > 0
 
     # ---- fault hooks, for tests of the layers above (not part of the interface) ---------
     def freeze(self, sensor: str) -> None:
@@ -293,7 +303,7 @@ class SimRobot(Robot):
         q, dq, effort = self._joint_state()
         taxels, pad_force = self._tactile(effort)
         distance = (self._range(),) if self.info.has_range else ()
-        x = np.concatenate((q, self._wrench(), pad_force, distance, dq, effort))
+        x = np.concatenate((q, pad_force, self._wrench(), distance, dq, effort))
         self._sensors(x)
         hand = x[self._hand_at] * self._hand_scale
         for stream in self._streams:
@@ -324,9 +334,9 @@ class SimRobot(Robot):
 
     def _tactile(self, effort: np.ndarray) -> tuple[dict[str, np.ndarray | None], np.ndarray]:
         """True taxel images and pad forces, from joint efforts where the hand has no arrays."""
-        hand = self.description.hand
-        if hand.pad_force_from_effort:
+        if self._squeeze is not None:
             # No tactile array: each finger reports the grip force its DOF measures.
-            squeeze = max(0.0, self.info.hand.closing[0] * (effort[self._dof_joint[0]] * self._dof_ratio[0]))
-            return dict.fromkeys((p.name for p in hand.pads), None), np.full(len(hand.pads), squeeze)
+            closing, joint, ratio = self._squeeze
+            force = max(0.0, closing * (effort[joint] * ratio))
+            return dict.fromkeys(self._pad_names), self._every_pad * force
         return self._taxels(*self._pad_contacts())
