@@ -135,6 +135,7 @@ class SimRobot(Robot):
         self._hand_modes = np.zeros(len(d.hand.dofs), int)
         self._hand_given: HandMode | tuple[HandMode, ...] | None = None  # the modes as last commanded
         self._velocity_dofs = False
+        self._hand_settled = False  # the same command again would leave the hand's targets as they are
         self._joint_force = np.zeros(len(self.hand_joints), bool)  # hand joints under a force command
         self._following = np.zeros(0, int)  # geared hand joints that follow their DOF's motor joint
         self._hand_values = self.info.hand.open.copy()
@@ -159,9 +160,9 @@ class SimRobot(Robot):
     def command_hand(self, values: Sequence[float] | np.ndarray, modes: HandMode | Sequence[HandMode]) -> None:
         values = np.asarray(values, float)
         modes = modes if isinstance(modes, str) else tuple(modes)
-        # The executor repeats the command every tick: the same one changes nothing, unless
-        # a DOF moves at a velocity (its target restarts from where the DOF is).
-        if modes == self._hand_given and values.tobytes() == self._hand_values.tobytes() and not self._velocity_dofs:
+        # The executor repeats the command every tick: the same one again changes nothing once
+        # no DOF restarts from where it is (a DOF moving at a velocity always does).
+        if self._hand_settled and modes == self._hand_given and values.tobytes() == self._hand_values.tobytes():
             return
         hand = self.info.hand
         n = len(hand.dofs)
@@ -182,7 +183,8 @@ class SimRobot(Robot):
         self._hand_target[position] = np.clip(values[position], hand.lower[position], hand.upper[position])
         # A DOF leaving force mode, or starting to move at a velocity, starts from where it is.
         restart = (codes == VELOCITY) | (was_force & (codes != FORCE))
-        if restart.any():
+        self._hand_settled = not restart.any()
+        if not self._hand_settled:
             self._hand_target[restart] = self.read().hand_q[restart]
         self._hand_changes = True
 
