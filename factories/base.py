@@ -243,7 +243,14 @@ class Factory(ABC):
         if state.hand_shape is None:
             return self.controller("hold_position"), ()
         shape, notes = self.shape(state.hand_shape)
-        return self.controller("hand_shape", shape=shape.value), notes
+        return self.controller("hand_shape", shape=self.posture(shape, state)), notes
+
+    def posture(self, shape: HandShape, state: State) -> str:
+        """The hand's posture for a shape in a state: a closed hand holds nothing, so in a
+        move or push it takes the posture its description pushes with (`Hand.push_posture`)."""
+        if shape is HandShape.CLOSED and state.type in (StateType.MOVE, StateType.PUSH):
+            return self.robot.hand.push_posture
+        return shape.value
 
     def jaw_grasp(self, state: State, context: MappingContext) -> NodeMapping:
         """A parallel gripper's grasp (thesis 7.3, Melfa): the arm holds still while the jaws
@@ -289,18 +296,19 @@ class Factory(ABC):
 
         The task's positions are for that point. A pinch closes where the hand says
         (`Hand.grasp_centres`: the SDH2's two fingers face each other 19 mm off its TCP).
-        A closed hand holds nothing, and one that curls into a fist has no point between
-        its fingertips: in a move or push its lowest point stands in for the TCP, so a
-        push meets the object where the path says (the closed Barrett ends 2.7 cm short of
-        its TCP, the closed SDH2 9.3 cm; a closed gripper reaches past its TCP: no change).
+        A closed hand holds nothing: in a move or push it takes its push posture. A gripper
+        pushes with its closed jaws: no change. A three-finger hand points one finger down,
+        and that finger's lowest point (`grasp_centres` off the TCP, `hand_reach` below it)
+        stands in for the TCP, so a push meets the object where the path says.
         """
         if state.hand_shape is None:
             return (0.0, 0.0, 0.0)
         made, _ = self.shape(state.hand_shape)
+        posture = self.posture(made, state)
         robot = self.robot
-        centre = robot.hand.grasp_centres.get(made.value, (0.0, 0.0, 0.0))
-        if made is HandShape.CLOSED and state.type in (StateType.MOVE, StateType.PUSH):
-            centre = (0.0, 0.0, min(0.0, robot.hand_reach(made.value)))
+        centre = robot.hand.grasp_centres.get(posture, (0.0, 0.0, 0.0))
+        if posture != made.value:  # a push posture of its own: its lowest point
+            centre = (centre[0], centre[1], robot.hand_reach(posture))
         x, y, z = (float(v) for v in self._hand_down @ np.asarray(centre, float))
         return (x, y, z)
 

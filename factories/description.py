@@ -191,12 +191,15 @@ class Hand:
     name: str
     dofs: tuple[HandDof, ...]
     pads: tuple[FingerPad, ...]
-    postures: dict[str, tuple[float, ...]] = field(default_factory=dict)  # D5 hand shape -> DOF values
+    postures: dict[str, tuple[float, ...]] = field(default_factory=dict)  # D5 hand shape (or "push") -> DOF values
     pad_force_from_effort: bool = False  # no tactile array: pad force = measured finger effort
     test_grasp: str = "power_grasp"  # the hand shape (with its preshape) `atd robots test` lifts a 5 cm box with
     # Hand shapes that close somewhere else than on the TCP -> where they close, hand frame,
     # relative to the TCP (a pinch between two fingers that stand off the palm centre).
     grasp_centres: dict[str, Vec3] = field(default_factory=dict)
+    # The posture a closed hand takes to move and push (not a D5 shape): a hand whose fist
+    # meets an object with sloping links names one that leads with a vertical face.
+    push_posture: str = "closed"
 
 
 @dataclass(frozen=True)

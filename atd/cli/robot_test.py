@@ -15,7 +15,7 @@ from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, robots
 @click.option("--arm", default=None, help="Which arm (e.g. left, right; default: the robot's first).")
 @click.option("--engine", type=click.Choice(["mujoco", "pybullet"]), default="mujoco", show_default=True)
 @click.option("--seed", type=int, default=0, show_default=True, help="Seed of the sensor noise.")
-@click.option("--video", type=click.Path(dir_okay=False, path_type=Path), default=None, help="Write the grasp as an animated GIF.")
+@click.option("--video", type=click.Path(dir_okay=False, path_type=Path), default=None, help="Record the grasp as a video (.gif, or .mp4 with ffmpeg).")
 def robot_test(robot: str, arm: str | None, engine: str, seed: int, video: Path | None) -> None:
     """Check a simulated ROBOT: kinematics, limits, holding, a grasp, force-torque and tactile sensors.
 
@@ -23,16 +23,19 @@ def robot_test(robot: str, arm: str | None, engine: str, seed: int, video: Path 
     """
     from atd.sim import UnknownRobot, load_description
     from atd.sim.selftest import run_all
-    from atd.sim.video import Recorder
+    from atd.sim.video import Recorder, VideoError, check_video_path
 
     try:
         description = load_description(robot, arm)
     except (UnknownRobot, ValueError) as exc:
         click.echo(f"error: {exc}", err=True)
         sys.exit(EXIT_INVALID)
-    if video is not None and video.suffix.lower() != ".gif":
-        click.echo(f"error: --video {video}: only GIF is written (no video encoder is installed); name the file *.gif", err=True)
-        sys.exit(EXIT_INVALID)
+    if video is not None:
+        try:
+            check_video_path(video)
+        except VideoError as exc:
+            click.echo(f"error: {exc}", err=True)
+            sys.exit(EXIT_INVALID)
 
     recorder = Recorder() if video is not None else None
     click.echo(f"atd robots test {description.label} on {engine} (seed {seed})")
@@ -43,19 +46,5 @@ def robot_test(robot: str, arm: str | None, engine: str, seed: int, video: Path 
     passed = sum(c.passed for c in checks)
     click.echo(f"{passed}/{len(checks)} checks passed")
     if video is not None:
-        _write_video(video, recorder)
+        click.echo(recorder.save(video))
     sys.exit(EXIT_OK if passed == len(checks) else EXIT_TASK_FAILED)
-
-
-def _write_video(path: Path, recorder) -> None:
-    from atd.sim.video import write_gif
-
-    if recorder.error or not recorder.frames:
-        click.echo(
-            f"no video written to {path}: offscreen rendering failed ({recorder.error or 'no frames'}); "
-            "try MUJOCO_GL=egl or MUJOCO_GL=osmesa",
-            err=True,
-        )
-        return
-    write_gif(path, recorder.frames)
-    click.echo(f"video: {path} ({len(recorder.frames)} frames)")

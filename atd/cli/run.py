@@ -84,7 +84,7 @@ class _Progress:
 @click.option("--trace", "trace_path", type=click.Path(path_type=Path, dir_okay=False), default=None,
               help="write every state entry, exit and event as JSON lines")
 @click.option("--video", type=click.Path(path_type=Path, dir_okay=False), default=None,
-              help="record the run as an animated .gif from an offscreen camera")
+              help="record the run from an offscreen camera: .gif, or .mp4 (needs ffmpeg: the video extra)")
 @click.option("--viewer", is_flag=True, help="open MuJoCo's window (needs a display; runs in real time)")
 @click.option("--realtime", is_flag=True, help="run no faster than real time")
 @click.option("--budget", type=float, default=300.0, show_default=True,

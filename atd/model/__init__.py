@@ -15,7 +15,7 @@ from atd.model.task import (
     Waypoint,
 )
 from atd.model.vocabulary import EventType, HandShape, Movement, ObjectClass, StateType
-from atd.model.writer import task_to_xml, write_atomically
+from atd.model.writer import replacing, task_to_xml, write_atomically
 
 __all__ = [
     "Diagnostic",
@@ -38,5 +38,6 @@ __all__ = [
     "has_errors",
     "load_task",
     "task_to_xml",
+    "replacing",
     "write_atomically",
 ]

@@ -15,7 +15,7 @@ from atd.runtime.executor import Executor, Observer, Outcome, Progress, build_pr
 from atd.runtime.trace import Trace
 from atd.sim import ENGINES, make_robot
 from atd.sim.scene import SceneError, scene_from_task
-from atd.sim.video import Recorder, write_gif
+from atd.sim.video import Recorder, VideoError, check_video_path
 from factories.base import Factory
 from primitives.base import Context
 
@@ -35,7 +35,7 @@ class Unrunnable(RunError):
 
 
 class _Video:
-    """Keeps a frame every 0.1 s of simulated time; written as a GIF when the run ends."""
+    """Keeps a frame every 0.1 s of simulated time; written when the run ends."""
 
     def __init__(self, robot, path: Path) -> None:
         self.robot, self.path, self.recorder = robot, path, Recorder()
@@ -45,11 +45,7 @@ class _Video:
 
     def write(self) -> str:
         """What became of the video, for the user."""
-        if self.recorder.error or not self.recorder.frames:
-            return (f"no video written to {self.path}: offscreen rendering failed "
-                    f"({self.recorder.error or 'no frames'}); try MUJOCO_GL=egl or MUJOCO_GL=osmesa")
-        write_gif(self.path, self.recorder.frames)
-        return f"video: {self.path} ({len(self.recorder.frames)} frames)"
+        return self.recorder.save(self.path)
 
 
 class _Viewer:
@@ -60,7 +56,7 @@ class _Viewer:
             raise RunError("--viewer opens MuJoCo's window; run with --engine mujoco")
         if not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")):
             raise RunError("--viewer needs a display (none is set: DISPLAY is empty); "
-                           "record a --video run.gif instead")
+                           "record a --video run.mp4 or run.gif instead")
         import mujoco.viewer
 
         self.window = mujoco.viewer.launch_passive(robot.model, robot.data)
@@ -107,10 +103,12 @@ class Run:
             raise Unrunnable(problems)
         self.trace = Trace(trace_path)
         self.executor = Executor(estd, self.robot, context, self.trace, budget=budget)
-        if video is not None and video.suffix.lower() != ".gif":
-            self.robot.close()
-            raise RunError(f"--video {video}: only GIF is written (no video encoder is installed); "
-                           "name the file *.gif")
+        if video is not None:
+            try:
+                check_video_path(video)
+            except VideoError as exc:
+                self.robot.close()
+                raise RunError(str(exc)) from None
         self.video = _Video(self.robot, video) if video is not None else None
         try:
             self.viewer = _Viewer(self.robot) if viewer else None

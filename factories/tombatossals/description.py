@@ -73,6 +73,7 @@ def _pa10(side: str) -> tuple[Link, ...]:
 BH_DW, BH_AW, BH_A1, BH_A2, BH_A3 = 0.076, 0.025, 0.050, 0.070, 0.050
 BH_DISTAL_REST = 42 * D
 BH_COUPLING = 0.84 / 2.44
+BH_POINTING = (np.pi / 2 - BH_DISTAL_REST) / (1 + BH_COUPLING)  # proximal flexion that turns the distal link vertical
 # The finger drives are self-locking (worm gears): modelled as dry friction on the motor
 # joint, so an object pushes a stalled finger back only with more than this (our value).
 BH_SELF_LOCK = 0.5
@@ -141,10 +142,17 @@ def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
         "pinch_grasp": (np.pi / 2, 1.6, 1.6, 0.0),
         "hook_grasp_preshape": (np.pi, 0.8, 0.8, 0.8),
         "hook_grasp": (np.pi, 1.6, 1.6, 1.6),
+        # To push: F3 points down, its distal link vertical so that every face of it is, and
+        # F1 and F2 curl into fists 4 cm above its tip, clear of the object.
+        "push": (0.0, 2.44, 2.44, BH_POINTING),
     }
     # A 5 cm box is pinched between F1 and F2 spread to face each other (F3 stays flat): two
     # equal, opposed fingers balance under a fixed effort where F1+F2 against F3 would not.
-    return tuple(links), Hand("barrett_bh8_280", dofs, tuple(pads), postures, test_grasp="pinch_grasp"), 0.155
+    # The push acts on F3's distal link, out along hand -y.
+    pointing = (0.0, -(BH_A1 + BH_A2 * np.cos(BH_POINTING)), 0.0)
+    hand = Hand("barrett_bh8_280", dofs, tuple(pads), postures, test_grasp="pinch_grasp",
+                grasp_centres={"push": pointing}, push_posture="push")
+    return tuple(links), hand, 0.155
 
 
 # ---- Schunk SDH2 --------------------------------------------------------------------------
@@ -224,14 +232,19 @@ def _sdh2() -> tuple[tuple[Link, ...], Hand, float]:
         "spherical_grasp": shape(np.pi / 3, 0.6, 0.3),
         "pinch_grasp_preshape": shape(np.pi / 2, -0.3, 0.3, thumb=False),
         "pinch_grasp": shape(np.pi / 2, 0.5, 0.3, thumb=False),
+        # To push: the thumb straight down, every face of it vertical, the fingers curled
+        # up into fists 11 cm above its tip, clear of the object.
+        "push": (0.0, 1.2, 1.2, 1.2, 1.2, 0.0, 0.0),
     }
     # The pinch closes the two fingers, turned to face each other, on the line through their
     # bases, 19 mm off the TCP (the thumb's side of the palm is empty); the three-finger
     # grasps close on the TCP, the centre of the circle the three fingers stand on.
     pinch = (SDH_FINGER_X, 0.0, 0.0)
-    centres = {"pinch_grasp_preshape": pinch, "pinch_grasp": pinch}
+    # The push acts on the thumb's axis.
+    centres = {"pinch_grasp_preshape": pinch, "pinch_grasp": pinch, "push": (SDH_THUMB_X, 0.0, 0.0)}
     # Three fingers 120 degrees apart balance each other on a small box.
-    hand = Hand("schunk_sdh2", dofs, tuple(pads), postures, test_grasp="spherical_grasp", grasp_centres=centres)
+    hand = Hand("schunk_sdh2", dofs, tuple(pads), postures, test_grasp="spherical_grasp", grasp_centres=centres,
+                push_posture="push")
     return tuple(links), hand, 0.225
 
 

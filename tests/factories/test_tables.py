@@ -32,7 +32,7 @@ def _map(robot: str, state: State, arm: str | None = None, environment=None):
 TABLE_7_3 = [
     (StateType.GRASP, "robust_grasp", "robust_grasp_approach", "robust_grasp_hand", ("hand", "pregrasp_size", 0.562)),
     (StateType.MOVE, "transport", "cartesian_move", "hold_position", ("arm", "force_threshold", 15.0)),
-    (StateType.PUSH, "transport", "push", "hold_position", ("arm", "push_force", 1.0)),
+    (StateType.PUSH, "transport", "push", "hold_position", ("arm", "push_force", 0.35)),
     (StateType.TRANSPORT, "transport", "cartesian_move", "hold_position",
      ("arm", "obstacles", ((0.25, 0.22, 0.06),))),
     (StateType.PLACE, "place", "place", "hold_position", ("arm", "force_threshold", 5.0)),

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from atd.model import load_task
@@ -46,15 +47,20 @@ def test_a_push_that_touches_nothing_fails_on_error(tmp_path: Path, robot: str, 
     assert "without pushing anything" in str(fired["conditions"])
 
 
-def test_a_closed_barrett_pushes_with_its_lowest_point_at_the_path_height() -> None:
+@pytest.mark.parametrize("arm", ["right", "left"])
+def test_a_closed_three_finger_hand_pushes_with_its_pointing_finger_at_the_path(arm: str) -> None:
+    """The fist's sloping links wedged the box in PyBullet: the hand points one finger down
+    instead, and its tip, not the TCP, follows the path."""
     task, _ = load_task(PUSH)
-    factory = create("tombatossals", "right")
+    factory = create("tombatossals", arm)
     estd = translate(task, factory).estd
     push = next(s for s in estd.states if s.atd == "push")
-    reach = factory.robot.hand_reach("closed")
-    assert reach < -0.02  # the fist ends short of the TCP
+    hand = factory.robot.hand
     assert push.arm.name == "push"
-    assert push.arm.params["target"][2] == pytest.approx(0.035 + reach, abs=1e-6)
+    assert push.hand.params["shape"] == hand.push_posture == "push"
+    tip = np.asarray(push.arm.params["target"]) + factory._hand_down @ np.array(hand.grasp_centres["push"][:2] + (0.0,))
+    assert tip[:2] == pytest.approx((0.10, 0.01), abs=1e-6)
+    assert tip[2] - factory.robot.hand_reach("push") == pytest.approx(0.035, abs=1e-6)  # the lowest point
 
 
 def test_a_push_too_short_to_measure_its_free_motion_says_to_start_further_away() -> None:

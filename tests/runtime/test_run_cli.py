@@ -6,6 +6,8 @@ import json
 import subprocess
 import sys
 
+import pytest
+
 from tests.conftest import EXAMPLES
 
 PICK_AND_PLACE = str(EXAMPLES / "pick_and_place.xml")
@@ -97,9 +99,37 @@ def test_video_is_an_animated_gif_of_the_run(tmp_path, atd_file):
     assert f"video: {gif} ({frames} frames)" in result.stdout and frames >= 3
 
 
+def test_video_as_mp4_is_a_playable_h264_file(tmp_path, atd_file):
+    import imageio_ffmpeg
+
+    path = atd_file("""
+        <statemachine>
+          <state name="reach" type="move"><path><position>0.10 0.0 0.20</position></path></state>
+          <state name="done" type="success"/>
+          <transition origin="reach" destination="done"><success/></transition>
+        </statemachine>""")
+    mp4 = tmp_path / "run.mp4"
+    result = atd("run", str(path), "--robot", "melfa", "--video", str(mp4), "-q")
+    assert result.returncode == 0, result.stderr
+    frames, seconds = imageio_ffmpeg.count_frames_and_secs(str(mp4))
+    assert f"video: {mp4} ({frames} frames)" in result.stdout and frames >= 3
+    assert abs(seconds - frames * 0.1) < 0.15  # one frame per 0.1 s of simulated time
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["run.mp4", "task.xml"]  # no temporary file left
+
+
+def test_an_mp4_without_ffmpeg_is_refused_before_the_run(tmp_path, monkeypatch):
+    from atd.sim import video
+
+    monkeypatch.setattr(video, "mp4_encoder", lambda: None)
+    with pytest.raises(video.VideoError, match=r"MP4 needs ffmpeg.*pip install 'atd\[video\]', or name the file \*\.gif"):
+        video.check_video_path(tmp_path / "run.mp4")
+
+
 def test_video_and_viewer_refusals_are_clear(tmp_path, monkeypatch):
-    mp4 = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--video", str(tmp_path / "run.mp4"), "-q")
-    assert mp4.returncode == 2 and "only GIF is written" in mp4.stderr and not (tmp_path / "run.mp4").exists()
+    avi = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--video", str(tmp_path / "run.avi"), "-q")
+    assert avi.returncode == 2 and "name the file *.gif or *.mp4" in avi.stderr and not (tmp_path / "run.avi").exists()
+    nowhere = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--video", str(tmp_path / "no" / "run.gif"), "-q")
+    assert nowhere.returncode == 2 and "does not exist" in nowhere.stderr
     monkeypatch.delenv("DISPLAY", raising=False)
     monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
     viewer = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--viewer", "-q")

@@ -82,7 +82,9 @@ def test_static_facts_describe_each_hand() -> None:
         info_hand = load_description(robot, arm).hand
         names = set(info_hand.postures)
         assert {"open", "closed"} <= names
-        assert names <= {shape.value for shape in HandShape}, f"{robot}: postures must be D5 hand shapes"
+        assert info_hand.push_posture in names, f"{robot}: the push posture must be one of the hand's postures"
+        assert names - {info_hand.push_posture} <= {shape.value for shape in HandShape}, \
+            f"{robot}: postures must be D5 hand shapes, or the one the hand pushes with"
         for values in info_hand.postures.values():
             assert len(values) == len(info_hand.dofs)
     barrett = load_description("tombatossals", "right").hand

@@ -37,10 +37,10 @@ def test_an_arm_the_robot_does_not_have_is_refused() -> None:
     assert "robot 'melfa' has no arm 'left'; choose one of: main" in result.output
 
 
-def test_video_other_than_gif_is_refused_before_running(tmp_path) -> None:
-    result = CliRunner().invoke(main, ["robots", "test", "melfa", "--video", str(tmp_path / "run.mp4")])
+def test_video_other_than_gif_or_mp4_is_refused_before_running(tmp_path) -> None:
+    result = CliRunner().invoke(main, ["robots", "test", "melfa", "--video", str(tmp_path / "run.avi")])
     assert result.exit_code == 1
-    assert "name the file *.gif" in result.output
+    assert "name the file *.gif or *.mp4" in result.output and "PASS" not in result.output
 
 
 def test_video_is_written_as_an_animated_gif(tmp_path) -> None:
