@@ -15,6 +15,11 @@ from atd.sim.scene import TABLE_CENTRE, TABLE_HALF, Body, Scene
 from factories.description import FingerPad, Link, Origin, RobotDescription, Shape
 from factories.parts import PAD
 
+#: Contacts reported per finger pad each physics step, strongest first: a box face on a pad
+#: makes four, an edge two; the weakest beyond these carry almost nothing.
+PAD_CONTACTS = 8
+
+
 def matrix_to_quat(r: np.ndarray) -> tuple[float, float, float, float]:
     """(w, x, y, z) of a rotation matrix."""
     w = np.sqrt(max(0.0, 1.0 + r[0, 0] + r[1, 1] + r[2, 2])) / 2
@@ -160,6 +165,7 @@ def mjcf(d: RobotDescription, scene: Scene) -> str:
         hand_joints=hand_joints,
         key_qpos=_fmt(qpos),
         key_ctrl=_fmt([home.get(name, 0.0) for name in list(d.arm_joints) + hand_joints]),
+        pad_contacts=PAD_CONTACTS,
         fmt=_fmt,
     )
 

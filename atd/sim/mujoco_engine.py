@@ -31,14 +31,19 @@ class MujocoRobot(SimRobot):
         self.data = mujoco.MjData(m)
         mujoco.mj_resetDataKeyframe(m, self.data, 0)
         mujoco.mj_forward(m, self.data)
+        # Views of the data read each tick (fetching them anew from MjData costs more than the read).
+        data = self.data
+        self._qpos, self._qvel, self._qfrc_actuator, self._ctrl = data.qpos, data.qvel, data.qfrc_actuator, data.ctrl
+        self._sensordata, self._site_xpos, self._site_xmat = data.sensordata, data.site_xpos, data.site_xmat
+        self._geom_xpos, self._geom_xmat = data.geom_xpos.reshape(-1), data.geom_xmat.reshape(-1)
 
         joints = list(d.arm_joints) + list(self.hand_joints)
         jid = [_id(m, mujoco.mjtObj.mjOBJ_JOINT, n) for n in joints]
-        self._qadr = np.array([m.jnt_qposadr[j] for j in jid])
-        self._vadr = np.array([m.jnt_dofadr[j] for j in jid])
+        self._qadr = np.array([m.jnt_qposadr[j] for j in jid], np.intp)  # intp: numpy's fast index type
+        self._vadr = np.array([m.jnt_dofadr[j] for j in jid], np.intp)
         self._arm_vadr = self._vadr[: len(d.arm_joints)]
         n_arm = len(d.arm_joints)
-        self._arm_act = np.arange(n_arm)
+        self._arm_act = slice(0, n_arm)
         self._hand_act = np.arange(n_arm, n_arm + len(self.hand_joints))
         # Velocity feed-forward through the position servo: kp (ref + kv/kp dq) - kp q - kv dq.
         self._kv_over_kp = np.array([d.joints[n].servo.kv / d.joints[n].servo.kp for n in d.arm_joints])
@@ -46,18 +51,23 @@ class MujocoRobot(SimRobot):
         self._hand_force = np.zeros(len(self.hand_joints), bool)
 
         self._tcp_site = _id(m, mujoco.mjtObj.mjOBJ_SITE, d.tcp.name)
+        self._identity = np.eye(4)
         self._jacp = np.zeros((3, m.nv))
         self._jacr = np.zeros((3, m.nv))
         force_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "wrist_force")]
         torque_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "wrist_torque")]
         self._wrench_idx = np.r_[force_adr : force_adr + 3, torque_adr : torque_adr + 3]
-        self._touch_adr = np.array(
-            [m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, f"{p.name}_touch")] for p in d.hand.pads], int
-        )
-        self._pad_geom = np.array([_id(m, mujoco.mjtObj.mjOBJ_GEOM, p.name) for p in d.hand.pads], int)
-        self._pad_of_geom = np.full(m.ngeom, -1)
-        self._pad_of_geom[self._pad_geom] = np.arange(len(self._pad_geom))
-        self._untouched = (np.zeros(0, int), np.zeros((0, 2)), np.zeros(0))
+        # Each pad's contact sensor: slots of (force in the contact frame, world point), empty
+        # ones all zero. Flat indices gather a tick's slots, pad centres and pad axes at once.
+        contacts = [_id(m, mujoco.mjtObj.mjOBJ_SENSOR, f"{p.name}_contacts") for p in d.hand.pads]
+        slots = int(m.sensor_dim[contacts[0]]) // 6 if contacts else 0
+        slot = np.array([m.sensor_adr[c] + 6 * np.arange(slots) for c in contacts], np.intp).reshape(-1, slots, 1)
+        self._slot_pad = np.repeat(np.arange(len(contacts)), slots)
+        self._slot_force = slot.ravel()  # the normal force comes first
+        self._slot_point = slot + np.arange(3, 6)
+        pad_geom = np.array([_id(m, mujoco.mjtObj.mjOBJ_GEOM, p.name) for p in d.hand.pads], np.intp).reshape(-1, 1, 1)
+        self._slot_centre = np.broadcast_to(3 * pad_geom + np.arange(3), self._slot_point.shape).copy()
+        self._pad_axes = 9 * pad_geom + 3 * np.arange(3)[:, None] + np.arange(2)  # x and y columns of each pad's rotation
         self._range_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "range")] if d.range_sensor else -1
         self._object_body = _id(m, mujoco.mjtObj.mjOBJ_BODY, "object")
         self._object_qadr = m.jnt_qposadr[m.body_jntadr[self._object_body]]  # meaningful only with an object
@@ -66,7 +76,7 @@ class MujocoRobot(SimRobot):
 
     # ---- engine part ------------------------------------------------------------------
     def _apply_arm(self, q_ref: np.ndarray, dq_ff: np.ndarray) -> None:
-        self.data.ctrl[self._arm_act] = q_ref + self._kv_over_kp * dq_ff
+        self._ctrl[self._arm_act] = q_ref + self._kv_over_kp * dq_ff
 
     def _apply_hand(self, force: np.ndarray, values: np.ndarray) -> None:
         if (force != self._hand_force).any():
@@ -77,7 +87,7 @@ class MujocoRobot(SimRobot):
                 m.actuator_gainprm[act, 0] = kp
                 m.actuator_biasprm[act, 1] = 0.0 if force[i] else -kp
             self._hand_force = force.copy()
-        self.data.ctrl[self._hand_act] = values
+        self._ctrl[self._hand_act] = values
 
     def _set_joints(self, positions: dict[str, float]) -> None:
         m, d = self.model, self.data
@@ -97,38 +107,26 @@ class MujocoRobot(SimRobot):
         return np.vstack([self._jacp[:, self._arm_vadr], self._jacr[:, self._arm_vadr]])
 
     def _joint_state(self):
-        d = self.data
-        return d.qpos[self._qadr], d.qvel[self._vadr], d.qfrc_actuator[self._vadr]
+        return self._qpos[self._qadr], self._qvel[self._vadr], self._qfrc_actuator[self._vadr]
 
     def _tcp(self) -> np.ndarray:
-        pose = np.eye(4)
-        pose[:3, :3] = self.data.site_xmat[self._tcp_site].reshape(3, 3)
-        pose[:3, 3] = self.data.site_xpos[self._tcp_site]
+        pose = self._identity.copy()
+        pose[:3, :3] = self._site_xmat[self._tcp_site].reshape(3, 3)
+        pose[:3, 3] = self._site_xpos[self._tcp_site]
         return pose
 
     def _wrench(self) -> np.ndarray:
         # MuJoCo reports what the arm exerts on the hand; the interface wants the reverse.
-        return -self.data.sensordata[self._wrench_idx]
+        return -self._sensordata[self._wrench_idx]
 
     def _pad_contacts(self):
-        d = self.data
-        if d.ncon == 0 or not (d.sensordata[self._touch_adr] > 0).any():
-            return self._untouched
-        contact = d.contact
-        geom = contact.geom
-        pad = np.maximum(self._pad_of_geom[geom[:, 0]], self._pad_of_geom[geom[:, 1]])
-        address = contact.efc_address
-        active = np.flatnonzero((pad >= 0) & (address >= 0))
-        pad = pad[active]
-        g = self._pad_geom[pad]
-        offset = contact.pos[active] - d.geom_xpos[g]
-        # Row vector times each pad's rotation: the point in that pad's frame.
-        xy = np.matmul(offset[:, None, :], d.geom_xmat[g].reshape(-1, 3, 3))[:, 0, :2]
-        # With elliptic cones a contact's first constraint row is its normal force.
-        return pad, xy, d.efc_force[address[active]]
+        offset = self._sensordata[self._slot_point] - self._geom_xpos[self._slot_centre]
+        # Row vectors times each pad's x and y axes: the points in their pad's frame.
+        xy = np.matmul(offset, self._geom_xmat[self._pad_axes])
+        return self._slot_pad, xy.reshape(-1, 2), self._sensordata[self._slot_force]
 
     def _range(self) -> float:
-        distance = float(self.data.sensordata[self._range_adr])
+        distance = float(self._sensordata[self._range_adr])
         low, high = self.description.range_limits
         return distance if low <= distance <= high else np.inf
 

@@ -162,11 +162,11 @@ def check_grasp(d: RobotDescription, engine: str, seed: int, record: Recorder | 
     try:
         box = robot.object_pose()[:3, 3]
         orientation = d.tcp_pose(info.home, hand.open)[:3, :3]
-        moving = close_on_box(robot, orientation, tick)
+        _, modes = close_on_box(robot, orientation, tick)
         r = robot.read()
         pads = r.pad_force.copy()
         taxel_ok = all(img is None or img.sum() > 0 for img, f in zip(r.taxels.values(), pads) if f > 0)
-        touching = _pads_moved(d, [dof for dof, m in zip(d.hand.dofs, moving) if m])
+        touching = _pads_moved(d, [dof for dof, m in zip(d.hand.dofs, modes) if m == HandMode.FORCE])
         start = robot.object_pose()[2, 3]
         move_tcp(robot, pose(orientation, box + (0, 0, LIFT)), tick, speed=0.1)
         lifted = robot.object_pose()[2, 3] - start
@@ -193,10 +193,10 @@ def check_grasp(d: RobotDescription, engine: str, seed: int, record: Recorder | 
     )
 
 
-def close_on_box(robot: Robot, orientation: np.ndarray, tick: Callable[[], None]) -> np.ndarray:
+def close_on_box(robot: Robot, orientation: np.ndarray, tick: Callable[[], None]) -> tuple[np.ndarray, list[HandMode]]:
     """The scripted, non-reactive grasp: the hand's `test_grasp` preshape, down onto the
     scene's box from 10 cm above it, then a fixed push for 1 s on the DOFs that the grasp
-    posture moves (the others hold). Returns which DOFs push."""
+    posture moves (the others hold). Returns the hand command that holds the box."""
     hand = robot.info.hand
     shape = robot.description.hand.test_grasp
     preshape, grasp = hand.postures[f"{shape}_preshape"], hand.postures[shape]
@@ -206,10 +206,11 @@ def close_on_box(robot: Robot, orientation: np.ndarray, tick: Callable[[], None]
     move_tcp(robot, pose(orientation, box), tick, speed=0.05)
     moving = (hand.closing != 0) & ~np.isclose(grasp, preshape)
     command = np.where(moving, hand.closing * GRIP_FRACTION * hand.effort_limit, preshape)
-    robot.command_hand(command, [HandMode.FORCE if m else HandMode.POSITION for m in moving])
+    modes = [HandMode.FORCE if m else HandMode.POSITION for m in moving]
+    robot.command_hand(command, modes)
     for _ in range(int(1.0 / robot.info.control_period)):
         tick()
-    return moving
+    return command, modes
 
 
 def _pads_moved(d: RobotDescription, dofs) -> np.ndarray:

@@ -9,12 +9,13 @@ wrist wrench in the interface's convention, contacts on pads and the IR range.
 from __future__ import annotations
 
 from abc import abstractmethod
+from dataclasses import replace
 from typing import Sequence
 
 import numpy as np
 
 from atd.sim.scene import Scene
-from atd.sim.sensors import NoisySensor, TaxelImages
+from atd.sim.sensors import NoisySensors, TaxelImages
 from factories.description import RobotDescription, SensorModel
 from primitives.robot import SENSORS, HandInfo, HandMode, PadInfo, Readings, Robot, RobotInfo
 
@@ -112,14 +113,30 @@ class SimRobot(Robot):
                 self._joint_dof[i], self._joint_ratio[i] = k, ratio
                 self._joint_follows[i] = dof.geared and n > 0
 
-        rng = np.random.default_rng(seed)
-        period = d.control_period
+        # Every reading of a tick lands in one vector: the sensor-modelled streams first
+        # (joint positions, pad forces, wrench, range: encoders and pads are often quantised
+        # alike, the wrench and range noisy alike, so each model step is a slice), then
+        # joint speeds and efforts.
+        n_joints = n_arm + len(self.hand_joints)
+        n_pads = len(d.hand.pads)
+        streams = [("joints", n_joints), ("tactile", n_pads), ("wrench", 6)] + [("range", 1)] * self.info.has_range
         ideal = SensorModel()
-        self._joint_sensor = NoisySensor(d.sensors.get("joints", ideal), rng, n_arm + len(self.hand_joints), period)
-        self._wrench_sensor = NoisySensor(d.sensors.get("wrench", ideal), rng, 6, period)
-        self._pad_sensor = NoisySensor(d.sensors.get("tactile", ideal), rng, len(d.hand.pads), period)
-        self._range_sensor = NoisySensor(d.sensors.get("range", ideal), rng, 1, period)
+        self._sensors = NoisySensors([(d.sensors.get(s, ideal), size) for s, size in streams], np.random.default_rng(seed),
+                                     d.control_period)
+        self._streams = tuple(s for s, _ in streams)
+        p, w = n_joints, n_joints + n_pads
+        dq, effort = self._sensors.size, self._sensors.size + n_joints
+        self._pads_at, self._wrench_at, self._range_at = slice(p, p + n_pads), slice(w, w + 6), w + 6
+        self._arm_at = (slice(0, n_arm), slice(dq, dq + n_arm), slice(effort, effort + n_arm))
+        # Hand DOF readings (q, dq, effort) from their first joints, in one gather and one scaling.
+        self._hand_at = np.stack([self._dof_joint, dq + self._dof_joint, effort + self._dof_joint])
+        self._hand_scale = np.stack([1 / self._dof_ratio, 1 / self._dof_ratio, self._dof_ratio])
         self._taxels = TaxelImages(d.hand.pads)
+        self._pad_names = tuple(p.name for p in d.hand.pads)
+        self._every_pad = np.ones(len(d.hand.pads))
+        # Where pads have no arrays: the first DOF's closing sense, joint and gear ratio.
+        first = (self.info.hand.closing[0], self._dof_joint[0], self._dof_ratio[0])
+        self._squeeze = first if d.hand.pad_force_from_effort else None
         self._frozen: set[str] = set()
         self._seq = dict.fromkeys(SENSORS, 0)
 
@@ -128,11 +145,19 @@ class SimRobot(Robot):
         self._dq_cmd = np.zeros(n_arm)
         self._dq_ref = np.zeros(n_arm)  # the command after acceleration and limit shaping
         self._hand_modes = np.zeros(len(d.hand.dofs), int)
+        self._hand_given: HandMode | tuple[HandMode, ...] | None = None  # the modes as last commanded
+        self._velocity_dofs = False
+        self._hand_settled = False  # the same command again would leave the hand's targets as they are
+        self._joint_force = np.zeros(len(self.hand_joints), bool)  # hand joints under a force command
+        self._following = np.zeros(0, int)  # geared hand joints that follow their DOF's motor joint
         self._hand_values = self.info.hand.open.copy()
         self._hand_target = self.info.hand.open.copy()  # position reference, also for velocity mode
         self._hand_changes = True  # the hand's joint commands need working out on the next step
-        self._accel_step = self.info.arm_velocity_limit / RAMP_TIME * period
-        self._two_accel = 2 * self.info.arm_velocity_limit / RAMP_TIME
+        limit = self.info.arm_velocity_limit
+        self._lowest_speed = -limit
+        self._accel_step = limit / RAMP_TIME * d.control_period
+        self._two_accel = 2 * limit / RAMP_TIME
+        self._zero, self._period, self._leash = np.zeros(n_arm), np.full(n_arm, d.control_period), np.full(n_arm, REFERENCE_LEASH)
         self._last: Readings | None = None
 
     # ---- the robot interface -------------------------------------------------------
@@ -142,65 +167,75 @@ class SimRobot(Robot):
         return self._last
 
     def command_arm_velocity(self, dq: np.ndarray) -> None:
-        limit = self.info.arm_velocity_limit
-        self._dq_cmd = np.minimum(np.maximum(dq, -limit), limit)
+        self._dq_cmd = np.minimum(np.maximum(dq, self._lowest_speed), self.info.arm_velocity_limit)
 
     def command_hand(self, values: Sequence[float] | np.ndarray, modes: HandMode | Sequence[HandMode]) -> None:
+        values = np.asarray(values, float)
+        modes = modes if isinstance(modes, str) else tuple(modes)
+        # The executor repeats the command every tick: the same one again changes nothing once
+        # no DOF restarts from where it is (a DOF moving at a velocity always does).
+        if self._hand_settled and modes == self._hand_given and values.tobytes() == self._hand_values.tobytes():
+            return
         hand = self.info.hand
         n = len(hand.dofs)
-        values = np.asarray(values, float)
+        given = modes
         modes = [modes] * n if isinstance(modes, str) else list(modes)
         if values.shape != (n,) or len(modes) != n:
             raise ValueError(f"{self.info.name}: give one hand value and mode per DOF ({', '.join(hand.dofs)})")
         codes = np.array([_MODE_CODE[HandMode(m)] for m in modes])
         was_force = self._hand_modes == FORCE
+        self._hand_given = given
         self._hand_modes = codes
-        self._hand_values = values
+        self._hand_values = values.copy()
+        self._velocity_dofs = bool((codes == VELOCITY).any())
+        force_dof = codes[self._joint_dof] == FORCE
+        self._following = np.flatnonzero(force_dof & self._joint_follows)
+        self._joint_force = force_dof & ~self._joint_follows
         position = codes == POSITION
         self._hand_target[position] = np.clip(values[position], hand.lower[position], hand.upper[position])
         # A DOF leaving force mode, or starting to move at a velocity, starts from where it is.
         restart = (codes == VELOCITY) | (was_force & (codes != FORCE))
-        if restart.any():
+        self._hand_settled = not restart.any()
+        if not self._hand_settled:
             self._hand_target[restart] = self.read().hand_q[restart]
         self._hand_changes = True
 
     def step(self) -> None:
-        period = self.info.control_period
         q = self.read().arm_q
-        lower, upper, q_ref = self.info.arm_lower, self.info.arm_upper, self._q_ref
+        lower, upper, q_ref, dq_ref = self.info.arm_lower, self.info.arm_upper, self._q_ref, self._dq_ref
         # This tick's speed: within the acceleration ramp, and slow enough to stop at a limit.
-        slowest = np.maximum(self._dq_ref - self._accel_step, -np.sqrt(self._two_accel * np.maximum(q_ref - lower, 0.0)))
-        fastest = np.minimum(self._dq_ref + self._accel_step, np.sqrt(self._two_accel * np.maximum(upper - q_ref, 0.0)))
+        # (Arrays, not Python floats, for the constants: numpy takes them faster.)
+        zero, accel, two_accel, leash = self._zero, self._accel_step, self._two_accel, self._leash
+        slowest = np.maximum(dq_ref - accel, -np.sqrt(two_accel * np.maximum(q_ref - lower, zero)))
+        fastest = np.minimum(dq_ref + accel, np.sqrt(two_accel * np.maximum(upper - q_ref, zero)))
         dq = np.minimum(np.maximum(self._dq_cmd, slowest), fastest)
-        q_ref = np.maximum(q_ref + dq * period, np.maximum(lower, q - REFERENCE_LEASH))
-        self._q_ref = np.minimum(q_ref, np.minimum(upper, q + REFERENCE_LEASH))
+        q_ref = np.maximum(q_ref + dq * self._period, np.maximum(lower, q - leash))
+        self._q_ref = np.minimum(q_ref, np.minimum(upper, q + leash))
         self._dq_ref = dq
         self._apply_arm(self._q_ref, dq)
         if self._hand_changes:
             self._update_hand()
         self._advance()
-        self._time += period
+        self._time += self.info.control_period
         self._last = self._sample()
 
     def _update_hand(self) -> None:
         """Turn the DOF commands into joint commands; needed each tick only while a target
         moves (velocity mode) or a geared joint follows its motor joint (force mode)."""
         hand = self.info.hand
-        velocity = self._hand_modes == VELOCITY
-        if velocity.any():
+        if self._velocity_dofs:
+            velocity = self._hand_modes == VELOCITY
             rate = np.minimum(np.maximum(self._hand_values, -hand.velocity_limit), hand.velocity_limit)
             target = self._hand_target + rate * self.info.control_period
             target = np.minimum(np.maximum(target, hand.lower), hand.upper)
             self._hand_target = np.where(velocity, target, self._hand_target)
-        dof = self._joint_dof
-        force_dof = self._hand_modes[dof] == FORCE
-        # Under a force command a geared joint follows where its DOF's motor joint is.
-        follows = force_dof & self._joint_follows
-        joint_force = force_dof & ~follows
-        reference = np.where(follows, self.read().hand_q[dof], self._hand_target[dof])
-        joint_values = np.where(joint_force, self._hand_values[dof], reference) * self._joint_ratio
-        self._apply_hand(joint_force, joint_values)
-        self._hand_changes = bool(velocity.any() or follows.any())
+        dof, ratio, following = self._joint_dof, self._joint_ratio, self._following
+        joint_values = np.where(self._joint_force, self._hand_values[dof], self._hand_target[dof]) * ratio
+        if len(following):
+            # Under a force command a geared joint follows where its DOF's motor joint is.
+            joint_values[following] = self.read().hand_q[dof[following]] * ratio[following]
+        self._apply_hand(self._joint_force, joint_values)
+        self._hand_changes = self._velocity_dofs or len(following) > 0
 
     # ---- fault hooks, for tests of the layers above (not part of the interface) ---------
     def freeze(self, sensor: str) -> None:
@@ -277,55 +312,45 @@ class SimRobot(Robot):
 
     # ---- sampling --------------------------------------------------------------------------
     def _sample(self) -> Readings:
-        prev = self._last
-        seq = self._seq
-        frozen = self._frozen
-        n = len(self.info.arm_joints)
-
-        if "joints" in frozen and prev is not None:
-            arm_q, arm_dq, arm_eff, hand_q, hand_dq, hand_eff = (
-                prev.arm_q, prev.arm_dq, prev.arm_effort, prev.hand_q, prev.hand_dq, prev.hand_effort
-            )
-        else:
-            q, dq, eff = self._joint_state()
-            q = self._joint_sensor(q)
-            arm_q, arm_dq, arm_eff = q[:n], dq[:n], eff[:n]
-            first, ratio = self._dof_joint, self._dof_ratio
-            hand_q, hand_dq, hand_eff = q[first] / ratio, dq[first] / ratio, eff[first] * ratio
-            seq["joints"] += 1
-
-        if "wrench" in frozen and prev is not None:
-            wrench = prev.wrench
-        else:
-            wrench = self._wrench_sensor(self._wrench())
-            seq["wrench"] += 1
-
-        if "tactile" in frozen and prev is not None:
-            taxels, pad_force = prev.taxels, prev.pad_force
-        else:
-            taxels, pad_force = self._tactile(hand_eff)
-            seq["tactile"] += 1
-
-        rng = None
-        if self.info.has_range:
-            if "range" in frozen and prev is not None:
-                rng = prev.range
-            else:
-                rng = float(self._range_sensor(np.array([self._range()]))[0])
-                seq["range"] += 1
-
-        return Readings(
-            time=self._time, arm_q=arm_q, arm_dq=arm_dq, arm_effort=arm_eff,
-            hand_q=hand_q, hand_dq=hand_dq, hand_effort=hand_eff, tcp=self._tcp(), wrench=wrench,
-            taxels=taxels, pad_force=pad_force, range=rng, seq=dict(seq),
+        """Every sensor, read now: true values into one vector, the sensor models over it in
+        one go, and the snapshot's arrays as views of that vector (which only it owns)."""
+        q, dq, effort = self._joint_state()
+        taxels, pad_force = self._tactile(effort)
+        distance = (self._range(),) if self.info.has_range else ()
+        x = np.concatenate((q, pad_force, self._wrench(), distance, dq, effort))
+        self._sensors(x)
+        hand = x[self._hand_at] * self._hand_scale
+        for stream in self._streams:
+            if stream not in self._frozen:
+                self._seq[stream] += 1
+        arm_q, arm_dq, arm_effort = self._arm_at
+        readings = Readings(
+            time=self._time, arm_q=x[arm_q], arm_dq=x[arm_dq], arm_effort=x[arm_effort],
+            hand_q=hand[0], hand_dq=hand[1], hand_effort=hand[2], tcp=self._tcp(), wrench=x[self._wrench_at],
+            taxels=taxels, pad_force=x[self._pads_at], range=float(x[self._range_at]) if distance else None, seq=dict(self._seq),
         )
+        if self._frozen and self._last is not None:
+            return self._hold_frozen(readings, self._last)
+        return readings
 
-    def _tactile(self, hand_effort: np.ndarray) -> tuple[dict[str, np.ndarray | None], np.ndarray]:
-        pads = self.description.hand.pads
-        if self.description.hand.pad_force_from_effort:
+    def _hold_frozen(self, now: Readings, last: Readings) -> Readings:
+        """`now` with each frozen stream's fields as they were (its model keeps running)."""
+        held = {}
+        if "joints" in self._frozen:
+            held |= {f: getattr(last, f) for f in ("arm_q", "arm_dq", "arm_effort", "hand_q", "hand_dq", "hand_effort")}
+        if "wrench" in self._frozen:
+            held["wrench"] = last.wrench
+        if "tactile" in self._frozen:
+            held |= {"taxels": last.taxels, "pad_force": last.pad_force}
+        if "range" in self._frozen:
+            held["range"] = last.range
+        return replace(now, **held)
+
+    def _tactile(self, effort: np.ndarray) -> tuple[dict[str, np.ndarray | None], np.ndarray]:
+        """True taxel images and pad forces, from joint efforts where the hand has no arrays."""
+        if self._squeeze is not None:
             # No tactile array: each finger reports the grip force its DOF measures.
-            squeeze = np.maximum(0.0, self.info.hand.closing * hand_effort)
-            force = np.array([squeeze[0]] * len(pads))
-            return dict.fromkeys((p.name for p in pads), None), self._pad_sensor(force)
-        images, force = self._taxels(*self._pad_contacts())
-        return images, self._pad_sensor(force)
+            closing, joint, ratio = self._squeeze
+            force = max(0.0, closing * (effort[joint] * ratio))
+            return dict.fromkeys(self._pad_names), self._every_pad * force
+        return self._taxels(*self._pad_contacts())

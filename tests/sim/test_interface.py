@@ -53,6 +53,21 @@ def test_hand_position_velocity_and_force_modes(melfa, robot_of, run, engine) ->
     assert r.hand_effort[0] == pytest.approx(-20.0, rel=0.05)
 
 
+def test_a_hand_command_repeated_every_tick_acts_as_the_executor_expects(melfa, robot_of, engine) -> None:
+    """The executor repeats its hand command each tick: a DOF leaving force mode holds where
+    it is for that tick, then the repeated position command takes it where it was asked."""
+    robot = robot_of(melfa, engine, Scene(None, table=False))
+
+    def repeat(values, mode, seconds: float) -> None:
+        for _ in range(round(seconds / robot.info.control_period)):
+            robot.command_hand(values, mode)
+            robot.step()
+
+    repeat([-20.0], HandMode.FORCE, 0.5)  # jaws shut
+    repeat([0.015], HandMode.POSITION, 1.0)
+    assert robot.read().hand_q[0] == pytest.approx(0.015, abs=5e-4)
+
+
 def test_a_hand_velocity_beyond_the_limit_is_clamped(melfa, robot_of, run, engine) -> None:
     robot = robot_of(melfa, engine, Scene(None, table=False))
     start = robot.read().hand_q[0]

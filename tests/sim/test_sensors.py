@@ -8,7 +8,7 @@ import pytest
 
 from atd.sim import ENGINES, load_description
 from atd.sim.scene import Scene, box_scene
-from atd.sim.sensors import NoisySensor, TaxelImages
+from atd.sim.sensors import NoisySensors, TaxelImages
 from factories.description import FingerPad, Origin, SensorModel
 from primitives.robot import HandMode
 
@@ -40,12 +40,37 @@ def test_baxters_virtual_ft_is_much_noisier_than_a_jr3(robot_of, run) -> None:
 
 def test_noise_filter_and_quantisation_shape_a_reading() -> None:
     rng = np.random.default_rng(0)
-    quantised = NoisySensor(SensorModel(resolution=0.5), rng, 1, 0.005)
-    assert quantised(np.array([1.26]))[0] == 1.5
-    filtered = NoisySensor(SensorModel(cutoff_hz=5.0), rng, 1, 0.005)
+    quantised = NoisySensors([(SensorModel(resolution=0.5), 1)], rng, 0.005)
+    reading = np.array([1.26])
+    quantised(reading)
+    assert reading[0] == 1.5
+    filtered = NoisySensors([(SensorModel(cutoff_hz=5.0), 1)], rng, 0.005)
     filtered(np.array([0.0]))
-    step = [filtered(np.array([1.0]))[0] for _ in range(40)]
+    step = []
+    for _ in range(40):
+        reading = np.array([1.0])
+        filtered(reading)
+        step.append(reading[0])
     assert 0 < step[0] < 0.2 and step[-1] > 0.95  # a 5 Hz first-order lag: about 30 ms to 63%
+
+
+def test_streams_modelled_together_keep_their_own_models_and_draw_in_stream_order() -> None:
+    streams = [
+        (SensorModel(resolution=0.1), 2),
+        (SensorModel(noise_std=(1.0, 2.0)), 2),
+        (SensorModel(), 1),
+        (SensorModel(noise_std=0.5, bias=0.2), 1),
+    ]
+    models = NoisySensors(streams, np.random.default_rng(7), 0.005)
+    reading = np.array([0.123, 0.987, 0.0, 0.0, 3.0, 0.0, 42.0])  # the last value is past the models
+    models(reading)
+    draw = np.random.default_rng(7)
+    bias = 0.2 * draw.standard_normal(1)  # biases are drawn when the models are made
+    noise = draw.standard_normal(3)  # then each tick, the noisy streams in order
+    np.testing.assert_array_equal(reading[:2], [0.1, 1.0])
+    np.testing.assert_array_equal(reading[2:4], [1.0, 2.0] * noise[:2])
+    assert reading[4] == 3.0 and reading[6] == 42.0
+    assert reading[5] == 0.5 * noise[2] + bias[0]
 
 
 def test_a_frozen_stream_stops_counting_and_keeps_its_value(melfa, robot_of, run) -> None:
