@@ -85,7 +85,7 @@ class _Progress:
               help="write every state entry, exit and event as JSON lines")
 @click.option("--video", type=click.Path(path_type=Path, dir_okay=False), default=None,
               help="record the run from an offscreen camera: .gif, or .mp4 (needs ffmpeg: the video extra)")
-@click.option("--viewer", is_flag=True, help="open MuJoCo's window (needs a display; runs in real time)")
+@click.option("--viewer", is_flag=True, help="open the engine's window (needs a display; runs in real time)")
 @click.option("--realtime", is_flag=True, help="run no faster than real time")
 @click.option("--budget", type=float, default=300.0, show_default=True,
               help="watchdog: simulated seconds before the run is stopped as a failure")

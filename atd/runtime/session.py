@@ -49,26 +49,22 @@ class _Video:
 
 
 class _Viewer:
-    """MuJoCo's interactive window, kept in step with the run about 60 times a second."""
+    """The engine's interactive window, kept in step with the run about 60 times a second."""
 
     def __init__(self, robot) -> None:
-        if robot.engine != "mujoco":
-            raise RunError("--viewer opens MuJoCo's window; run with --engine mujoco")
+        self.robot = robot
+        self.next = 0.0
+
+    @staticmethod
+    def check_display() -> None:
         if not (os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY")):
             raise RunError("--viewer needs a display (none is set: DISPLAY is empty); "
                            "record a --video run.mp4 or run.gif instead")
-        import mujoco.viewer
-
-        self.window = mujoco.viewer.launch_passive(robot.model, robot.data)
-        self.next = 0.0
 
     def __call__(self, sim_time: float) -> None:
         if sim_time >= self.next:
-            self.window.sync()
+            self.robot.show()
             self.next = sim_time + 1 / 60
-
-    def close(self) -> None:
-        self.window.close()
 
 
 class _Pacer:
@@ -93,7 +89,9 @@ class Run:
             scene = scene_from_task(Task(object=estd.object, environment=estd.environment), source)
         except SceneError as exc:
             raise RunError(str(exc)) from None
-        self.robot = make_robot(factory.robot, scene, engine, seed)
+        if viewer:
+            _Viewer.check_display()
+        self.robot = make_robot(factory.robot, scene, engine, seed, window=viewer)
         self.has_object = scene.object is not None
         context = Context(info=self.robot.info, params={}, object=estd.object, environment=estd.environment,
                           rng=np.random.default_rng(seed))
@@ -110,11 +108,7 @@ class Run:
                 self.robot.close()
                 raise RunError(str(exc)) from None
         self.video = _Video(self.robot, video) if video is not None else None
-        try:
-            self.viewer = _Viewer(self.robot) if viewer else None
-        except RunError:
-            self.robot.close()
-            raise
+        self.viewer = _Viewer(self.robot) if viewer else None
         self.observers: list[Observer] = [o for o in (self.video, self.viewer) if o]
         if realtime or viewer:
             self.observers.append(_Pacer())
@@ -134,6 +128,4 @@ class Run:
             self.trace.discard()
             raise
         finally:
-            if self.viewer:
-                self.viewer.close()
             self.robot.close()

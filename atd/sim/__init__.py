@@ -30,15 +30,17 @@ def load_description(robot: str, arm: str | None = None) -> RobotDescription:
     return create(robot, arm).robot
 
 
-def make_robot(description: RobotDescription, scene: Scene | None = None, engine: str = "mujoco", seed: int = 0) -> SimRobot:
-    """A simulated robot in `scene` (default: a 5 cm box in the work area) on the named engine."""
+def make_robot(description: RobotDescription, scene: Scene | None = None, engine: str = "mujoco", seed: int = 0,
+               window: bool = False) -> SimRobot:
+    """A simulated robot in `scene` (default: a 5 cm box in the work area) on the named
+    engine; `window` opens the engine's interactive window (it needs a display)."""
     scene = scene if scene is not None else box_scene()
     if engine == "mujoco":
         from atd.sim.mujoco_engine import MujocoRobot
 
-        return MujocoRobot(description, scene, seed)
+        return MujocoRobot(description, scene, seed, window)
     if engine == "pybullet":
         from atd.sim.pybullet_engine import PybulletRobot
 
-        return PybulletRobot(description, scene, seed)
+        return PybulletRobot(description, scene, seed, window)
     raise ValueError(f"unknown engine '{engine}'; use one of {', '.join(ENGINES)}")

@@ -23,7 +23,7 @@ def _id(m: mujoco.MjModel, kind: mujoco.mjtObj, name: str) -> int:
 class MujocoRobot(SimRobot):
     engine = "mujoco"
 
-    def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0):
+    def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0, window: bool = False):
         super().__init__(description, scene, seed)
         d = description
         self.xml = mjcf(d, scene)
@@ -72,6 +72,7 @@ class MujocoRobot(SimRobot):
         self._object_body = _id(m, mujoco.mjtObj.mjOBJ_BODY, "object")
         self._object_qadr = m.jnt_qposadr[m.body_jntadr[self._object_body]]  # meaningful only with an object
         self._renderer: mujoco.Renderer | None = None
+        self._window = self._open_window() if window else None
         self._apply_arm(self._q_ref, self._dq_cmd)
 
     # ---- engine part ------------------------------------------------------------------
@@ -160,7 +161,24 @@ class MujocoRobot(SimRobot):
         self._renderer.update_scene(self.data, camera)
         return self._renderer.render()
 
+    def _open_window(self):
+        """MuJoCo's interactive viewer on this model, looking where the videos look."""
+        import mujoco.viewer
+
+        window = mujoco.viewer.launch_passive(self.model, self.data, show_left_ui=False, show_right_ui=False)
+        with window.lock():
+            window.cam.lookat[:] = CAMERA_TARGET
+            window.cam.distance, window.cam.azimuth, window.cam.elevation = CAMERA_DISTANCE, CAMERA_AZIMUTH, CAMERA_ELEVATION
+        return window
+
+    def show(self) -> None:
+        if self._window is not None:
+            self._window.sync()
+
     def close(self) -> None:
+        if self._window is not None:
+            self._window.close()
+            self._window = None
         if self._renderer is not None:
             self._renderer.close()
             self._renderer = None

@@ -48,10 +48,14 @@ def _matrix(position, xyzw) -> np.ndarray:
 class PybulletRobot(SimRobot):
     engine = "pybullet"
 
-    def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0):
+    def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0, window: bool = False):
         super().__init__(description, scene, seed)
         d = description
-        self.client = c = pb.connect(pb.DIRECT)
+        self.client = c = pb.connect(pb.GUI if window else pb.DIRECT)
+        if window:  # PyBullet's own window, without its side panels, looking where the videos look
+            pb.configureDebugVisualizer(pb.COV_ENABLE_GUI, 0, physicsClientId=c)
+            pb.resetDebugVisualizerCamera(CAMERA_DISTANCE, CAMERA_AZIMUTH - 90, CAMERA_ELEVATION, CAMERA_TARGET,
+                                          physicsClientId=c)
         pb.setTimeStep(d.timestep, physicsClientId=c)
         pb.setGravity(0, 0, -9.81, physicsClientId=c)
         pb.setPhysicsEngineParameter(numSolverIterations=SOLVER_ITERATIONS, physicsClientId=c)
@@ -345,6 +349,9 @@ class PybulletRobot(SimRobot):
         projection = pb.computeProjectionMatrixFOV(45.0, width / height, 0.05, 5.0, physicsClientId=self.client)
         image = pb.getCameraImage(width, height, view, projection, renderer=pb.ER_TINY_RENDERER, physicsClientId=self.client)[2]
         return np.asarray(image, np.uint8).reshape(height, width, 4)[:, :, :3]
+
+    def show(self) -> None:
+        """PyBullet's window draws the physics server's state by itself."""
 
     def close(self) -> None:
         if pb.isConnected(self.client):

@@ -270,6 +270,10 @@ class SimRobot(Robot):
         """An RGB picture (height, width, 3) of the scene, for videos."""
 
     @abstractmethod
+    def show(self) -> None:
+        """Bring the engine's window (opened with `window=True`) up to date."""
+
+    @abstractmethod
     def close(self) -> None:
         """Release the engine."""
 

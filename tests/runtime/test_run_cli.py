@@ -132,8 +132,9 @@ def test_video_and_viewer_refusals_are_clear(tmp_path, monkeypatch):
     assert nowhere.returncode == 2 and "does not exist" in nowhere.stderr
     monkeypatch.delenv("DISPLAY", raising=False)
     monkeypatch.delenv("WAYLAND_DISPLAY", raising=False)
-    viewer = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--viewer", "-q")
-    assert viewer.returncode == 2 and "--viewer needs a display" in viewer.stderr
+    for engine in ("mujoco", "pybullet"):
+        viewer = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--engine", engine, "--viewer", "-q")
+        assert viewer.returncode == 2 and "--viewer needs a display" in viewer.stderr, engine
 
 
 def test_empty_the_box_loops_over_its_sub_task_until_nothing_is_left(tmp_path):
