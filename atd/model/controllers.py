@@ -238,7 +238,8 @@ _HAND_CONTROLLERS = (
                    "Keep the finger joints where they were when the state began.", "D5 2.2.4 (hand idle)"),
     ControllerSpec(
         "hand_shape", Role.HAND, "Drive the fingers to a named shape of this hand.", "D5 2.2.2 hand shapes",
-        {"shape": _p(WORD, "an ATD hand shape this hand can make", required=True),
+        {"shape": _p(WORD, "an ATD hand shape this hand can make, or a posture of its own the factory names "
+                             "(a three-finger hand's `push`)", required=True),
          "speed": _p(NUM, "fraction of the joints' speed limit to use (ours)", 0.5)},
     ),
     ControllerSpec(
