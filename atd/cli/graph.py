@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_USAGE, main
+from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_USAGE, OutputFile, main
 from atd.graph.dot import GraphvizError
 from atd.graph.png import PictureTooBig
 from atd.graph.render import FORMATS, Renderer, render
@@ -17,7 +17,7 @@ from atd.model.diagnostics import has_errors, render_all
 
 @main.command()
 @click.argument("file", type=click.Path(path_type=Path))
-@click.option("-o", "--output", required=True, type=click.Path(path_type=Path),
+@click.option("-o", "--output", required=True, type=OutputFile(),
               help="the picture: OUT.dot (graphviz source), OUT.svg or OUT.png")
 @click.option("--renderer", type=click.Choice([r.value for r in Renderer]), default=Renderer.AUTO.value,
               show_default=True, help="graphviz ('dot' on PATH) or the built-in layout; auto uses graphviz when "

@@ -8,7 +8,7 @@ from pathlib import Path
 import click
 
 from atd.cli.translate import GRASP_OPTION
-from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, EXIT_UNTRANSLATABLE, EXIT_USAGE, main
+from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, EXIT_UNTRANSLATABLE, EXIT_USAGE, OutputFile, main
 from atd.model import has_errors, load_task
 from atd.model.diagnostics import render_all
 from atd.model.estd import Estd
@@ -81,7 +81,7 @@ class _Progress:
 @click.option("--arm", default=None, help="which arm, for robots with more than one")
 @click.option("--engine", type=click.Choice(ENGINES), default="mujoco", show_default=True)
 @click.option("--seed", type=int, default=0, show_default=True, help="seeds sensor noise: same seed, same trace")
-@click.option("--trace", "trace_path", type=click.Path(path_type=Path, dir_okay=False), default=None,
+@click.option("--trace", "trace_path", type=OutputFile(), default=None,
               help="write every state entry, exit and event as JSON lines")
 @click.option("--video", type=click.Path(path_type=Path, dir_okay=False), default=None,
               help="record the run from an offscreen camera: .gif, or .mp4 (needs ffmpeg: the video extra)")

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_UNTRANSLATABLE, EXIT_USAGE, main
+from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_UNTRANSLATABLE, EXIT_USAGE, OutputFile, main, unwritable
 from atd.model import load_task, write_atomically
 from atd.model.diagnostics import Diagnostic, Severity, has_errors, render_all
 from atd.model.estd import Estd, describe
@@ -70,7 +70,7 @@ def _report(diagnostics: list[Diagnostic]) -> None:
 @click.option("--arm", default=None, help="which arm, for robots with more than one (default: the robot's first)")
 @click.option("--config", type=click.Path(path_type=Path, exists=True, dir_okay=False), default=None,
               help="TOML file with parameter overrides (see docs/estd.md)")
-@click.option("-o", "--output", type=click.Path(path_type=Path), default=None,
+@click.option("-o", "--output", type=OutputFile(), default=None,
               help="where to write the ESTD (default: TASK.<robot>.estd.xml beside the task)")
 @click.option("--format", "fmt", type=click.Choice(["xml", "json"]), default="xml", show_default=True)
 @GRASP_OPTION
@@ -94,6 +94,10 @@ def translate(task: Path, robot: str, arm: str | None, config: Path | None, outp
         click.echo(f"{task}: not translatable for {robot}; nothing written", err=True)
         raise SystemExit(EXIT_UNTRANSLATABLE)
     target = output or default_output(task, factory, fmt)
+    problem = unwritable(target)
+    if problem:
+        click.echo(f"error: cannot write {target}: {problem} (-o FILE)", err=True)
+        raise SystemExit(EXIT_USAGE)
     write_atomically(target, estd_to_json(result.estd) if fmt == "json" else estd_to_xml(result.estd))
     _report(warnings)
     if not quiet:

@@ -56,6 +56,19 @@ def test_invalid_atd_exits_1(tmp_path):
     assert "Traceback" not in result.stderr
 
 
+def test_an_output_into_a_missing_folder_is_refused_before_any_work(tmp_path):
+    """translate -o, graph -o and run --trace name the folder instead of failing with a traceback."""
+    task = str(EXAMPLES / "pick_and_place.xml")
+    missing = tmp_path / "no" / "such"
+    for args in (("translate", task, "--robot", "melfa", "-o", str(missing / "pp.estd.xml")),
+                 ("graph", task, "-o", str(missing / "pp.svg")),
+                 ("run", task, "--robot", "melfa", "--trace", str(missing / "t.jsonl"), "-q")):
+        result = atd(*args)
+        assert result.returncode == 2, args
+        assert f"the folder {missing} does not exist" in result.stderr and "Traceback" not in result.stderr
+        assert not (tmp_path / "no").exists()
+
+
 def test_unknown_robot_and_arm_are_usage_errors():
     result = atd("translate", str(EXAMPLES / "simple_move.xml"), "--robot", "nao")
     assert result.returncode == 2 and "no robot 'nao' is installed; installed: baxter, melfa, tombatossals" in result.stderr
