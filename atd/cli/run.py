@@ -43,12 +43,12 @@ def _load(task: Path, robot: str | None, arm: str | None, grasp: str) -> tuple[E
             _fail(f"error: {task} was translated for '{estd.robot}', not '{robot}'; "
                   f"translate the ATD again with --robot {robot}", EXIT_USAGE)
         return estd, _factory(estd.robot, estd.arm)
+    atd_task, found = load_task(task)  # read first: a broken file is reported as what it is
+    if atd_task is None or has_errors(found):
+        _fail(render_all(found), EXIT_INVALID)
     if robot is None:
         _fail(f"error: {task} is an ATD; say which robot runs it with --robot (see `atd robots list`)", EXIT_USAGE)
     factory = _factory(robot, arm, grasp)
-    atd_task, found = load_task(task)
-    if atd_task is None or has_errors(found):
-        _fail(render_all(found), EXIT_INVALID)
     result = translate(atd_task, factory)
     if result.estd is None:
         _fail(render_all(result.diagnostics) + f"\n{task}: {robot} cannot do this task", EXIT_UNTRANSLATABLE)
@@ -87,7 +87,7 @@ class _Progress:
               help="record the run from an offscreen camera: .gif, or .mp4 (needs ffmpeg: the video extra)")
 @click.option("--viewer", is_flag=True, help="open the engine's window (needs a display; runs in real time)")
 @click.option("--realtime", is_flag=True, help="run no faster than real time")
-@click.option("--budget", type=float, default=300.0, show_default=True,
+@click.option("--budget", type=click.FloatRange(min=0, min_open=True), default=300.0, show_default=True,
               help="watchdog: simulated seconds before the run is stopped as a failure")
 @GRASP_OPTION
 @click.option("--quiet", "-q", is_flag=True, help="no live progress")

@@ -77,6 +77,10 @@ def test_bad_input_gives_a_diagnostic_not_a_traceback(atd_file):
     broken = atd_file("<statemachine><state name='a' type='move'/>")
     result = atd("run", str(broken), "--robot", "melfa")
     assert result.returncode == 1 and "error[ATD003]" in result.stderr and "Traceback" not in result.stderr
+    without_robot = atd("run", str(broken))  # a broken file is reported as broken, whatever else is missing
+    assert without_robot.returncode == 1 and "error[ATD003]" in without_robot.stderr
+    budget = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--budget", "-1")
+    assert budget.returncode == 2 and "'--budget'" in budget.stderr
     no_robot = atd("run", PICK_AND_PLACE)
     assert no_robot.returncode == 2 and "--robot" in no_robot.stderr
     unknown = atd("run", PICK_AND_PLACE, "--robot", "r2d2")
