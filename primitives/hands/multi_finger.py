@@ -46,9 +46,10 @@ OBJECT_LOST_STEP = 0.01  # m further along the approach, per retry (D5: "a littl
 # can swing by +-3 N from one 5 ms tick to the next about a steady mean (PyBullet,
 # grasp_and_lift seed 22), and force adaptation, an integrator, settles the mean only.
 FELT_TIME = SETTLE_TIME
-# s a hold may take to settle: measured holds settle in 1.5 to 3.3 s (seeds 0-24, both
-# hands, both example grasps); one still unsettled at 1.5 times the slowest never will.
-SETTLE_LIMIT = 5.0
+# s a hold may take to settle: measured holds settle in 1.5 to 3.3 s in PyBullet (seeds
+# 0-24, both hands, both example grasps) and up to 5.5 s in MuJoCo (the SDH2 lifting the
+# cylinder, seed 0); one still unsettled at about 1.5 times the slowest never will.
+SETTLE_LIMIT = 8.0
 UNSETTLED_BACK_OFF = 0.005  # m back along the approach before closing again (D5 appendix: "moves 5mm backwards")
 RETRIES = 3  # corrections of any kind, per grasp
 
