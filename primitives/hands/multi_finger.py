@@ -267,12 +267,15 @@ class RobustGraspHand(FingerGrasp):
         self.holding += dt
         if self.status is not Status.RUNNING:
             return
-        forces = ", ".join(f"{f} {pads[self.pad_of[f]]:.1f} N" for f in self.fingers)
         if self.settled >= SETTLE_TIME:
-            self.finish(Status.DONE, f"object held after {self.retries} corrections: {forces}")
+            self.finish(Status.DONE, f"object held after {self.retries} corrections: {self._forces(pads)}")
         elif self.holding > SETTLE_LIMIT:  # D5's parallel-face check: open, back off, close again
-            what = f"pads never settled at {self.grasp_force:.1f} N within {SETTLE_LIMIT:.0f} s ({forces})"
+            what = f"pads never settled at {self.grasp_force:.1f} N within {SETTLE_LIMIT:.0f} s ({self._forces(pads)})"
             self._try_again(np.array([0.0, 0.0, -UNSETTLED_BACK_OFF]), what)
+
+    def _forces(self, pads: np.ndarray) -> str:
+        """The grasping pads' forces, for a reason a user reads."""
+        return ", ".join(f"{f} {pads[self.pad_of[f]]:.1f} N" for f in self.fingers)
 
 
 class NaiveGraspHand(FingerGrasp):
