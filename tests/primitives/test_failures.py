@@ -99,3 +99,19 @@ def test_a_diverging_simulation_ends_through_hardware_failure(tmp_path: Path, mo
     failure = _fired(executor, "hardware_failure")
     assert failure["t"] - hook.done_at <= 0.02
     assert failure["conditions"][0].get("non_finite") or max(failure["conditions"][0]["joint_jump"]) > 0.1
+
+
+@pytest.mark.parametrize(("robot", "arm"), [("melfa", None), ("baxter", "right"), ("tombatossals", "right"),
+                                            ("tombatossals", "left")])
+def test_an_object_that_slips_out_while_lifting_is_grasped_again(robot: str, arm: str | None) -> None:
+    """retry_grasp.xml's cycle (thesis 3.2): the lift loses the object, which falls back onto the
+    table where it lay, and the task goes round again through 'approach' and lifts it."""
+    start = np.eye(4)
+    start[:3, 3] = (0.10, 0.0, 0.025)
+    hook = AtState("lift", 0.6, lambda sim: sim.place_object(start))  # the hand some 4 cm up by then
+    outcome, executor, sim = run_example(EXAMPLES / "retry_grasp.xml", hook, robot, arm)
+    assert outcome.succeeded, outcome.summary
+    path = [v.atd for v in outcome.visits]
+    assert path.count("approach") == 2 and path[-1] == "done", path
+    assert _fired(executor, "grasp_lost")["t"] - hook.done_at <= 0.2  # Baxter's gripper force is filtered: 0.11 s
+    assert sim.object_pose()[2, 3] > 0.1  # held up at the end of the second lift
