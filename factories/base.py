@@ -97,9 +97,14 @@ class MappingRow:
 
 @dataclass(frozen=True)
 class MappingContext:
-    """What the factory may know beyond the node or event itself (thesis 7.2.2)."""
+    """What the factory may know beyond the node or event itself (thesis 7.2.2).
+
+    A sub-task runs in the world of the task around it: `surroundings` holds that task's
+    environment (the walls of the box a pick-one round reaches into), which the sub-task's
+    own file need not repeat."""
 
     task: Task
+    surroundings: Environment | None = None
 
     @property
     def object(self) -> ObjectInfo | None:
@@ -107,7 +112,10 @@ class MappingContext:
 
     @property
     def environment(self) -> Environment | None:
-        return self.task.environment
+        own = self.task.environment
+        if self.surroundings is None or own is None:
+            return own or self.surroundings
+        return Environment(obstacles=self.surroundings.obstacles + own.obstacles)
 
     def state(self, name: str) -> State:
         return self.task.states_by_name[name]
@@ -232,10 +240,33 @@ class Factory(ABC):
                 return import_module(f"{package}.description").description(arm)
         raise LookupError(f"factory '{self.name}' has no description.py beside it")
 
-    def check_object_reach(self, context: MappingContext) -> None:
-        """A grasp happens where the object is: refuse it when the arm cannot get there."""
-        if context.object is not None and context.object.pose is not None:
-            self.check_reach(context.object.pose.position)
+    def check_object_reach(self, context: MappingContext, *postures: str) -> None:
+        """A grasp happens where the object is: refuse it when the arm cannot get there, or
+        when the hand, in any of the `postures` it takes there, would cut into an obstacle
+        of the task's environment. Such a hand closes on the obstacle, not on the object:
+        the Barrett's pinch, whose knuckles stand 75 mm either side of its TCP, wrapped the
+        walls of a box 150 mm wide inside, its pads pressing their outer faces, reported the
+        object held, and lifted against the walls (empty_the_box.xml)."""
+        if context.object is None or context.object.pose is None:
+            return
+        centre = np.asarray(context.object.pose.position, float)
+        self.check_reach(context.object.pose.position)
+        obstacles = [o for o in (context.environment.obstacles if context.environment else ()) if o.size]
+        for posture in postures if obstacles else ():
+            tcp = np.eye(4)
+            tcp[:3, :3] = self._hand_down
+            tcp[:3, 3] = centre - self._hand_down @ np.asarray(self.robot.hand.grasp_centres.get(posture, (0.0,) * 3))
+            hit = self.robot.hand_in_boxes(posture, tcp, [(o.position, o.size) for o in obstacles])
+            if hit:
+                where = " and ".join(f"({', '.join(f'{v:g}' for v in obstacles[k].position)}) sized "
+                                     f"{' x '.join(f'{v:g}' for v in obstacles[k].size)}" for k in hit)
+                raise Unmappable(
+                    f"the {self.arm.hand.name} in its '{posture}' posture, closing on the object at "
+                    f"({', '.join(f'{v:g}' for v in centre)}), would cut into the "
+                    f"{'obstacles' if len(hit) > 1 else 'obstacle'} at {where}: "
+                    f"its fingers would close on {'them' if len(hit) > 1 else 'it'}, not on the object",
+                    "give the hand more room around the object (move the obstacle away), "
+                    "or choose a robot or arm with a smaller hand")
 
     def hand_for_motion(self, state: State) -> tuple[Controller, tuple[str, ...]]:
         """The hand during an arm motion: the state's hand shape (or the closest this hand
@@ -256,7 +287,8 @@ class Factory(ABC):
         """A parallel gripper's grasp (thesis 7.3, Melfa): the arm holds still while the jaws
         close until the grip force is reached."""
         notes = self.shape(state.hand_shape)[1] if state.hand_shape else ()
-        self.check_object_reach(context)
+        shape = self.shape(state.hand_shape)[0].value if state.hand_shape else HandShape.CLOSED.value
+        self.check_object_reach(context, HandShape.OPEN.value, shape)
         return NodeMapping("grasp", self.controller("hold"), self.controller("close_until_force"), notes)
 
     def check_reach(self, *points: Vec3) -> None:

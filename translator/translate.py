@@ -27,7 +27,7 @@ from atd.model.estd import (
     validate_vocabulary,
 )
 from atd.model.load import load_task
-from atd.model.task import Location, State, Task, Transition
+from atd.model.task import Environment, Location, State, Task, Transition
 from atd.model.validate import subtask_path
 from atd.model.vocabulary import EventType, StateType
 from factories.base import Factory, MappingContext, NodeMapping, Unmappable
@@ -80,8 +80,8 @@ class _Translator:
         self.diagnostics.append(error(code, f"{self.robot}: cannot map {what}: {reason}", loc, hint))
 
     # -- a whole machine ----------------------------------------------------------------
-    def machine(self, task: Task, chain: tuple[Path, ...]) -> Estd | None:
-        context = MappingContext(task)
+    def machine(self, task: Task, chain: tuple[Path, ...], surroundings: Environment | None = None) -> Estd | None:
+        context = MappingContext(task, surroundings)
         failures_before = self._errors()
         states = [self.node(state, task, context, chain) for state in task.states]
         transitions = [self.edge(tid, t, context) for tid, t in zip(task.transition_ids, task.transitions)]
@@ -117,7 +117,7 @@ class _Translator:
         if state.type.is_end:
             return EstdState(**base)
         if state.type is StateType.TASK:
-            machine = self.subtask(state, task, chain)
+            machine = self.subtask(state, context, chain)
             return EstdState(**base, machine=machine) if machine else None
         try:
             mapping = self.factory.map_state(state, context)
@@ -156,8 +156,8 @@ class _Translator:
                 controllers[role] = controller.model_copy(update={"params": {**controller.params, name: value}})
         return controllers["arm"], controllers["hand"]
 
-    def subtask(self, state: State, task: Task, chain: tuple[Path, ...]) -> Estd | None:
-        path = subtask_path(task, state)
+    def subtask(self, state: State, context: MappingContext, chain: tuple[Path, ...]) -> Estd | None:
+        path = subtask_path(context.task, state)
         if path.resolve() in chain:
             self._refuse("TRN003", f"task state '{state.name}'", f"'{state.file}' includes itself", state.loc,
                          "a task cannot contain itself; loop with transitions instead")
@@ -168,7 +168,7 @@ class _Translator:
             self._refuse("TRN003", f"task state '{state.name}'", f"sub-task '{state.file}' is not a valid ATD",
                          state.loc, f"run: atd validate {path}")
             return None
-        return self.machine(sub, chain + (path.resolve(),))
+        return self.machine(sub, chain + (path.resolve(),), context.environment)
 
     # -- edges --------------------------------------------------------------------------
     def edge(self, tid: str, transition: Transition, context: MappingContext) -> EstdTransition | None:

@@ -119,7 +119,7 @@ class TombatossalsFactory(Factory):
                                  "use the right arm (--arm right, Barrett hand) or another grasp shape")
         grasp, notes = self.shape(grasp)
         preshape_made, pre_notes = self.shape(preshape) if preshape else (None, ())
-        self.check_object_reach(context)
+        self.check_object_reach(context, grasp.value, *((preshape_made.value,) if preshape_made else ()))
         hand = self.controller("robust_grasp_hand", grasp_shape=grasp.value,
                                preshape=preshape_made.value if preshape_made else None,
                                pregrasp_size=self._pregrasp_size(state, context))

@@ -156,6 +156,24 @@ def test_empty_the_box_loops_over_its_sub_task_until_nothing_is_left(tmp_path):
     assert y > 0.05  # outside the box, whose walls span y = -0.16 .. 0.0
 
 
+def test_the_barrett_is_refused_the_box_its_pinch_cannot_reach_into():
+    """Its pinch knuckles stand where the walls are: it closed on the walls, reported the
+    object held and lifted against them until the watchdog; now refused up front."""
+    result = atd("run", str(EXAMPLES / "empty_the_box.xml"), "--robot", "tombatossals", "--arm", "right", "-q")
+    assert result.returncode == 4, result.stdout
+    assert "pick_one.xml" in result.stderr and "would cut into the obstacles at (0.02, -0.08, 0.03)" in result.stderr
+    assert "Traceback" not in result.stderr
+
+
+def test_the_barrett_takes_the_object_out_where_the_box_would_be_in_one_round():
+    """pick_one.xml alone, without the walls: grasp, lift, carry, put down at y = 0.10."""
+    result = atd("run", str(EXAMPLES / "pick_one.xml"), "--robot", "tombatossals", "--arm", "right", "-q")
+    assert result.returncode == 0 and "outcome: succeeded: reached 'placed'" in result.stdout, result.stdout
+    rests = next(line for line in result.stdout.splitlines() if line.startswith("the object rests at"))
+    x, y, z = (float(v) for v in rests.split("(")[1].rstrip(")").split(","))
+    assert y > 0.05 and abs(x - 0.10) < 0.02 and z < 0.03  # on the table, beyond where the box's wall y = 0 stands
+
+
 def test_the_naive_grasp_baseline_runs_from_the_command_line():
     result = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--grasp", "naive", "-q")
     assert result.returncode == 0, result.stdout
