@@ -33,6 +33,7 @@ from atd.sim.scene import scene_from_task  # noqa: E402
 from benchmarks.bench_robot_interface import bare_loop, interface_loop  # noqa: E402
 from factories.registry import create  # noqa: E402
 from primitives.base import Context  # noqa: E402
+from primitives.robot import HandMode  # noqa: E402
 from translator import translate  # noqa: E402
 
 TASK = Path(__file__).resolve().parents[1] / "examples" / "pick_and_place.xml"
@@ -91,7 +92,8 @@ def main() -> None:
         ticks = full.ticks
         robot = make_robot(factory.robot, scene)
         bare = min(bare_loop(robot, ticks) for _ in range(args.repeat))
-        interface = min(interface_loop(robot, ticks) for _ in range(args.repeat))
+        still_hand = (robot.read().hand_q.copy(), HandMode.POSITION)  # the hand held where it is, as arm-only states do
+        interface = min(interface_loop(robot, ticks, still_hand) for _ in range(args.repeat))
         robot.close()
         empty = []
         for _ in range(args.repeat):

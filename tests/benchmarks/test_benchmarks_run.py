@@ -1,0 +1,23 @@
+"""The benchmarks still run against today's code (they time nothing here: they only have to
+finish and print their table, so a changed interface cannot leave one broken unnoticed)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+from tests.conftest import REPO
+
+
+@pytest.mark.parametrize(("script", "args", "row"), [
+    ("bench_tick.py", ("--repeat", "1", "--robot", "melfa"), "melfa/main"),
+    ("bench_run.py", ("--repeat", "1", "--engine", "mujoco"), "tombatossals/left"),
+    ("bench_robot_interface.py", ("--seconds", "0.05", "--repeat", "1"), "worst overhead ratio"),
+])
+def test_a_simulation_benchmark_prints_its_table(script: str, args: tuple[str, ...], row: str) -> None:
+    result = subprocess.run([sys.executable, str(REPO / "benchmarks" / script), *args],
+                            capture_output=True, text=True, timeout=600)
+    assert result.returncode == 0, result.stderr
+    assert row in result.stdout
