@@ -11,6 +11,12 @@ import pytest
 from tests.conftest import EXAMPLES
 
 PICK_AND_PLACE = str(EXAMPLES / "pick_and_place.xml")
+SHORT_MOVE = """
+    <statemachine>
+      <state name="reach" type="move"><path><position>0.10 0.0 0.20</position></path></state>
+      <state name="done" type="success"/>
+      <transition origin="reach" destination="done"><success/></transition>
+    </statemachine>"""  # a run of about 2 s, for what records it
 
 
 def atd(*args: str) -> subprocess.CompletedProcess:
@@ -88,12 +94,7 @@ def test_bad_input_gives_a_diagnostic_not_a_traceback(atd_file):
 
 
 def test_video_is_an_animated_gif_of_the_run(tmp_path, atd_file):
-    path = atd_file("""
-        <statemachine>
-          <state name="reach" type="move"><path><position>0.10 0.0 0.20</position></path></state>
-          <state name="done" type="success"/>
-          <transition origin="reach" destination="done"><success/></transition>
-        </statemachine>""")
+    path = atd_file(SHORT_MOVE)
     gif = tmp_path / "run.gif"
     result = atd("run", str(path), "--robot", "melfa", "--video", str(gif), "-q")
     assert result.returncode == 0, result.stderr
@@ -106,12 +107,7 @@ def test_video_is_an_animated_gif_of_the_run(tmp_path, atd_file):
 def test_video_as_mp4_is_a_playable_h264_file(tmp_path, atd_file):
     import imageio_ffmpeg
 
-    path = atd_file("""
-        <statemachine>
-          <state name="reach" type="move"><path><position>0.10 0.0 0.20</position></path></state>
-          <state name="done" type="success"/>
-          <transition origin="reach" destination="done"><success/></transition>
-        </statemachine>""")
+    path = atd_file(SHORT_MOVE)
     mp4 = tmp_path / "run.mp4"
     result = atd("run", str(path), "--robot", "melfa", "--video", str(mp4), "-q")
     assert result.returncode == 0, result.stderr
