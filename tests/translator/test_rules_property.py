@@ -23,7 +23,8 @@ def _into_work_area(v: tuple[float, ...]) -> tuple[float, float, float]:
 
 def reachable(task: Task, plain: bool) -> Task:
     """The same graph with every target and the object in the work area; `plain` also drops
-    parameter overrides and hook shapes, which some robots rightly refuse."""
+    parameter overrides, hook shapes and obstacles (a hand with no room around the object),
+    which some robots rightly refuse."""
     def fix(state: State) -> State:
         update: dict = {"path": tuple(Waypoint(kind="position", values=_into_work_area(w.values))
                                       for w in state.path)}
@@ -37,7 +38,10 @@ def reachable(task: Task, plain: bool) -> Task:
     obj = task.object
     if obj is not None and obj.pose is not None:
         obj = obj.model_copy(update={"pose": Pose.from_position(_into_work_area(obj.pose.matrix))})
-    return task.model_copy(update={"states": tuple(fix(s) for s in task.states), "object": obj})
+    update = {"states": tuple(fix(s) for s in task.states), "object": obj}
+    if plain:
+        update["environment"] = None
+    return task.model_copy(update=update)
 
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
