@@ -147,6 +147,9 @@ def test_empty_the_box_loops_over_its_sub_task_until_nothing_is_left(tmp_path):
     rounds = [r for r in records if r["type"] == "enter" and r["state"] == "pick_one"]
     ends = [r["state"] for r in records if r["type"] == "end"]
     assert len(rounds) == 2 and ends == ["pick_one/placed", "pick_one/nothing_there", "box_empty"]
+    # The empty box is the grasp's own verdict, not a timeout standing in for it.
+    verdict = [r for r in records if r["type"] == "event" and r["atd"].endswith("grasp->nothing_there/error")]
+    assert len(verdict) == 1 and "the jaws closed on nothing" in json.dumps(verdict[0])
     rests = next(line for line in result.stdout.splitlines() if line.startswith("the object rests at"))
     y = float(rests.split(",")[1])
     assert y > 0.05  # outside the box, whose walls span y = -0.16 .. 0.0
