@@ -267,7 +267,7 @@ class Factory(ABC):
                                      f"{' x '.join(f'{v:g}' for v in obstacles[k].size)}" for k in hit)
                 raise Unmappable(
                     f"the {self.arm.hand.name} in its '{posture}' posture, closing on the object at "
-                    f"({', '.join(f'{v:g}' for v in centre)}), would cut into the "
+                    f"({', '.join(f'{v:g}' for v in centre)}), would come within {HAND_CLEARANCE * 100:g} cm of the "
                     f"{'obstacles' if len(hit) > 1 else 'obstacle'} at {where}: "
                     f"its fingers would close on {'them' if len(hit) > 1 else 'it'}, not on the object",
                     "give the hand more room around the object (move the obstacle away), "
