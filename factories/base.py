@@ -205,9 +205,20 @@ class Factory(ABC):
         """Thesis 7.2.2: one abstract success may need the arm AND the hand controller done."""
         return all_of(self.condition(EventType.SUCCESS, "arm_done"), self.condition(EventType.SUCCESS, "hand_done"))
 
-    @abstractmethod
     def sensed_event(self, event_type: EventType, origin: State) -> ConditionNode:
-        """grasp_stable, grasp_lost, finger_contact(_lost), collision: from this robot's sensors."""
+        """grasp_stable, grasp_lost, finger_contact(_lost), collision: from this robot's sensors.
+
+        A factory maps its hand's events and passes the rest here: a collision is an
+        unexpected force on the wrist force-torque sensor, as on every arm that has one."""
+        wrist = self.arm.sensors_of(SensorKind.FORCE_TORQUE)
+        if event_type is EventType.COLLISION and wrist:
+            return self.condition(event_type, "wrist_force_above", wrist)
+        raise Unmappable(f"no mapping for event '{event_type.value}'")
+
+    def release(self, state: State, arm: str = "release_retreat") -> NodeMapping:
+        """Thesis Eq. 3.5: open the hand to the state's opening while the arm backs off the
+        surface (`release_retreat`), or holds still where the robot has no retreat."""
+        return NodeMapping("release", self.controller(arm), self.controller("open_to", hand_position=state.hand_opening))
 
     # -- building blocks ------------------------------------------------------------------
     def controller(self, name: str, **params: ParamValue) -> Controller:

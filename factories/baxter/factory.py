@@ -22,7 +22,6 @@ from factories.base import (
     MappingRow,
     NodeMapping,
     Sensor,
-    Unmappable,
     all_of,
     any_of,
     obstacle_params,
@@ -66,8 +65,7 @@ class BaxterFactory(Factory):
         if kind is StateType.GRASP:
             return self.jaw_grasp(state, context)
         if kind is StateType.RELEASE:
-            return NodeMapping("release", self.controller("release_retreat"),
-                               self.controller("open_to", hand_position=state.hand_opening))
+            return self.release(state)
         target, via = self.motion(state, context)
         if kind is StateType.PLACE:
             return NodeMapping("place", self.controller("place", target=target), self.controller("squeeze"))
@@ -93,6 +91,4 @@ class BaxterFactory(Factory):
             return self.condition(event_type, "gripper_force_above", gripper)
         if event_type is EventType.FINGER_CONTACT_LOST:
             return self.condition(event_type, "gripper_force_below", gripper)
-        if event_type is EventType.COLLISION:
-            return self.condition(event_type, "wrist_force_above", ("wrist_ft",))
-        raise Unmappable(f"no mapping for event '{event_type.value}'")
+        return super().sensed_event(event_type, origin)

@@ -61,9 +61,8 @@ class MelfaFactory(Factory):
                              "push the object instead (type=\"push\"), or translate for tombatossals or baxter")
         if kind is StateType.GRASP:
             return self.jaw_grasp(state, context)
-        if kind is StateType.RELEASE:
-            return NodeMapping("release", self.controller("hold"),
-                               self.controller("open_to", hand_position=state.hand_opening))
+        if kind is StateType.RELEASE:  # Table 7.4: a hand position only, the arm stays
+            return self.release(state, arm="hold")
         target, via = self.motion(state, context)
         # A place is a transport that ends on contact: it descends straight onto the surface.
         arm = self.arm_motion(state, target, via, **({"straight_line": True} if kind is StateType.PLACE else {}))
@@ -88,6 +87,4 @@ class MelfaFactory(Factory):
             return self.condition(event_type, "tactile_force_above", _PADS, min_pads=1)
         if event_type is EventType.FINGER_CONTACT_LOST:
             return self.condition(event_type, "tactile_force_below", _PADS, min_pads=1)
-        if event_type is EventType.COLLISION:
-            return self.condition(event_type, "wrist_force_above", ("wrist_ft",))
-        raise Unmappable(f"no mapping for event '{event_type.value}'")
+        return super().sensed_event(event_type, origin)

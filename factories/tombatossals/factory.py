@@ -93,8 +93,7 @@ class TombatossalsFactory(Factory):
         if kind is StateType.GRASP:
             return self._grasp(state, context)
         if kind is StateType.RELEASE:
-            return NodeMapping("release", self.controller("release_retreat"),
-                               self.controller("open_to", hand_position=state.hand_opening))
+            return self.release(state)
         target, via = self.motion(state, context)
         if kind is StateType.PLACE:
             return NodeMapping("place", self.controller("place", target=target), self.controller("hold_position"))
@@ -144,7 +143,5 @@ class TombatossalsFactory(Factory):
             return self.condition(event_type, "tactile_force_above", pads, min_pads=1)
         if event_type is EventType.FINGER_CONTACT_LOST:
             return self.condition(event_type, "tactile_force_below", pads, min_pads=1)
-        if event_type is EventType.COLLISION:
-            return self.condition(event_type, "wrist_force_above", ("wrist_ft",))
-        raise Unmappable(f"no mapping for event '{event_type.value}'")
+        return super().sensed_event(event_type, origin)
 
