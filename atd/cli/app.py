@@ -50,3 +50,8 @@ def robots(ctx: click.Context) -> None:
     """The robots installed through factories (bare `atd robots` lists them)."""
     if ctx.invoked_subcommand is None:
         ctx.invoke(robots.get_command(ctx, "list"))
+
+
+@main.group()
+def campaign() -> None:
+    """Trial campaigns: run a task many times under perturbed truth, judge each trial by the simulator."""
