@@ -14,12 +14,12 @@ from atd.model.estd import Estd
 from atd.runtime.executor import Executor, Observer, Outcome, Progress, build_problems
 from atd.runtime.trace import Trace
 from atd.sim import ENGINES, make_robot
-from atd.sim.scene import SceneError, scene_from_task
+from atd.sim.scene import Scene, SceneError, scene_from_task
 from atd.sim.video import Recorder, VideoError, check_video_path
 from factories.base import Factory
 from primitives.base import Context
 
-__all__ = ["ENGINES", "Run", "RunError", "Unrunnable"]
+__all__ = ["ENGINES", "Run", "RunError", "Unrunnable", "belief_scene"]
 
 
 class RunError(Exception):
@@ -32,6 +32,15 @@ class Unrunnable(RunError):
     def __init__(self, problems: list[str]) -> None:
         super().__init__("this ESTD does not fit the robot:\n" + "\n".join(f"  {p}" for p in problems))
         self.problems = problems
+
+
+def belief_scene(estd: Estd) -> Scene:
+    """The world as the ESTD describes it."""
+    try:
+        source = Path(estd.source) if estd.source else Path("task.xml")
+        return scene_from_task(Task(object=estd.object, environment=estd.environment), source)
+    except SceneError as exc:
+        raise RunError(str(exc)) from None
 
 
 class _Video:
@@ -82,13 +91,12 @@ class _Pacer:
 class Run:
     def __init__(self, estd: Estd, factory: Factory, engine: str = "mujoco", seed: int = 0,
                  trace_path: Path | None = None, realtime: bool = False, budget: float = 300.0,
-                 video: Path | None = None, viewer: bool = False) -> None:
-        """`factory` is the robot's factory: it knows the physical robot the ESTD was made for."""
-        try:
-            source = Path(estd.source) if estd.source else Path("task.xml")
-            scene = scene_from_task(Task(object=estd.object, environment=estd.environment), source)
-        except SceneError as exc:
-            raise RunError(str(exc)) from None
+                 video: Path | None = None, viewer: bool = False, scene: Scene | None = None) -> None:
+        """`factory` is the robot's factory: it knows the physical robot the ESTD was made for.
+        `scene` is the true world when it differs from what the ESTD believes (a campaign's
+        perturbed trial); by default the world is built from the ESTD's object and environment."""
+        if scene is None:
+            scene = belief_scene(estd)
         if viewer:
             _Viewer.check_display()
         self.robot = make_robot(factory.robot, scene, engine, seed, window=viewer)
