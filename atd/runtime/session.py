@@ -6,6 +6,7 @@ from __future__ import annotations
 import os
 import time
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 
@@ -15,8 +16,10 @@ from atd.runtime.executor import Executor, Observer, Outcome, Progress, build_pr
 from atd.runtime.trace import Trace
 from atd.sim import ENGINES, make_robot
 from atd.sim.scene import Scene, SceneError, scene_from_task
+from atd.sim.simrobot import SimRobot
 from atd.sim.video import Recorder, VideoError, check_video_path
 from factories.base import Factory
+from factories.description import RobotDescription
 from primitives.base import Context
 
 __all__ = ["ENGINES", "Run", "RunError", "Unrunnable", "belief_scene"]
@@ -91,15 +94,17 @@ class _Pacer:
 class Run:
     def __init__(self, estd: Estd, factory: Factory, engine: str = "mujoco", seed: int = 0,
                  trace_path: Path | None = None, realtime: bool = False, budget: float = 300.0,
-                 video: Path | None = None, viewer: bool = False, scene: Scene | None = None) -> None:
+                 video: Path | None = None, viewer: bool = False, scene: Scene | None = None,
+                 robot: RobotDescription | None = None) -> None:
         """`factory` is the robot's factory: it knows the physical robot the ESTD was made for.
-        `scene` is the true world when it differs from what the ESTD believes (a campaign's
-        perturbed trial); by default the world is built from the ESTD's object and environment."""
+        `scene` and `robot` are the truth where it differs from what the ESTD and the factory
+        believe (a campaign's perturbed trial): by default the world is built from the ESTD's
+        object and environment, and the robot is the factory's."""
         if scene is None:
             scene = belief_scene(estd)
         if viewer:
             _Viewer.check_display()
-        self.robot = make_robot(factory.robot, scene, engine, seed, window=viewer)
+        self.robot = make_robot(robot or factory.robot, scene, engine, seed, window=viewer)
         self.has_object = scene.object is not None
         context = Context(info=self.robot.info, params={}, object=estd.object, environment=estd.environment,
                           rng=np.random.default_rng(seed))
@@ -122,11 +127,15 @@ class Run:
             self.observers.append(_Pacer())
         self.notes: list[str] = []  # what became of the video, for the user
 
-    def execute(self, progress: Progress | None = None) -> Outcome:
+    def execute(self, progress: Progress | None = None,
+                afterwards: Callable[[SimRobot], None] | None = None) -> Outcome:
         """Run to the end; afterwards `object_position` is where the object came to rest
-        (None when the task has no object)."""
+        (None when the task has no object). `afterwards` gets the robot once the task has
+        ended, before it is released: a campaign's judge looks at the world there."""
         try:
             outcome = self.executor.run(progress, observers=tuple(self.observers))
+            if afterwards is not None:
+                afterwards(self.robot)
             self.object_position = (tuple(float(v) for v in self.robot.object_pose()[:3, 3])
                                     if self.has_object else None)
             if self.video:
