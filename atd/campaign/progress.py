@@ -31,7 +31,8 @@ class Progress:
         self.successes += record.judged_succeeded
         key = record.cell.key
         tally = self.cells.setdefault(key, Counter())
-        tally.update(n=1, ok=record.judged_succeeded, false=record.false_success, error=record.status == "error")
+        tally.update(n=1, ok=int(record.judged_succeeded), false=int(record.false_success),
+                     error=int(record.status == "error"))
         self.left[key] -= 1
         if self.bar is not None:
             self.bar.set_postfix_str(f"success {self.successes}/{self.done} ({self.successes / self.done:.0%})",

@@ -113,13 +113,14 @@ def load_spec(path: Path) -> tuple[LoadedSpec | None, list[Diagnostic]]:
     except tomllib.TOMLDecodeError as exc:
         line = int(m.group(1)) if (m := re.search(r"line (\d+)", str(exc))) else 0
         return None, [error("CMP002", f"not valid TOML: {exc}", Location(where, line), "fix the TOML syntax")]
+    lines = _KeyLines(text)
+    found = _check_names(data, path.resolve().parent, where, lines)
     try:
         spec = CampaignSpec.model_validate(data)
     except ValidationError as exc:
-        lines = _KeyLines(text)
-        return None, [_diagnostic(e, where, lines) for e in exc.errors()]
-    loaded = LoadedSpec(spec=spec, path=path.resolve(), text=text)
-    return loaded, _check_names(loaded, where, _KeyLines(text))
+        found += [_diagnostic(e, where, lines) for e in exc.errors()]
+        return None, sorted(found, key=lambda d: d.loc.line)
+    return LoadedSpec(spec=spec, path=path.resolve(), text=text), found
 
 
 def _diagnostic(e: dict, where: str, lines: _KeyLines) -> Diagnostic:
@@ -158,39 +159,47 @@ def _hint(loc: tuple) -> str | None:
     return None
 
 
-def _check_names(loaded: LoadedSpec, where: str, lines: _KeyLines) -> list[Diagnostic]:
+def _check_names(data: dict, folder: Path, where: str, lines: _KeyLines) -> list[Diagnostic]:
     """What the schema cannot know: task files exist, robots and arms are installed,
-    objects are in the library."""
+    objects are in the library. Read from the raw TOML, so these are found together
+    with the schema's own errors; entries of the wrong type are the schema's to report."""
     from factories.registry import installed
 
     found = []
-    for i, entry in enumerate(loaded.spec.task_entries):
-        path = loaded.task_path(entry)
-        if not path.is_file():
-            found.append(error("CMP020", f"no task file {path}", lines.find(("tasks", i), where),
+    for i, entry in _entries(data, "tasks"):
+        file = entry.get("file") if isinstance(entry, dict) else entry
+        if isinstance(file, str) and not (folder / file).is_file():
+            found.append(error("CMP020", f"no task file {(folder / file).resolve()}", lines.find(("tasks", i), where),
                                "task files are relative to the spec"))
     robots = installed()
-    for i, entry in enumerate(loaded.spec.robot_entries):
-        if entry.name not in robots:
-            found.append(error("CMP021", f"no robot '{entry.name}' is installed", lines.find(("robots", i), where),
-                               did_you_mean(entry.name, robots) or f"installed: {', '.join(robots)}"))
+    for i, entry in _entries(data, "robots"):
+        name = entry.get("name") if isinstance(entry, dict) else entry
+        if not isinstance(name, str):
             continue
-        arms = [a.name for a in robots[entry.name].load().arms]
-        for arm in entry.arms:
-            if arm not in arms:
-                found.append(error("CMP022", f"robot '{entry.name}' has no arm '{arm}'",
+        if name not in robots:
+            found.append(error("CMP021", f"no robot '{name}' is installed", lines.find(("robots", i), where),
+                               did_you_mean(name, robots) or f"installed: {', '.join(robots)}"))
+            continue
+        arms = [a.name for a in robots[name].load().arms]
+        for arm in entry.get("arms", ()) if isinstance(entry, dict) else ():
+            if isinstance(arm, str) and arm not in arms:
+                found.append(error("CMP022", f"robot '{name}' has no arm '{arm}'",
                                    lines.find(("robots", i, "arms"), where), f"its arms: {', '.join(arms)}"))
-    named = [(i, name) for i, name in enumerate(loaded.spec.objects) if name != TASK_OBJECT]
-    if not named:
-        return found
-    from atd.campaign.objects import library
+    named = [(i, o) for i, o in _entries(data, "objects") if isinstance(o, str) and o != TASK_OBJECT]
+    if named:
+        from atd.campaign.objects import library
 
-    known = library()
-    for i, name in named:
-        if name not in known:
-            found.append(error("CMP023", f"no object '{name}' in the library", lines.find(("objects", i), where),
-                               did_you_mean(name, known) or f"'{TASK_OBJECT}' or one of: {', '.join(known)}"))
+        known = library()
+        for i, name in named:
+            if name not in known:
+                found.append(error("CMP023", f"no object '{name}' in the library", lines.find(("objects", i), where),
+                                   did_you_mean(name, known) or f"'{TASK_OBJECT}' or one of: {', '.join(known)}"))
     return found
+
+
+def _entries(data: dict, key: str) -> list[tuple[int, object]]:
+    value = data.get(key)
+    return list(enumerate(value)) if isinstance(value, list) else []
 
 
 class _KeyLines:
