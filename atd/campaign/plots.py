@@ -95,7 +95,8 @@ def _rates(ax: Axes, groups: Sequence[Group]) -> None:
     ax.set_xlim(-2, 102)
     ax.set_xlabel("success rate (%), judged by the object; bars: 95% Wilson interval")
     ax.grid(axis="x", alpha=0.3)
-    ax.legend(title="grasp")
+    if measured:
+        ax.legend(title="grasp")
 
 
 def _against_error(ax: Axes, bins: Sequence[ErrorBin], label: str, scale: float) -> None:
