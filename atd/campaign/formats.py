@@ -25,9 +25,9 @@ def render(report: Report, fmt: str) -> str:
     if fmt == "json":
         return json.dumps(_as_json(report), indent=2) + "\n"
     if fmt == "csv":
-        rows = [g.as_dict() for g in report.groups]
-        extra = [c for c in (rows[0] if rows else {}) if c not in CSV_COLUMNS]
-        return csv_text([*CSV_COLUMNS, *extra], rows)
+        return csv_text([*CSV_COLUMNS, "false_failures", "errors"], [g.as_dict() for g in report.groups])
+    if not report.trials:
+        return "no trials stored yet\n"
     draw = _markdown if fmt == "markdown" else _aligned
     errors = sum(g.errors for g in report.groups)
     parts = [f"{report.trials} trials ({errors} could not be run), grouped by {', '.join(report.by)}; "

@@ -54,7 +54,7 @@ def approach_bins(records: Sequence[TrialRecord], measure: str, count: int = 5) 
 def plot_report(records: Sequence[TrialRecord], groups: Sequence[Group], path: Path) -> None:
     """Write the picture to `path` in one step, in the format its suffix names (.png, .svg)."""
     fmt = path.suffix.lower().lstrip(".")
-    perturbed = any(APPROACH_MEASURES[0][0] in r.perturbation for r in records)
+    perturbed = any(measure in r.perturbation for r in records for measure, _, _ in APPROACH_MEASURES)
     panels = 1 + perturbed * len(APPROACH_MEASURES)
     figure = Figure(figsize=(6.5 * panels, max(3.5, 0.9 + 0.28 * len(groups))), layout="constrained")
     axes = figure.subplots(1, panels, squeeze=False)[0]
@@ -95,7 +95,8 @@ def _rates(ax: Axes, groups: Sequence[Group]) -> None:
     ax.set_xlim(-2, 102)
     ax.set_xlabel("success rate (%), judged by the object; bars: 95% Wilson interval")
     ax.grid(axis="x", alpha=0.3)
-    ax.legend(title="grasp")
+    if measured:
+        ax.legend(title="grasp")
 
 
 def _against_error(ax: Axes, bins: Sequence[ErrorBin], label: str, scale: float) -> None:
@@ -106,8 +107,7 @@ def _against_error(ax: Axes, bins: Sequence[ErrorBin], label: str, scale: float)
                   for b in bins for g in b.groups if g.value("grasp") == grasp and g.n]
         if not points:
             continue
-        xs = [x for x, _ in points]
-        ax.errorbar(xs, [_percent(g) for _, g in points], yerr=_errors([g for _, g in points]),
+        ax.errorbar([x for x, _ in points], [_percent(g) for _, g in points], yerr=_errors([g for _, g in points]),
                     marker="o", capsize=3, label=grasp, color=_COLOURS.get(grasp, "tab:gray"))
     ax.set_ylim(-2, 102)
     ax.set_xlabel(f"{label}, binned; 0: none added")

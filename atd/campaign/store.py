@@ -117,7 +117,6 @@ class Store:
             "created": datetime.now(timezone.utc).isoformat(timespec="seconds"),
         }
         with replacing(path) as tmp:
-            tmp.unlink()
             db = sqlite3.connect(tmp)
             try:
                 db.executescript(_SCHEMA)

@@ -111,7 +111,7 @@ def test_one_worker_two_workers_and_ray_give_identical_records(monkeypatch, stra
     run_ray(plans(_spec("small.toml")), None, 2, ray.append)
     shutil.rmtree(short, ignore_errors=True)
     assert _outcomes(ray) == straight
-    assert len({tuple(sorted(v["perturbation"].items())) for v in straight.values()}) == 4, \
+    assert len({tuple(sorted(v["sampled"].items())) for v in straight.values()}) == 4, \
         "each trial samples its own approach error"
 
 

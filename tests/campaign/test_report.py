@@ -91,3 +91,9 @@ def test_by_names_dimensions_and_refuses_others() -> None:
     with pytest.raises(ValueError, match="'gripper' is not a dimension; choose from task, robot"):
         parse_by("grasp,gripper")
     assert parse_by(",".join(DIMENSIONS)) == DIMENSIONS
+
+
+def test_an_empty_store_says_so_and_its_csv_is_a_header() -> None:
+    report = build_report([])
+    assert render(report, "table") == "no trials stored yet\n"
+    assert render(report, "csv").splitlines() == [",".join(CSV_HEADER) + ",false_failures,errors"]
