@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 from collections import Counter
+from importlib.util import find_spec
 from pathlib import Path
 
 import click
@@ -47,6 +48,8 @@ def run_campaign(spec_file: Path, workers: int | None, ray_address: str | None, 
     loses only the trials in flight; --resume continues it. Seeds depend only on the spec,
     so the records do not depend on --workers, --ray or the order trials ran in.
     """
+    if ray_address is not None and find_spec("ray") is None:
+        _fail("error: --ray needs Ray, which is not installed; pip install 'atd[ray]'", EXIT_USAGE)
     loaded, found = load_spec(spec_file)
     if loaded is None or has_errors(found):
         _fail(render_all(found), EXIT_INVALID)
