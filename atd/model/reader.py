@@ -7,12 +7,14 @@ and hands the rest on so that graph checks still run, as a compiler does.
 from __future__ import annotations
 
 from enum import StrEnum
+from pathlib import Path
 from typing import Iterable, TypeVar
 
 import numpy as np
 from lxml import etree
 
 from atd.model.diagnostics import Diagnostic, did_you_mean, error, warning
+from atd.model.files import name_too_long
 from atd.model.task import (
     Environment,
     Event,
@@ -166,6 +168,13 @@ class TaskReader:
             return None
         return Pose(matrix=values, loc=self.doc.loc(node))
 
+    def _file_name(self, node: etree._Element, name: str, what: str) -> bool:
+        """A file name a file system can hold; a located error when it is not."""
+        problem = name_too_long(Path(name))
+        if problem:
+            self._error("ATD112", f"{what}: {problem}", node, "rename the file and this reference")
+        return problem is None
+
     def _single(self, seen: dict[str, etree._Element], node: etree._Element, parent: str) -> bool:
         """True the first time a property appears; a repeat is reported."""
         if node.tag in seen:
@@ -237,6 +246,8 @@ class TaskReader:
                 fields["shape"] = (child.text or "").strip() or None
                 if fields["shape"] is None:
                     self._error("ATD105", "empty <shape>", child, "name a mesh file next to the ATD, e.g. cup.stl")
+                elif not self._file_name(child, fields["shape"], "shape"):
+                    fields["shape"] = None
             elif child.tag == "class":
                 fields["object_class"] = self._enum(child, ObjectClass, "object class")
         if "size" in seen:
@@ -289,6 +300,8 @@ class TaskReader:
             self._error("ATD103", f"only type=\"task\" states take a file, not type=\"{kind.value}\"", node,
                         'remove file="..." or set type="task"')
         fields = self._state_properties(node)
+        if node.get("file") and not self._file_name(node, node.get("file", ""), "file"):
+            kind = None
         if name is None or kind is None:
             if name:
                 self.dropped_states.add(name)

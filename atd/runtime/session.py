@@ -19,11 +19,15 @@ from atd.sim.video import Recorder, VideoError, check_video_path
 from factories.base import Factory
 from primitives.base import Context
 
-__all__ = ["ENGINES", "Run", "RunError", "Unrunnable"]
+__all__ = ["ENGINES", "InvalidScene", "Run", "RunError", "Unrunnable"]
 
 
 class RunError(Exception):
     """The run cannot start; the message says what to change."""
+
+
+class InvalidScene(RunError):
+    """The task's object or environment cannot be simulated (a missing or broken mesh)."""
 
 
 class Unrunnable(RunError):
@@ -84,11 +88,16 @@ class Run:
                  trace_path: Path | None = None, realtime: bool = False, budget: float = 300.0,
                  video: Path | None = None, viewer: bool = False) -> None:
         """`factory` is the robot's factory: it knows the physical robot the ESTD was made for."""
+        if video is not None:
+            try:
+                check_video_path(video)
+            except VideoError as exc:
+                raise RunError(str(exc)) from None
         try:
             source = Path(estd.source) if estd.source else Path("task.xml")
             scene = scene_from_task(Task(object=estd.object, environment=estd.environment), source)
         except SceneError as exc:
-            raise RunError(str(exc)) from None
+            raise InvalidScene(str(exc)) from None
         if viewer:
             _Viewer.check_display()
         self.robot = make_robot(factory.robot, scene, engine, seed, window=viewer)
@@ -99,14 +108,9 @@ class Run:
         if problems:
             self.robot.close()
             raise Unrunnable(problems)
-        self.trace = Trace(trace_path)
+        self.trace = Trace()
+        self.trace_path = trace_path
         self.executor = Executor(estd, self.robot, context, self.trace, budget=budget)
-        if video is not None:
-            try:
-                check_video_path(video)
-            except VideoError as exc:
-                self.robot.close()
-                raise RunError(str(exc)) from None
         self.video = _Video(self.robot, video) if video is not None else None
         self.viewer = _Viewer(self.robot) if viewer else None
         self.observers: list[Observer] = [o for o in (self.video, self.viewer) if o]
@@ -116,16 +120,16 @@ class Run:
 
     def execute(self, progress: Progress | None = None) -> Outcome:
         """Run to the end; afterwards `object_position` is where the object came to rest
-        (None when the task has no object)."""
+        (None when the task has no object). The trace and video are written last; OutputError
+        when one cannot be."""
         try:
             outcome = self.executor.run(progress, observers=tuple(self.observers))
             self.object_position = (tuple(float(v) for v in self.robot.object_pose()[:3, 3])
                                     if self.has_object else None)
+            if self.trace_path:
+                self.trace.save(self.trace_path)
             if self.video:
                 self.notes.append(self.video.write())
             return outcome
-        except BaseException:
-            self.trace.discard()
-            raise
         finally:
             self.robot.close()
