@@ -6,6 +6,7 @@ from typing import Iterable, Mapping, NoReturn
 import click
 
 from atd import __version__
+from atd.model.ranges import Range
 from atd.model.files import OutputError, output_problem, output_problems, write_output
 
 EXIT_OK = 0
@@ -28,6 +29,25 @@ class OutputFile(click.Path):
         if problem:
             self.fail(f"{path}: {problem}", param, ctx)
         return path
+
+
+class Ranged(click.ParamType):
+    """A number on the command line, checked against its declared range (atd.model.ranges)."""
+
+    def __init__(self, allowed: Range, integer: bool = False) -> None:
+        self.allowed, self.integer = allowed, integer
+        self.name = f"{'integer' if integer else 'number'} in {allowed}"
+
+    def convert(self, value, param, ctx) -> float | int:
+        try:
+            number = int(value) if self.integer else float(value)
+        except (TypeError, ValueError):
+            self.fail(f"'{value}' is not {'an integer' if self.integer else 'a number'}; give one in {self.allowed}",
+                      param, ctx)
+        problem = self.allowed.problem(number)
+        if problem:
+            self.fail(problem, param, ctx)
+        return number
 
 
 def usage_error(message: str) -> NoReturn:

@@ -9,8 +9,8 @@ import click
 
 from atd.cli.translate import GRASP_OPTION
 from atd.cli.app import (EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, EXIT_UNTRANSLATABLE, EXIT_USAGE, OutputFile,
-                         guard_outputs, main, usage_error)
-from atd.model import has_errors, load_task
+                         Ranged, guard_outputs, main, usage_error)
+from atd.model import has_errors, load_task, ranges
 from atd.model.diagnostics import render_all
 from atd.model.estd import Estd
 from atd.model.estd_xml import is_estd_file, read_estd
@@ -82,14 +82,14 @@ class _Progress:
 @click.option("--robot", "-r", default=None, help="the robot (required for an ATD; an ESTD names its own)")
 @click.option("--arm", default=None, help="which arm, for robots with more than one")
 @click.option("--engine", type=click.Choice(ENGINES), default="mujoco", show_default=True)
-@click.option("--seed", type=int, default=0, show_default=True, help="seeds sensor noise: same seed, same trace")
+@click.option("--seed", type=Ranged(ranges.SEED, integer=True), default=0, show_default=True, help="seeds sensor noise: same seed, same trace")
 @click.option("--trace", "trace_path", type=OutputFile(), default=None,
               help="write every state entry, exit and event as JSON lines")
 @click.option("--video", type=OutputFile(), default=None,
               help="record the run from an offscreen camera: .gif, or .mp4 (needs ffmpeg: the video extra)")
 @click.option("--viewer", is_flag=True, help="open the engine's window (needs a display; runs in real time)")
 @click.option("--realtime", is_flag=True, help="run no faster than real time")
-@click.option("--budget", type=click.FloatRange(min=0, min_open=True), default=300.0, show_default=True,
+@click.option("--budget", type=Ranged(ranges.BUDGET), default=300.0, show_default=True,
               help="watchdog: simulated seconds before the run is stopped as a failure")
 @GRASP_OPTION
 @click.option("--quiet", "-q", is_flag=True, help="no live progress")

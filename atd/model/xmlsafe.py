@@ -147,14 +147,14 @@ def parse_bytes(data: bytes, file: str) -> tuple[ParsedXml | None, list[Diagnost
     except etree.XMLSyntaxError as exc:
         line, col = exc.position if exc.position else (1, 1)
         message = str(exc.msg or exc).split(", line ")[0].strip()
-        limit = _parser_limit(message, Location(file, line, max(col, 1)))
-        if limit:
-            return None, [limit]
         if "Excessive depth" in message:
             return None, [
                 error("ATD005", "elements are nested too deeply", Location(file, line, col),
                       f"an ATD nests 4 levels (statemachine, state, path, position); this file nests over {MAX_DEPTH}")
             ]
+        limit = _parser_limit(message, Location(file, line, max(col, 1)))
+        if limit:
+            return None, [limit]
         return None, [
             error("ATD003", f"not well-formed XML: {message}", Location(file, line, max(col, 1)),
                   "check the tag at this place is closed and the file is complete")
