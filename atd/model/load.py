@@ -9,6 +9,7 @@ from lxml import etree
 
 from atd.model.bulk import cyclic_gc_paused
 from atd.model.diagnostics import Diagnostic, error, has_errors
+from atd.model.files import is_regular_file
 from atd.model.reader import read_task
 from atd.model.task import Location, Task
 from atd.model.validate import check_task, subtask_path
@@ -66,7 +67,7 @@ def _check_subtasks(task: Task, including: tuple[Path, ...], seen: dict[Path, li
         if state.type is not StateType.TASK or not state.file:
             continue
         sub = subtask_path(task, state)
-        if not sub.is_file():
+        if not is_regular_file(sub):
             found.append(error("ATD211", f"sub-task file '{state.file}' of state '{state.name}' not found",
                                state.loc, f"looked for {sub}; paths are relative to the including file"))
         elif sub.resolve() in including:

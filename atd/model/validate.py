@@ -11,6 +11,7 @@ from pathlib import Path
 import networkx as nx
 
 from atd.model.diagnostics import Diagnostic, did_you_mean, error, has_errors, warning
+from atd.model.files import is_regular_file
 from atd.model.task import State, Task
 from atd.model.vocabulary import StateType
 
@@ -132,7 +133,7 @@ def _shape(task: Task) -> list[Diagnostic]:
     if obj is None or obj.shape is None or task.source is None:
         return []
     mesh = Path(task.source).parent / obj.shape
-    if mesh.is_file():
+    if is_regular_file(mesh):
         return []
     return [warning("ATD215", f"object shape '{obj.shape}' not found next to the task", obj.loc,
                     f"looked for {mesh}; simulation needs the mesh there (STL or OBJ), or remove <shape> "

@@ -271,7 +271,6 @@ class Executor:
                     shown = where
                     progress(where, readings.time, wall)
         wall = wallclock.perf_counter() - started
-        self.trace.close()
         end = self.machine.ended
         return Outcome(
             succeeded=end is not None and end.type is StateType.SUCCESS,

@@ -22,11 +22,15 @@ from factories.base import Factory
 from factories.description import RobotDescription
 from primitives.base import Context
 
-__all__ = ["ENGINES", "Run", "RunError", "Unrunnable", "belief_scene"]
+__all__ = ["ENGINES", "InvalidScene", "Run", "RunError", "Unrunnable", "belief_scene"]
 
 
 class RunError(Exception):
     """The run cannot start; the message says what to change."""
+
+
+class InvalidScene(RunError):
+    """The task's object or environment cannot be simulated (a missing or broken mesh)."""
 
 
 class Unrunnable(RunError):
@@ -43,7 +47,7 @@ def belief_scene(estd: Estd) -> Scene:
         source = Path(estd.source) if estd.source else Path("task.xml")
         return scene_from_task(Task(object=estd.object, environment=estd.environment), source)
     except SceneError as exc:
-        raise RunError(str(exc)) from None
+        raise InvalidScene(str(exc)) from None
 
 
 class _Video:
@@ -100,6 +104,11 @@ class Run:
         `scene` and `robot` are the truth where it differs from what the ESTD and the factory
         believe (a campaign's perturbed trial): by default the world is built from the ESTD's
         object and environment, and the robot is the factory's."""
+        if video is not None:
+            try:
+                check_video_path(video)
+            except VideoError as exc:
+                raise RunError(str(exc)) from None
         if scene is None:
             scene = belief_scene(estd)
         if viewer:
@@ -112,14 +121,9 @@ class Run:
         if problems:
             self.robot.close()
             raise Unrunnable(problems)
-        self.trace = Trace(trace_path)
+        self.trace = Trace()
+        self.trace_path = trace_path
         self.executor = Executor(estd, self.robot, context, self.trace, budget=budget)
-        if video is not None:
-            try:
-                check_video_path(video)
-            except VideoError as exc:
-                self.robot.close()
-                raise RunError(str(exc)) from None
         self.video = _Video(self.robot, video) if video is not None else None
         self.viewer = _Viewer(self.robot) if viewer else None
         self.observers: list[Observer] = [o for o in (self.video, self.viewer) if o]
@@ -131,18 +135,18 @@ class Run:
                 afterwards: Callable[[SimRobot], None] | None = None) -> Outcome:
         """Run to the end; afterwards `object_position` is where the object came to rest
         (None when the task has no object). `afterwards` gets the robot once the task has
-        ended, before it is released: a campaign's judge looks at the world there."""
+        ended, before it is released: a campaign's judge looks at the world there. The trace
+        and video are written last; OutputError when one cannot be."""
         try:
             outcome = self.executor.run(progress, observers=tuple(self.observers))
             if afterwards is not None:
                 afterwards(self.robot)
             self.object_position = (tuple(float(v) for v in self.robot.object_pose()[:3, 3])
                                     if self.has_object else None)
+            if self.trace_path:
+                self.trace.save(self.trace_path)
             if self.video:
                 self.notes.append(self.video.write())
             return outcome
-        except BaseException:
-            self.trace.discard()
-            raise
         finally:
             self.robot.close()
