@@ -18,11 +18,13 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 from atd.campaign.perturbation import PERTURBATIONS
 from atd.campaign.record import DIMENSIONS
 from atd.model.diagnostics import Diagnostic, did_you_mean, error
+from atd.model.files import InputError, read_capped
 from atd.model.task import Location
 
 GRASP_MODES = ("naive", "robust")
 JUDGES = ("lift", "place")
 TASK_OBJECT = "task"  # the object dimension's value for the ATD's own object
+SPEC_CAP = 1 << 20  # bytes: a spec is a page of TOML
 
 
 class _Strict(BaseModel):
@@ -104,9 +106,9 @@ def load_spec(path: Path) -> tuple[LoadedSpec | None, list[Diagnostic]]:
     """The spec, or None with every problem found (CMP codes, located)."""
     where = str(path)
     try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        return None, [error("CMP001", f"cannot read the campaign spec: {exc.strerror or exc}", Location(where, 0),
+        text = read_capped(path, SPEC_CAP).decode("utf-8")
+    except (InputError, UnicodeDecodeError) as exc:
+        return None, [error("CMP001", f"cannot read the campaign spec: {exc}", Location(where, 0),
                             "give a readable UTF-8 TOML file")]
     try:
         data = tomllib.loads(text)

@@ -15,6 +15,7 @@ from typing import Any
 
 from atd.campaign.record import DIMENSIONS, Cell, TrialRecord
 from atd.model import replacing
+from atd.model.files import output_problem
 
 #: Bumped when a column's meaning changes; a store of a newer format is refused, not misread.
 FORMAT_VERSION = 1
@@ -56,15 +57,6 @@ class StoreError(Exception):
     """A store that cannot be used as asked; the message is for the user, one line."""
 
 
-def store_path_problem(path: Path) -> str | None:
-    """Why `path` cannot hold a store, found before any trial runs; None when it can."""
-    if path.exists() and not path.is_file():
-        return f"{path} is not a regular file; give a file path to --store"
-    if not path.parent.is_dir():
-        return f"the folder {path.parent} does not exist; create it or give another --store"
-    return None
-
-
 class Store:
     """An open campaign store. Use it as a context manager, from one thread at a time."""
 
@@ -81,9 +73,9 @@ class Store:
         """A new store at `path`, or with `resume` the existing one made from the same spec
         (a missing store is then started afresh)."""
         path = Path(path)
-        problem = store_path_problem(path)
+        problem = output_problem(path)
         if problem:
-            raise StoreError(problem)
+            raise StoreError(f"{path}: {problem}")
         if path.exists():
             if not resume:
                 raise StoreError(f"{path} exists; add --resume to continue it, or give another --store")
