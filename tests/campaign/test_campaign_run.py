@@ -165,3 +165,32 @@ def test_only_narrows_the_cells_and_an_unknown_dimension_is_refused(tmp_path: Pa
     result = _atd("campaign", "run", str(DATA / "small.toml"), "--only", "robot=baxter", cwd=tmp_path)
     assert result.returncode == 2 and "no cell" in result.stderr
     assert shutil.which("true") is None or not list(tmp_path.glob("*.sqlite"))
+
+
+def test_a_pick_and_place_is_judged_by_where_the_object_rests(tmp_path: Path) -> None:
+    records: list[TrialRecord] = []
+    run_local(plans(_spec("place.toml")), 1, records.append)
+    (record,) = records
+    assert record.status == "ok" and record.task_succeeded, record.summary
+    assert record.judged_succeeded, record.judge_reason
+    assert record.measurements["distance"] < 0.02 and abs(record.measurements["height"]) < 0.01
+
+
+def test_ctrl_c_stops_cleanly_keeping_every_finished_trial(tmp_path: Path) -> None:
+    store = tmp_path / "small.sqlite"
+    command = [sys.executable, "-m", "atd", "campaign", "run", str(DATA / "small.toml"), "--store", str(store),
+               "-j", "2", "-q", "--trials", "20"]
+    process = subprocess.Popen(command, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 300
+    while time.monotonic() < deadline and process.poll() is None:
+        if store.exists():
+            with Store.open_read(store) as s:
+                if len(s.done()) >= 1:
+                    break
+        time.sleep(0.2)
+    process.send_signal(signal.SIGINT)
+    _, err = process.communicate(timeout=60)
+    with Store.open_read(store) as s:
+        kept = len(s.done())
+    assert process.returncode == 130, err
+    assert 1 <= kept < 20 and f"{kept} of 20 trials were stored" in err and "--resume" in err
