@@ -261,6 +261,11 @@ class SimRobot(Robot):
         """True 4x4 TCP pose (for checks, not for primitives)."""
         return self._tcp()
 
+    def true_pad_contacts(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """True contacts on the pads (for recordings, not for primitives): pad index, point
+        in that pad's frame, normal force."""
+        return self._pad_contacts()
+
     def hold_still(self, seconds: float) -> None:
         """Keep the arm still and the hand as last commanded for `seconds` of simulated time."""
         self.command_arm_velocity(np.zeros(len(self.info.arm_joints)))
