@@ -60,12 +60,15 @@ class LibraryObject:
 
     def realize(self, body: Body) -> Body:
         """The simulator's truth for a belief `body`: same name, pose, mass and friction;
-        the mesh, scaled per axis and centred so its bounding box is the body's."""
+        the mesh, scaled per axis and centred so that the bounding box of what collides
+        (the mesh's hull, or its convex parts, which V-HACD makes up to 2% larger) is the
+        body's."""
         if self.mesh is None:
             return body
         source = mesh_file(self.mesh)
+        parts = convex_parts(source) if self.concave else ()
         box = np.array(bounding_box(body.kind, body.size))
-        stood = obj_vertices(source) @ self.turn.T
+        stood = np.vstack([obj_vertices(f) for f in parts or (source,)]) @ self.turn.T
         low, high = stood.min(axis=0), stood.max(axis=0)
         world_scale = box / (high - low)
         frame = np.eye(4)
@@ -75,7 +78,7 @@ class LibraryObject:
         return dataclasses.replace(
             body, kind="mesh", size=tuple(float(v) for v in box), mesh=source,
             mesh_scale=tuple(float(v) for v in scale), mesh_frame=frame,
-            mesh_parts=convex_parts(source) if self.concave else (),
+            mesh_parts=parts,
         )
 
 
@@ -119,7 +122,7 @@ def library() -> dict[str, LibraryObject]:
                       (0.079, 0.037, 0.058), 0.12, 0.6,
                       "Stanford bunny mesh at 0.04 scale; mass of a hollow ceramic figurine, assumed",
                       mesh="bunny.obj", turn=_Y_TO_X @ _Y_UP, concave=True),
-        LibraryObject("spray", "travel-size aluminium spray can, 40 mm across, 90 mm tall", cyl, (0.02, 0.09),
+        LibraryObject("spray", "travel-size aluminium spray can, 38 mm across, 85 mm tall", cyl, (0.019, 0.085),
                       0.07, 0.5, "50 ml travel can: about 40 g of contents and 30 g of can, assumed"),
         LibraryObject("stapler", "mini stapler, 80 x 40 x 50 mm", box, (0.08, 0.04, 0.05), 0.12, 0.6,
                       "typical pocket stapler figures, assumed"),

@@ -11,16 +11,15 @@ from __future__ import annotations
 import hashlib
 import os
 import shutil
+import subprocess
 import sys
 import tempfile
-from contextlib import contextmanager
 from pathlib import Path
-from typing import Iterator
 
 import numpy as np
-import pybullet as pb
 
 VHACD_RESOLUTION = 100_000  # voxels: about 1 s for a mug, parts within a millimetre of its walls
+_VHACD = "import sys, pybullet; pybullet.vhacd(*sys.argv[1:4], resolution=int(sys.argv[4]))"
 
 
 class MeshError(ValueError):
@@ -51,15 +50,19 @@ def convex_parts(mesh: Path) -> tuple[Path, ...]:
 
 def _decompose(mesh: Path, folder: Path) -> None:
     """Split `mesh` into `folder`, atomically: a folder that exists is complete."""
+    if not _read_obj(mesh)[1]:
+        raise MeshError(f"{mesh}: no faces to decompose; export the mesh again with its faces")
     folder.parent.mkdir(parents=True, exist_ok=True)
     work = Path(tempfile.mkdtemp(prefix=".tmp-", dir=folder.parent))
     try:
         hulls = work / "hulls.obj"
-        with _quiet():
-            pb.vhacd(str(mesh), str(hulls), str(work / "vhacd.log"), resolution=VHACD_RESOLUTION)
-        vertices, parts = _read_obj(hulls) if hulls.is_file() else (np.zeros((0, 3)), [])
+        # In a process of its own: V-HACD prints its progress to stdout and may crash on a bad mesh.
+        done = subprocess.run([sys.executable, "-c", _VHACD, str(mesh), str(hulls), str(work / "vhacd.log"),
+                               str(VHACD_RESOLUTION)], capture_output=True)
+        vertices, parts = _read_obj(hulls) if done.returncode == 0 and hulls.is_file() else (np.zeros((0, 3)), [])
         if not parts:
-            raise MeshError(f"{mesh}: V-HACD found no convex parts; check that the file is a closed OBJ mesh")
+            raise MeshError(f"{mesh}: V-HACD found no convex parts (exit status {done.returncode}); "
+                            "check that the file is a closed OBJ mesh")
         for k, faces in enumerate(parts):
             _write_part(work / f"part_{k:03d}.obj", vertices, faces)
         hulls.unlink()
@@ -109,18 +112,3 @@ def _write_part(path: Path, vertices: np.ndarray, faces: list[list[int]]) -> Non
     lines = [f"v {x:.9g} {y:.9g} {z:.9g}" for x, y, z in vertices[used]]
     lines += ["f " + " ".join(str(new[i]) for i in face) for face in faces]
     path.write_text("\n".join(lines) + "\n")
-
-
-@contextmanager
-def _quiet() -> Iterator[None]:
-    """V-HACD prints its progress from C straight to the process's stdout: send it nowhere."""
-    sys.stdout.flush()
-    saved = os.dup(1)
-    null = os.open(os.devnull, os.O_WRONLY)
-    try:
-        os.dup2(null, 1)
-        yield
-    finally:
-        os.dup2(saved, 1)
-        os.close(saved)
-        os.close(null)
