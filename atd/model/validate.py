@@ -12,6 +12,7 @@ import networkx as nx
 
 from atd.model.diagnostics import Diagnostic, Suggester, did_you_mean, error, has_errors, warning
 from atd.model.files import is_regular_file
+from atd.model.meshcheck import MeshError, check_mesh
 from atd.model.task import State, Task
 from atd.model.vocabulary import StateType
 
@@ -130,12 +131,19 @@ def _targets(task: Task) -> list[Diagnostic]:
 
 
 def _shape(task: Task) -> list[Diagnostic]:
-    """A mesh named by the object must be there when the task runs; say so now."""
+    """A mesh named by the object must be there when the task runs, and be one the engines
+    can load; say so now."""
     obj = task.object
     if obj is None or obj.shape is None or task.source is None:
         return []
     mesh = Path(task.source).parent / obj.shape
     if is_regular_file(mesh):
+        try:
+            check_mesh(mesh)
+        except MeshError as exc:
+            return [error("ATD216", f"object shape '{obj.shape}': {exc}", obj.loc,
+                          "export the mesh again as STL or OBJ, in metres, or remove <shape> to simulate the "
+                          "object from its class and size")]
         return []
     return [warning("ATD215", f"object shape '{obj.shape}' not found next to the task", obj.loc,
                     f"looked for {mesh}; simulation needs the mesh there (STL or OBJ), or remove <shape> "
