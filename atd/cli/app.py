@@ -1,5 +1,6 @@
 """The root click group and the exit codes every sub-command shares."""
 
+import faulthandler
 from pathlib import Path
 from typing import Iterable, Mapping, NoReturn
 
@@ -98,6 +99,7 @@ Commands.group_class = Commands
 @click.version_option(__version__, prog_name="atd")
 def main() -> None:
     """Describe a manipulation task once (ATD), translate it for a robot (ESTD), run it in simulation."""
+    faulthandler.enable()  # a crash inside an engine's C code still says where it happened, never dies silently
 
 
 @main.group(invoke_without_command=True)

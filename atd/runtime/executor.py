@@ -85,7 +85,7 @@ class Machine:
         self.base = base
         self.trace = trace
         self.visits = visits
-        self.states = {s.name: s for s in estd.states}
+        self.states = estd.states_by_name
         self.ended: EstdState | None = None
         self.current: EstdState | None = None
         self.last_exit: Visit | None = None  # the visit left by the latest transition
@@ -100,7 +100,7 @@ class Machine:
         self.hand = build_controller(state.hand, "hand", ctx) if state.hand else None
         self.edges = [
             Edge(t, [(e, ConditionTree(e.condition, ctx)) for e in t.events])
-            for t in self.estd.transitions if t.origin == name
+            for t in self.estd.leaving.get(name, ())
         ]
         self.visit = Visit(self.prefix + name, state.atd, readings.time)
         self.visits.append(self.visit)
