@@ -61,6 +61,10 @@ def run_ray(plans: list[TrialPlan], address: str | None, workers: int, sink: Sin
             ray.shutdown()
 
 
+class WorkerError(RuntimeError):
+    """The pool cannot run: its worker processes die before they take a trial."""
+
+
 def hang_limit(plan: TrialPlan) -> float:
     return max(HANG_FLOOR, HANG_FACTOR * plan.budget)
 
@@ -124,6 +128,9 @@ class _Pool:
             del self.workers[pid]
             self._drain(left)  # what it sent before it ended still counts
             if pid not in self.running:
+                if process.exitcode != 0:
+                    raise WorkerError(f"a worker process could not start ({_exit_reason(process.exitcode)}); "
+                                      f"run with --workers 1 to see why")
                 continue  # it finished its share
             number, _ = self.running.pop(pid)
             why = (f"the trial hung: no result after {hang_limit(plans[number]):g} s of wall-clock time"

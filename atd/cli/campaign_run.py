@@ -11,7 +11,7 @@ import click
 
 from atd.campaign.cells import parse_only, plans
 from atd.campaign.progress import Progress
-from atd.campaign.runner import run_local, run_ray
+from atd.campaign.runner import WorkerError, run_local, run_ray
 from atd.campaign.spec import load_spec
 from atd.campaign.store import Store, StoreError
 from atd.cli.app import EXIT_INVALID, EXIT_USAGE, OutputFile, campaign
@@ -83,6 +83,9 @@ def run_campaign(spec_file: Path, workers: int | None, ray_address: str | None, 
                 run_ray(todo, ray_address or None, workers, keep)
             else:
                 run_local(todo, workers, keep)
+        except WorkerError as exc:
+            progress.close()
+            _fail(f"error: {exc}; {progress.done} finished trials are kept in {store_path}", EXIT_USAGE)
         except KeyboardInterrupt:
             progress.close()
             _fail(f"stopped: {progress.done} of {len(todo)} trials were stored in {store_path}; "

@@ -14,7 +14,8 @@ from functools import cached_property
 
 from typing import Annotated, Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag
+from atd.model.frozen import Frozen
+from pydantic import Discriminator, Field, Tag
 
 from atd.model.controllers import (
     ARM_CONTROLLERS,
@@ -30,8 +31,8 @@ from atd.model.vocabulary import EventType, StateType
 FORMAT_VERSION = 1
 
 
-class EstdElement(BaseModel):
-    model_config = ConfigDict(frozen=True, extra="forbid")
+class EstdElement(Frozen):
+    """Base of every ESTD element."""
 
 
 class Controller(EstdElement):

@@ -194,3 +194,15 @@ def test_ctrl_c_stops_cleanly_keeping_every_finished_trial(tmp_path: Path) -> No
         kept = len(s.done())
     assert process.returncode == 130, err
     assert 1 <= kept < 20 and f"{kept} of 20 trials were stored" in err and "--resume" in err
+
+
+def test_workers_that_cannot_start_stop_the_campaign_with_a_message(tmp_path: Path) -> None:
+    # A script fed on standard input cannot be re-imported by a spawned worker: every
+    # worker dies before taking a trial, and the campaign must say so, not wait forever.
+    script = ("from pathlib import Path\nfrom atd.campaign.cells import plans\nfrom atd.campaign.runner import "
+              "WorkerError, run_local\nfrom atd.campaign.spec import load_spec\n"
+              f"loaded, _ = load_spec(Path({str(DATA / 'small.toml')!r}))\n"
+              "try:\n    run_local(plans(loaded), 2, print)\nexcept WorkerError as exc:\n    print('stopped:', exc)\n")
+    result = subprocess.run([sys.executable, "-"], input=script, cwd=tmp_path, capture_output=True, text=True,
+                            timeout=120)
+    assert "stopped: a worker process could not start (exit code 1)" in result.stdout, result.stderr
