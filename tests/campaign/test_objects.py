@@ -80,14 +80,15 @@ def test_every_object_rests_on_the_table_where_it_is_believed(engine: str) -> No
         assert pose[2, 2] > np.cos(np.radians(2)), f"{name} on {engine} tipped over"
 
 
-def test_the_melfa_lifts_the_espresso_cup_in_mujoco() -> None:
+@pytest.mark.parametrize("engine", ENGINES)
+def test_the_melfa_lifts_the_espresso_cup(engine: str) -> None:
     cup = get("mug")
     task, _ = load_task(EXAMPLES / "grasp_and_lift.xml")
     factory = create("melfa", grasp="robust")
     estd = translate(task.model_copy(update={"object": cup.object_info(0.10, 0.0)}), factory).estd
     belief = belief_scene(estd)
     truth = Scene(cup.realize(belief.object), belief.obstacles, belief.table)
-    run = Run(estd, factory, engine="mujoco", scene=truth)
+    run = Run(estd, factory, engine=engine, scene=truth)
     outcome = run.execute()
     assert outcome.succeeded
     assert run.object_position[2] - truth.object.pose[2, 3] > 0.05  # the ground truth: it rose 5 cm
