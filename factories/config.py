@@ -22,9 +22,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamSpec, ParamValue, coerce_value
+from atd.model.files import InputError, read_capped
 from atd.model.vocabulary import EventType
 
 Params = dict[str, ParamValue]
+MAX_CONFIG_BYTES = 1 << 20  # a config sets a few dozen values
 
 
 class ConfigError(Exception):
@@ -67,9 +69,11 @@ def _params(file: Path, table: str, specs: dict[str, ParamSpec], values: object)
 def load_config(path: Path, robot: str) -> RobotConfig:
     """The part of a config file that concerns `robot` (empty when the file does not mention it)."""
     try:
-        data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise ConfigError(f"{path}: cannot read config file: {exc.strerror}") from None
+        data = tomllib.loads(read_capped(Path(path), MAX_CONFIG_BYTES).decode("utf-8"))
+    except InputError as exc:
+        raise ConfigError(f"{path}: cannot read config file: {exc}") from None
+    except UnicodeDecodeError:
+        raise ConfigError(f"{path}: not UTF-8 text; save the config file as UTF-8") from None
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: not valid TOML: {exc}") from None
     section = data.get(robot, {})

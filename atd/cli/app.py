@@ -1,11 +1,14 @@
 """The root click group and the exit codes every sub-command shares."""
 
-import os
+import faulthandler
 from pathlib import Path
+from typing import Iterable, Mapping, NoReturn
 
 import click
 
 from atd import __version__
+from atd.model.ranges import Range
+from atd.model.files import OutputError, output_problem, output_problems, write_output
 
 EXIT_OK = 0
 EXIT_INVALID = 1  # the input file has errors
@@ -14,34 +17,92 @@ EXIT_TASK_FAILED = 3  # a run ended in a failure state
 EXIT_UNTRANSLATABLE = 4  # the robot cannot do the task
 
 
-def unwritable(path: Path) -> str | None:
-    """Why `path` could not be written, found before any work is done; None when it can."""
-    folder = path.parent
-    if not folder.is_dir():
-        return f"the folder {folder} does not exist; create it or write elsewhere"
-    if not os.access(folder, os.W_OK):
-        return f"the folder {folder} is not writable; write elsewhere"
-    return None
-
-
 class OutputFile(click.Path):
-    """A file a command will write, refused up front when its folder is missing or read-only."""
+    """A file a command will write, refused up front (exit 2) when it could not be written
+    safely: see `atd.model.files.output_problem`."""
 
     def __init__(self) -> None:
         super().__init__(dir_okay=False, path_type=Path)
 
     def convert(self, value, param, ctx) -> Path:
         path = super().convert(value, param, ctx)
-        problem = unwritable(path)
+        problem = output_problem(path)
         if problem:
             self.fail(f"{path}: {problem}", param, ctx)
         return path
 
 
-@click.group(context_settings={"help_option_names": ["-h", "--help"]})
+class Ranged(click.ParamType):
+    """A number on the command line, checked against its declared range (atd.model.ranges)."""
+
+    def __init__(self, allowed: Range, integer: bool = False) -> None:
+        self.allowed, self.integer = allowed, integer
+        self.name = f"{'integer' if integer else 'number'} in {allowed}"
+
+    def convert(self, value, param, ctx) -> float | int:
+        try:
+            number = int(value) if self.integer else float(value)
+        except (TypeError, ValueError):
+            self.fail(f"'{value}' is not {'an integer' if self.integer else 'a number'}; give one in {self.allowed}",
+                      param, ctx)
+        problem = self.allowed.problem(number)
+        if problem:
+            self.fail(problem, param, ctx)
+        return number
+
+
+def usage_error(message: str) -> NoReturn:
+    """One line on stderr and exit 2: the command line asked for something that cannot be done."""
+    click.echo(f"error: {message}", err=True)
+    raise SystemExit(EXIT_USAGE)
+
+
+def guard_outputs(outputs: Mapping[str, Path | None], inputs: Iterable[Path] = ()) -> None:
+    """Exit 2 before any work when an output would overwrite an input, another output or
+    something that is not a regular file."""
+    problems = output_problems(outputs, inputs)
+    if problems:
+        usage_error("; ".join(problems))
+
+
+def write_or_exit(path: Path, data: bytes) -> None:
+    """Write an output atomically, or exit 2 with one line and nothing left behind."""
+    try:
+        write_output(path, data)
+    except OutputError as exc:
+        usage_error(str(exc))
+
+
+class SingleValueCommand(click.Command):
+    """Refuses an option given twice (e.g. two `-o`): click would silently keep the last."""
+
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        if not ctx.resilient_parsing:
+            _, _, order = self.make_parser(ctx).parse_args(args=list(args))
+            once = [p for p in order if isinstance(p, click.Option) and not p.multiple and not p.count]
+            repeated = next((p for p in once if once.count(p) > 1 and not p.is_flag), None)
+            if repeated is not None:
+                raise click.UsageError(f"{repeated.opts[-1]} is given more than once; give it once", ctx)
+        return super().parse_args(ctx, args)
+
+
+class Commands(click.Group):
+    """The group class of `atd`: its commands refuse repeated options, its sub-groups too."""
+
+    command_class = SingleValueCommand
+
+
+Commands.group_class = Commands
+
+
+@click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(__version__, prog_name="atd")
 def main() -> None:
     """Describe a manipulation task once (ATD), translate it for a robot (ESTD), run it in simulation."""
+    try:  # a crash inside an engine's C code still says where it happened, never dies silently
+        faulthandler.enable()
+    except (OSError, ValueError):  # io.UnsupportedOperation: stderr is no file (an embedding, a test runner)
+        pass
 
 
 @main.group(invoke_without_command=True)

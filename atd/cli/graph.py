@@ -6,12 +6,11 @@ from pathlib import Path
 
 import click
 
-from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_USAGE, OutputFile, main
+from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_USAGE, OutputFile, guard_outputs, main, write_or_exit
 from atd.graph.dot import GraphvizError
 from atd.graph.png import PictureTooBig
 from atd.graph.render import FORMATS, Renderer, render
 from atd.graph.source import read_graph
-from atd.model import write_atomically
 from atd.model.diagnostics import has_errors, render_all
 
 
@@ -36,6 +35,7 @@ def graph(file: Path, output: Path, renderer: str, conditions: bool, all_params:
         click.echo(f"error: cannot draw to '{output}': the output must end in "
                    f"{', '.join('.' + f for f in FORMATS[:-1])} or .{FORMATS[-1]}", err=True)
         raise SystemExit(EXIT_USAGE)
+    guard_outputs({"-o": output}, [file])
     drawing, found = read_graph(file, conditions, all_params)
     if found:
         click.echo(render_all(found), err=True)
@@ -51,10 +51,6 @@ def graph(file: Path, output: Path, renderer: str, conditions: bool, all_params:
     except PictureTooBig as exc:
         click.echo(f"error: {file}: {exc}", err=True)
         raise SystemExit(EXIT_USAGE) from None
-    try:
-        write_atomically(output, data)
-    except OSError as exc:
-        click.echo(f"error: cannot write '{output}': {exc.strerror}", err=True)
-        raise SystemExit(EXIT_USAGE) from None
+    write_or_exit(output, data)
     click.echo(f"wrote {output} ({len(drawing.nodes)} states, {len(drawing.edges)} transitions; {drawn_by})")
     raise SystemExit(EXIT_OK)

@@ -7,15 +7,17 @@ from pathlib import Path
 
 import click
 
-from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, robots
+from atd.cli.app import EXIT_OK, EXIT_TASK_FAILED, OutputFile, Ranged, robots, usage_error
+from atd.model import ranges
+from atd.model.files import OutputError
 
 
 @robots.command("test")
 @click.argument("robot")
 @click.option("--arm", default=None, help="Which arm (e.g. left, right; default: the robot's first).")
 @click.option("--engine", type=click.Choice(["mujoco", "pybullet"]), default="mujoco", show_default=True)
-@click.option("--seed", type=int, default=0, show_default=True, help="Seed of the sensor noise.")
-@click.option("--video", type=click.Path(dir_okay=False, path_type=Path), default=None, help="Record the grasp as a video (.gif, or .mp4 with ffmpeg).")
+@click.option("--seed", type=Ranged(ranges.SEED, integer=True), default=0, show_default=True, help="Seed of the sensor noise.")
+@click.option("--video", type=OutputFile(), default=None, help="Record the grasp as a video (.gif, or .mp4 with ffmpeg).")
 def robot_test(robot: str, arm: str | None, engine: str, seed: int, video: Path | None) -> None:
     """Check a simulated ROBOT: kinematics, limits, holding, a grasp, force-torque and tactile sensors.
 
@@ -28,14 +30,12 @@ def robot_test(robot: str, arm: str | None, engine: str, seed: int, video: Path 
     try:
         description = load_description(robot, arm)
     except (UnknownRobot, ValueError) as exc:
-        click.echo(f"error: {exc}", err=True)
-        sys.exit(EXIT_INVALID)
+        usage_error(str(exc))
     if video is not None:
         try:
             check_video_path(video)
         except VideoError as exc:
-            click.echo(f"error: {exc}", err=True)
-            sys.exit(EXIT_INVALID)
+            usage_error(str(exc))
 
     recorder = Recorder() if video is not None else None
     click.echo(f"atd robots test {description.label} on {engine} (seed {seed})")
@@ -46,5 +46,8 @@ def robot_test(robot: str, arm: str | None, engine: str, seed: int, video: Path 
     passed = sum(c.passed for c in checks)
     click.echo(f"{passed}/{len(checks)} checks passed")
     if video is not None:
-        click.echo(recorder.save(video))
+        try:
+            click.echo(recorder.save(video))
+        except OutputError as exc:
+            usage_error(str(exc))
     sys.exit(EXIT_OK if passed == len(checks) else EXIT_TASK_FAILED)

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import click
 
-from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_UNTRANSLATABLE, EXIT_USAGE, OutputFile, main, unwritable
-from atd.model import load_task, write_atomically
+from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_UNTRANSLATABLE, EXIT_USAGE, OutputFile, guard_outputs, main, write_or_exit
+from atd.model import load_task
 from atd.model.diagnostics import Diagnostic, Severity, has_errors, render_all
 from atd.model.estd import Estd, describe
 from atd.model.estd_xml import estd_to_json, estd_to_xml
@@ -83,6 +83,8 @@ def translate(task: Path, robot: str, arm: str | None, config: Path | None, outp
     task (nothing written; every reason is listed with its file:line).
     """
     factory = make_factory(robot, arm, config, grasp)
+    target = output or default_output(task, factory, fmt)
+    guard_outputs({"-o": target}, [task, *([config] if config else [])])
     atd_task, found = load_task(task)
     if atd_task is None or has_errors(found):
         _report(found)
@@ -93,12 +95,7 @@ def translate(task: Path, robot: str, arm: str | None, config: Path | None, outp
         _report(warnings)
         click.echo(f"{task}: not translatable for {robot}; nothing written", err=True)
         raise SystemExit(EXIT_UNTRANSLATABLE)
-    target = output or default_output(task, factory, fmt)
-    problem = unwritable(target)
-    if problem:
-        click.echo(f"error: cannot write {target}: {problem} (-o FILE)", err=True)
-        raise SystemExit(EXIT_USAGE)
-    write_atomically(target, estd_to_json(result.estd) if fmt == "json" else estd_to_xml(result.estd))
+    write_or_exit(target, estd_to_json(result.estd) if fmt == "json" else estd_to_xml(result.estd))
     _report(warnings)
     if not quiet:
         click.echo(summary(result.estd))

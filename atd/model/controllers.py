@@ -18,6 +18,9 @@ from enum import StrEnum
 from types import MappingProxyType
 from typing import Mapping, Union
 
+from atd.model import ranges
+from atd.model.ranges import Range
+
 ParamValue = Union[bool, int, float, str, tuple[float, ...], tuple[tuple[float, ...], ...]]
 
 
@@ -61,10 +64,20 @@ class ParamSpec:
     unit: str = ""
     length: int | None = None  # VECTOR only
     choices: tuple[str, ...] = ()  # WORD only; empty = free text
+    limits: Range | None = None  # when not given: by the unit for numbers, coordinates for vectors
 
     @property
     def tunable(self) -> bool:
         return self.default is not None and self.type is not ParamType.POINTS
+
+    @property
+    def allowed(self) -> Range:
+        """The range each number of this parameter must lie in (see atd.model.ranges)."""
+        if self.limits is not None:
+            return self.limits
+        if self.type in (ParamType.VECTOR, ParamType.POINTS):
+            return ranges.COORDINATE
+        return ranges.BY_UNIT[self.unit]
 
 
 @dataclass(frozen=True)
@@ -85,8 +98,9 @@ class ConditionSpec:
 
 
 def _p(type_: ParamType, doc: str, default: ParamValue | None = None, *, unit: str = "",
-       required: bool = False, length: int | None = None, choices: tuple[str, ...] = ()) -> ParamSpec:
-    return ParamSpec(type_, doc, default, required, unit, length, choices)
+       required: bool = False, length: int | None = None, choices: tuple[str, ...] = (),
+       limits: Range | None = None) -> ParamSpec:
+    return ParamSpec(type_, doc, default, required, unit, length, choices, limits)
 
 
 NUM, VEC, FLAG, WORD, PTS, INT = (ParamType.NUMBER, ParamType.VECTOR, ParamType.FLAG, ParamType.WORD,
@@ -95,7 +109,7 @@ NUM, VEC, FLAG, WORD, PTS, INT = (ParamType.NUMBER, ParamType.VECTOR, ParamType.
 # Parameters shared by several controllers, defined once.
 _TARGET = _p(VEC, "TCP position to reach, ATD world frame", unit="m", required=True, length=3)
 _SURFACE_NORMAL = _p(VEC, "normal of the supporting surface, world frame (thesis 3.3.3-3.3.5)", (0.0, 0.0, 1.0),
-                     length=3)
+                     length=3, limits=ranges.DIRECTION)
 _FILTER = _p(NUM, "time constant of the first-order low-pass applied to the wrench before thresholding "
                 "(ours; 0 = raw)", 0.0, unit="s")
 _FORCE_SOURCE = _p(WORD, "what measures the grip force: the tactile pads or the gripper motor", "tactile",
@@ -108,7 +122,8 @@ _MOVE = {
     "target": _TARGET,
     "waypoints": _p(PTS, "via points before the target (thesis WAYPOINTS)", ()),
     "obstacles": _p(PTS, "centres of boxes to keep clear of (thesis 3.3.2 OBSTACLES)", ()),
-    "obstacle_sizes": _p(PTS, "full x y z size of each obstacle box, same order as obstacles", ()),
+    "obstacle_sizes": _p(PTS, "full x y z size of each obstacle box, same order as obstacles", (),
+                         limits=ranges.OBSTACLE_EXTENT),
     "straight_line": _p(FLAG, "follow the straight Cartesian line (guarded motion, thesis 7.2)", False),
     "keep_orientation": _p(FLAG, "hold the hand orientation all along (constrained motion, thesis 7.2); "
                           "otherwise only the final orientation is the starting one", False),
@@ -116,10 +131,13 @@ _MOVE = {
     "max_speed": _p(NUM, "TCP speed limit (ours; the thesis' VELOCITY_LIMITS zeros mean 'none')", 0.15,
                     unit="m/s"),
     "velocity_limits": _p(VEC, "linear and angular velocity limits; zeros = none (thesis 3.3.2)",
-                          (0.0,) * 6, length=6),
+                          (0.0,) * 6, length=6, limits=ranges.LIMITS),
     "acceleration_limits": _p(VEC, "linear and angular acceleration limits; zeros = none (thesis 3.3.2)",
-                              (0.0,) * 6, length=6),
+                              (0.0,) * 6, length=6, limits=ranges.LIMITS),
     "tolerance": _p(NUM, "distance to the target counted as reached (ours)", 0.003, unit="m"),
+    "tilt": _p(VEC, "the hand turned away from top-down at the target: roll, pitch, yaw about the world axes "
+                    "(ours: an oriented approach, thesis 3.4.1; zeros: top-down)", (0.0, 0.0, 0.0), unit="deg",
+               length=3, limits=ranges.TILT),
     "filter_time": _FILTER,
 }
 
@@ -160,7 +178,7 @@ _ARM_CONTROLLERS = (
         "thesis 3.3.1, Eq. 3.1 (alignment) and 3.2 (sliding grasp)",
         {
             "grasp_direction": _p(VEC, "approach direction in the hand frame (thesis GRASP_DIRECTION)",
-                                  (0.0, 0.0, 1.0), length=3),
+                                  (0.0, 0.0, 1.0), length=3, limits=ranges.DIRECTION),
             "max_distance": _p(NUM, "how far to look for a contact (thesis MAX_DISTANCE)", 0.2, unit="m"),
             "force_threshold": _p(NUM, "contact force on the wrist (thesis FORCE_THRESHOLD)", 2.0, unit="N"),
             "torque_threshold": _p(NUM, "alignment torque (thesis TORQUE_THRESHOLD)", 5.0, unit="N m"),
@@ -175,7 +193,8 @@ _ARM_CONTROLLERS = (
         "`distance`, then stay.",
         "thesis 3.4.1 (naive grasping primitive)",
         {
-            "grasp_direction": _p(VEC, "approach direction in the hand frame", (0.0, 0.0, 1.0), length=3),
+            "grasp_direction": _p(VEC, "approach direction in the hand frame", (0.0, 0.0, 1.0), length=3,
+                                  limits=ranges.DIRECTION),
             "distance": _p(NUM, "how far to move forward (thesis: 10 cm)", 0.1, unit="m"),
             "force_threshold": _p(NUM, "contact force on the wrist (ours, as the robust grasp's)", 2.0, unit="N"),
             "velocity": _p(NUM, "forward speed (ours)", 0.01, unit="m/s"),
@@ -240,7 +259,7 @@ _HAND_CONTROLLERS = (
         "hand_shape", Role.HAND, "Drive the fingers to a named shape of this hand.", "D5 2.2.2 hand shapes",
         {"shape": _p(WORD, "an ATD hand shape this hand can make, or a posture of its own the factory names "
                              "(a three-finger hand's `push`)", required=True),
-         "speed": _p(NUM, "fraction of the joints' speed limit to use (ours)", 0.5)},
+         "speed": _p(NUM, "fraction of the joints' speed limit to use (ours)", 0.5, limits=ranges.SPEED_FRACTION)},
     ),
     ControllerSpec(
         "robust_grasp_hand", Role.HAND,
@@ -287,13 +306,13 @@ _HAND_CONTROLLERS = (
         "open_to", Role.HAND, "Open the hand until it reaches the hand position.",
         "thesis 3.3.4 HAND_TARGET_POSITION; thesis 7.3 (Melfa release)",
         {"hand_position": _p(NUM, "target opening, 0 = closed .. 1 = open (thesis default 1.0)", 1.0),
-         "speed": _p(NUM, "fraction of the joints' speed limit to use (ours)", 0.5)},
+         "speed": _p(NUM, "fraction of the joints' speed limit to use (ours)", 0.5, limits=ranges.SPEED_FRACTION)},
     ),
 )
 
 _TACTILE_PARAMS = {
     "force_threshold": _p(NUM, "pad force counted as touching", 0.5, unit="N"),
-    "min_pads": _p(INT, "how many pads must touch", 1),
+    "min_pads": _p(INT, "how many pads must touch", 1, limits=ranges.PADS),
     "for_time": _FOR,
 }
 
@@ -306,7 +325,7 @@ _CONDITIONS = (
     ConditionSpec("hand_fault", "Hand hardware failure: joint limit, actuator saturation or tracking error."),
     ConditionSpec("simulation_unstable", "The physics engine diverged (non-finite or runaway state)."),
     ConditionSpec("timeout", "Time since the state began.",
-                  params={"seconds": _p(NUM, "time limit", unit="s", required=True)}),
+                  params={"seconds": _p(NUM, "time limit", unit="s", required=True, limits=ranges.TIMEOUT)}),
     ConditionSpec("subtask_succeeded", "The sub-task's machine ended in a success state."),
     ConditionSpec("subtask_failed", "The sub-task's machine ended in a failure state."),
     ConditionSpec("tactile_force_above", "At least min_pads pads read >= force_threshold.",
@@ -385,9 +404,10 @@ def parse_value(spec: ParamSpec, text: str) -> ParamValue:
     if spec.type is ParamType.VECTOR:
         return coerce_value(spec, tuple(float(v) for v in text.split()))
     try:
-        return coerce_value(spec, int(text) if spec.type is ParamType.INTEGER else float(text))
+        value = int(text) if spec.type is ParamType.INTEGER else float(text)
     except ValueError:
         raise ValueError(f"'{text}' is not a {spec.type.value}") from None
+    return coerce_value(spec, value)
 
 
 def coerce_value(spec: ParamSpec, value: object) -> ParamValue:
@@ -396,9 +416,9 @@ def coerce_value(spec: ParamSpec, value: object) -> ParamValue:
     if kind is ParamType.FLAG and isinstance(value, bool):
         return value
     if kind is ParamType.INTEGER and isinstance(value, int) and not isinstance(value, bool):
-        return value
+        return _in_range(spec, value)
     if kind is ParamType.NUMBER and isinstance(value, (int, float)) and not isinstance(value, bool):
-        return float(value)
+        return _in_range(spec, float(value))
     if kind is ParamType.WORD and isinstance(value, str):
         if spec.choices and value not in spec.choices:
             raise ValueError(f"'{value}' is not one of {', '.join(spec.choices)}")
@@ -407,13 +427,24 @@ def coerce_value(spec: ParamSpec, value: object) -> ParamValue:
         vector = tuple(float(v) for v in value)
         if spec.length is not None and len(vector) != spec.length:
             raise ValueError(f"needs {spec.length} numbers, got {len(vector)}")
+        for v in vector:
+            _in_range(spec, v)
         return vector
     if kind is ParamType.POINTS and isinstance(value, (tuple, list)):
         points = tuple(tuple(float(v) for v in p) for p in value)
         if any(len(p) != 3 for p in points):
             raise ValueError("every point needs 3 numbers (x y z)")
+        for v in (v for p in points for v in p):
+            _in_range(spec, v)
         return points
     raise ValueError(f"{value!r} is not a {kind.value}")
+
+
+def _in_range(spec: ParamSpec, value: float) -> float:
+    problem = spec.allowed.problem(value)
+    if problem:
+        raise ValueError(problem)
+    return value
 
 
 def check_params(where: str, specs: Mapping[str, ParamSpec], params: Mapping[str, object]) -> list[str]:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import difflib
 import json
+from collections import defaultdict
 from dataclasses import asdict, dataclass
 from enum import StrEnum
 from typing import Iterable
@@ -52,10 +53,53 @@ def has_errors(diagnostics: Iterable[Diagnostic]) -> bool:
     return any(d.severity is Severity.ERROR for d in diagnostics)
 
 
+class Suggester:
+    """"Did you mean" hints for many misspellings among many names, each in time that does
+    not grow with the number of names.
+
+    Small vocabularies are searched whole. Large ones (a task's state names) are indexed by
+    every one-letter deletion of each name; a word is looked up by its deletions of up to two
+    letters (one for long words). That finds any name one edit away (a letter dropped,
+    added, changed or two swapped) and most two away; only those candidates are ranked.
+    """
+
+    SMALL = 200  # names searched whole
+    LONGEST = 64  # longer names are indexed as they are, not by their deletions
+    TWO_EDITS = 24  # words up to this long are also looked up by their two-letter deletions
+    PER_KEY = 32  # candidates kept per deletion key: hints, not an exhaustive search
+
+    def __init__(self, choices: Iterable[str]) -> None:
+        self.choices = list(dict.fromkeys(choices))
+        self.index: dict[str, list[str]] | None = None
+        if len(self.choices) > self.SMALL:
+            self.index = defaultdict(list)
+            for name in self.choices:
+                for key in _deletions(name):
+                    if len(self.index[key]) < self.PER_KEY:
+                        self.index[key].append(name)
+
+    def hint(self, word: str) -> str | None:
+        """A hint naming the closest known word, as compilers do for misspellings."""
+        if self.index is None:
+            pool = self.choices
+        else:
+            keys = _deletions(word)
+            if len(word) <= self.TWO_EDITS:
+                keys = {k2 for k in keys for k2 in _deletions(k)}
+            pool = list(dict.fromkeys(n for key in keys for n in self.index.get(key, ())))
+        close = difflib.get_close_matches(word, pool, n=1, cutoff=0.6)
+        return f"did you mean '{close[0]}'?" if close else None
+
+
+def _deletions(word: str) -> set[str]:
+    if len(word) > Suggester.LONGEST:
+        return {word}
+    return {word} | {word[:i] + word[i + 1:] for i in range(len(word))}
+
+
 def did_you_mean(word: str, choices: Iterable[str]) -> str | None:
     """A hint naming the closest known word, as compilers do for misspellings."""
-    close = difflib.get_close_matches(word, list(choices), n=1, cutoff=0.6)
-    return f"did you mean '{close[0]}'?" if close else None
+    return Suggester(choices).hint(word)
 
 
 def sort_key(d: Diagnostic) -> tuple:

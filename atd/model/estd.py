@@ -10,6 +10,8 @@ vocabulary, because an ESTD is also read back from files written elsewhere.
 
 from __future__ import annotations
 
+from functools import cached_property
+
 from typing import Annotated, Literal, Union
 
 from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag
@@ -118,6 +120,19 @@ class Estd(EstdElement):
     states: tuple[EstdState, ...]
     transitions: tuple[EstdTransition, ...] = ()
     version: int = FORMAT_VERSION
+
+    @cached_property
+    def states_by_name(self) -> dict[str, EstdState]:
+        return {s.name: s for s in self.states}
+
+    @cached_property
+    def leaving(self) -> dict[str, tuple[EstdTransition, ...]]:
+        """Each state's outgoing transitions in document order: what the executor checks
+        each tick, found without scanning the whole machine."""
+        out: dict[str, list[EstdTransition]] = {}
+        for t in self.transitions:
+            out.setdefault(t.origin, []).append(t)
+        return {origin: tuple(ts) for origin, ts in out.items()}
 
     def walk(self, prefix: str = "") -> list[tuple[str, Estd]]:
         """This machine and every nested sub-machine, each with its state path."""

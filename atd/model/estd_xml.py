@@ -17,6 +17,7 @@ from pydantic import ValidationError
 
 from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamSpec, format_number, format_value, parse_value
 from atd.model.diagnostics import Diagnostic, error
+from atd.model.files import InputError, read_capped
 from atd.model.estd import (
     Condition,
     ConditionGroup,
@@ -30,7 +31,7 @@ from atd.model.estd import (
 from atd.model.reader import TaskReader
 from atd.model.task import Location
 from atd.model.writer import object_element
-from atd.model.xmlsafe import ParsedXml, parse_bytes, read_file
+from atd.model.xmlsafe import MAX_BYTES, ParsedXml, parse_bytes, read_file
 from schemas import schema_path
 
 ROOT = "estd"
@@ -230,6 +231,6 @@ def read_estd(path: str | Path) -> tuple[Estd | None, list[Diagnostic]]:
         doc, found = read_file(path)
         return (None, found) if doc is None else _from_doc(doc)
     try:
-        return parse_estd_json(path.read_bytes(), str(path))
-    except OSError as exc:
-        return None, [error("ESTD001", f"cannot read file: {exc.strerror}", Location(str(path), 0, 0), "check the path")]
+        return parse_estd_json(read_capped(path, MAX_BYTES), str(path))
+    except InputError as exc:
+        return None, [error("ESTD001", str(exc), Location(str(path), 0, 0), "name an ESTD file (.estd.xml or .json)")]

@@ -8,9 +8,10 @@ from pathlib import Path
 from lxml import etree
 
 from atd.model.bulk import cyclic_gc_paused
-from atd.model.diagnostics import Diagnostic, error, has_errors
+from atd.model.diagnostics import Diagnostic, error, has_errors, warning
+from atd.model.files import is_regular_file
 from atd.model.reader import read_task
-from atd.model.task import Location, Task
+from atd.model.task import Location, State, Task
 from atd.model.validate import check_task, subtask_path
 from atd.model.vocabulary import StateType
 from atd.model.xmlsafe import ParsedXml, read_file
@@ -44,7 +45,10 @@ def load_task(path: str | Path) -> tuple[Task | None, list[Diagnostic]]:
         return _load(Path(path), (), {})
 
 
-def _load(path: Path, including: tuple[Path, ...], seen: dict[Path, list[Diagnostic]]) -> tuple[Task | None, list[Diagnostic]]:
+Loaded = dict[Path, tuple[Task | None, list[Diagnostic]]]  # sub-tasks read so far, by resolved path
+
+
+def _load(path: Path, including: tuple[Path, ...], seen: Loaded) -> tuple[Task | None, list[Diagnostic]]:
     doc, found = read_file(path)
     if doc is None:
         return None, found
@@ -60,21 +64,33 @@ def _load(path: Path, including: tuple[Path, ...], seen: dict[Path, list[Diagnos
     return task, found
 
 
-def _check_subtasks(task: Task, including: tuple[Path, ...], seen: dict[Path, list[Diagnostic]]) -> list[Diagnostic]:
+def _check_subtasks(task: Task, including: tuple[Path, ...], seen: Loaded) -> list[Diagnostic]:
     found: list[Diagnostic] = []
     for state in task.states:
         if state.type is not StateType.TASK or not state.file:
             continue
         sub = subtask_path(task, state)
-        if not sub.is_file():
+        if not is_regular_file(sub):
             found.append(error("ATD211", f"sub-task file '{state.file}' of state '{state.name}' not found",
                                state.loc, f"looked for {sub}; paths are relative to the including file"))
         elif sub.resolve() in including:
             what = "itself" if sub.resolve() == including[-1] else "a task that includes it"
             found.append(error("ATD212", f"state '{state.name}' includes {what} ('{state.file}')", state.loc,
                                "a task cannot contain itself; loop with transitions instead"))
-        elif sub.resolve() not in seen:
-            seen[sub.resolve()] = []
-            _, seen[sub.resolve()] = _load(sub, including, seen)
-            found += seen[sub.resolve()]
+        else:
+            if sub.resolve() not in seen:
+                seen[sub.resolve()] = (None, [])
+                seen[sub.resolve()] = _load(sub, including, seen)
+                found += seen[sub.resolve()][1]
+            found += _unsimulated_object(task, state, seen[sub.resolve()][0])
     return found
+
+
+def _unsimulated_object(task: Task, state: State, sub: Task | None) -> list[Diagnostic]:
+    """A run simulates the top task's world only; a sub-task describing another object would
+    be silently left out of it, so say so."""
+    if sub is None or sub.object is None or sub.object == task.object:
+        return []
+    return [warning("ATD217", f"the <object> of sub-task '{state.file}' differs from this task's and is not "
+                              "simulated: a run builds the world of the top task only", state.loc,
+                    "describe the object in the including task (the same <object> block in both is fine)")]

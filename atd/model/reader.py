@@ -7,12 +7,17 @@ and hands the rest on so that graph checks still run, as a compiler does.
 from __future__ import annotations
 
 from enum import StrEnum
+from pathlib import Path
 from typing import Iterable, TypeVar
 
 import numpy as np
 from lxml import etree
 
 from atd.model.diagnostics import Diagnostic, did_you_mean, error, warning
+from atd.model import ranges
+from atd.model.controllers import CONTROLLERS, parse_value
+from atd.model.files import name_too_long
+from atd.model.ranges import Range
 from atd.model.task import (
     Environment,
     Event,
@@ -120,8 +125,9 @@ class TaskReader:
             )
             return None
 
-    def _numbers(self, node: etree._Element, what: str, count: int | None = None,
+    def _numbers(self, node: etree._Element, what: str, count: int | None, allowed: Range,
                  words: list[str] | None = None) -> tuple[float, ...] | None:
+        """The numbers of an element, each checked against its declared range."""
         self._no_children(node)
         words = _words(node) if words is None else words
         try:
@@ -132,27 +138,25 @@ class TaskReader:
                         "write numbers in metres, kilograms and seconds, e.g. 0.25")
             return None
         if not all(np.isfinite(values)):
-            self._error("ATD106", f"{what} holds a non-finite number", node, "use finite numbers")
+            self._error("ATD106", f"{what}: {allowed.problem(next(v for v in values if not np.isfinite(v)))}",
+                        node, "use finite numbers")
             return None
         if count is not None and len(values) != count:
             self._error("ATD105", f"{what} needs {count} number{'s' * (count != 1)}, found {len(values)}", node,
                         _count_hint(what, count))
             return None
+        problem = next((p for p in map(allowed.problem, values) if p), None)
+        if problem:
+            self._error("ATD108", f"{what}: {problem}", node, f"give {what} in {allowed}")
+            return None
         return values
 
-    def _positive(self, node: etree._Element, what: str, allow_zero: bool = False) -> float | None:
-        values = self._numbers(node, what, 1)
-        if values is None:
-            return None
-        value = values[0]
-        if value < 0 or (value == 0 and not allow_zero):
-            self._error("ATD108", f"{what} must be {'non-negative' if allow_zero else 'positive'}, got {value:g}",
-                        node, f"give a {'non-negative' if allow_zero else 'positive'} {what}")
-            return None
-        return value
+    def _value(self, node: etree._Element, what: str, allowed: Range) -> float | None:
+        values = self._numbers(node, what, 1, allowed)
+        return values[0] if values else None
 
     def _pose(self, node: etree._Element, what: str = "pose") -> Pose | None:
-        values = self._numbers(node, what, 16)
+        values = self._numbers(node, what, 16, ranges.COORDINATE)
         if values is None:
             return None
         if not is_rigid(np.asarray(values).reshape(4, 4)):
@@ -165,6 +169,13 @@ class TaskReader:
             )
             return None
         return Pose(matrix=values, loc=self.doc.loc(node))
+
+    def _file_name(self, node: etree._Element, name: str, what: str) -> bool:
+        """A file name a file system can hold; a located error when it is not."""
+        problem = name_too_long(Path(name))
+        if problem:
+            self._error("ATD112", f"{what}: {problem}", node, "rename the file and this reference")
+        return problem is None
 
     def _single(self, seen: dict[str, etree._Element], node: etree._Element, parent: str) -> bool:
         """True the first time a property appears; a repeat is reported."""
@@ -227,16 +238,18 @@ class TaskReader:
             if child.tag == "pose":
                 fields["pose"] = self._pose(child, "object pose")
             elif child.tag == "weight":
-                fields["weight"] = self._positive(child, "weight")
+                fields["weight"] = self._value(child, "weight", ranges.WEIGHT)
             elif child.tag == "inertia":
-                fields["inertia"] = self._numbers(child, "inertia", 9)
+                fields["inertia"] = self._numbers(child, "inertia", 9, ranges.INERTIA)
             elif child.tag == "friction":
-                fields["friction"] = self._positive(child, "friction", allow_zero=True)
+                fields["friction"] = self._value(child, "friction", ranges.FRICTION)
             elif child.tag == "shape":
                 self._no_children(child)
                 fields["shape"] = (child.text or "").strip() or None
                 if fields["shape"] is None:
                     self._error("ATD105", "empty <shape>", child, "name a mesh file next to the ATD, e.g. cup.stl")
+                elif not self._file_name(child, fields["shape"], "shape"):
+                    fields["shape"] = None
             elif child.tag == "class":
                 fields["object_class"] = self._enum(child, ObjectClass, "object class")
         if "size" in seen:
@@ -246,11 +259,7 @@ class TaskReader:
     def _size(self, node: etree._Element, kind: ObjectClass | None) -> tuple[float, ...] | None:
         layout = SIZE_LAYOUT[kind or ObjectClass.BOX]
         what = f"size of a {(kind or ObjectClass.BOX).value} ({' '.join(layout)})"
-        values = self._numbers(node, what, len(layout))
-        if values is not None and min(values) <= 0:
-            self._error("ATD108", f"{what} must be positive", node, "sizes are in metres, e.g. 0.05")
-            return None
-        return values
+        return self._numbers(node, what, len(layout), ranges.SIZE)
 
     def environment(self, node: etree._Element) -> Environment:
         self._check_attributes(node, ())
@@ -260,13 +269,10 @@ class TaskReader:
                 self._unknown_element(child, "environment", ("obstacle",))
                 continue
             self._check_attributes(child, ("size",))
-            position = self._numbers(child, "obstacle position", 3)
+            position = self._numbers(child, "obstacle position", 3, ranges.COORDINATE)
             size = None
             if "size" in child.attrib:
-                size = self._numbers(child, "obstacle size", 3, words=child.get("size", "").split())
-                if size is not None and min(size) <= 0:
-                    self._error("ATD108", "obstacle size must be positive", child, "sizes are in metres, e.g. 0.1 0.1 0.2")
-                    size = None
+                size = self._numbers(child, "obstacle size", 3, ranges.SIZE, words=child.get("size", "").split())
             if position is not None:
                 obstacles.append(Obstacle(position=position, size=size, loc=self.doc.loc(child)))
         return Environment(obstacles=tuple(obstacles), loc=self.doc.loc(node))
@@ -289,6 +295,8 @@ class TaskReader:
             self._error("ATD103", f"only type=\"task\" states take a file, not type=\"{kind.value}\"", node,
                         'remove file="..." or set type="task"')
         fields = self._state_properties(node)
+        if node.get("file") and not self._file_name(node, node.get("file", ""), "file"):
+            kind = None
         if name is None or kind is None:
             if name:
                 self.dropped_states.add(name)
@@ -321,20 +329,12 @@ class TaskReader:
             elif key == "path":
                 fields["path"] = self._path(child)
             elif key == "object_size":
-                fields["object_size"] = self._positive(child, "object size")
+                fields["object_size"] = self._value(child, "object size", ranges.SIZE)
             elif key == "hand_opening":
-                fields["hand_opening"] = self._fraction(child)
+                fields["hand_opening"] = self._value(child, "hand opening", ranges.FRACTION)
         if parameters:
             fields["parameters"] = parameters
         return {k: v for k, v in fields.items() if v is not None}
-
-    def _fraction(self, node: etree._Element) -> float | None:
-        values = self._numbers(node, "hand opening", 1)
-        if values is not None and not 0.0 <= values[0] <= 1.0:
-            self._error("ATD108", f"hand opening must lie in [0, 1], got {values[0]:g}", node,
-                        "0 is closed, 1 fully open")
-            return None
-        return values[0] if values else None
 
     def _parameter(self, node: etree._Element, into: dict[str, str]) -> None:
         self._check_attributes(node, ("name",))
@@ -346,6 +346,22 @@ class TaskReader:
             self._error("ATD109", f"parameter '{name}' is set twice", node, "keep one")
         else:
             into[name] = " ".join(_words(node))
+            self._parameter_value(node, name, into[name])
+
+    def _parameter_value(self, node: etree._Element, name: str, text: str) -> None:
+        """A value no controller taking this parameter accepts is an error here, at its line,
+        not a surprise in the run; which controller takes it is the robot's business."""
+        specs = [c.params[name] for c in CONTROLLERS.values() if name in c.params and c.params[name].tunable]
+        problems = []
+        for spec in specs:
+            try:
+                parse_value(spec, text)
+                return
+            except ValueError as exc:
+                problems.append(str(exc))
+        if problems:
+            self._error("ATD108", f"parameter '{name}': {problems[0]}", node,
+                        f"see docs/estd.md for what '{name}' means and its unit")
 
     def _path(self, node: etree._Element) -> tuple[Waypoint, ...] | None:
         points = []
@@ -358,7 +374,7 @@ class TaskReader:
                 pose = self._pose(child, "waypoint pose")
                 values = pose.matrix if pose else None
             else:
-                values = self._numbers(child, f"<{child.tag}>", WAYPOINT_COUNT[str(child.tag)])
+                values = self._numbers(child, f"<{child.tag}>", WAYPOINT_COUNT[str(child.tag)], ranges.COORDINATE)
             if values is not None:
                 points.append(Waypoint(kind=child.tag, values=values, loc=self.doc.loc(child)))
         if not points and not _elements(node):
@@ -382,7 +398,7 @@ class TaskReader:
                 continue
             self._check_attributes(child, ())
             if kind is EventType.TIMEOUT:
-                seconds = self._positive(child, "timeout")
+                seconds = self._value(child, "timeout", ranges.TIMEOUT)
                 if seconds is not None:
                     events.append(Event(type=kind, seconds=seconds, loc=self.doc.loc(child)))
             else:

@@ -10,7 +10,9 @@ from pathlib import Path
 
 import networkx as nx
 
-from atd.model.diagnostics import Diagnostic, did_you_mean, error, has_errors, warning
+from atd.model.diagnostics import Diagnostic, Suggester, did_you_mean, error, has_errors, warning
+from atd.model.files import is_regular_file
+from atd.model.meshcheck import MeshError, check_mesh
 from atd.model.task import State, Task
 from atd.model.vocabulary import StateType
 
@@ -65,11 +67,13 @@ def _names(task: Task) -> list[Diagnostic]:
 def _endpoints(task: Task, unreadable: frozenset[str]) -> list[Diagnostic]:
     found = []
     names = task.states_by_name
+    suggester: Suggester | None = None  # built at the first unknown name, shared by the rest
     for t in task.transitions:
         for end, name in (("origin", t.origin), ("destination", t.destination)):
             if name not in names and name not in unreadable:
+                suggester = suggester or Suggester(names)
                 found.append(error("ATD202", f"transition {end} '{name}' is not a state", t.loc,
-                                   did_you_mean(name, names) or "name a state defined in this task"))
+                                   suggester.hint(name) or "name a state defined in this task"))
     return found
 
 
@@ -127,12 +131,19 @@ def _targets(task: Task) -> list[Diagnostic]:
 
 
 def _shape(task: Task) -> list[Diagnostic]:
-    """A mesh named by the object must be there when the task runs; say so now."""
+    """A mesh named by the object must be there when the task runs, and be one the engines
+    can load; say so now."""
     obj = task.object
     if obj is None or obj.shape is None or task.source is None:
         return []
     mesh = Path(task.source).parent / obj.shape
-    if mesh.is_file():
+    if is_regular_file(mesh):
+        try:
+            check_mesh(mesh)
+        except MeshError as exc:
+            return [error("ATD216", f"object shape '{obj.shape}': {exc}", obj.loc,
+                          "export the mesh again as STL or OBJ, in metres, or remove <shape> to simulate the "
+                          "object from its class and size")]
         return []
     return [warning("ATD215", f"object shape '{obj.shape}' not found next to the task", obj.loc,
                     f"looked for {mesh}; simulation needs the mesh there (STL or OBJ), or remove <shape> "
@@ -144,11 +155,8 @@ def _reachability(task: Task) -> list[Diagnostic]:
     graph = _graph(task)
     start = task.initial_state
     reached = nx.descendants(graph, start) | {start} if start in graph else set()
-    ends = [s.name for s in task.states if s.type.is_end]
-    finishing = set(ends)
-    reverse = graph.reverse(copy=False)
-    for end in ends:
-        finishing |= nx.descendants(reverse, end)
+    ends = {s.name for s in task.states if s.type.is_end}
+    finishing = _reaching(graph, ends)
     for state in task.states:
         if state.name not in reached:
             found.append(warning("ATD207", f"state '{state.name}' cannot be reached from the initial state '{start}'",
@@ -156,6 +164,18 @@ def _reachability(task: Task) -> list[Diagnostic]:
         elif state.name not in finishing:
             found.append(warning("ATD208", f"no end state can be reached from state '{state.name}'", state.loc,
                                  "the task would loop forever from here; add a way out, e.g. <timeout>"))
+    return found
+
+
+def _reaching(graph: nx.MultiDiGraph, targets: set[str]) -> set[str]:
+    """Every node with a path into `targets`: one search backwards from all of them at once."""
+    found, frontier = set(targets), list(targets)
+    while frontier:
+        node = frontier.pop()
+        for before in graph.predecessors(node):
+            if before not in found:
+                found.add(before)
+                frontier.append(before)
     return found
 
 

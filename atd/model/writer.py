@@ -98,7 +98,7 @@ def replacing(path: Path) -> Iterator[Path]:
     """A temporary file beside `path` that replaces it, readable by all, when the block ends
     without error, and is removed when it does not: a crash never leaves half a file behind."""
     path = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or ".")
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name[:32]}.", suffix=".tmp", dir=path.parent or ".")
     os.close(fd)
     try:
         yield Path(tmp)

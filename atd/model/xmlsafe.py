@@ -8,6 +8,7 @@ all (an ATD never needs one). Every refusal is one diagnostic, never an exceptio
 from __future__ import annotations
 
 import bisect
+import codecs
 import re
 from dataclasses import dataclass
 from pathlib import Path
@@ -15,6 +16,7 @@ from pathlib import Path
 from lxml import etree
 
 from atd.model.diagnostics import Diagnostic, error
+from atd.model.files import InputError, InputTooBig, read_capped
 from atd.model.task import Location
 
 MAX_BYTES = 32 * 1024 * 1024  # a 10,000-state task is about 4 MB
@@ -23,6 +25,16 @@ MAX_DEPTH = 256  # libxml2 refuses deeper documents unless huge_tree is set; an 
 _START_TAG = re.compile(rb"<([A-Za-z_][\w.\-]*)")
 _SKIPPED = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>", re.S)
 _DOCTYPE = re.compile(rb"<!DOCTYPE|<!ENTITY", re.I)
+_DECLARED_ENCODING = re.compile(r"""^(<\?xml[^>]*?encoding\s*=\s*)(["'])[^"']*\2""")
+# libxml2's fixed limits (without huge_tree): the words its messages use, and ours.
+_PARSER_LIMITS = (
+    (("Comment too big", "Text node too long", "Buffer size limit", "Huge input lookup", "XML_PARSE_HUGE"),
+     "a comment, text or attribute value is longer than the 10,000,000 characters an ATD may hold in one place",
+     "shorten it, or split the task into sub-tasks (type=\"task\")"),
+    (("Name too long",),
+     "an element or attribute name is longer than the 50,000 characters an ATD may use",
+     "use the element and attribute names of docs/atd-format.md"),
+)
 
 
 @dataclass
@@ -86,10 +98,36 @@ def _too_big(size: int, file: str) -> Diagnostic:
     )
 
 
+def _utf16_as_utf8(data: bytes) -> bytes:
+    """UTF-16 text (which every XML reader must accept) as UTF-8, so one byte-based reader
+    serves both; other bytes unchanged. UnicodeDecodeError when it does not decode."""
+    if data[:2] in (codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE):
+        encoding = "utf-16"
+    elif data[:2] in (b"<\x00", b"\x00<"):
+        encoding = "utf-16-le" if data[0] == ord("<") else "utf-16-be"
+    else:
+        return data
+    text = _DECLARED_ENCODING.sub(r"\1\2UTF-8\2", data.decode(encoding), count=1)
+    return text.encode("utf-8")
+
+
+def _parser_limit(message: str, loc: Location) -> Diagnostic | None:
+    """One of libxml2's fixed limits, said in our words; None for any other syntax error."""
+    for words, what, hint in _PARSER_LIMITS:
+        if any(w in message for w in words):
+            return error("ATD007", what, loc, hint)
+    return None
+
+
 def parse_bytes(data: bytes, file: str) -> tuple[ParsedXml | None, list[Diagnostic]]:
     """Parse untrusted bytes; on refusal return None and the one reason why."""
     if len(data) > MAX_BYTES:
         return None, [_too_big(len(data), file)]
+    try:
+        data = _utf16_as_utf8(data)
+    except UnicodeDecodeError as exc:
+        return None, [error("ATD006", f"cannot decode file as UTF-16: {exc.reason}", Location(file, 1, 1),
+                            "save the file as UTF-8")]
     if b"\x00" in data[:65536] or not data.strip():
         what = "is empty" if not data.strip() else "is binary, not XML text"
         return None, [error("ATD006", f"file {what}", Location(file, 1, 1), "an ATD is an XML text file")]
@@ -108,12 +146,15 @@ def parse_bytes(data: bytes, file: str) -> tuple[ParsedXml | None, list[Diagnost
         root = etree.fromstring(data, _parser())
     except etree.XMLSyntaxError as exc:
         line, col = exc.position if exc.position else (1, 1)
-        message = str(exc.msg or exc).split(", line ")[0]
+        message = str(exc.msg or exc).split(", line ")[0].strip()
         if "Excessive depth" in message:
             return None, [
                 error("ATD005", "elements are nested too deeply", Location(file, line, col),
                       f"an ATD nests 4 levels (statemachine, state, path, position); this file nests over {MAX_DEPTH}")
             ]
+        limit = _parser_limit(message, Location(file, line, max(col, 1)))
+        if limit:
+            return None, [limit]
         return None, [
             error("ATD003", f"not well-formed XML: {message}", Location(file, line, max(col, 1)),
                   "check the tag at this place is closed and the file is complete")
@@ -125,17 +166,22 @@ def parse_bytes(data: bytes, file: str) -> tuple[ParsedXml | None, list[Diagnost
 
 
 def read_file(path: Path, shown_as: str | None = None) -> tuple[ParsedXml | None, list[Diagnostic]]:
-    """Read and parse a file, refusing oversized ones before reading them."""
+    """Read and parse a file through the input guard: a regular file, never more than MAX_BYTES."""
     file = shown_as or str(path)
     try:
-        size = path.stat().st_size
-        if size > MAX_BYTES:
-            return None, [_too_big(size, file)]
-        data = path.read_bytes()
-    except FileNotFoundError:
-        return None, [error("ATD001", "no such file", Location(file, 0, 0), "check the path")]
-    except IsADirectoryError:
-        return None, [error("ATD001", "is a directory, not a file", Location(file, 0, 0), "name an .xml file")]
-    except OSError as exc:
-        return None, [error("ATD001", f"cannot read file: {exc.strerror}", Location(file, 0, 0), None)]
+        data = read_capped(Path(path), MAX_BYTES)
+    except InputTooBig:
+        return None, [_too_big(_reported_size(path), file)]
+    except InputError as exc:
+        return None, [error("ATD001", str(exc), Location(file, 0, 0), _INPUT_HINT)]
     return parse_bytes(data, file)
+
+
+_INPUT_HINT = "name an ATD file (a regular .xml file)"
+
+
+def _reported_size(path: Path) -> int:
+    try:
+        return max(Path(path).stat().st_size, MAX_BYTES + 1)
+    except OSError:
+        return MAX_BYTES + 1

@@ -18,7 +18,7 @@ import numpy as np
 from atd.model.estd import Condition as Leaf
 from atd.model.estd import ConditionGroup, Estd, EstdEvent, EstdState, EstdTransition
 from atd.model.vocabulary import StateType
-from atd.runtime.arbitrator import arbitrate
+from atd.runtime.arbitrator import RobotCommand, arbitrate
 from atd.runtime.trace import Trace
 from primitives.base import Condition, Context, ControlData, Status, StateView
 from primitives.registry import BuildError, build_condition, build_controller
@@ -85,7 +85,7 @@ class Machine:
         self.base = base
         self.trace = trace
         self.visits = visits
-        self.states = {s.name: s for s in estd.states}
+        self.states = estd.states_by_name
         self.ended: EstdState | None = None
         self.current: EstdState | None = None
         self.last_exit: Visit | None = None  # the visit left by the latest transition
@@ -100,7 +100,7 @@ class Machine:
         self.hand = build_controller(state.hand, "hand", ctx) if state.hand else None
         self.edges = [
             Edge(t, [(e, ConditionTree(e.condition, ctx)) for e in t.events])
-            for t in self.estd.transitions if t.origin == name
+            for t in self.estd.leaving.get(name, ())
         ]
         self.visit = Visit(self.prefix + name, state.atd, readings.time)
         self.visits.append(self.visit)
@@ -233,9 +233,10 @@ class Executor:
         self.wall_budget = wall_budget
         self._hand_dof = len(robot.info.hand.dofs)
         self._still = np.zeros(robot.info.arm_dof)  # the arm's command when no controller moves it
+        self.command: RobotCommand | None = None  # the arbitrator's latest, for recordings
 
     def _apply(self, outputs: list[ControlData]) -> None:
-        command = arbitrate(outputs, self._hand_dof)
+        self.command = command = arbitrate(outputs, self._hand_dof)
         dq = self._still if command.joint_velocity is None else command.joint_velocity
         if command.twist is not None and command.twist.any():
             dq = dq + dls_joint_velocities(self.robot.jacobian(), command.twist, self.robot.twist_damping)
@@ -271,7 +272,6 @@ class Executor:
                     shown = where
                     progress(where, readings.time, wall)
         wall = wallclock.perf_counter() - started
-        self.trace.close()
         end = self.machine.ended
         return Outcome(
             succeeded=end is not None and end.type is StateType.SUCCESS,

@@ -3,7 +3,14 @@ events that fired with the readings behind them, and the outcome."""
 
 from __future__ import annotations
 
-from atd.runtime.executor import Outcome
+from typing import Callable, TypeVar
+
+from atd.runtime.executor import Outcome, Visit
+
+T = TypeVar("T")
+
+
+SECTION_LINES = 40  # lines a section of the summary shows at most; the trace keeps everything
 
 
 def _evidence(condition: dict) -> str:
@@ -22,22 +29,33 @@ def _short(value: object) -> str:
     return str(value)
 
 
+def _capped(items: list[T], render: Callable[[T], str], what: str) -> list[str]:
+    """A line per item; for a long section, the first and last lines and how many were left
+    out between (only the lines shown are formatted, so a long run stays cheap to report)."""
+    half = SECTION_LINES // 2
+    if len(items) <= SECTION_LINES:
+        return [render(i) for i in items]
+    return [*map(render, items[:half]),
+            f"  ... {len(items) - 2 * half} more {what} (run with --trace FILE to keep every one)",
+            *map(render, items[-half:])]
+
+
 def summary(outcome: Outcome, records: list[dict], title: str) -> str:
-    lines = [title, "", "path through the task:"]
     width = max((len(v.path) for v in outcome.visits), default=0)
-    for visit in outcome.visits:
+
+    def visit_line(visit: Visit) -> str:
         if visit.left is None:
-            lines.append(f"  {visit.entered:8.3f} s  {visit.path}")
-            continue
+            return f"  {visit.entered:8.3f} s  {visit.path}"
         took = f"{visit.left - visit.entered:.3f} s"
-        lines.append(f"  {visit.entered:8.3f} s  {visit.path.ljust(width)}  {took:>9}  "
-                     f"left on {' & '.join(visit.left_on)} ({visit.left_by})")
+        return (f"  {visit.entered:8.3f} s  {visit.path.ljust(width)}  {took:>9}  "
+                f"left on {' & '.join(visit.left_on)} ({visit.left_by})")
+
+    lines = [title, "", "path through the task:", *_capped(outcome.visits, visit_line, "states visited")]
     events = [r for r in records if r["type"] == "event"]
     if events:
         lines += ["", "events that fired:"]
-        for record in events:
-            why = "; ".join(_evidence(c) for c in record["conditions"])
-            lines.append(f"  {record['t']:8.3f} s  {record['atd']}: {why}")
+        lines += _capped(events, lambda r: f"  {r['t']:8.3f} s  {r['atd']}: "
+                                           f"{'; '.join(_evidence(c) for c in r['conditions'])}", "events")
     rtf = outcome.real_time_factor
     lines += ["", f"outcome: {outcome.summary}",
               f"simulated {outcome.sim_time:.2f} s in {outcome.wall_time:.2f} s of wall-clock time "

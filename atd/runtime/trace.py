@@ -8,9 +8,11 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import IO, Any
+from typing import Any
 
 import numpy as np
+
+from atd.model.files import write_output
 
 
 def _plain(value: Any) -> Any:
@@ -29,32 +31,15 @@ def _plain(value: Any) -> Any:
 
 
 class Trace:
-    """Collects records in memory and, when given a path, streams them to a file.
+    """Collects records in memory; `save` writes them as JSON lines in one atomic step, so
+    neither a crashed run nor a full disk leaves a half-written trace behind."""
 
-    The file is written under a temporary name and moved into place on `close()`, so a
-    crashed run never leaves a half-written trace where the complete one would be.
-    """
-
-    def __init__(self, path: Path | None = None) -> None:
+    def __init__(self) -> None:
         self.records: list[dict[str, Any]] = []
-        self._path = Path(path) if path else None
-        self._tmp = self._path.with_name(f".{self._path.name}.partial") if self._path else None
-        self._out: IO[str] | None = self._tmp.open("w") if self._tmp else None
 
     def write(self, kind: str, time: float, **fields: Any) -> None:
-        record = {"t": round(time, 6), "type": kind, **_plain(fields)}
-        self.records.append(record)
-        if self._out:
-            self._out.write(json.dumps(record, sort_keys=True) + "\n")
+        self.records.append({"t": round(time, 6), "type": kind, **_plain(fields)})
 
-    def close(self) -> None:
-        if self._out and self._tmp and self._path:
-            self._out.close()
-            self._tmp.replace(self._path)
-            self._out = None
-
-    def discard(self) -> None:
-        if self._out and self._tmp:
-            self._out.close()
-            self._tmp.unlink(missing_ok=True)
-            self._out = None
+    def save(self, path: Path) -> None:
+        """Write the trace to `path`; OutputError when it cannot be written."""
+        write_output(path, "".join(json.dumps(r, sort_keys=True) + "\n" for r in self.records).encode())

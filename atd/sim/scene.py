@@ -13,11 +13,12 @@ from typing import Literal
 import numpy as np
 
 from atd.model import ObjectClass, Task
+from atd.model.files import is_regular_file
+from atd.model.meshcheck import MeshError, check_mesh
 
 DEFAULT_WEIGHT = 0.2  # kg, when the ATD gives none
 DEFAULT_FRICTION = 1.0  # object against pads and table
 DEFAULT_OBSTACLE_SIZE = (0.05, 0.05, 0.05)
-MESH_SUFFIXES = (".stl", ".obj")
 
 # Table top z = 0: from just in front of the robots' bases to well past the work area.
 TABLE_CENTRE = (0.2, 0.0, -0.025)
@@ -107,10 +108,12 @@ def scene_from_task(task: Task, atd_file: Path) -> Scene:
         if info.shape is not None:
             mesh = (atd_file.parent / info.shape).resolve()
             where = f"{atd_file}: <object> shape '{info.shape}'"
-            if not mesh.is_file():
+            if not is_regular_file(mesh):
                 raise SceneError(f"{where}: no such file {mesh}; put the mesh next to the ATD or fix the path")
-            if mesh.suffix.lower() not in MESH_SUFFIXES:
-                raise SceneError(f"{where}: {mesh.suffix or 'no suffix'} meshes are not supported; use an STL or OBJ file")
+            try:
+                check_mesh(mesh)
+            except MeshError as exc:
+                raise SceneError(f"{where}: {exc}") from None
             kind = "mesh"
             size = _box_size(info)
         if info.pose is not None:

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from atd.model import replacing, write_atomically
+from atd.model.files import OutputError, describe_write_error
 
 FORMATS = (".gif", ".mp4")
 WIDTH, HEIGHT = 320, 240
@@ -128,4 +129,6 @@ class Recorder:
             (write_mp4 if path.suffix.lower() == ".mp4" else write_gif)(path, self.frames)
         except VideoError as exc:
             return f"no video written: {exc}"
+        except OSError as exc:
+            raise OutputError(describe_write_error(path, exc)) from None
         return f"video: {path} ({len(self.frames)} frames)"

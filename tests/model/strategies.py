@@ -85,7 +85,7 @@ def primitive_states(draw, name: str, arm_types=tuple(ARM), hand_types=tuple(HAN
         object_size=draw(st.none() | positive) if kind is StateType.GRASP else None,
         hand_opening=draw(st.none() | st.floats(0, 1)) if kind is StateType.RELEASE else None,
         parameters=draw(st.dictionaries(st.sampled_from(["force_threshold", "velocity"]),
-                                        st.sampled_from(["5", "0.005", "0 0 1"]), max_size=2)),
+                                        st.sampled_from(["0.5", "0.005", "1"]), max_size=2)),
     )
 
 

@@ -26,20 +26,20 @@ def test_every_robot_passes_its_self_test(robot: str, arm: str | None, engine: s
 
 def test_unknown_robot_is_named_with_the_known_ones() -> None:
     result = CliRunner().invoke(main, ["robots", "test", "melfaa"])
-    assert result.exit_code == 1
+    assert result.exit_code == 2
     assert "no robot 'melfaa' is installed" in result.output
     assert "baxter, melfa, tombatossals" in result.output
 
 
 def test_an_arm_the_robot_does_not_have_is_refused() -> None:
     result = CliRunner().invoke(main, ["robots", "test", "melfa", "--arm", "left"])
-    assert result.exit_code == 1
+    assert result.exit_code == 2
     assert "robot 'melfa' has no arm 'left'; choose one of: main" in result.output
 
 
 def test_video_other_than_gif_or_mp4_is_refused_before_running(tmp_path) -> None:
     result = CliRunner().invoke(main, ["robots", "test", "melfa", "--video", str(tmp_path / "run.avi")])
-    assert result.exit_code == 1
+    assert result.exit_code == 2
     assert "name the file *.gif or *.mp4" in result.output and "PASS" not in result.output
 
 

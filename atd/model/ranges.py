@@ -1,0 +1,68 @@
+"""The allowed range of every number a user can give: in an ATD, in a robot config, on the
+command line. Declared here once, and checked by `Range.problem` wherever a number is read.
+
+A NaN passes every comparison and an infinity outruns every limit, so a number that is not
+finite is never in range. The bounds are what the controllers and the engines can act on
+sensibly: a speed limit of 0 would be no limit, a mass of a microgram makes MuJoCo fail.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Range:
+    """A closed or half-open interval of finite numbers, with its unit for messages."""
+
+    low: float
+    high: float
+    unit: str = ""
+    low_open: bool = False
+
+    def __str__(self) -> str:
+        text = f"{'(' if self.low_open else '['}{_number(self.low)}, {_number(self.high)}]"
+        return f"{text} {self.unit}" if self.unit else text
+
+    def problem(self, value: float) -> str | None:
+        """Why `value` is refused, in words naming the allowed range; None when it is allowed."""
+        if not math.isfinite(value):
+            return f"{value} is not a finite number; give one in {self}"
+        if value < self.low or value > self.high or (self.low_open and value == self.low):
+            return f"{value:g} is outside {self}"
+        return None
+
+
+def _number(value: float) -> str:
+    return str(int(value)) if float(value).is_integer() else f"{value:g}"
+
+
+# ATD values: the object, the world, the task's timing.
+COORDINATE = Range(-10.0, 10.0, "m")  # positions, targets, waypoints: a robot's workspace and then some
+SIZE = Range(0.0, 10.0, "m", low_open=True)  # object and obstacle dimensions (a wall is an obstacle too)
+OBSTACLE_EXTENT = Range(0.0, 10.0, "m")  # in an ESTD: 0 0 0 is an obstacle of no given size
+WEIGHT = Range(0.001, 50.0, "kg")  # what both engines simulate stably next to a robot hand
+INERTIA = Range(-10.0, 10.0, "kg m^2")
+FRICTION = Range(0.0, 10.0)
+TIMEOUT = Range(0.0, 86_400.0, "s", low_open=True)  # a day
+FRACTION = Range(0.0, 1.0)
+
+# Controller and condition parameters, by the quantity they are (see atd.model.controllers).
+SPEED = Range(0.0, 2.0, "m/s", low_open=True)
+FORCE = Range(0.0, 1000.0, "N", low_open=True)
+TORQUE = Range(0.0, 100.0, "N m", low_open=True)
+DISTANCE = Range(0.0, 5.0, "m", low_open=True)
+DURATION = Range(0.0, 60.0, "s")  # filters and dwell times; 0 means none
+SPEED_FRACTION = Range(0.0, 1.0, low_open=True)  # of a joint's speed limit; 0 would never move
+LIMITS = Range(0.0, 100.0)  # velocity and acceleration limits; 0 means none
+DIRECTION = Range(-1.0, 1.0)  # components of a direction or normal
+PADS = Range(1, 64)
+TILT = Range(-90.0, 90.0, "deg")  # the hand turned away from top-down, about each world axis
+
+BY_UNIT = {"m/s": SPEED, "N": FORCE, "N m": TORQUE, "m": DISTANCE, "s": DURATION, "": FRACTION}
+
+# Command line.
+BUDGET = Range(0.0, 86_400.0, "s", low_open=True)
+SEED = Range(0, 2**32 - 1)  # numpy's seed range
+RECORD_RATE = Range(0.0, 10_000.0, "Hz", low_open=True)  # of simulated time; a tick is 200-1000 Hz

@@ -1,0 +1,139 @@
+"""Issue 12: nothing a user names as a file loses data, hangs the command or leaves a half-written file."""
+
+from __future__ import annotations
+
+import os
+import resource
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from atd.cli import main
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+
+@pytest.fixture
+def task(tmp_path: Path) -> Path:
+    path = tmp_path / "move.xml"
+    shutil.copy(EXAMPLES / "simple_move.xml", path)
+    return path
+
+
+def atd(*args: object) -> object:
+    return CliRunner().invoke(main, [str(a) for a in args])
+
+
+def leftovers(folder: Path) -> list[str]:
+    return sorted(p.name for p in folder.iterdir() if p.name.startswith("."))
+
+
+def test_translate_refuses_to_overwrite_its_own_task(task: Path) -> None:
+    before = task.read_bytes()
+    result = atd("translate", task, "--robot", "melfa", "-o", task)
+    assert result.exit_code == 2
+    assert "input of this command" in result.output
+    assert task.read_bytes() == before
+
+
+def test_run_refuses_a_trace_over_its_task(task: Path) -> None:
+    before = task.read_bytes()
+    result = atd("run", task, "--robot", "melfa", "--trace", task)
+    assert result.exit_code == 2 and "input of this command" in result.output
+    assert task.read_bytes() == before
+
+
+def test_trace_and_video_naming_one_file_are_refused_and_leave_nothing(task: Path) -> None:
+    out = task.with_name("run.gif")
+    result = atd("run", task, "--robot", "melfa", "--trace", out, "--video", out)
+    assert result.exit_code == 2 and "names the same file" in result.output
+    assert not out.exists() and leftovers(task.parent) == []
+
+
+def test_an_output_that_is_not_a_regular_file_is_never_replaced(task: Path) -> None:
+    fifo = task.with_name("pipe.xml")
+    os.mkfifo(fifo)
+    result = atd("translate", task, "--robot", "melfa", "-o", fifo)
+    assert result.exit_code == 2 and "not a regular file" in result.output
+    assert fifo.is_fifo()
+
+
+def test_a_rejected_video_name_leaves_no_partial_trace(task: Path) -> None:
+    result = atd("run", task, "--robot", "melfa", "--trace", task.with_name("t.jsonl"),
+                 "--video", task.with_name("run.avi"))
+    assert result.exit_code == 2 and "*.gif or *.mp4" in result.output
+    assert sorted(p.name for p in task.parent.iterdir()) == ["move.xml"]
+
+
+def test_an_option_given_twice_is_refused(task: Path) -> None:
+    result = atd("translate", task, "--robot", "melfa", "-o", task.with_name("a.xml"), "-o", task.with_name("b.xml"))
+    assert result.exit_code == 2 and "more than once" in result.output
+    assert sorted(p.name for p in task.parent.iterdir()) == ["move.xml"]
+
+
+def _limited_file_size() -> None:
+    resource.setrlimit(resource.RLIMIT_FSIZE, (1024, 1024))
+
+
+def test_a_file_size_limit_is_one_line_exit_2_and_nothing_left(task: Path) -> None:
+    out = task.with_name("move.estd.xml")
+    done = subprocess.run([sys.executable, "-m", "atd", "translate", str(task), "--robot", "melfa", "-o", str(out),
+                           "-q"], capture_output=True, text=True, preexec_fn=_limited_file_size, timeout=60)
+    assert done.returncode == 2
+    assert done.stderr.strip().count("\n") == 0 and "File too large" in done.stderr
+    assert sorted(p.name for p in task.parent.iterdir()) == ["move.xml"]
+
+
+@pytest.mark.parametrize("command", [["validate"], ["graph", "-o", "{out}"], ["run", "--robot", "melfa"],
+                                     ["check"]])
+def test_a_fifo_as_the_task_is_refused_at_once(tmp_path: Path, command: list[str]) -> None:
+    fifo = tmp_path / "task.xml"
+    os.mkfifo(fifo)
+    args = [a.format(out=tmp_path / "g.svg") for a in command]
+    done = subprocess.run([sys.executable, "-m", "atd", args[0], str(fifo), *args[1:]], capture_output=True,
+                          text=True, timeout=30)
+    assert done.returncode == 1
+    said = done.stdout + done.stderr
+    assert "invalid ATD" in said if command == ["check"] else "ATD001" in said and "not a regular file" in said
+
+
+@pytest.mark.parametrize("device", ["/dev/zero", "/dev/urandom"])
+def test_an_endless_device_is_refused_without_reading_it(device: str) -> None:
+    result = atd("validate", device)
+    assert result.exit_code == 1 and "ATD001" in result.output
+
+
+def test_a_missing_task_is_atd001_and_exit_1_for_run(tmp_path: Path) -> None:
+    result = atd("run", tmp_path / "nosuch.xml", "--robot", "melfa")
+    assert result.exit_code == 1 and "ATD001" in result.output
+
+
+def test_names_over_255_bytes_are_located_errors_in_every_command(tmp_path: Path) -> None:
+    long = "a" * 300
+    task = tmp_path / "long.xml"
+    task.write_text(f"""<statemachine>
+  <object><shape>{long}.stl</shape></object>
+  <state name="s" type="task" file="{long}.xml"/>
+  <state name="done" type="success"/>
+  <transition origin="s" destination="done"><success/></transition>
+</statemachine>""")
+    for args in (["validate"], ["check"], ["graph", "-o", tmp_path / "g.svg"], ["translate", "-r", "melfa"],
+                 ["run", "-r", "melfa"]):
+        result = atd(args[0], task, *args[1:])
+        assert result.exit_code == 1, (args, result.output)
+        assert result.exception is None or isinstance(result.exception, SystemExit)
+    result = atd("validate", task)
+    assert "long.xml:2:11: error[ATD112]" in result.output and "long.xml:3:3: error[ATD112]" in result.output
+
+
+def test_an_output_name_over_255_bytes_is_refused(task: Path) -> None:
+    result = atd("translate", task, "--robot", "melfa", "-o", task.with_name("b" * 300 + ".xml"))
+    assert result.exit_code == 2 and "over the 255" in result.output
+
+
+def test_unknown_robot_for_robots_test_is_a_usage_error() -> None:
+    assert atd("robots", "test", "nosuch").exit_code == 2

@@ -1,0 +1,98 @@
+"""Issue 12: every number a user gives is checked against one declared range; NaN and
+infinities never pass, and the refusal names the place and the allowed range."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+from atd.cli import main
+from atd.model import load_task
+from atd.model.controllers import CONTROLLERS, parse_value
+from atd.model.ranges import Range
+from factories.config import ConfigError, load_config
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "simple_move.xml"
+
+
+def with_moving_state_text(tmp_path: Path, extra: str) -> Path:
+    path = tmp_path / "t.xml"
+    path.write_text(EXAMPLE.read_text().replace('<state name="moving" type="move">',
+                                                f'<state name="moving" type="move">{extra}'))
+    return path
+
+
+@pytest.mark.parametrize("value", ["0", "nan", "-1", "inf", "1e9"])
+def test_a_speed_limit_that_would_be_no_limit_is_refused_at_its_line(tmp_path: Path, value: str) -> None:
+    task = with_moving_state_text(tmp_path, f'<parameter name="max_speed">{value}</parameter>')
+    _, found = load_task(task)
+    assert [(d.code, d.loc.line) for d in found] == [("ATD108", 16)]
+    assert "(0, 2] m/s" in found[0].message
+
+
+MINIMAL = """<statemachine>
+  <object>{element}</object>
+  <state name="reach" type="move"><path><position>0.1 0 0.15</position></path></state>
+  <state name="done" type="success"/>
+  <transition origin="reach" destination="done"><timeout>{seconds}</timeout></transition>
+</statemachine>"""
+
+
+@pytest.mark.parametrize("element, allowed", [
+    ("<weight>1e-12</weight>", "[0.001, 50] kg"),
+    ("<weight>NaN</weight>", "[0.001, 50] kg"),
+    ("<friction>-0.5</friction>", "[0, 10]"),
+    ("<size>0.05 0.05 inf</size>", "(0, 10] m"),
+])
+def test_object_values_outside_what_the_engines_simulate_are_refused(tmp_path: Path, element: str,
+                                                                       allowed: str) -> None:
+    task = tmp_path / "t.xml"
+    task.write_text(MINIMAL.format(element=element, seconds=5))
+    _, found = load_task(task)
+    assert [(d.code in ("ATD106", "ATD108"), d.loc.line, d.loc.col) for d in found] == [(True, 2, 11)]
+    assert allowed in found[0].message
+
+
+@pytest.mark.parametrize("seconds", ["nan", "0", "-3", "1e300"])
+def test_timeouts_are_finite_and_positive(tmp_path: Path, seconds: str) -> None:
+    task = tmp_path / "t.xml"
+    task.write_text(MINIMAL.format(element="", seconds=seconds))
+    _, found = load_task(task)
+    timeout = next(d for d in found if d.loc.line == 5)
+    assert (timeout.code in ("ATD106", "ATD108"), timeout.loc.col) == (True, 49)
+    assert "timeout" in timeout.message and "(0, 86400] s" in timeout.message
+
+
+def test_a_config_file_nan_names_the_file_table_and_range(tmp_path: Path) -> None:
+    config = tmp_path / "c.toml"
+    config.write_text("[melfa.conditions.grasp_stable.tactile_force_above]\nforce_threshold = nan\n")
+    with pytest.raises(ConfigError, match=r"c\.toml: \[melfa\.conditions\.grasp_stable\.tactile_force_above\] "
+                                          r"force_threshold: nan is not a finite number; give one in \(0, 1000\] N"):
+        load_config(config, "melfa")
+
+
+@pytest.mark.parametrize("option, value, said", [("--budget", "nan", "not a finite number"),
+                                                  ("--budget", "0", "outside (0, 86400] s"),
+                                                  ("--seed", "-1", "outside [0, 4294967295]"),
+                                                  ("--seed", "2.5", "not an integer")])
+def test_command_line_numbers_are_checked_before_anything_runs(option: str, value: str, said: str) -> None:
+    result = CliRunner().invoke(main, ["run", str(EXAMPLE), "--robot", "melfa", option, value])
+    assert result.exit_code == 2 and said in result.output and "Traceback" not in result.output
+
+
+def test_vectors_and_points_are_checked_number_by_number() -> None:
+    specs = CONTROLLERS["cartesian_move"].params
+    with pytest.raises(ValueError, match="nan is not a finite number"):
+        parse_value(specs["waypoints"], "0 0 0; 0 nan 0")
+    with pytest.raises(ValueError, match="outside"):
+        parse_value(specs["velocity_limits"], "0 0 0 0 0 -1")
+
+
+def test_every_numeric_parameter_has_a_range_its_default_lies_in() -> None:
+    for controller in CONTROLLERS.values():
+        for name, spec in controller.params.items():
+            assert isinstance(spec.allowed, Range)
+            if isinstance(spec.default, float):
+                assert spec.allowed.problem(spec.default) is None, (controller.name, name)
