@@ -24,7 +24,7 @@ import numpy as np
 import pybullet_data
 
 from atd.model import ObjectClass, ObjectInfo, Pose
-from atd.sim.convex import convex_parts, obj_vertices
+from atd.sim.convex import convex_parts, mesh_points
 from atd.sim.scene import Body, bounding_box
 
 # Quarter turns that stand a mesh file up in the world frame (table z = 0, z up).
@@ -69,7 +69,7 @@ class LibraryObject:
         source = mesh_file(self.mesh)
         parts = convex_parts(source) if self.concave else ()
         box = np.array(bounding_box(body.kind, body.size))
-        stood = np.vstack([obj_vertices(f) for f in parts or (source,)]) @ self.turn.T
+        stood = np.vstack([mesh_points(f) for f in parts or (source,)]) @ self.turn.T
         low, high = stood.min(axis=0), stood.max(axis=0)
         world_scale = box / (high - low)
         frame = np.eye(4)

@@ -14,7 +14,7 @@ from atd.campaign.objects import UnknownObject, get, library
 from atd.model import Task, load_task
 from atd.runtime.session import Run, belief_scene
 from atd.sim import ENGINES, load_description, make_robot
-from atd.sim.convex import obj_vertices
+from atd.sim.convex import mesh_points
 from atd.sim.scene import Scene, bounding_box, scene_from_task
 from factories.registry import create
 from tests.conftest import EXAMPLES
@@ -57,7 +57,7 @@ def test_the_truth_keeps_the_perturbed_pose_mass_and_friction_and_fills_the_beli
     perturbed = dataclasses.replace(belief, pose=pose, mass=belief.mass * 1.3, friction=0.45)
     truth = get(name).realize(perturbed)
     assert np.array_equal(truth.pose, pose) and (truth.mass, truth.friction) == (perturbed.mass, 0.45)
-    collided = np.vstack([obj_vertices(f) for f in truth.collision_meshes])
+    collided = np.vstack([mesh_points(f) for f in truth.collision_meshes])
     placed = collided * truth.mesh_scale @ truth.mesh_frame[:3, :3].T + truth.mesh_frame[:3, 3]
     np.testing.assert_allclose(placed.max(axis=0), -placed.min(axis=0), atol=1e-9)  # centred on the pose
     np.testing.assert_allclose(np.ptp(placed, axis=0), bounding_box(belief.kind, belief.size), rtol=1e-9)
