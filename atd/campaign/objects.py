@@ -5,7 +5,8 @@ The belief is a primitive (class, size, weight, friction) the factories plan the
 with. The truth is that primitive or, where `pybullet_data` ships one, a real mesh
 scaled so that its bounding box is the believed shape. Sizes fit every hand's top-down
 pinch: the jaws of the Melfa and Baxter close along world y, up to 68 mm apart, and
-Baxter's no closer than 26 mm, so the width along y stays within 35-57 mm.
+Baxter's no closer than 26 mm, so the width along y stays within 35-57 mm; and no
+object is under 45 mm tall (nothing under 40 mm was lifted by every hand, measured).
 
 Masses come from a material density times the volume where the object is solid (cited
 inline); friction is the pad-on-object coefficient, which both engines apply (MuJoCo by
@@ -23,7 +24,7 @@ import numpy as np
 import pybullet_data
 
 from atd.model import ObjectClass, ObjectInfo, Pose
-from atd.sim.convex import convex_parts, obj_vertices
+from atd.sim.convex import convex_parts, mesh_points
 from atd.sim.scene import Body, bounding_box
 
 # Quarter turns that stand a mesh file up in the world frame (table z = 0, z up).
@@ -68,7 +69,7 @@ class LibraryObject:
         source = mesh_file(self.mesh)
         parts = convex_parts(source) if self.concave else ()
         box = np.array(bounding_box(body.kind, body.size))
-        stood = np.vstack([obj_vertices(f) for f in parts or (source,)]) @ self.turn.T
+        stood = np.vstack([mesh_points(f) for f in parts or (source,)]) @ self.turn.T
         low, high = stood.min(axis=0), stood.max(axis=0)
         world_scale = box / (high - low)
         frame = np.eye(4)
@@ -91,11 +92,15 @@ def mesh_file(relative: str) -> Path:
     return path
 
 
-@cache
 def library() -> dict[str, LibraryObject]:
-    """Every object, by name."""
+    """Every object, by name (a fresh dict: the caller may narrow it)."""
+    return {o.name: o for o in _objects()}
+
+
+@cache
+def _objects() -> tuple[LibraryObject, ...]:
     cyl, box, ball = ObjectClass.CYLINDER, ObjectClass.BOX, ObjectClass.SPHERE
-    objects = (
+    return (
         LibraryObject("cylinder", "plastic cylinder of examples/grasp_and_lift.xml, 40 mm across, 80 mm tall",
                       cyl, (0.02, 0.08), 0.15, 0.8, "examples/grasp_and_lift.xml (thesis Fig. 7.2)"),
         # A sphere, not the soccer-ball mesh: that mesh's faceted hull rolled 14 mm off its
@@ -131,7 +136,6 @@ def library() -> dict[str, LibraryObject]:
         LibraryObject("weight", "steel weight, 35 mm across, 45 mm tall", cyl, (0.0175, 0.045), 0.34, 0.5,
                       "mass: 43.3 cm^3 of steel at 7.85 g/cm^3; friction of smooth steel, assumed"),
     )
-    return {o.name: o for o in objects}
 
 
 def get(name: str) -> LibraryObject:

@@ -18,12 +18,10 @@ from pathlib import Path
 
 import numpy as np
 
+from atd.model.meshcheck import MeshError, check_mesh
+
 VHACD_RESOLUTION = 100_000  # voxels: about 1 s for a mug, parts within a millimetre of its walls
 _VHACD = "import sys, pybullet; pybullet.vhacd(*sys.argv[1:4], resolution=int(sys.argv[4]))"
-
-
-class MeshError(ValueError):
-    """A mesh file cannot be read or decomposed; the message names the file."""
 
 
 def cache_dir() -> Path:
@@ -34,9 +32,12 @@ def cache_dir() -> Path:
     return (Path(xdg) if xdg else Path.home() / ".cache") / "atd"
 
 
-def obj_vertices(mesh: Path) -> np.ndarray:
-    """The vertices of an OBJ file, one row each."""
-    return _read_obj(mesh)[0]
+def mesh_points(mesh: Path) -> np.ndarray:
+    """Every corner of the mesh's triangles, one row each (checked like any mesh the engines get)."""
+    try:
+        return check_mesh(mesh).reshape(-1, 3)
+    except MeshError as exc:
+        raise MeshError(f"{mesh}: {exc}") from None
 
 
 def convex_parts(mesh: Path) -> tuple[Path, ...]:
@@ -50,8 +51,7 @@ def convex_parts(mesh: Path) -> tuple[Path, ...]:
 
 def _decompose(mesh: Path, folder: Path) -> None:
     """Split `mesh` into `folder`, atomically: a folder that exists is complete."""
-    if not _read_obj(mesh)[1]:
-        raise MeshError(f"{mesh}: no faces to decompose; export the mesh again with its faces")
+    mesh_points(mesh)  # V-HACD would crash on a broken file
     folder.parent.mkdir(parents=True, exist_ok=True)
     work = Path(tempfile.mkdtemp(prefix=".tmp-", dir=folder.parent))
     try:
@@ -59,7 +59,7 @@ def _decompose(mesh: Path, folder: Path) -> None:
         # In a process of its own: V-HACD prints its progress to stdout and may crash on a bad mesh.
         done = subprocess.run([sys.executable, "-c", _VHACD, str(mesh), str(hulls), str(work / "vhacd.log"),
                                str(VHACD_RESOLUTION)], capture_output=True)
-        vertices, parts = _read_obj(hulls) if done.returncode == 0 and hulls.is_file() else (np.zeros((0, 3)), [])
+        vertices, parts = _hulls(hulls) if done.returncode == 0 and hulls.is_file() else (np.zeros((0, 3)), [])
         if not parts:
             raise MeshError(f"{mesh}: V-HACD found no convex parts (exit status {done.returncode}); "
                             "check that the file is a closed OBJ mesh")
@@ -75,35 +75,19 @@ def _decompose(mesh: Path, folder: Path) -> None:
         shutil.rmtree(work, ignore_errors=True)
 
 
-def _read_obj(mesh: Path) -> tuple[np.ndarray, list[list[list[int]]]]:
-    """Vertices, and the faces (0-based vertex indices) of each object (`o`) in the file."""
+def _hulls(path: Path) -> tuple[np.ndarray, list[list[list[int]]]]:
+    """V-HACD's output: its vertices, and the faces (0-based vertex indices) of each hull (`o`)."""
     vertices: list[list[float]] = []
     parts: list[list[list[int]]] = []
-    number = 0
-    try:
-        lines = mesh.read_text(errors="replace").splitlines()
-        for number, line in enumerate(lines, 1):
-            words = line.split()
-            if not words:
-                continue
-            if words[0] == "v":
-                vertices.append([float(w) for w in words[1:4]])
-            elif words[0] == "o" or (words[0] == "f" and not parts):
-                parts.append([])
-            if words[0] == "f":
-                parts[-1].append([_index(w, len(vertices)) for w in words[1:]])
-    except (OSError, ValueError, IndexError) as exc:
-        raise MeshError(f"{mesh}:{number}: not a readable OBJ mesh ({exc}); "
-                        "export it again as a Wavefront OBJ") from None
-    if not vertices:
-        raise MeshError(f"{mesh}: no vertices; export it again as a Wavefront OBJ")
+    for line in path.read_text().splitlines():
+        words = line.split()
+        if words and words[0] == "v":
+            vertices.append([float(w) for w in words[1:4]])
+        elif words and words[0] == "o":
+            parts.append([])
+        elif words and words[0] == "f" and parts:
+            parts[-1].append([int(w.split("/")[0]) - 1 for w in words[1:]])
     return np.array(vertices), [p for p in parts if p]
-
-
-def _index(word: str, count: int) -> int:
-    """An OBJ face corner (`v`, `v/vt`, `v//vn`, negative = from the end) as a 0-based index."""
-    i = int(word.split("/")[0])
-    return i - 1 if i > 0 else count + i
 
 
 def _write_part(path: Path, vertices: np.ndarray, faces: list[list[int]]) -> None:

@@ -14,7 +14,7 @@ from atd.campaign.objects import UnknownObject, get, library
 from atd.model import Task, load_task
 from atd.runtime.session import Run, belief_scene
 from atd.sim import ENGINES, load_description, make_robot
-from atd.sim.convex import obj_vertices
+from atd.sim.convex import mesh_points
 from atd.sim.scene import Scene, bounding_box, scene_from_task
 from factories.registry import create
 from tests.conftest import EXAMPLES
@@ -57,7 +57,7 @@ def test_the_truth_keeps_the_perturbed_pose_mass_and_friction_and_fills_the_beli
     perturbed = dataclasses.replace(belief, pose=pose, mass=belief.mass * 1.3, friction=0.45)
     truth = get(name).realize(perturbed)
     assert np.array_equal(truth.pose, pose) and (truth.mass, truth.friction) == (perturbed.mass, 0.45)
-    collided = np.vstack([obj_vertices(f) for f in truth.collision_meshes])
+    collided = np.vstack([mesh_points(f) for f in truth.collision_meshes])
     placed = collided * truth.mesh_scale @ truth.mesh_frame[:3, :3].T + truth.mesh_frame[:3, 3]
     np.testing.assert_allclose(placed.max(axis=0), -placed.min(axis=0), atol=1e-9)  # centred on the pose
     np.testing.assert_allclose(np.ptp(placed, axis=0), bounding_box(belief.kind, belief.size), rtol=1e-9)
@@ -80,14 +80,15 @@ def test_every_object_rests_on_the_table_where_it_is_believed(engine: str) -> No
         assert pose[2, 2] > np.cos(np.radians(2)), f"{name} on {engine} tipped over"
 
 
-def test_the_melfa_lifts_the_espresso_cup_in_mujoco() -> None:
+@pytest.mark.parametrize("engine", ENGINES)
+def test_the_melfa_lifts_the_espresso_cup(engine: str) -> None:
     cup = get("mug")
     task, _ = load_task(EXAMPLES / "grasp_and_lift.xml")
     factory = create("melfa", grasp="robust")
     estd = translate(task.model_copy(update={"object": cup.object_info(0.10, 0.0)}), factory).estd
     belief = belief_scene(estd)
     truth = Scene(cup.realize(belief.object), belief.obstacles, belief.table)
-    run = Run(estd, factory, engine="mujoco", scene=truth)
+    run = Run(estd, factory, engine=engine, scene=truth)
     outcome = run.execute()
     assert outcome.succeeded
     assert run.object_position[2] - truth.object.pose[2, 3] > 0.05  # the ground truth: it rose 5 cm

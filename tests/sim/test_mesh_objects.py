@@ -12,7 +12,8 @@ import pybullet as pb
 import pybullet_data
 import pytest
 
-from atd.sim.convex import MeshError, convex_parts, obj_vertices
+from atd.model.meshcheck import MeshError
+from atd.sim.convex import convex_parts, mesh_points
 from atd.sim.scene import Body, Scene
 
 TORUS = Path(pybullet_data.getDataPath()) / "torus" / "torus_textured.obj"
@@ -74,14 +75,14 @@ def test_convex_parts_are_computed_once_and_cached_by_the_mesh_content(cache: Pa
     assert convex_parts(copy) == parts  # same content, same parts, not computed again
     assert [p.stat().st_mtime_ns for p in parts] == stamps
     # Together the parts cover the torus (1.5 across, 0.495 thick), overreaching it by at most 3%.
-    together = np.vstack([obj_vertices(p) for p in parts])
-    np.testing.assert_allclose(np.ptp(together, axis=0), np.ptp(obj_vertices(TORUS), axis=0), rtol=0.03)
+    together = np.vstack([mesh_points(p) for p in parts])
+    np.testing.assert_allclose(np.ptp(together, axis=0), np.ptp(mesh_points(TORUS), axis=0), rtol=0.03)
     assert not list(cache.glob("convex/.tmp-*"))  # no half-written folder left behind
 
 
 def test_an_unreadable_mesh_gets_a_one_line_error_naming_the_file(tmp_path: Path, cache: Path) -> None:
     bad = tmp_path / "broken.obj"
     bad.write_text("v 1 2 three\n")
-    with pytest.raises(MeshError, match=r"broken\.obj:1: not a readable OBJ mesh .*export it again") as error:
+    with pytest.raises(MeshError, match=r"broken\.obj: .*'three' is not a number") as error:
         convex_parts(bad)
     assert "\n" not in str(error.value)
