@@ -102,6 +102,7 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
     """
     guard_outputs({"--trace": trace_path, "--video": video}, [task])
     estd, factory = _load(task, robot, arm, grasp)
+    guard_outputs({"--trace": trace_path, "--video": video}, [task, *estd.files()])
     try:
         session = Run(estd, factory, engine=engine, seed=seed, trace_path=trace_path, realtime=realtime,
                       budget=budget, video=video, viewer=viewer)

@@ -137,3 +137,14 @@ def test_an_output_name_over_255_bytes_is_refused(task: Path) -> None:
 
 def test_unknown_robot_for_robots_test_is_a_usage_error() -> None:
     assert atd("robots", "test", "nosuch").exit_code == 2
+
+
+def test_a_sub_task_or_mesh_of_the_task_is_never_an_output(tmp_path: Path) -> None:
+    for name in ("empty_the_box.xml", "pick_one.xml"):
+        shutil.copy(EXAMPLES / name, tmp_path)
+    sub = tmp_path / "pick_one.xml"
+    before = sub.read_bytes()
+    task = str(tmp_path / "empty_the_box.xml")
+    assert atd("translate", task, "--robot", "melfa", "-o", sub).exit_code == 2
+    assert atd("run", task, "--robot", "melfa", "--trace", sub).exit_code == 2
+    assert sub.read_bytes() == before
