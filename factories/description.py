@@ -14,21 +14,10 @@ from typing import Literal
 
 import numpy as np
 
+from atd.model.frames import rotation_rpy
+
 Vec3 = tuple[float, float, float]
 GRAVITY = 9.81
-
-
-def rotation_rpy(rpy: Vec3) -> np.ndarray:
-    """URDF fixed-axis roll, pitch, yaw: R = Rz(yaw) Ry(pitch) Rx(roll)."""
-    r, p, y = rpy
-    cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
-    return np.array(
-        [
-            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-            [-sp, cp * sr, cp * cr],
-        ]
-    )
 
 
 def axis_rotation(axis: np.ndarray, angle: float) -> np.ndarray:

@@ -64,8 +64,10 @@ class TrialRecord:
         return self.task_succeeded == self.judged_succeeded
 
     def as_dict(self) -> dict[str, Any]:
-        """Flat, JSON-ready: the cell's dimensions as top-level fields."""
+        """Flat, JSON-ready: the cell's dimensions as top-level fields. The sampled values
+        are under `sampled`, since `perturbation` is the cell's dimension there."""
         data = asdict(self)
+        data["sampled"] = data.pop("perturbation")
         data.update(data.pop("cell"))
         return data
 
@@ -73,4 +75,4 @@ class TrialRecord:
     def from_dict(cls, data: dict[str, Any]) -> TrialRecord:
         data = dict(data)
         cell = Cell(**{d: data.pop(d) for d in DIMENSIONS})
-        return cls(cell=cell, **data)
+        return cls(cell=cell, perturbation=data.pop("sampled"), **data)

@@ -12,5 +12,7 @@ from atd.cli import robots_command as _robots  # noqa: F401  (registers `atd rob
 from atd.cli import robot_test as _robot_test  # noqa: F401  (registers `atd robots test`)
 from atd.cli import run as _run  # noqa: F401  (registers `atd run`)
 from atd.cli import graph as _graph  # noqa: F401  (registers `atd graph`)
+from atd.cli import campaign_run as _campaign_run  # noqa: F401  (registers `atd campaign run`)
+from atd.cli import campaign_report as _campaign_report  # noqa: F401  (registers `atd campaign report|export`)
 
 __all__ = ["main", "robots"]

@@ -99,9 +99,9 @@ Commands.group_class = Commands
 @click.version_option(__version__, prog_name="atd")
 def main() -> None:
     """Describe a manipulation task once (ATD), translate it for a robot (ESTD), run it in simulation."""
-    try:  # a crash inside an engine's C code still says where it happened: it never dies silently
+    try:  # a crash inside an engine's C code still says where it happened, never dies silently
         faulthandler.enable()
-    except (ValueError, OSError):  # stderr is no file (captured by a test runner): nowhere to report to
+    except (OSError, ValueError):  # io.UnsupportedOperation: stderr is no file (an embedding, a test runner)
         pass
 
 

@@ -77,6 +77,17 @@ class _Progress:
             click.echo("\r" + line, err=True, nl=False)
 
 
+class RecordRate(click.ParamType):
+    """--rate: Hz of simulated time in its declared range, or 'tick' (None: every control tick)."""
+
+    name = "rate"
+
+    def convert(self, value, param, ctx) -> float | None:
+        if value is None or value == "tick":
+            return None
+        return Ranged(ranges.RECORD_RATE).convert(value, param, ctx)
+
+
 @main.command()
 @click.argument("task", type=click.Path(path_type=Path))
 @click.option("--robot", "-r", default=None, help="the robot (required for an ATD; an ESTD names its own)")
@@ -87,6 +98,11 @@ class _Progress:
               help="write every state entry, exit and event as JSON lines")
 @click.option("--video", type=OutputFile(), default=None,
               help="record the run from an offscreen camera: .gif, or .mp4 (needs ffmpeg: the video extra)")
+@click.option("--record", type=OutputFile(), default=None, metavar="FILE.mcap",
+              help="record every sensor reading, command, state and the simulator's ground truth as MCAP "
+                   "(opens in Foxglove and PlotJuggler; see `atd report`)")
+@click.option("--rate", "record_rate", type=RecordRate(), default="100", show_default=True, metavar="HZ|tick",
+              help="how often --record samples, in Hz of simulated time, or 'tick' for every control tick")
 @click.option("--viewer", is_flag=True, help="open the engine's window (needs a display; runs in real time)")
 @click.option("--realtime", is_flag=True, help="run no faster than real time")
 @click.option("--budget", type=Ranged(ranges.BUDGET), default=300.0, show_default=True,
@@ -94,18 +110,21 @@ class _Progress:
 @GRASP_OPTION
 @click.option("--quiet", "-q", is_flag=True, help="no live progress")
 def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, trace_path: Path | None,
-        video: Path | None, viewer: bool, realtime: bool, budget: float, grasp: str, quiet: bool) -> None:
+        video: Path | None, record: Path | None, record_rate: float | None, viewer: bool, realtime: bool,
+        budget: float, grasp: str, quiet: bool) -> None:
     """Run TASK (an ATD, translated on the fly, or an ESTD) on a simulated robot.
 
     Exit status: 0 the task ended in a success state, 3 in a failure state (or the watchdog
     stopped it), 1 invalid input, 2 usage error, 4 the robot cannot do the task.
     """
-    guard_outputs({"--trace": trace_path, "--video": video}, [task])
+    guard_outputs({"--trace": trace_path, "--video": video, "--record": record}, [task])
+    if record is not None and record.suffix.lower() != ".mcap":
+        usage_error(f"{record}: --record writes MCAP; give a file name ending in .mcap")
     estd, factory = _load(task, robot, arm, grasp)
-    guard_outputs({"--trace": trace_path, "--video": video}, [task, *estd.files()])
+    guard_outputs({"--trace": trace_path, "--video": video, "--record": record}, [task, *estd.files()])
     try:
         session = Run(estd, factory, engine=engine, seed=seed, trace_path=trace_path, realtime=realtime,
-                      budget=budget, video=video, viewer=viewer)
+                      budget=budget, video=video, viewer=viewer, record=record, record_rate=record_rate)
     except Unrunnable as exc:
         _fail(f"error: {exc}", EXIT_UNTRANSLATABLE)
     except InvalidScene as exc:
@@ -123,6 +142,8 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
         click.echo(f"the object rests at ({x:.3f}, {y:.3f}, {z:.3f})")
     if trace_path:
         click.echo(f"trace: {trace_path}")
+    if record:
+        click.echo(f"recording: {record} (see it with: atd report {record})")
     for note in session.notes:
         click.echo(note)
     raise SystemExit(EXIT_OK if outcome.succeeded else EXIT_TASK_FAILED)

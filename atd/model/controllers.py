@@ -135,6 +135,9 @@ _MOVE = {
     "acceleration_limits": _p(VEC, "linear and angular acceleration limits; zeros = none (thesis 3.3.2)",
                               (0.0,) * 6, length=6, limits=ranges.LIMITS),
     "tolerance": _p(NUM, "distance to the target counted as reached (ours)", 0.003, unit="m"),
+    "tilt": _p(VEC, "the hand turned away from top-down at the target: roll, pitch, yaw about the world axes "
+                    "(ours: an oriented approach, thesis 3.4.1; zeros: top-down)", (0.0, 0.0, 0.0), unit="deg",
+               length=3, limits=ranges.TILT),
     "filter_time": _FILTER,
 }
 

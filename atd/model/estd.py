@@ -15,7 +15,8 @@ from pathlib import Path
 
 from typing import Annotated, Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Discriminator, Field, Tag
+from atd.model.frozen import Frozen
+from pydantic import Discriminator, Field, Tag
 
 from atd.model.controllers import (
     ARM_CONTROLLERS,
@@ -31,8 +32,8 @@ from atd.model.vocabulary import EventType, StateType
 FORMAT_VERSION = 1
 
 
-class EstdElement(BaseModel):
-    model_config = ConfigDict(frozen=True, extra="forbid")
+class EstdElement(Frozen):
+    """Base of every ESTD element."""
 
 
 class Controller(EstdElement):

@@ -58,9 +58,11 @@ SPEED_FRACTION = Range(0.0, 1.0, low_open=True)  # of a joint's speed limit; 0 w
 LIMITS = Range(0.0, 100.0)  # velocity and acceleration limits; 0 means none
 DIRECTION = Range(-1.0, 1.0)  # components of a direction or normal
 PADS = Range(1, 64)
+TILT = Range(-90.0, 90.0, "deg")  # the hand turned away from top-down, about each world axis
 
 BY_UNIT = {"m/s": SPEED, "N": FORCE, "N m": TORQUE, "m": DISTANCE, "s": DURATION, "": FRACTION}
 
 # Command line.
 BUDGET = Range(0.0, 86_400.0, "s", low_open=True)
 SEED = Range(0, 2**32 - 1)  # numpy's seed range
+RECORD_RATE = Range(0.0, 10_000.0, "Hz", low_open=True)  # of simulated time; a tick is 200-1000 Hz

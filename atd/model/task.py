@@ -12,7 +12,8 @@ from functools import cached_property
 from typing import Literal
 
 import numpy as np
-from pydantic import BaseModel, ConfigDict, Field
+from atd.model.frozen import Frozen
+from pydantic import Field
 
 from atd.model.vocabulary import (
     DEFAULT_SIZE,
@@ -38,14 +39,12 @@ class Location:
         return f"{self.file}:{self.line}:{self.col}" if self.line else self.file
 
 
-class AtdElement(BaseModel):
+class AtdElement(Frozen):
     """Base of every ATD element: immutable, and equal when it means the same thing.
 
     The source location is carried along for diagnostics but is not part of the
     meaning, so a task read back from the file it was written to equals the original.
     """
-
-    model_config = ConfigDict(frozen=True, extra="forbid")
 
     loc: Location | None = Field(default=None, exclude=True, repr=False)
 

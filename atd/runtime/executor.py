@@ -18,7 +18,7 @@ import numpy as np
 from atd.model.estd import Condition as Leaf
 from atd.model.estd import ConditionGroup, Estd, EstdEvent, EstdState, EstdTransition
 from atd.model.vocabulary import StateType
-from atd.runtime.arbitrator import arbitrate
+from atd.runtime.arbitrator import RobotCommand, arbitrate
 from atd.runtime.trace import Trace
 from primitives.base import Condition, Context, ControlData, Status, StateView
 from primitives.registry import BuildError, build_condition, build_controller
@@ -233,9 +233,10 @@ class Executor:
         self.wall_budget = wall_budget
         self._hand_dof = len(robot.info.hand.dofs)
         self._still = np.zeros(robot.info.arm_dof)  # the arm's command when no controller moves it
+        self.command: RobotCommand | None = None  # the arbitrator's latest, for recordings
 
     def _apply(self, outputs: list[ControlData]) -> None:
-        command = arbitrate(outputs, self._hand_dof)
+        self.command = command = arbitrate(outputs, self._hand_dof)
         dq = self._still if command.joint_velocity is None else command.joint_velocity
         if command.twist is not None and command.twist.any():
             dq = dq + dls_joint_velocities(self.robot.jacobian(), command.twist, self.robot.twist_damping)

@@ -3,23 +3,31 @@ watches the run (trace, video, viewer, real-time pacing)."""
 
 from __future__ import annotations
 
+import json
 import os
 import time
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 
 from atd.model import Task
 from atd.model.estd import Estd
+from atd.model.estd_xml import estd_to_xml
+from atd.model.files import InputError, read_capped
+from atd.model.xmlsafe import MAX_BYTES
 from atd.runtime.executor import Executor, Observer, Outcome, Progress, build_problems
+from atd.runtime.recording import DEFAULT_RATE, Recording
 from atd.runtime.trace import Trace
 from atd.sim import ENGINES, make_robot
-from atd.sim.scene import SceneError, scene_from_task
+from atd.sim.scene import Scene, SceneError, scene_from_task
+from atd.sim.simrobot import SimRobot
 from atd.sim.video import Recorder, VideoError, check_video_path
 from factories.base import Factory
+from factories.description import RobotDescription
 from primitives.base import Context
 
-__all__ = ["ENGINES", "InvalidScene", "Run", "RunError", "Unrunnable"]
+__all__ = ["ENGINES", "InvalidScene", "Run", "RunError", "Unrunnable", "belief_scene"]
 
 
 class RunError(Exception):
@@ -36,6 +44,33 @@ class Unrunnable(RunError):
     def __init__(self, problems: list[str]) -> None:
         super().__init__("this ESTD does not fit the robot:\n" + "\n".join(f"  {p}" for p in problems))
         self.problems = problems
+
+
+def belief_scene(estd: Estd) -> Scene:
+    """The world as the ESTD describes it."""
+    try:
+        source = Path(estd.source) if estd.source else Path("task.xml")
+        return scene_from_task(Task(object=estd.object, environment=estd.environment), source)
+    except SceneError as exc:
+        raise InvalidScene(str(exc)) from None
+
+
+def _run_info(estd: Estd, engine: str, seed: int) -> dict[str, str]:
+    """What a recording says about the run it holds."""
+    return {"atd.run": json.dumps({"robot": estd.robot, "arm": estd.arm, "engine": engine, "seed": seed,
+                                   "task": estd.source or ""})}
+
+
+def _attachments(estd: Estd) -> dict[str, bytes]:
+    """The ESTD that ran (and the ATD it came from, where it can be read), kept in the
+    recording so a report can draw the task without the files beside it."""
+    found = {"task.estd.xml": estd_to_xml(estd)}
+    if estd.source:
+        try:
+            found["task.atd.xml"] = read_capped(Path(estd.source), MAX_BYTES)
+        except InputError:
+            pass  # the recording still holds the ESTD, which names every ATD element
+    return found
 
 
 class _Video:
@@ -86,21 +121,24 @@ class _Pacer:
 class Run:
     def __init__(self, estd: Estd, factory: Factory, engine: str = "mujoco", seed: int = 0,
                  trace_path: Path | None = None, realtime: bool = False, budget: float = 300.0,
-                 video: Path | None = None, viewer: bool = False) -> None:
-        """`factory` is the robot's factory: it knows the physical robot the ESTD was made for."""
+                 video: Path | None = None, viewer: bool = False, scene: Scene | None = None,
+                 robot: RobotDescription | None = None, record: Path | None = None,
+                 record_rate: float | None = DEFAULT_RATE) -> None:
+        """`factory` is the robot's factory: it knows the physical robot the ESTD was made for.
+        `scene` and `robot` are the truth where it differs from what the ESTD and the factory
+        believe (a campaign's perturbed trial): by default the world is built from the ESTD's
+        object and environment, and the robot is the factory's. `record` writes the run's
+        signals to MCAP at `record_rate` Hz of simulated time (None: every tick)."""
         if video is not None:
             try:
                 check_video_path(video)
             except VideoError as exc:
                 raise RunError(str(exc)) from None
-        try:
-            source = Path(estd.source) if estd.source else Path("task.xml")
-            scene = scene_from_task(Task(object=estd.object, environment=estd.environment), source)
-        except SceneError as exc:
-            raise InvalidScene(str(exc)) from None
+        if scene is None:
+            scene = belief_scene(estd)
         if viewer:
             _Viewer.check_display()
-        self.robot = make_robot(factory.robot, scene, engine, seed, window=viewer)
+        self.robot = make_robot(robot or factory.robot, scene, engine, seed, window=viewer)
         self.has_object = scene.object is not None
         context = Context(info=self.robot.info, params={}, object=estd.object, environment=estd.environment,
                           rng=np.random.default_rng(seed))
@@ -113,21 +151,29 @@ class Run:
         self.executor = Executor(estd, self.robot, context, self.trace, budget=budget)
         self.video = _Video(self.robot, video) if video is not None else None
         self.viewer = _Viewer(self.robot) if viewer else None
-        self.observers: list[Observer] = [o for o in (self.video, self.viewer) if o]
+        self.recorder = Recording(record, self.robot, self.executor, self.trace, self.has_object, record_rate,
+                                 _run_info(estd, engine, seed), _attachments(estd)) if record is not None else None
+        self.observers: list[Observer] = [o for o in (self.video, self.viewer, self.recorder) if o]
         if realtime or viewer:
             self.observers.append(_Pacer())
         self.notes: list[str] = []  # what became of the video, for the user
 
-    def execute(self, progress: Progress | None = None) -> Outcome:
+    def execute(self, progress: Progress | None = None,
+                afterwards: Callable[[SimRobot], None] | None = None) -> Outcome:
         """Run to the end; afterwards `object_position` is where the object came to rest
-        (None when the task has no object). The trace and video are written last; OutputError
-        when one cannot be."""
+        (None when the task has no object). `afterwards` gets the robot once the task has
+        ended, before it is released: a campaign's judge looks at the world there. The trace
+        and video are written last; OutputError when one cannot be."""
         try:
             outcome = self.executor.run(progress, observers=tuple(self.observers))
+            if afterwards is not None:
+                afterwards(self.robot)
             self.object_position = (tuple(float(v) for v in self.robot.object_pose()[:3, 3])
                                     if self.has_object else None)
             if self.trace_path:
                 self.trace.save(self.trace_path)
+            if self.recorder:
+                self.recorder.finish(outcome)
             if self.video:
                 self.notes.append(self.video.write())
             return outcome

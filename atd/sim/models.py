@@ -142,8 +142,28 @@ _ENV = jinja2.Environment(
 )
 
 
+@dataclass
+class MeshView:
+    """One mesh geom of a body and the asset it draws on."""
+
+    geom: str
+    asset: str
+    file: str
+    scale: str
+    at: Placed
+
+
+def _meshes(body: Body) -> list[MeshView]:
+    """The body's collision meshes, named `object`, `object_1`, ... after the body."""
+    frame = Placed.of(body.mesh_frame if body.mesh_frame is not None else np.eye(4))
+    return [MeshView(body.name + (f"_{i}" if i else ""), f"{body.name}_mesh" + (f"_{i}" if i else ""), str(path),
+                     _fmt(body.mesh_scale), frame)
+            for i, path in enumerate(body.collision_meshes)]
+
+
 def _body(body: Body) -> dict:
-    return {"body": body, "at": Placed.of(body.pose), "size": _fmt(body.half_extents), "inertia": _fmt(body.inertia())}
+    return {"body": body, "at": Placed.of(body.pose), "size": _fmt(body.half_extents), "inertia": _fmt(body.inertia()),
+            "meshes": _meshes(body)}
 
 
 def mjcf(d: RobotDescription, scene: Scene) -> str:

@@ -153,7 +153,7 @@ class PybulletRobot(SimRobot):
         elif body.kind == "sphere":
             shape = pb.createCollisionShape(pb.GEOM_SPHERE, radius=half[0], physicsClientId=c)
         else:
-            shape = pb.createCollisionShape(pb.GEOM_MESH, fileName=str(body.mesh), physicsClientId=c)
+            shape = self._mesh_shape(body)
         uid = pb.createMultiBody(
             0 if fixed else body.mass, shape, basePosition=body.pose[:3, 3].tolist(),
             baseOrientation=_xyzw(body.pose), physicsClientId=c,
@@ -165,6 +165,22 @@ class PybulletRobot(SimRobot):
                 localInertiaDiagonal=body.inertia(), physicsClientId=c,
             )
         return uid
+
+    def _mesh_shape(self, body: Body) -> int:
+        """A mesh's convex hull, or a compound of its convex parts (Bullet takes the hull of
+        each mesh it is given for a moving body, as MuJoCo does)."""
+        c = self.client
+        frame = body.mesh_frame if body.mesh_frame is not None else np.eye(4)
+        placed = {"meshScale": list(body.mesh_scale), "collisionFramePosition": frame[:3, 3].tolist(),
+                  "collisionFrameOrientation": _xyzw(frame)}
+        files = body.collision_meshes
+        if len(files) == 1:
+            return pb.createCollisionShape(pb.GEOM_MESH, fileName=str(files[0]), **placed, physicsClientId=c)
+        return pb.createCollisionShapeArray(
+            [pb.GEOM_MESH] * len(files), fileNames=[str(f) for f in files], meshScales=[placed["meshScale"]] * len(files),
+            collisionFramePositions=[placed["collisionFramePosition"]] * len(files),
+            collisionFrameOrientations=[placed["collisionFrameOrientation"]] * len(files), physicsClientId=c,
+        )
 
     # ---- engine part ------------------------------------------------------------------
     def _apply_arm(self, q_ref: np.ndarray, dq_ff: np.ndarray) -> None:

@@ -39,7 +39,11 @@ class SceneError(ValueError):
 class Body:
     """A simulated object. `size` follows `atd.model.vocabulary.SIZE_LAYOUT` for the
     class (box x y z full lengths, cylinder radius height, sphere radius); for a mesh it is
-    the bounding box used for the inertia."""
+    the bounding box used for the inertia.
+
+    A mesh file is scaled by `mesh_scale` in its own axes, then placed by `mesh_frame` in
+    the body's frame. The engines collide with the convex hull of the mesh or, for a
+    concave mesh, with each of its convex `mesh_parts` (files in the mesh's own frame)."""
 
     name: str
     kind: Literal["box", "cylinder", "sphere", "mesh"]
@@ -48,6 +52,14 @@ class Body:
     mass: float
     friction: float
     mesh: Path | None = None
+    mesh_scale: tuple[float, float, float] = (1.0, 1.0, 1.0)
+    mesh_frame: np.ndarray | None = None  # 4x4; None: the body's own frame
+    mesh_parts: tuple[Path, ...] = ()
+
+    @property
+    def collision_meshes(self) -> tuple[Path, ...]:
+        """The files the engines build the object's collision geometry from."""
+        return self.mesh_parts or ((self.mesh,) if self.mesh is not None else ())
 
     @property
     def half_extents(self) -> tuple[float, ...]:
@@ -126,10 +138,13 @@ def scene_from_task(task: Task, atd_file: Path) -> Scene:
 
 def _box_size(info) -> tuple[float, float, float]:
     """A bounding box for a mesh object's inertia: its class size as a box."""
-    size = info.effective_size
-    kind = info.object_class or ObjectClass.BOX
-    if kind is ObjectClass.BOX:
-        return tuple(size)
-    if kind is ObjectClass.CYLINDER:
+    return bounding_box((info.object_class or ObjectClass.BOX).value, info.effective_size)
+
+
+def bounding_box(kind: str, size: tuple[float, ...]) -> tuple[float, float, float]:
+    """Full x, y, z lengths of the box around a body of `kind` and `size` (see `Body`)."""
+    if kind in ("box", "mesh"):
+        return (size[0], size[1], size[2])
+    if kind == "cylinder":
         return (2 * size[0], 2 * size[0], size[1])
     return (2 * size[0],) * 3

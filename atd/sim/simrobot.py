@@ -257,6 +257,21 @@ class SimRobot(Robot):
         self._apply_arm(self._q_ref, self._dq_ref)
         self._last = self._sample()
 
+    def true_tcp(self) -> np.ndarray:
+        """True 4x4 TCP pose (for checks, not for primitives)."""
+        return self._tcp()
+
+    def true_pad_contacts(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """True contacts on the pads (for recordings, not for primitives): pad index, point
+        in that pad's frame, normal force."""
+        return self._pad_contacts()
+
+    def hold_still(self, seconds: float) -> None:
+        """Keep the arm still and the hand as last commanded for `seconds` of simulated time."""
+        self.command_arm_velocity(np.zeros(len(self.info.arm_joints)))
+        for _ in range(int(round(seconds / self.info.control_period))):
+            self.step()
+
     @abstractmethod
     def object_pose(self) -> np.ndarray:
         """True 4x4 pose of the scene's object (for checks, not for primitives)."""

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from atd.model.frames import rotation_rpy
 from primitives.arm.motion import (
     GAIN,
     ORIENTATION_TOLERANCE,
@@ -63,7 +64,7 @@ class CartesianMove(Controller):
     speed limit. On a guarded move the contact is what the motion looks for, so stopping
     on it is success; on any other move it is unexpected and the controller gives up
     (status ERROR), leaving the collision event to say what happened. The hand ends
-    top-down (hand z = world -z) with the yaw it started with.
+    top-down (hand z = world -z) with the yaw it started with, turned by `tilt` where given.
     """
 
     def __init__(self, ctx: Context) -> None:
@@ -75,6 +76,7 @@ class CartesianMove(Controller):
         self.threshold = float(p["force_threshold"])
         self.max_speed = float(p["max_speed"])
         self.tolerance = float(p["tolerance"])
+        self.tilt = rotation_rpy(np.radians(np.asarray(p.get("tilt", (0.0, 0.0, 0.0)), float)))
         self.contact = ContactWrench(float(p["filter_time"]))
         self.shaper = TwistShaper(p["velocity_limits"], p["acceleration_limits"])
         self.detour = ObstacleDetour(p.get("obstacles", ()), p.get("obstacle_sizes", ()))
@@ -82,7 +84,7 @@ class CartesianMove(Controller):
 
     def start(self, readings: Readings) -> None:
         self.contact.start(readings)
-        self.rotation = top_down(readings.tcp[:3, :3])
+        self.rotation = self.tilt @ top_down(readings.tcp[:3, :3])
         self.leg = 0
         self.leg_start = readings.tcp[:3, 3].copy()
         self.points = []

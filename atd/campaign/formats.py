@@ -1,0 +1,111 @@
+"""A campaign report as text: aligned for a terminal, Markdown for a README, JSON and CSV
+for tools. The CSV's first columns are fixed so that scripts can rely on them."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from typing import Any, Sequence
+
+from atd.campaign.report import ANY, CONDITION, THESIS_ATTEMPTS, Group, Report
+from atd.campaign.record import DIMENSIONS
+
+FORMATS = ("table", "markdown", "json", "csv")
+
+#: The report CSV's columns; any further ones come after these.
+CSV_COLUMNS = (*DIMENSIONS, "n", "successes", "rate", "low", "high", "false_successes")
+
+_COUNTS = ("n", "successes", "rate", "95% interval", "false successes", "false failures", "errors")
+_THESIS_CONDITION = ("task", "robot", "arm", "engine")
+
+
+def render(report: Report, fmt: str) -> str:
+    """The report in `fmt`, one of FORMATS, ending with a newline."""
+    if fmt == "json":
+        return json.dumps(_as_json(report), indent=2) + "\n"
+    if fmt == "csv":
+        return csv_text([*CSV_COLUMNS, "false_failures", "errors"], [g.as_dict() for g in report.groups])
+    if not report.trials:
+        return "no trials stored yet\n"
+    draw = _markdown if fmt == "markdown" else _aligned
+    errors = sum(g.errors for g in report.groups)
+    parts = [f"{report.trials} trials ({errors} could not be run), grouped by {', '.join(report.by)}; "
+             "success is the judge's verdict on the object, not the task's; intervals are 95% Wilson",
+             draw(*_group_table(report.groups, report.by))]
+    if report.by != CONDITION:
+        parts += ["per condition, all objects pooled:", draw(*_group_table(report.conditions, CONDITION))]
+    if report.thesis:
+        parts += [f"thesis Table 3.3 ({THESIS_ATTEMPTS} attempts per row) beside ours:", draw(*_thesis_table(report))]
+    return "\n\n".join(parts) + "\n"
+
+
+def csv_text(columns: Sequence[str], rows: Sequence[dict[str, Any]]) -> str:
+    """CSV with a header; None reads as an empty field, a missing key too."""
+    out = io.StringIO()
+    writer = csv.DictWriter(out, fieldnames=list(columns), lineterminator="\n", restval="")
+    writer.writeheader()
+    writer.writerows(rows)
+    return out.getvalue()
+
+
+def _percent(value: float | None) -> str:
+    return "-" if value is None else f"{100 * value:.1f}%"
+
+
+def _interval(low: float, high: float) -> str:
+    return f"[{_percent(low)}, {_percent(high)}]"
+
+
+def _counts(g: Group) -> list[str]:
+    return [str(g.n), str(g.successes), _percent(g.rate), _interval(*g.interval),
+            str(g.false_successes), str(g.false_failures), str(g.errors)]
+
+
+def _group_table(groups: Sequence[Group], by: Sequence[str]) -> tuple[list[str], list[list[str]]]:
+    header = [*by, *_COUNTS]
+    return header, [[g.value(d) for d in by] + _counts(g) for g in groups]
+
+
+def _thesis_table(report: Report) -> tuple[list[str], list[list[str]]]:
+    header = [*_THESIS_CONDITION, "row", "thesis", "thesis 95%", "ours", "ours 95%", "n", "false successes"]
+    rows = [[r.ours.value(d) for d in _THESIS_CONDITION]
+            + [r.label, _percent(r.thesis_rate), _interval(*r.thesis_interval), _percent(r.ours.rate),
+               _interval(*r.ours.interval), str(r.ours.n), str(r.ours.false_successes)]
+            for r in report.thesis]
+    return header, rows
+
+
+def _numeric(text: str) -> bool:
+    return text[:1].isdigit() or text[:1] in "[-"
+
+
+def _aligned(header: list[str], rows: list[list[str]]) -> str:
+    """Columns padded to their widest cell; numbers to the right, names to the left."""
+    widths = [max(len(r[i]) for r in [header, *rows]) for i in range(len(header))]
+    right = [bool(rows) and all(_numeric(r[i]) for r in rows) for i in range(len(header))]
+    lines = ["  ".join(c.rjust(w) if r else c.ljust(w) for c, w, r in zip(row, widths, right)).rstrip()
+             for row in [header, *rows]]
+    return "\n".join(lines)
+
+
+def _markdown(header: list[str], rows: list[list[str]]) -> str:
+    lines = [header, ["---"] * len(header), *rows]
+    return "\n".join("| " + " | ".join(row) + " |" for row in lines)
+
+
+def _as_json(report: Report) -> dict[str, Any]:
+    return {
+        "trials": report.trials,
+        "by": list(report.by),
+        "any": ANY,
+        "groups": [g.as_dict() for g in report.groups],
+        "conditions": [g.as_dict() for g in report.conditions],
+        "table_3_3": [
+            {**{d: r.ours.value(d) for d in _THESIS_CONDITION}, "row": r.label,
+             "thesis": {"successes": r.thesis_successes, "n": THESIS_ATTEMPTS, "rate": r.thesis_rate,
+                        "low": r.thesis_interval[0], "high": r.thesis_interval[1]},
+             "ours": r.ours.as_dict()}
+            for r in report.thesis
+        ],
+    }

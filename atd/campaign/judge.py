@@ -1,0 +1,85 @@
+"""The judge: what happened to the object, from the simulator's ground truth.
+
+The task's own verdict is the robot's opinion, formed from its sensors; the judge reads
+only the simulator's true object and hand poses, so a trial records both and their
+disagreement shows an event that claimed what did not happen.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from atd.model.frames import rotation_angle
+from atd.sim.simrobot import SimRobot
+
+#: Thesis 3.4.1: the object is lifted and "does not move in the hand".
+MIN_LIFT = 0.05  # m above where it started
+MAX_SLIP = 0.01  # m of motion relative to the hand over the hold
+MAX_TURN = 5.0  # degrees of rotation relative to the hand over the hold
+HOLD = 2.0  # s the hand holds still while the object is watched
+#: A pick-and-place: the object rests within this distance (horizontally) of the target.
+PLACE_TOLERANCE = 0.02  # m
+SETTLE = 1.0  # s the world is left alone before the resting place is read
+RESTING = 0.01  # m: the object's centre at most this far above its resting height
+
+
+@dataclass
+class Verdict:
+    succeeded: bool
+    reason: str
+    measurements: dict[str, float] = field(default_factory=dict)
+
+
+class LiftJudge:
+    """Grasp and lift: the object rose at least 5 cm and stayed put in the hand (at most
+    1 cm and 5° relative to it) while the hand held still for 2 s."""
+
+    def __init__(self, robot: SimRobot) -> None:
+        self.start = robot.object_pose()
+        self.verdict: Verdict | None = None
+
+    def __call__(self, robot: SimRobot) -> None:
+        before = np.linalg.inv(robot.true_tcp()) @ robot.object_pose()
+        robot.hold_still(HOLD)
+        end = robot.object_pose()
+        after = np.linalg.inv(robot.true_tcp()) @ end
+        lift = float(end[2, 3] - self.start[2, 3])
+        slip = float(np.linalg.norm(after[:3, 3] - before[:3, 3]))
+        turn = rotation_angle(after[:3, :3] @ before[:3, :3].T)
+        m = {"lift": lift, "slip": slip, "turn": turn}
+        if lift < MIN_LIFT:
+            self.verdict = Verdict(False, f"not lifted: {lift * 100:.1f} cm above its start, "
+                                          f"{MIN_LIFT * 100:g} cm needed", m)
+        elif slip > MAX_SLIP or turn > MAX_TURN:
+            self.verdict = Verdict(False, f"moved in the hand during the {HOLD:g} s hold: {slip * 1000:.1f} mm, "
+                                          f"{turn:.1f}° (at most {MAX_SLIP * 1000:g} mm, {MAX_TURN:g}°)", m)
+        else:
+            self.verdict = Verdict(True, f"lifted {lift * 100:.1f} cm, held still: {slip * 1000:.1f} mm, "
+                                         f"{turn:.1f}° in the hand over {HOLD:g} s", m)
+
+
+class PlaceJudge:
+    """Pick and place: the object rests on the table within 2 cm of the target."""
+
+    def __init__(self, robot: SimRobot, target: tuple[float, float, float]) -> None:
+        self.target = np.asarray(target, float)
+        self.rest_height = float(robot.object_pose()[2, 3])  # it starts resting on the table
+        self.verdict: Verdict | None = None
+
+    def __call__(self, robot: SimRobot) -> None:
+        robot.hold_still(SETTLE)
+        where = robot.object_pose()[:3, 3]
+        off = float(np.hypot(*(where[:2] - self.target[:2])))
+        height = float(where[2] - self.rest_height)
+        m = {"distance": off, "height": height}
+        if height > RESTING:
+            self.verdict = Verdict(False, f"not resting on the table: {height * 100:.1f} cm above its "
+                                          f"resting height", m)
+        elif off > PLACE_TOLERANCE:
+            self.verdict = Verdict(False, f"rests {off * 100:.1f} cm from the target "
+                                          f"(at most {PLACE_TOLERANCE * 100:g} cm)", m)
+        else:
+            self.verdict = Verdict(True, f"rests {off * 100:.1f} cm from the target", m)
+

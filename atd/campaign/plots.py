@@ -1,0 +1,116 @@
+"""A campaign's results as a picture: success rate per group with its Wilson interval, and,
+when the approach was perturbed, success against the size of the error for each grasp
+mode, the plot that shows whether the robust grasp degrades more gracefully.
+
+Drawn on a bare matplotlib Figure (Agg canvas): no display, no pyplot global state.
+"""
+
+from __future__ import annotations
+
+import io
+from dataclasses import dataclass
+from itertools import pairwise
+from pathlib import Path
+from typing import Sequence
+
+import matplotlib
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+
+from atd.campaign.record import DIMENSIONS, TrialRecord
+from atd.campaign.report import Group, group
+from atd.model import write_atomically
+
+#: The approach error's magnitudes, as the perturbation records them: (key, axis label, scale to the axis unit).
+APPROACH_MEASURES = (("translation", "approach translation error (cm)", 100.0),
+                     ("rotation", "approach rotation error (deg)", 1.0))
+
+_COLOURS = {"naive": "tab:blue", "robust": "tab:red"}
+
+
+@dataclass(frozen=True)
+class ErrorBin:
+    """Trials whose approach error falls in (low, high], per grasp mode; low = high = 0 is
+    the bin of trials the approach error left alone."""
+
+    low: float
+    high: float
+    groups: list[Group]  # grouped by grasp
+
+
+def approach_bins(records: Sequence[TrialRecord], measure: str, count: int = 5) -> list[ErrorBin]:
+    """The zero bin, then `count` equal bins up to the largest `measure` sampled."""
+    magnitudes = [r.perturbation.get(measure, 0.0) for r in records]
+    top = max(magnitudes, default=0.0)
+    ranges = [(0.0, 0.0)] + (list(pairwise(top * i / count for i in range(count + 1))) if top > 0 else [])
+    bins = []
+    for low, high in ranges:
+        members = [r for r, m in zip(records, magnitudes) if (m == 0 if high == 0 else low < m <= high)]
+        if members:
+            bins.append(ErrorBin(low, high, group(members, ("grasp",))))
+    return bins
+
+
+def plot_report(records: Sequence[TrialRecord], groups: Sequence[Group], path: Path) -> None:
+    """Write the picture to `path` in one step, in the format its suffix names (.png, .svg)."""
+    fmt = path.suffix.lower().lstrip(".")
+    perturbed = any(measure in r.perturbation for r in records for measure, _, _ in APPROACH_MEASURES)
+    panels = 1 + perturbed * len(APPROACH_MEASURES)
+    figure = Figure(figsize=(6.5 * panels, max(3.5, 0.9 + 0.28 * len(groups))), layout="constrained")
+    axes = figure.subplots(1, panels, squeeze=False)[0]
+    _rates(axes[0], groups)
+    if perturbed:
+        for ax, (measure, label, scale) in zip(axes[1:], APPROACH_MEASURES):
+            _against_error(ax, approach_bins(records, measure), label, scale)
+    out = io.BytesIO()
+    with matplotlib.rc_context({"svg.hashsalt": "atd", "svg.fonttype": "none"}):
+        figure.savefig(out, format=fmt, metadata={"Date": None} if fmt == "svg" else None)
+    write_atomically(path, out.getvalue())
+
+
+def _label(g: Group, varying: Sequence[str]) -> str:
+    return " / ".join(g.value(d) for d in varying) or "all trials"
+
+
+def _percent(g: Group) -> float:
+    """The success rate in percent of a group that has trials (the only ones drawn)."""
+    return 100 * g.successes / g.n
+
+
+def _errors(groups: Sequence[Group]) -> list[list[float]]:
+    """Percent distances from each rate down to its interval's low and up to its high."""
+    return [[_percent(g) - 100 * g.interval[0] for g in groups],
+            [100 * g.interval[1] - _percent(g) for g in groups]]
+
+
+def _rates(ax: Axes, groups: Sequence[Group]) -> None:
+    measured = [g for g in groups if g.n]
+    varying = [d for d in DIMENSIONS if len({g.value(d) for g in measured}) > 1]
+    for grasp in sorted({g.value("grasp") for g in measured}):
+        rows = [(y, g) for y, g in enumerate(measured) if g.value("grasp") == grasp]
+        ax.errorbar([_percent(g) for _, g in rows], [y for y, _ in rows], xerr=_errors([g for _, g in rows]),
+                    fmt="o", capsize=3, color=_COLOURS.get(grasp, "tab:gray"), label=grasp)
+    ax.set_yticks(range(len(measured)), [f"{_label(g, varying)} (n={g.n})" for g in measured])
+    ax.invert_yaxis()
+    ax.set_xlim(-2, 102)
+    ax.set_xlabel("success rate (%), judged by the object; bars: 95% Wilson interval")
+    ax.grid(axis="x", alpha=0.3)
+    if measured:
+        ax.legend(title="grasp")
+
+
+def _against_error(ax: Axes, bins: Sequence[ErrorBin], label: str, scale: float) -> None:
+    grasps = sorted({g.value("grasp") for b in bins for g in b.groups})
+    step = scale * max(b.high for b in bins) / 100  # lines side by side, so their bars do not hide each other
+    for i, grasp in enumerate(grasps):
+        points = [(scale * (b.low + b.high) / 2 + step * (i - (len(grasps) - 1) / 2), g)
+                  for b in bins for g in b.groups if g.value("grasp") == grasp and g.n]
+        if not points:
+            continue
+        ax.errorbar([x for x, _ in points], [_percent(g) for _, g in points], yerr=_errors([g for _, g in points]),
+                    marker="o", capsize=3, label=grasp, color=_COLOURS.get(grasp, "tab:gray"))
+    ax.set_ylim(-2, 102)
+    ax.set_xlabel(f"{label}, binned; 0: none added")
+    ax.set_ylabel("success rate (%)")
+    ax.grid(alpha=0.3)
+    ax.legend(title="grasp")

@@ -1,0 +1,116 @@
+"""One trial: translate what the robot believes, build what is true, run, judge.
+
+Runs in a worker process. The belief (the ATD, with the cell's object in it) is
+translated once per cell and kept; the robot and its scene are built afresh for every
+trial, which costs a few milliseconds (measured in benchmarks/bench_campaign.py) and
+leaves nothing of one trial in the next.
+"""
+
+from __future__ import annotations
+
+import time
+import traceback
+from dataclasses import replace
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+from atd.campaign.cells import TrialPlan
+from atd.campaign.judge import LiftJudge, PlaceJudge
+from atd.campaign.perturbation import approach_taken, sample, true_robot, true_scene
+from atd.campaign.record import TrialRecord
+from atd.campaign.spec import TASK_OBJECT
+from atd.model import has_errors, load_task
+from atd.model.diagnostics import render_all
+from atd.model.estd import Estd
+from atd.model.vocabulary import StateType
+from atd.runtime.session import Run, belief_scene
+from factories.base import Factory
+from factories.registry import create
+from translator import translate
+
+
+class TrialError(Exception):
+    """The trial cannot be run as planned (the task does not translate, ...)."""
+
+
+@lru_cache(maxsize=64)
+def believed(task_file: str, robot: str, arm: str, grasp: str, obj: str) -> tuple[Estd, Factory]:
+    """The ESTD the robot runs, from the ATD with the cell's object in it, and its factory."""
+    task, found = load_task(Path(task_file))
+    if task is None or has_errors(found):
+        raise TrialError(f"{task_file} does not validate:\n{render_all(found)}")
+    if obj != TASK_OBJECT:
+        from atd.campaign.objects import get
+
+        x, y = (task.object.pose.as_array()[:2, 3] if task.object is not None and task.object.pose is not None
+                else (0.10, 0.0))
+        task = task.model_copy(update={"object": get(obj).object_info(float(x), float(y))})
+    factory = create(robot, arm, grasp=grasp)
+    result = translate(task, factory)
+    if result.estd is None:
+        raise TrialError(f"{robot} ({arm}) cannot do {Path(task_file).name} with object '{obj}':\n"
+                         f"{render_all(result.diagnostics)}")
+    return result.estd, factory
+
+
+def run_trial(plan: TrialPlan) -> TrialRecord:
+    """The trial's record; an exception becomes an error record, so a campaign goes on."""
+    started = time.perf_counter()
+    record = TrialRecord(cell=plan.cell, index=plan.index, seed=plan.seed)
+    try:
+        _run(plan, record, started)
+    except Exception as exc:  # noqa: BLE001 - any failure of one trial is that trial's result
+        record.status, record.error = "error", _describe(exc)
+    record.wall_time = time.perf_counter() - started
+    return record
+
+
+def _run(plan: TrialPlan, record: TrialRecord, started: float) -> None:
+    cell = plan.cell
+    belief, factory = believed(plan.task_file, cell.robot, cell.arm, cell.grasp, cell.object)
+    model = plan.perturbation.model
+    values = sample(plan.perturbation, np.random.default_rng([plan.seed, 1]))
+    record.perturbation = values
+    scene = belief_scene(belief)
+    if cell.object != TASK_OBJECT and scene.object is not None:
+        from atd.campaign.objects import get
+
+        scene = replace(scene, object=get(cell.object).realize(scene.object))
+    run = Run(approach_taken(belief, model, values), factory, engine=cell.engine, seed=plan.seed,
+              budget=plan.budget, scene=true_scene(scene, model, values),
+              robot=true_robot(factory.robot, model, values))
+    judge = _judge(plan, belief, run)
+    record.setup_time = time.perf_counter() - started
+    outcome = run.execute(afterwards=judge)
+    verdict = judge.verdict
+    record.task_succeeded = outcome.succeeded
+    record.end_state = outcome.end_state
+    record.summary = outcome.summary
+    record.events = [{"t": r["t"], "transition": r["transition"], "event": r["event"]}
+                     for r in run.trace.records if r["type"] == "event"]
+    record.sim_time = outcome.sim_time
+    record.judged_succeeded, record.judge_reason = verdict.succeeded, verdict.reason
+    record.measurements = verdict.measurements
+
+
+def _judge(plan: TrialPlan, belief: Estd, run: Run) -> LiftJudge | PlaceJudge:
+    """The judge the spec names, or the one the task's states call for: a task that
+    places something is judged by where it rests, any other by whether it was lifted."""
+    places = [s for s in belief.states if s.type is StateType.PLACE and s.arm is not None
+              and "target" in s.arm.params]
+    kind = plan.judge or ("place" if places else "lift")
+    if kind == "place":
+        if not places:
+            raise TrialError(f"{plan.task_file}: the place judge needs a place state with a target")
+        return PlaceJudge(run.robot, tuple(places[-1].arm.params["target"]))
+    return LiftJudge(run.robot)
+
+
+def _describe(exc: BaseException) -> str:
+    if isinstance(exc, TrialError):
+        return str(exc)
+    frame = traceback.extract_tb(exc.__traceback__)[-1] if exc.__traceback__ else None
+    where = f" ({Path(frame.filename).name}:{frame.lineno})" if frame else ""
+    return f"{type(exc).__name__}: {exc}{where}"

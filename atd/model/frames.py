@@ -1,0 +1,26 @@
+"""Rotations in the convention every layer shares (URDF's fixed-axis roll, pitch, yaw)."""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+import numpy as np
+
+
+def rotation_rpy(rpy: Sequence[float]) -> np.ndarray:
+    """URDF fixed-axis roll, pitch, yaw (radians): R = Rz(yaw) Ry(pitch) Rx(roll)."""
+    r, p, y = rpy
+    cr, sr, cp, sp, cy, sy = np.cos(r), np.sin(r), np.cos(p), np.sin(p), np.cos(y), np.sin(y)
+    return np.array(
+        [
+            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
+            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
+            [-sp, cp * sr, cp * cr],
+        ]
+    )
+
+
+def rotation_angle(rotation: np.ndarray) -> float:
+    """The angle of a rotation matrix, in degrees."""
+    cos = (float(np.trace(rotation)) - 1.0) / 2.0
+    return float(np.degrees(np.arccos(max(-1.0, min(1.0, cos)))))

@@ -1,0 +1,57 @@
+"""What recording costs: `atd run examples/pick_and_place.xml` on the Melfa in MuJoCo with
+and without `--record` at 100 Hz, alternated, measured in one run; and the file's size.
+
+Target (issue 13): the run with recording at most 1.3x the run without.
+
+    python benchmarks/bench_record.py [--repeat 5] [--rate 100]
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from atd.model import load_task  # noqa: E402
+from atd.runtime.session import Run  # noqa: E402
+from factories.registry import create  # noqa: E402
+from translator import translate  # noqa: E402
+
+TASK = Path(__file__).resolve().parents[1] / "examples" / "pick_and_place.xml"
+TARGET = 1.3
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--repeat", type=int, default=5, help="runs of each; the medians count")
+    parser.add_argument("--rate", type=float, default=100.0, help="recording rate, Hz of simulated time")
+    args = parser.parse_args()
+    task, _ = load_task(TASK)
+    factory = create("melfa")
+    estd = translate(task, factory).estd
+    bare, recorded = [], []
+    with tempfile.TemporaryDirectory() as folder:
+        path = Path(folder) / "run.mcap"
+        Run(estd, factory).execute()  # warm up
+        for _ in range(args.repeat):
+            for record, times in ((None, bare), (path, recorded)):
+                run = Run(estd, factory, record=record, record_rate=args.rate)
+                started = time.perf_counter()
+                outcome = run.execute()
+                times.append(time.perf_counter() - started)
+        size = path.stat().st_size
+    median = lambda values: sorted(values)[len(values) // 2]  # noqa: E731
+    ratio = median(recorded) / median(bare)
+    print(f"pick_and_place on melfa in MuJoCo, {outcome.sim_time:.2f} s simulated, {args.repeat} runs each")
+    print(f"without recording: {median(bare):.3f} s (median)")
+    print(f"recording at {args.rate:g} Hz: {median(recorded):.3f} s (median), file {size / 1e6:.2f} MB")
+    print(f"ratio: {ratio:.2f}x (target <= {TARGET}x)")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,208 @@
+"""`atd campaign run` end to end, on campaigns small enough for the suite: real trials in
+MuJoCo, real worker processes, a real local Ray instance."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import pytest
+
+from atd.campaign.cells import plans
+from atd.campaign.record import TrialRecord
+from atd.campaign.runner import _Pool, run_local, run_ray
+from atd.campaign.spec import load_spec
+from atd.campaign.store import Store
+from tests.conftest import REPO
+
+DATA = REPO / "tests" / "data" / "campaign"
+TIMES = ("wall_time", "setup_time")  # the only fields that may differ between two runs of a trial
+
+
+def _atd(*args: str, cwd: Path) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "atd", *args], cwd=cwd, capture_output=True, text=True, timeout=600)
+
+
+def _outcomes(records: list[TrialRecord]) -> dict:
+    """Every field of every record but the wall-clock times, keyed by trial."""
+    return {(r.cell.key, r.index): {k: v for k, v in r.as_dict().items() if k not in TIMES} for r in records}
+
+
+def _spec(name: str):
+    loaded, found = load_spec(DATA / name)
+    assert loaded is not None, found
+    return loaded
+
+
+@pytest.fixture(scope="module")
+def straight() -> dict:
+    """The small campaign run straight through in this process: the reference."""
+    records: list[TrialRecord] = []
+    run_local(plans(_spec("small.toml")), 1, records.append)
+    return _outcomes(records)
+
+
+def test_the_cli_writes_every_trial_to_the_store_and_resume_skips_finished_ones(tmp_path: Path) -> None:
+    store = tmp_path / "small.sqlite"
+    first = _atd("campaign", "run", str(DATA / "small.toml"), "--store", str(store), "--trials", "2", "-j", "1",
+                 cwd=tmp_path)
+    assert first.returncode == 0, first.stderr
+    with Store.open_read(store) as s:
+        assert len(s.records()) == 2
+    again = _atd("campaign", "run", str(DATA / "small.toml"), "--store", str(store), "--resume", "-j", "1",
+                 cwd=tmp_path)
+    assert again.returncode == 0, again.stderr
+    assert "2 trials to run" in again.stderr and "2 already in" in again.stderr
+    with Store.open_read(store) as s:
+        records = s.records()
+    assert sorted(r.index for r in records) == [0, 1, 2, 3]
+    assert all(r.status == "ok" and r.judge_reason and "translation" in r.perturbation for r in records)
+
+
+def test_an_existing_store_is_not_overwritten_without_resume(tmp_path: Path) -> None:
+    store = tmp_path / "small.sqlite"
+    assert _atd("campaign", "run", str(DATA / "small.toml"), "--store", str(store), "--trials", "1", "-j", "1",
+                cwd=tmp_path).returncode == 0
+    again = _atd("campaign", "run", str(DATA / "small.toml"), "--store", str(store), "-j", "1", cwd=tmp_path)
+    assert again.returncode == 2 and "--resume" in again.stderr
+    with Store.open_read(store) as s:
+        assert len(s.records()) == 1
+
+
+def test_a_campaign_killed_midway_and_resumed_equals_one_run_straight_through(tmp_path: Path, straight) -> None:
+    store = tmp_path / "small.sqlite"
+    command = [sys.executable, "-m", "atd", "campaign", "run", str(DATA / "small.toml"), "--store", str(store),
+               "-j", "1", "-q"]
+    process = subprocess.Popen(command, cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        deadline = time.monotonic() + 300
+        while time.monotonic() < deadline and process.poll() is None:
+            if store.exists():
+                with Store.open_read(store) as s:
+                    if len(s.done()) >= 1:
+                        break
+            time.sleep(0.2)
+        process.send_signal(signal.SIGKILL)
+    finally:
+        process.wait()
+    with Store.open_read(store) as s:
+        kept = len(s.done())
+    assert 1 <= kept < 4, "the kill should land mid-campaign"
+    resumed = _atd("campaign", "run", str(DATA / "small.toml"), "--store", str(store), "--resume", "-j", "1",
+                   cwd=tmp_path)
+    assert resumed.returncode == 0, resumed.stderr
+    with Store.open_read(store) as s:
+        assert _outcomes(s.records()) == straight
+
+
+def test_one_worker_two_workers_and_ray_give_identical_records(monkeypatch, straight) -> None:
+    two: list[TrialRecord] = []
+    run_local(plans(_spec("small.toml")), 2, two.append)
+    assert _outcomes(two) == straight
+    ray: list[TrialRecord] = []
+    short = tempfile.mkdtemp(prefix="ray", dir="/tmp")  # Ray's socket paths must stay under 108 bytes
+    monkeypatch.setenv("RAY_TMPDIR", short)
+    run_ray(plans(_spec("small.toml")), None, 2, ray.append)
+    shutil.rmtree(short, ignore_errors=True)
+    assert _outcomes(ray) == straight
+    assert len({tuple(sorted(v["sampled"].items())) for v in straight.values()}) == 4, \
+        "each trial samples its own approach error"
+
+
+def test_a_worker_that_dies_mid_trial_is_an_error_trial_and_the_campaign_goes_on() -> None:
+    chosen = plans(_spec("small.toml"))
+    records: list[TrialRecord] = []
+    killed: list[int] = []
+
+    def sink(record: TrialRecord) -> None:
+        records.append(record)
+        if not killed and pool.running:  # the other worker is mid-trial: crash it, as a segfault would
+            pid = next(iter(pool.running))
+            os.kill(pid, signal.SIGKILL)
+            killed.append(pid)
+
+    pool = _Pool(2, sink)
+    pool.run(chosen)
+    assert sorted(r.index for r in records) == [0, 1, 2, 3]
+    errors = [r for r in records if r.status == "error"]
+    assert len(errors) == 1 and "died (killed by SIGKILL)" in errors[0].error
+    assert sum(r.status == "ok" for r in records) == 3
+
+
+def test_the_judge_catches_a_task_that_claims_a_success_that_did_not_happen(tmp_path: Path) -> None:
+    store = tmp_path / "claims.sqlite"
+    result = _atd("campaign", "run", str(DATA / "claims_success.toml"), "--store", str(store), "-j", "1",
+                  cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert "1 false successes" in result.stdout
+    with Store.open_read(store) as s:
+        (record,) = s.records()
+    assert record.task_succeeded and not record.judged_succeeded and record.false_success
+    assert record.judge_reason.startswith("not lifted")
+    assert record.measurements["lift"] < 0.01
+
+
+def test_a_bad_spec_gets_every_error_located_and_exit_1(tmp_path: Path) -> None:
+    result = _atd("campaign", "run", str(DATA / "bad.toml"), cwd=tmp_path)
+    assert result.returncode == 1
+    lines = [line for line in result.stderr.splitlines() if "error[" in line]
+    assert [line.split(": error")[0].rsplit("/", 1)[-1] for line in lines] == [
+        "bad.toml:2:1", "bad.toml:3:1", "bad.toml:4:1", "bad.toml:11:1", "bad.toml:15:1"]
+    assert "did you mean 'trials'?" in result.stderr
+    assert "no_such_task.xml" in result.stderr and "no arm 'middle'" in result.stderr
+    assert not list(tmp_path.iterdir()), "nothing is written for a spec with errors"
+
+
+def test_only_narrows_the_cells_and_an_unknown_dimension_is_refused(tmp_path: Path) -> None:
+    result = _atd("campaign", "run", str(DATA / "small.toml"), "--only", "colour=red", cwd=tmp_path)
+    assert result.returncode == 2 and "no dimension 'colour'" in result.stderr
+    result = _atd("campaign", "run", str(DATA / "small.toml"), "--only", "robot=baxter", cwd=tmp_path)
+    assert result.returncode == 2 and "no cell" in result.stderr
+    assert shutil.which("true") is None or not list(tmp_path.glob("*.sqlite"))
+
+
+def test_a_pick_and_place_is_judged_by_where_the_object_rests(tmp_path: Path) -> None:
+    records: list[TrialRecord] = []
+    run_local(plans(_spec("place.toml")), 1, records.append)
+    (record,) = records
+    assert record.status == "ok" and record.task_succeeded, record.summary
+    assert record.judged_succeeded, record.judge_reason
+    assert record.measurements["distance"] < 0.02 and abs(record.measurements["height"]) < 0.01
+
+
+def test_ctrl_c_stops_cleanly_keeping_every_finished_trial(tmp_path: Path) -> None:
+    store = tmp_path / "small.sqlite"
+    command = [sys.executable, "-m", "atd", "campaign", "run", str(DATA / "small.toml"), "--store", str(store),
+               "-j", "2", "-q", "--trials", "20"]
+    process = subprocess.Popen(command, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    deadline = time.monotonic() + 300
+    while time.monotonic() < deadline and process.poll() is None:
+        if store.exists():
+            with Store.open_read(store) as s:
+                if len(s.done()) >= 1:
+                    break
+        time.sleep(0.2)
+    process.send_signal(signal.SIGINT)
+    _, err = process.communicate(timeout=60)
+    with Store.open_read(store) as s:
+        kept = len(s.done())
+    assert process.returncode == 130, err
+    assert 1 <= kept < 20 and f"{kept} of 20 trials were stored" in err and "--resume" in err
+
+
+def test_workers_that_cannot_start_stop_the_campaign_with_a_message(tmp_path: Path) -> None:
+    # A script fed on standard input cannot be re-imported by a spawned worker: every
+    # worker dies before taking a trial, and the campaign must say so, not wait forever.
+    script = ("from pathlib import Path\nfrom atd.campaign.cells import plans\nfrom atd.campaign.runner import "
+              "WorkerError, run_local\nfrom atd.campaign.spec import load_spec\n"
+              f"loaded, _ = load_spec(Path({str(DATA / 'small.toml')!r}))\n"
+              "try:\n    run_local(plans(loaded), 2, print)\nexcept WorkerError as exc:\n    print('stopped:', exc)\n")
+    result = subprocess.run([sys.executable, "-"], input=script, cwd=tmp_path, capture_output=True, text=True,
+                            timeout=120)
+    assert "stopped: a worker process could not start (exit code 1)" in result.stdout, result.stderr

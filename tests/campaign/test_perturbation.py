@@ -1,0 +1,113 @@
+"""Perturbations change the truth, never the belief: each model's draw and where it lands."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from atd.campaign.perturbation import approach_states, approach_taken, sample, true_robot, true_scene
+from atd.campaign.spec import Perturbation
+from atd.model import load_task
+from atd.runtime.session import belief_scene
+from factories.registry import create
+from tests.conftest import REPO
+from translator import translate
+
+TASK = REPO / "examples" / "grasp_and_lift.xml"
+
+
+@pytest.fixture(scope="module")
+def belief():
+    task, _ = load_task(TASK)
+    return translate(task, create("melfa")).estd
+
+
+def _draws(model: Perturbation, n: int = 200) -> list[dict[str, float]]:
+    rng = np.random.default_rng(3)
+    return [sample(model, rng) for _ in range(n)]
+
+
+def test_the_approach_error_is_drawn_within_its_magnitudes_in_both_directions() -> None:
+    draws = _draws(Perturbation(model="approach", translation=0.05, rotation=15))
+    for axis in ("dx", "dy", "dz"):
+        values = [d[axis] for d in draws]
+        assert max(abs(v) for v in values) <= 0.05 and min(values) < -0.03 and max(values) > 0.03
+    for axis in ("roll", "pitch", "yaw"):
+        values = [d[axis] for d in draws]
+        assert max(abs(v) for v in values) <= 15 and min(values) < -10 and max(values) > 10
+    d = draws[0]
+    assert d["translation"] == pytest.approx(math.dist((0, 0, 0), (d["dx"], d["dy"], d["dz"])))
+    assert 0 < d["rotation"] <= math.sqrt(3) * 15
+
+
+def test_the_approach_error_moves_only_the_moves_that_bring_the_hand_to_the_grasp(belief) -> None:
+    assert approach_states(belief) == {"approach", "preshape_hand"}
+    values = {"dx": 0.01, "dy": -0.02, "dz": 0.03, "roll": 0.0, "pitch": 0.0, "yaw": 0.0}
+    taken = approach_taken(belief, "approach", values)
+    before = {s.name: s for s in belief.states}
+    for state in taken.states:
+        if state.name in ("approach", "preshape_hand"):
+            moved = np.subtract(state.arm.params["target"], before[state.name].arm.params["target"])
+            assert moved == pytest.approx([0.01, -0.02, 0.03])
+        else:
+            assert state == before[state.name], f"{state.name} must be left as the robot planned it"
+    assert taken.object == belief.object, "the robot's belief about the object is unchanged"
+
+
+def test_a_turned_approach_swings_about_the_believed_object_centre_and_tilts_the_hand(belief) -> None:
+    values = {"dx": 0.0, "dy": 0.0, "dz": 0.0, "roll": 0.0, "pitch": 10.0, "yaw": 0.0}
+    taken = {s.name: s for s in approach_taken(belief, "approach", values).states}
+    planned = {s.name: s for s in belief.states}
+    centre = np.array(belief.object.pose.as_array()[:3, 3])
+    for name in ("approach", "preshape_hand"):
+        new, old = (np.array(x[name].arm.params["target"]) for x in (taken, planned))
+        assert np.linalg.norm(new - centre) == pytest.approx(np.linalg.norm(old - centre))
+        assert taken[name].arm.params["tilt"] == (0.0, 10.0, 0.0)
+    high = np.array(taken["approach"].arm.params["target"]) - centre
+    assert high[0] == pytest.approx(math.sin(math.radians(10)) * np.linalg.norm(high))
+
+
+def test_object_pose_and_physics_change_the_true_world_only(belief) -> None:
+    scene = belief_scene(belief)
+    moved = true_scene(scene, "object_pose", {"dx": 0.02, "dy": -0.01, "yaw": 90.0})
+    assert moved.object.pose[:3, 3] == pytest.approx(scene.object.pose[:3, 3] + [0.02, -0.01, 0.0])
+    assert moved.object.pose[:3, 0] == pytest.approx([0.0, 1.0, 0.0])
+    heavy = true_scene(scene, "object_physics", {"mass_scale": 2.0, "friction_scale": 0.5})
+    assert heavy.object.mass == pytest.approx(2 * scene.object.mass)
+    assert heavy.object.friction == pytest.approx(0.5 * scene.object.friction)
+    assert scene.object.mass == belief.object.weight, "the belief is untouched"
+
+
+def test_the_sensor_perturbation_scales_noise_and_bias_and_leaves_ideal_sensors_ideal() -> None:
+    robot = create("baxter").robot
+    noisy = true_robot(robot, "sensors", {"noise_scale": 3.0, "bias_scale": 2.0})
+    wrench, scaled = robot.sensors["wrench"], noisy.sensors["wrench"]
+    assert np.asarray(scaled.noise_std) == pytest.approx(3 * np.asarray(wrench.noise_std))
+    assert np.asarray(scaled.bias) == pytest.approx(2 * np.asarray(wrench.bias))
+    assert np.any(np.asarray(wrench.noise_std) > 0), "Baxter's virtual wrist sensor is noisy"
+    assert true_robot(robot, "none", {}) is robot
+
+
+def test_a_trial_draws_the_same_values_from_the_same_seed() -> None:
+    model = Perturbation(model="object_physics")
+    first = sample(model, np.random.default_rng([42, 1]))
+    assert sample(model, np.random.default_rng([42, 1])) == first
+    assert 0.5 <= first["mass_scale"] <= 2.0 and 0.5 <= first["friction_scale"] <= 1.5
+
+
+def test_the_perturbed_tasks_are_the_ones_in_the_spec(tmp_path: Path) -> None:
+    from atd.campaign.cells import plans
+    from atd.campaign.spec import load_spec
+
+    spec = tmp_path / "s.toml"
+    spec.write_text(f'name = "s"\ntasks = ["{TASK}"]\nrobots = ["melfa", "baxter"]\ngrasps = ["naive", "robust"]\n'
+                    'trials = 3\n[perturbations.shift]\nmodel = "object_pose"\n')
+    loaded, found = load_spec(spec)
+    assert loaded is not None, found
+    chosen = plans(loaded)
+    assert len(chosen) == 2 * 2 * 3
+    assert len({p.seed for p in chosen}) == len(chosen), "every trial has its own seed"
+    assert {p.cell.perturbation for p in chosen} == {"shift"}

@@ -1,0 +1,135 @@
+"""The campaign store keeps every finished trial, refuses to mix campaigns, and says why."""
+
+from __future__ import annotations
+
+import os
+import signal
+import sqlite3
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from atd.campaign.store import Store, StoreError
+from tests.campaign.conftest import approach, preset_records, trial
+
+SPEC = "[campaign]\ntrials = 4\n"
+
+
+def test_records_come_back_as_they_went_in_ordered_by_cell_then_index(tmp_path: Path) -> None:
+    records = preset_records()
+    records[3].status, records[3].error = "error", "worker crashed"
+    path = tmp_path / "c.sqlite"
+    with Store.create_or_resume(path, SPEC, "d1", resume=False) as store:
+        for record in reversed(records):
+            store.add(record)
+    with Store.open_read(path) as store:
+        back = store.records()
+        assert store.spec_text == SPEC and store.spec_digest == "d1"
+    assert back == sorted(records, key=lambda r: (r.cell.key, r.index))
+    assert back[0].perturbation == approach(0.01, 3.0)  # the sampled values survive, not only the cell's name
+
+
+def test_done_names_each_finished_trial_by_cell_and_index(tmp_path: Path) -> None:
+    with Store.create_or_resume(tmp_path / "c.sqlite", SPEC, "d1", resume=False) as store:
+        assert store.done() == set()
+        store.add(trial(0))
+        store.add(trial(1, status="error"))
+        store.add(trial(0, grasp="robust"))
+        key = trial().cell.key
+        assert store.done() == {(key, 0), (key, 1), (trial(grasp="robust").cell.key, 0)}
+
+
+def test_resume_continues_the_same_store(tmp_path: Path) -> None:
+    path = tmp_path / "c.sqlite"
+    with Store.create_or_resume(path, SPEC, "d1", resume=False) as store:
+        store.add(trial(0))
+    with Store.create_or_resume(path, SPEC, "d1", resume=True) as store:
+        store.add(trial(1))
+        assert [r.index for r in store.records()] == [0, 1]
+
+
+def test_an_existing_store_is_not_overwritten_without_resume(tmp_path: Path) -> None:
+    path = tmp_path / "c.sqlite"
+    Store.create_or_resume(path, SPEC, "d1", resume=False).close()
+    with pytest.raises(StoreError, match="exists; add --resume to continue it, or give another --store"):
+        Store.create_or_resume(path, SPEC, "d1", resume=False)
+
+
+def test_resume_refuses_a_store_made_from_another_spec(tmp_path: Path) -> None:
+    path = tmp_path / "c.sqlite"
+    with Store.create_or_resume(path, SPEC, "d1", resume=False) as store:
+        store.add(trial(0))
+    with pytest.raises(StoreError, match="made from a different spec"):
+        Store.create_or_resume(path, SPEC + "# changed\n", "d2", resume=True)
+    with Store.open_read(path) as store:
+        assert len(store.records()) == 1
+
+
+def test_a_trial_stored_twice_is_refused(tmp_path: Path) -> None:
+    with Store.create_or_resume(tmp_path / "c.sqlite", SPEC, "d1", resume=False) as store:
+        store.add(trial(0))
+        with pytest.raises(StoreError, match="trial 0 of cell .* is already stored"):
+            store.add(trial(0))
+
+
+def test_store_paths_that_cannot_hold_a_store_are_refused(tmp_path: Path) -> None:
+    with pytest.raises(StoreError, match="is not a regular file"):
+        Store.create_or_resume(tmp_path, SPEC, "d1", resume=True)
+    with pytest.raises(StoreError, match="the folder .*missing does not exist"):
+        Store.create_or_resume(tmp_path / "missing" / "c.sqlite", SPEC, "d1", resume=False)
+
+
+def test_reading_a_missing_file_or_a_file_that_is_no_store_says_so(tmp_path: Path) -> None:
+    with pytest.raises(StoreError, match="no such file"):
+        Store.open_read(tmp_path / "nowhere.sqlite")
+    text = tmp_path / "notes.txt"
+    text.write_text("not a database\n" * 100)
+    with pytest.raises(StoreError, match="notes.txt is not a campaign store"):
+        Store.open_read(text)
+    other = tmp_path / "other.sqlite"
+    with sqlite3.connect(other) as db:
+        db.execute("CREATE TABLE things (x)")
+    with pytest.raises(StoreError, match="other.sqlite is not a campaign store"):
+        Store.open_read(other)
+
+
+def test_a_store_from_a_newer_atd_is_refused_not_misread(tmp_path: Path) -> None:
+    path = tmp_path / "c.sqlite"
+    Store.create_or_resume(path, SPEC, "d1", resume=False).close()
+    db = sqlite3.connect(path)
+    with db:
+        db.execute("UPDATE meta SET value = '99' WHERE key = 'format_version'")
+    db.close()
+    with pytest.raises(StoreError, match="store format 99, newer than this atd reads .*upgrade atd"):
+        Store.open_read(path)
+
+
+_WRITER = """
+import sys, time
+from pathlib import Path
+from atd.campaign.store import Store
+from tests.campaign.conftest import trial
+store = Store.create_or_resume(Path(sys.argv[1]), "spec", "d1", resume=False)
+for i in range(1000):
+    store.add(trial(i))
+    print(i, flush=True)
+    time.sleep(0.01)
+"""
+
+
+def test_a_killed_campaign_keeps_every_trial_it_committed(tmp_path: Path) -> None:
+    path = tmp_path / "c.sqlite"
+    repo = Path(__file__).resolve().parents[2]
+    writer = subprocess.Popen([sys.executable, "-c", _WRITER, str(path)], cwd=repo, stdout=subprocess.PIPE,
+                              text=True, env={**os.environ, "PYTHONPATH": str(repo)})
+    assert writer.stdout is not None
+    committed = [int(writer.stdout.readline()) for _ in range(20)]
+    writer.send_signal(signal.SIGKILL)
+    writer.wait()
+    assert Path(f"{path}-wal").exists()  # killed: the write-ahead log was never checkpointed
+    with Store.open_read(path) as store:
+        stored = [r.index for r in store.records()]
+    assert stored[:20] == committed
+    assert stored == list(range(len(stored)))
