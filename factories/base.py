@@ -262,6 +262,7 @@ class Factory(ABC):
         the Barrett's pinch, whose knuckles stand 75 mm either side of its TCP, wrapped the
         walls of a box 150 mm wide inside, its pads pressing their outer faces, reported the
         object held, and lifted against the walls (empty_the_box.xml)."""
+        self.check_payload(context)
         if context.object is None or context.object.pose is None:
             return
         centre = np.asarray(context.object.pose.position, float)
@@ -306,6 +307,14 @@ class Factory(ABC):
         shape = self.shape(state.hand_shape)[0].value if state.hand_shape else HandShape.CLOSED.value
         self.check_object_reach(context, HandShape.OPEN.value, shape)
         return NodeMapping("grasp", self.controller("hold"), self.controller("close_until_force"), notes)
+
+    def check_payload(self, context: MappingContext) -> None:
+        """An object heavier than the arm's published payload is not this robot's to lift."""
+        weight = context.object.weight if context.object else None
+        if weight is not None and self.robot.payload is not None and weight > self.robot.payload:
+            raise Unmappable(f"the object weighs {weight:g} kg, over the {self.robot.payload:g} kg payload of the "
+                             f"{self.arm.description}",
+                             "choose a robot or arm with a larger payload, or check the object's <weight>")
 
     def check_reach(self, *points: Vec3) -> None:
         """Each point must be reachable by the TCP with the hand pointing down."""

@@ -217,6 +217,7 @@ class RobotDescription:
     home: tuple[float, ...]  # arm joint positions
     sensors: dict[str, SensorModel] = field(default_factory=dict)  # keys: joints, wrench, tactile, range
     range_sensor: Site | None = None
+    payload: float | None = None  # kg the arm may carry at its flange, as published (robot-facts.md)
     range_limits: tuple[float, float] = (0.0, 0.0)
     extra_sites: tuple[Site, ...] = ()
     control_period: float = 0.005

@@ -121,6 +121,7 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
     if record is not None and record.suffix.lower() != ".mcap":
         usage_error(f"{record}: --record writes MCAP; give a file name ending in .mcap")
     estd, factory = _load(task, robot, arm, grasp)
+    guard_outputs({"--trace": trace_path, "--video": video, "--record": record}, [task, *estd.files()])
     try:
         session = Run(estd, factory, engine=engine, seed=seed, trace_path=trace_path, realtime=realtime,
                       budget=budget, video=video, viewer=viewer, record=record, record_rate=record_rate)

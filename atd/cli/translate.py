@@ -95,6 +95,7 @@ def translate(task: Path, robot: str, arm: str | None, config: Path | None, outp
         _report(warnings)
         click.echo(f"{task}: not translatable for {robot}; nothing written", err=True)
         raise SystemExit(EXIT_UNTRANSLATABLE)
+    guard_outputs({"-o": target}, [task, *([config] if config else []), *result.estd.files()])
     write_or_exit(target, estd_to_json(result.estd) if fmt == "json" else estd_to_xml(result.estd))
     _report(warnings)
     if not quiet:

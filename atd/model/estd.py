@@ -11,6 +11,7 @@ vocabulary, because an ESTD is also read back from files written elsewhere.
 from __future__ import annotations
 
 from functools import cached_property
+from pathlib import Path
 
 from typing import Annotated, Literal, Union
 
@@ -134,6 +135,14 @@ class Estd(EstdElement):
         for t in self.transitions:
             out.setdefault(t.origin, []).append(t)
         return {origin: tuple(ts) for origin, ts in out.items()}
+
+    def files(self) -> list[Path]:
+        """Every file this ESTD was made from (each machine's ATD, the object's mesh): the
+        files a command that writes must never overwrite."""
+        found = [Path(machine.source) for _, machine in self.walk() if machine.source]
+        if self.object is not None and self.object.shape and self.source:
+            found.append(Path(self.source).parent / self.object.shape)
+        return found
 
     def walk(self, prefix: str = "") -> list[tuple[str, Estd]]:
         """This machine and every nested sub-machine, each with its state path."""

@@ -108,6 +108,7 @@ def description(arm: str | None = None) -> RobotDescription:
     )
     return RobotDescription(
         name="baxter",
+        payload=2.2,  # kg, Rethink's figure, end effector included
         arm=side,
         links=_arm(side) + hand_links,
         arm_joints=tuple(row[0] for row in _ARM),

@@ -98,6 +98,7 @@ def description(arm: str | None = None) -> RobotDescription:
     )
     return RobotDescription(
         name="melfa",
+        payload=3.0,  # kg, RV-3SB: the 3 in its name
         arm=None,
         links=_arm() + hand_links,
         arm_joints=tuple(j[0] for j in _JOINTS),

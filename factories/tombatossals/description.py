@@ -269,6 +269,7 @@ def description(arm: str | None = None) -> RobotDescription:
     root = hand_links[0].name
     return RobotDescription(
         name="tombatossals",
+        payload=10.0,  # kg, PA10: 'payload 10 kg'
         arm=side,
         links=_pa10(side) + hand_links,
         arm_joints=tuple(row[0] for row in _PA10),

@@ -76,13 +76,15 @@ def test_an_option_given_twice_is_refused(task: Path) -> None:
 
 
 def _limited_file_size() -> None:
-    resource.setrlimit(resource.RLIMIT_FSIZE, (1024, 1024))
+    resource.setrlimit(resource.RLIMIT_FSIZE, (100, 100))
 
 
-def test_a_file_size_limit_is_one_line_exit_2_and_nothing_left(task: Path) -> None:
-    out = task.with_name("move.estd.xml")
-    done = subprocess.run([sys.executable, "-m", "atd", "translate", str(task), "--robot", "melfa", "-o", str(out),
-                           "-q"], capture_output=True, text=True, preexec_fn=_limited_file_size, timeout=60)
+@pytest.mark.parametrize("command", [["translate", "--robot", "melfa", "-q", "-o", "out.xml"],
+                                     ["run", "--robot", "melfa", "-q", "--trace", "out.jsonl"],
+                                     ["run", "--robot", "melfa", "-q", "--video", "out.gif"]])
+def test_a_file_size_limit_is_one_line_exit_2_and_nothing_left(task: Path, command: list[str]) -> None:
+    done = subprocess.run([sys.executable, "-m", "atd", command[0], str(task), *command[1:]], cwd=task.parent,
+                          capture_output=True, text=True, preexec_fn=_limited_file_size, timeout=120)
     assert done.returncode == 2
     assert done.stderr.strip().count("\n") == 0 and "File too large" in done.stderr
     assert sorted(p.name for p in task.parent.iterdir()) == ["move.xml"]
@@ -137,3 +139,14 @@ def test_an_output_name_over_255_bytes_is_refused(task: Path) -> None:
 
 def test_unknown_robot_for_robots_test_is_a_usage_error() -> None:
     assert atd("robots", "test", "nosuch").exit_code == 2
+
+
+def test_a_sub_task_or_mesh_of_the_task_is_never_an_output(tmp_path: Path) -> None:
+    for name in ("empty_the_box.xml", "pick_one.xml"):
+        shutil.copy(EXAMPLES / name, tmp_path)
+    sub = tmp_path / "pick_one.xml"
+    before = sub.read_bytes()
+    task = str(tmp_path / "empty_the_box.xml")
+    assert atd("translate", task, "--robot", "melfa", "-o", sub).exit_code == 2
+    assert atd("run", task, "--robot", "melfa", "--trace", sub).exit_code == 2
+    assert sub.read_bytes() == before

@@ -23,8 +23,8 @@ def _into_work_area(v: tuple[float, ...]) -> tuple[float, float, float]:
 
 def reachable(task: Task, plain: bool) -> Task:
     """The same graph with every target and the object in the work area; `plain` also drops
-    parameter overrides, hook shapes and obstacles (a hand with no room around the object),
-    which some robots rightly refuse."""
+    parameter overrides, hook shapes, obstacles (a hand with no room around the object) and
+    objects over 2 kg (Baxter's payload is 2.2 kg), which some robots rightly refuse."""
     def fix(state: State) -> State:
         update: dict = {"path": tuple(Waypoint(kind="position", values=_into_work_area(w.values))
                                       for w in state.path)}
@@ -38,6 +38,8 @@ def reachable(task: Task, plain: bool) -> Task:
     obj = task.object
     if obj is not None and obj.pose is not None:
         obj = obj.model_copy(update={"pose": Pose.from_position(_into_work_area(obj.pose.matrix))})
+    if plain and obj is not None and obj.weight is not None:
+        obj = obj.model_copy(update={"weight": min(obj.weight, 2.0)})
     update = {"states": tuple(fix(s) for s in task.states), "object": obj}
     if plain:
         update["environment"] = None
