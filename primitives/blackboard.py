@@ -14,6 +14,10 @@ CONTACT = "contact"
 """Arm -> hand: True once the arm's approach has ended (object found, or nothing within
 reach): the hand may close."""
 
+PRESSING = "pressing"
+"""Arm -> hand: True while the sliding grasp feels the closing fingers press on the surface
+it rides harder than it allows (Eq. 3.2 backing off): the fingers wait for the arm to rise."""
+
 FINGERS_STOPPED = "fingers_stopped"
 """Hand -> arm: True once the fingers can close no further (object held, or limits)."""
 
