@@ -120,6 +120,9 @@ _MOVE = {
     "acceleration_limits": _p(VEC, "linear and angular acceleration limits; zeros = none (thesis 3.3.2)",
                               (0.0,) * 6, length=6),
     "tolerance": _p(NUM, "distance to the target counted as reached (ours)", 0.003, unit="m"),
+    "contact_margin": _p(NUM, "how near the target a contact must come to end a guarded move as arrived (a place "
+                         "meeting its surface); one further away stops it short, an error (a transport meeting "
+                         "resistance); negative = any contact, for a move that looks for one (ours)", -1.0, unit="m"),
     "filter_time": _FILTER,
 }
 
