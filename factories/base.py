@@ -203,7 +203,20 @@ class Factory(ABC):
             return self.success(origin)
         if event_type in self.undetectable_events:
             raise Unmappable(f"the {self.name} has no sensor to detect '{event_type.value}'")
-        return self.sensed_event(event_type, origin)
+        sensed = self.sensed_event(event_type, origin)
+        return self.carried(sensed, origin, context) if event_type is EventType.GRASP_STABLE else sensed
+
+    def carried(self, held: ConditionNode, origin: State, context: MappingContext) -> ConditionNode:
+        """grasp_stable means the object is held, not that the fingers touch something: once
+        a transport has taken it off its support, a wrist force-torque sensor must also feel
+        at least half its weight (the task's, or `load_held`'s default) beyond the empty hand."""
+        wrist = self.arm.sensors_of(SensorKind.FORCE_TORQUE)
+        if origin.type is not StateType.TRANSPORT or not wrist:
+            return held
+        weight = context.object.weight if context.object is not None else None
+        load = self.condition(EventType.GRASP_STABLE, "load_held", wrist,
+                              weight=None if weight is None else round(weight / 2, 6))
+        return all_of(held, load)
 
     def success(self, origin: State) -> ConditionNode:
         """Thesis 7.2.2: one abstract success may need the arm AND the hand controller done."""

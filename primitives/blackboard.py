@@ -24,3 +24,8 @@ FINGERS_STOPPED = "fingers_stopped"
 SHIFT = "shift"
 """Hand -> arm: (3,) hand-frame displacement, m, for the arm to make before the hand
 tries again (finger-lost correction); the arm sets it back to None when done."""
+
+EMPTY_HAND = "empty_hand"
+"""In `Context.memory`, not the blackboard: (3,) world-frame wrist force of the empty hand,
+N, as the latest grasp began; the load a hand carries beyond it is what it holds."""
+

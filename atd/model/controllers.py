@@ -323,6 +323,18 @@ _CONDITIONS = (
         {"force_change": _p(NUM, "change of the summed pad force", 1.0, unit="N"), "for_time": _FOR},
     ),
     ConditionSpec(
+        "load_held",
+        "The wrist carries at least `weight` more than the empty hand did as the latest grasp began: the "
+        "object is held, once it has left its support.", SensorKind.FORCE_TORQUE,
+        {
+            "weight": _p(NUM, "least load that counts as the object (ours: half the task's object weight)", 0.02,
+                         unit="kg"),
+            "filter_time": _p(NUM, "time constant of the low-pass on the load: a hand speeding up reads as load "
+                              "too (ours)", 0.05, unit="s"),
+            "for_time": _FOR,
+        },
+    ),
+    ConditionSpec(
         "wrist_force_above", "The tared, filtered wrench exceeds the threshold.", SensorKind.FORCE_TORQUE,
         {
             "force_threshold": _p(NUM, "force limit", 15.0, unit="N"),

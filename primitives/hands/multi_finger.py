@@ -28,8 +28,8 @@ from abc import abstractmethod
 import numpy as np
 
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
-from primitives.blackboard import CONTACT, FINGERS_STOPPED, PRESSING, SHIFT
-from primitives.filters import LowPass
+from primitives.blackboard import CONTACT, EMPTY_HAND, FINGERS_STOPPED, PRESSING, SHIFT
+from primitives.filters import LowPass, world_load
 from primitives.robot import HandMode, Readings
 
 CLOSING_SPEED = 0.3  # of each DOF's speed limit
@@ -105,6 +105,7 @@ class FingerGrasp(Controller):
         self.still = np.zeros_like(self.reference)
         self.anchor = readings.hand_q.copy()  # where each DOF was when it last moved
         self.ctx.blackboard[FINGERS_STOPPED] = False
+        self.ctx.memory[EMPTY_HAND] = world_load(readings)  # a grasp begins empty-handed
         if not self.fingers:
             self.finish(Status.ERROR, "from this posture the grasp shape moves no finger that has a tactile pad")
             self.phase = "failed"

@@ -47,3 +47,13 @@ def test_the_naive_grasp_on_the_barrett_succeeds_only_with_the_cylinder_lifted()
     outcome, _ = execute(estd, robot, task=task)
     lifted = robot.object_pose()[2, 3] > 0.12
     assert outcome.succeeded == lifted, f"{outcome.summary}; cylinder at z = {robot.object_pose()[2, 3]:.3f}"
+
+
+def test_a_lift_the_grip_cannot_carry_is_not_a_stable_grasp() -> None:
+    """The pads slide up a slippery 3 kg cylinder, still pressing, while it stays on the
+    table: the lift once reported success and grasp_stable; the wrist never feels the
+    weight, so grasp_stable does not hold and the lift ends on its timeout."""
+    outcome, executor, robot = run_example(DATA / "lift_too_heavy.xml")
+    assert robot.object_pose()[2, 3] < 0.045  # ground truth: it never left the table
+    assert not outcome.succeeded, outcome.summary
+    assert [r["event"] for r in executor.trace.records if r["type"] == "event"][-1] == "timeout"
