@@ -57,3 +57,11 @@ def test_a_lift_the_grip_cannot_carry_is_not_a_stable_grasp() -> None:
     assert robot.object_pose()[2, 3] < 0.045  # ground truth: it never left the table
     assert not outcome.succeeded, outcome.summary
     assert [r["event"] for r in executor.trace.records if r["type"] == "event"][-1] == "timeout"
+
+
+def test_an_sdh2_slide_that_presses_beside_the_box_is_an_error() -> None:
+    """The fingers straddle the box, so the slide sinks past its top to the table: that is
+    not pressing on the object, and the slide ends in an error instead of in success."""
+    outcome, executor, robot = run_example(DATA / "slide_box.xml", robot="tombatossals", arm="left")
+    assert not outcome.succeeded, f"{outcome.summary}; the box at {robot.object_pose()[:3, 3]}"
+    assert last_reasons(executor)[0].startswith("lost the object: the hand sank"), last_reasons(executor)
