@@ -145,7 +145,7 @@ def test_graphviz_draws_when_installed(tmp_path, monkeypatch):
     fake_dot(tmp_path, monkeypatch, "dot = sys.stdin.read()\n"
              "sys.stdout.write('<svg><!-- ' + sys.argv[1] + ' ' + str(dot.count(' -> ')) + ' --></svg>')")
     data, drawn_by = render(example_graph("pick_and_place.xml"), "svg")
-    assert (data, drawn_by) == (b"<svg><!-- -Tsvg 22 --></svg>", "graphviz")
+    assert (data, drawn_by) == (b"<svg><!-- -Tsvg 26 --></svg>", "graphviz")
 
 
 def test_a_failing_graphviz_falls_back_unless_asked_for(tmp_path, monkeypatch):
