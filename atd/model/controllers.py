@@ -140,7 +140,8 @@ _MOVE = {
                length=3, limits=ranges.TILT),
     "contact_margin": _p(NUM, "how near the target a contact must come to end a guarded move as arrived (a place "
                          "meeting its surface); one further away stops it short, an error (a transport meeting "
-                         "resistance); negative = any contact, for a move that looks for one (ours)", -1.0, unit="m"),
+                         "resistance); negative = any contact, for a move that looks for one (ours)", -1.0, unit="m",
+                         limits=ranges.CONTACT_MARGIN),
     "filter_time": _FILTER,
 }
 
