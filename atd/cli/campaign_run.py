@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import signal
 from collections import Counter
 from importlib.util import find_spec
 from pathlib import Path
@@ -26,6 +27,10 @@ def _fail(message: str, code: int) -> None:
     raise SystemExit(code)
 
 
+def _stop(signum: int, frame: object) -> None:
+    raise KeyboardInterrupt
+
+
 @campaign.command("run")
 @click.argument("spec_file", metavar="SPEC.toml", type=click.Path(path_type=Path, exists=True, dir_okay=False))
 @click.option("--workers", "-j", type=click.IntRange(min=1), default=None,
@@ -47,8 +52,8 @@ def run_campaign(spec_file: Path, workers: int | None, ray_address: str | None, 
                  quiet: bool) -> None:
     """Run the trials of SPEC.toml, each judged by the simulator's ground truth, into a store.
 
-    Every trial's record is committed as it ends, so a stopped campaign (Ctrl-C, a crash)
-    loses only the trials in flight; --resume continues it. Seeds depend only on the spec,
+    Every trial's record is committed as it ends, so a stopped campaign (Ctrl-C or SIGTERM
+    stop it cleanly; a crash) loses only the trials in flight; --resume continues it. Seeds depend only on the spec,
     so the records do not depend on --workers, --ray or the order trials ran in.
     """
     if ray_address is not None and find_spec("ray") is None:
@@ -83,6 +88,7 @@ def run_campaign(spec_file: Path, workers: int | None, ray_address: str | None, 
             store.add(record)
             progress(record)
 
+        signal.signal(signal.SIGTERM, _stop)  # `kill`, a batch scheduler: stop as Ctrl-C does
         try:
             if ray_address is not None:
                 run_ray(todo, ray_address or None, workers, keep)

@@ -176,7 +176,8 @@ def test_a_pick_and_place_is_judged_by_where_the_object_rests(tmp_path: Path) ->
     assert record.measurements["distance"] < 0.02 and abs(record.measurements["height"]) < 0.01
 
 
-def test_ctrl_c_stops_cleanly_keeping_every_finished_trial(tmp_path: Path) -> None:
+@pytest.mark.parametrize("stop", [signal.SIGINT, signal.SIGTERM])
+def test_ctrl_c_or_sigterm_stops_cleanly_keeping_every_finished_trial(tmp_path: Path, stop: int) -> None:
     store = tmp_path / "small.sqlite"
     command = [sys.executable, "-m", "atd", "campaign", "run", str(DATA / "small.toml"), "--store", str(store),
                "-j", "2", "-q", "--trials", "20"]
@@ -188,7 +189,7 @@ def test_ctrl_c_stops_cleanly_keeping_every_finished_trial(tmp_path: Path) -> No
                 if len(s.done()) >= 1:
                     break
         time.sleep(0.2)
-    process.send_signal(signal.SIGINT)
+    process.send_signal(stop)
     _, err = process.communicate(timeout=60)
     with Store.open_read(store) as s:
         kept = len(s.done())
