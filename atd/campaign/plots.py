@@ -10,7 +10,6 @@ from __future__ import annotations
 import io
 from dataclasses import dataclass
 from itertools import pairwise
-from pathlib import Path
 from typing import Sequence
 
 import matplotlib
@@ -19,7 +18,6 @@ from matplotlib.figure import Figure
 
 from atd.campaign.record import DIMENSIONS, TrialRecord
 from atd.campaign.report import Group, group
-from atd.model import write_atomically
 
 #: The approach error's magnitudes, as the perturbation records them: (key, axis label, scale to the axis unit).
 APPROACH_MEASURES = (("translation", "approach translation error (cm)", 100.0),
@@ -51,9 +49,8 @@ def approach_bins(records: Sequence[TrialRecord], measure: str, count: int = 5) 
     return bins
 
 
-def plot_report(records: Sequence[TrialRecord], groups: Sequence[Group], path: Path) -> None:
-    """Write the picture to `path` in one step, in the format its suffix names (.png, .svg)."""
-    fmt = path.suffix.lower().lstrip(".")
+def draw_report(records: Sequence[TrialRecord], groups: Sequence[Group], fmt: str) -> bytes:
+    """The picture, as PNG or SVG bytes (`fmt` "png" or "svg")."""
     perturbed = any(measure in r.perturbation for r in records for measure, _, _ in APPROACH_MEASURES)
     panels = 1 + perturbed * len(APPROACH_MEASURES)
     figure = Figure(figsize=(6.5 * panels, max(3.5, 0.9 + 0.28 * len(groups))), layout="constrained")
@@ -65,7 +62,7 @@ def plot_report(records: Sequence[TrialRecord], groups: Sequence[Group], path: P
     out = io.BytesIO()
     with matplotlib.rc_context({"svg.hashsalt": "atd", "svg.fonttype": "none"}):
         figure.savefig(out, format=fmt, metadata={"Date": None} if fmt == "svg" else None)
-    write_atomically(path, out.getvalue())
+    return out.getvalue()
 
 
 def _label(g: Group, varying: Sequence[str]) -> str:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import NoReturn
 
 import click
 
@@ -12,8 +11,7 @@ from atd.campaign.formats import FORMATS, render
 from atd.campaign.record import DIMENSIONS, TrialRecord
 from atd.campaign.report import build_report, parse_by
 from atd.campaign.store import Store, StoreError
-from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_USAGE, OutputFile, campaign
-from atd.model import write_atomically
+from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_USAGE, OutputFile, campaign, write_or_exit
 
 PLOT_SUFFIXES = (".png", ".svg")
 
@@ -25,18 +23,6 @@ def _stored(store: Path) -> list[TrialRecord]:
     except StoreError as exc:
         click.echo(f"error: {exc}", err=True)
         raise SystemExit(EXIT_INVALID) from None
-
-
-def _cannot_write(path: Path, exc: OSError) -> NoReturn:
-    click.echo(f"error: cannot write '{path}': {exc.strerror}", err=True)
-    raise SystemExit(EXIT_USAGE) from None
-
-
-def _write(path: Path, data: bytes) -> None:
-    try:
-        write_atomically(path, data)
-    except OSError as exc:
-        _cannot_write(path, exc)
 
 
 @campaign.command()
@@ -70,15 +56,13 @@ def report(store: Path, fmt: str, by_text: str | None, plot: Path | None, output
     if output is None:
         click.echo(text, nl=False)
     else:
-        _write(output, text.encode())
+        write_or_exit(output, text.encode())
         click.echo(f"wrote {output} ({len(built.groups)} groups of {built.trials} trials)", err=True)
     if plot is not None:
-        from atd.campaign.plots import plot_report  # matplotlib only when a plot is asked for
+        from atd.campaign.plots import draw_report  # matplotlib only when a plot is asked for
 
-        try:
-            plot_report(records, built.groups if by_text is not None else built.conditions, plot)
-        except OSError as exc:
-            _cannot_write(plot, exc)
+        groups = built.groups if by_text is not None else built.conditions
+        write_or_exit(plot, draw_report(records, groups, plot.suffix.lower().lstrip(".")))
         click.echo(f"wrote {plot}", err=True)
     raise SystemExit(EXIT_OK)
 
@@ -94,6 +78,6 @@ def export_command(store: Path, fmt: str, output: Path) -> None:
     Exit status: 0 written, 1 STORE is missing or not a campaign store, 2 usage error.
     """
     records = _stored(store)
-    _write(output, export(records, fmt).encode())
+    write_or_exit(output, export(records, fmt).encode())
     click.echo(f"wrote {output} ({len(records)} trials)", err=True)
     raise SystemExit(EXIT_OK)

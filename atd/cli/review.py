@@ -6,8 +6,7 @@ from pathlib import Path
 
 import click
 
-from atd.cli.app import EXIT_INVALID, OutputFile, main, usage_error
-from atd.model.files import OutputError, write_output
+from atd.cli.app import EXIT_INVALID, OutputFile, main, usage_error, write_or_exit
 from atd.review.compare import compare, render_text
 from atd.review.load import Recording, RecordingError, load
 from atd.review.page import report_page
@@ -22,13 +21,6 @@ def _load(path: Path) -> Recording:
         raise SystemExit(EXIT_INVALID) from None
 
 
-def _write(path: Path, data: bytes) -> None:
-    try:
-        write_output(path, data)
-    except OutputError as exc:
-        usage_error(str(exc))
-
-
 @main.command()
 @click.argument("recording", metavar="RUN.mcap", type=click.Path(path_type=Path))
 @click.option("-o", "--output", type=OutputFile(), default=None,
@@ -39,7 +31,7 @@ def report(recording: Path, output: Path | None) -> None:
     that fired each event. Works offline: nothing is fetched from anywhere."""
     run = _load(recording)
     output = output or recording.with_suffix(".html")
-    _write(output, report_page(run).encode())
+    write_or_exit(output, report_page(run).encode())
     click.echo(f"wrote {output}")
 
 
@@ -57,5 +49,5 @@ def compare_runs(first: Path, second: Path, plot: Path | None) -> None:
     click.echo(render_text(a, b))
     if plot is not None:
         _, rows = compare(a, b)
-        _write(plot, difference(a, b, rows).encode())
+        write_or_exit(plot, difference(a, b, rows).encode())
         click.echo(f"plot: {plot}")

@@ -34,6 +34,17 @@ def _outcomes(records: list[TrialRecord]) -> dict:
     return {(r.cell.key, r.index): {k: v for k, v in r.as_dict().items() if k not in TIMES} for r in records}
 
 
+def _wait_for_a_stored_trial(store: Path, process: subprocess.Popen) -> None:
+    """Until the campaign `process` has committed its first trial to `store`."""
+    deadline = time.monotonic() + 300
+    while time.monotonic() < deadline and process.poll() is None:
+        if store.exists():
+            with Store.open_read(store) as s:
+                if s.done():
+                    return
+        time.sleep(0.2)
+
+
 def _spec(name: str):
     loaded, found = load_spec(DATA / name)
     assert loaded is not None, found
@@ -81,13 +92,7 @@ def test_a_campaign_killed_midway_and_resumed_equals_one_run_straight_through(tm
                "-j", "1", "-q"]
     process = subprocess.Popen(command, cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
-        deadline = time.monotonic() + 300
-        while time.monotonic() < deadline and process.poll() is None:
-            if store.exists():
-                with Store.open_read(store) as s:
-                    if len(s.done()) >= 1:
-                        break
-            time.sleep(0.2)
+        _wait_for_a_stored_trial(store, process)
         process.send_signal(signal.SIGKILL)
     finally:
         process.wait()
@@ -182,13 +187,7 @@ def test_ctrl_c_or_sigterm_stops_cleanly_keeping_every_finished_trial(tmp_path: 
     command = [sys.executable, "-m", "atd", "campaign", "run", str(DATA / "small.toml"), "--store", str(store),
                "-j", "2", "-q", "--trials", "20"]
     process = subprocess.Popen(command, cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    deadline = time.monotonic() + 300
-    while time.monotonic() < deadline and process.poll() is None:
-        if store.exists():
-            with Store.open_read(store) as s:
-                if len(s.done()) >= 1:
-                    break
-        time.sleep(0.2)
+    _wait_for_a_stored_trial(store, process)
     process.send_signal(stop)
     _, err = process.communicate(timeout=60)
     with Store.open_read(store) as s:
