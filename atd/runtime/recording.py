@@ -57,7 +57,7 @@ _SCHEMAS: dict[str, dict[str, Any]] = {
 
 def quaternion(rotation: np.ndarray) -> dict[str, float]:
     """A rotation matrix as a unit quaternion, in the field names Foxglove reads."""
-    w, x, y, z = matrix_to_quat(rotation)
+    w, x, y, z = (round(q, DECIMALS) for q in matrix_to_quat(rotation))
     return {"x": x, "y": y, "z": z, "w": w}
 
 
@@ -73,12 +73,16 @@ def _encode(message: dict[str, Any]) -> bytes:
 
 
 def _xyz(v: np.ndarray) -> dict[str, float]:
-    x, y, z = v.tolist()
+    x, y, z = np.round(v, DECIMALS).tolist()
     return {"x": x, "y": y, "z": z}
 
 
+DECIMALS = 6  # as the trace: micro-units (um, uN, urad) are finer than any sensor here tells apart,
+# and a short number costs JSON about half of what a full-precision one does
+
+
 def _list(v: np.ndarray | None) -> list | None:
-    return None if v is None else v.tolist()
+    return None if v is None else np.round(v, DECIMALS).tolist()
 
 
 class Recording:
@@ -133,12 +137,12 @@ class Recording:
         r = self.robot.read()
         c = self.channels
         self._put(c["sensors"], t, {
-            "arm_q": r.arm_q.tolist(), "arm_dq": r.arm_dq.tolist(), "arm_effort": r.arm_effort.tolist(),
-            "hand_q": r.hand_q.tolist(), "hand_dq": r.hand_dq.tolist(), "hand_effort": r.hand_effort.tolist(),
+            "arm_q": _list(r.arm_q), "arm_dq": _list(r.arm_dq), "arm_effort": _list(r.arm_effort),
+            "hand_q": _list(r.hand_q), "hand_dq": _list(r.hand_dq), "hand_effort": _list(r.hand_effort),
             "tcp": _pose(r.tcp), "wrench": {"force": _xyz(r.wrench[:3]), "torque": _xyz(r.wrench[3:])},
             "pads": {name: {"force": force, "taxels": _list(r.taxels.get(name))}
-                     for name, force in zip(self.pad_names, r.pad_force.tolist())},
-            "range": None if r.range is None or math.isinf(r.range) else r.range})
+                     for name, force in zip(self.pad_names, _list(r.pad_force))},
+            "range": None if r.range is None or math.isinf(r.range) else round(r.range, DECIMALS)})
         command = self.executor.command
         if command is not None:
             self._put(c["commands"], t, {
@@ -151,7 +155,7 @@ class Recording:
             "object": _pose(self.robot.object_pose()) if self.has_object else None,
             "tcp": _pose(self.robot.true_tcp()),
             "pad_contacts": [{"pad": self.pad_names[k], "x": x, "y": y, "force": f}
-                             for k, (x, y), f in zip(pads.tolist(), points.tolist(), forces.tolist())]})
+                             for k, (x, y), f in zip(pads.tolist(), _list(points), _list(forces))]})
 
     def _trace_records(self) -> None:
         for record in self.trace.records[self.traced:]:
