@@ -41,6 +41,10 @@ LIFT_HEIGHT = 0.10  # m: a transport without a path lifts the object this much
 # within 3 mm of the target, and fingers coming down spread sway by a few more; the SDH2's
 # thumb, 4 mm clear of a wall on paper, landed on it (empty_the_box.xml, both engines).
 HAND_CLEARANCE = 0.01
+# m from its target within which a contact ends a move carrying the object as arrived: a
+# transport only at its target, a place where the object's underside meets the surface
+# the task puts it on (the target is the object resting there; ours).
+CARRIED_MARGIN = {StateType.TRANSPORT: 0.0, StateType.PLACE: 0.01}
 
 
 class Unmappable(Exception):
@@ -199,7 +203,20 @@ class Factory(ABC):
             return self.success(origin)
         if event_type in self.undetectable_events:
             raise Unmappable(f"the {self.name} has no sensor to detect '{event_type.value}'")
-        return self.sensed_event(event_type, origin)
+        sensed = self.sensed_event(event_type, origin)
+        return self.carried(sensed, origin, context) if event_type is EventType.GRASP_STABLE else sensed
+
+    def carried(self, held: ConditionNode, origin: State, context: MappingContext) -> ConditionNode:
+        """grasp_stable means the object is held, not that the fingers touch something: once
+        a transport has taken it off its support, a wrist force-torque sensor must also feel
+        at least half its weight (the task's, or `load_held`'s default) beyond the empty hand."""
+        wrist = self.arm.sensors_of(SensorKind.FORCE_TORQUE)
+        if origin.type is not StateType.TRANSPORT or not wrist:
+            return held
+        weight = context.object.weight if context.object is not None else None
+        load = self.condition(EventType.GRASP_STABLE, "load_held", wrist,
+                              weight=None if weight is None else round(weight / 2, 6))
+        return all_of(held, load)
 
     def success(self, origin: State) -> ConditionNode:
         """Thesis 7.2.2: one abstract success may need the arm AND the hand controller done."""
@@ -341,11 +358,16 @@ class Factory(ABC):
 
     def arm_motion(self, state: State, target: Vec3, via: tuple[Vec3, ...], **extra: ParamValue) -> Controller:
         """The arm controller of a move-like state: `push` for an ATD push (a guarded move
-        that must feel the object), `cartesian_move` with the ATD's movement type otherwise."""
+        that must feel the object), `cartesian_move` with the ATD's movement type otherwise.
+        A move carrying the object has arrived only where it was going: a transport that
+        meets resistance on the way, or a place that meets it above its surface, stopped
+        short (`contact_margin`)."""
         flags = arm_motion_flags(state)
         if state.type is StateType.PUSH:
             return self.controller("push", target=target, waypoints=via, keep_orientation=flags["keep_orientation"])
-        return self.controller("cartesian_move", target=target, waypoints=via, **{**flags, **extra})
+        margin = CARRIED_MARGIN.get(state.type)
+        return self.controller("cartesian_move", target=target, waypoints=via,
+                               **{**flags, **({} if margin is None else {"contact_margin": margin}), **extra})
 
     def shape_offset(self, state: State) -> Vec3:
         """Where the state's hand shape acts, from the TCP, in the world frame (the hand

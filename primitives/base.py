@@ -68,6 +68,9 @@ class Context:
     object: ObjectInfo | None = None
     environment: Environment | None = None
     blackboard: dict[str, Any] = field(default_factory=dict)
+    # What the robot has learnt so far in this run, shared by every state (each state's
+    # context is the run's with a fresh blackboard): see `primitives.blackboard.EMPTY_HAND`.
+    memory: dict[str, Any] = field(default_factory=dict)
     rng: np.random.Generator = field(default_factory=lambda: np.random.default_rng(0))
 
 

@@ -14,9 +14,18 @@ CONTACT = "contact"
 """Arm -> hand: True once the arm's approach has ended (object found, or nothing within
 reach): the hand may close."""
 
+PRESSING = "pressing"
+"""Arm -> hand: True while the sliding grasp feels the closing fingers press on the surface
+it rides harder than it allows (Eq. 3.2 backing off): the fingers wait for the arm to rise."""
+
 FINGERS_STOPPED = "fingers_stopped"
 """Hand -> arm: True once the fingers can close no further (object held, or limits)."""
 
 SHIFT = "shift"
 """Hand -> arm: (3,) hand-frame displacement, m, for the arm to make before the hand
 tries again (finger-lost correction); the arm sets it back to None when done."""
+
+EMPTY_HAND = "empty_hand"
+"""In `Context.memory`, not the blackboard: (3,) world-frame wrist force of the empty hand,
+N, as the latest grasp began; the load a hand carries beyond it is what it holds."""
+

@@ -15,7 +15,8 @@ from abc import abstractmethod
 import numpy as np
 
 from primitives.base import Condition, Context, StateView, Status
-from primitives.filters import ContactWrench, Debounce
+from primitives.blackboard import EMPTY_HAND
+from primitives.filters import ContactWrench, Debounce, LowPass, world_load
 from primitives.robot import HandInfo, Readings
 
 # hardware_failure ingredients (ours)
@@ -208,6 +209,33 @@ class WristForceAbove(Debounced):
         value = self.contact.force if self.axis == "norm" else -float(wrench[2])
         self.evidence = {"force": value, "axis": self.axis, "threshold": self.threshold, "contact_wrench": wrench}
         return value > self.threshold
+
+
+class LoadHeld(Debounced):
+    """The wrist carries at least `weight` beyond the empty hand's load as the latest
+    grasp began (`EMPTY_HAND`): the object is held, not just touched, once it has left its
+    support. Averaged over `filter_time`: a hand speeding up reads as load too. Without an
+    empty-hand reading (no grasp yet in this run) there is nothing to judge by: it does
+    not hold."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...]) -> None:
+        super().__init__(ctx, sensors)
+        self.weight = float(self.params["weight"])
+        self.load = LowPass(float(self.params["filter_time"]))
+
+    def start(self, readings: Readings) -> None:
+        super().start(readings)
+        self.load.reset(world_load(readings))
+
+    def test(self, readings: Readings, dt: float) -> bool:
+        empty = self.ctx.memory.get(EMPTY_HAND)
+        load = self.load(world_load(readings), dt)
+        if empty is None:
+            self.evidence = {"empty_hand": "never measured"}
+            return False
+        carried = float(empty[2] - load[2]) / 9.81  # kg: a weight pulls the wrist down, along world -z
+        self.evidence = {"carried": round(carried, 3), "weight": self.weight}
+        return carried >= self.weight
 
 
 class Gripper(Debounced):

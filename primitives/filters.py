@@ -33,6 +33,12 @@ class LowPass:
         return self.value
 
 
+def world_load(readings: Readings) -> np.ndarray:
+    """The force on the wrist in the world frame: a load's weight reads the same there
+    however the hand is turned."""
+    return readings.tcp[:3, :3] @ readings.wrench[:3]
+
+
 class ContactWrench:
     """The wrench that contacts add since `start`: tared, gravity turned with the hand, filtered.
 
@@ -50,7 +56,7 @@ class ContactWrench:
         self.value = np.zeros(6)
 
     def start(self, readings: Readings) -> None:
-        self._load_world = readings.tcp[:3, :3] @ readings.wrench[:3]
+        self._load_world = world_load(readings)
         self._torque0 = readings.wrench[3:].copy()
         self._filter.reset(np.zeros(6))
         self.value = np.zeros(6)

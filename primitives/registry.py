@@ -22,6 +22,7 @@ from primitives.base import Condition, Context, Controller, Status
 from primitives.conditions import (
     Fault,
     Gripper,
+    LoadHeld,
     Range,
     SimulationUnstable,
     StatusIs,
@@ -85,6 +86,7 @@ CONDITION_KINDS: Mapping[str, ConditionMaker] = {
     "tactile_force_above": lambda ctx, sensors: TactileForce(ctx, sensors, above=True),
     "tactile_force_below": lambda ctx, sensors: TactileForce(ctx, sensors, above=False),
     "tactile_load_change": TactileLoadChange,
+    "load_held": LoadHeld,
     "wrist_force_above": WristForceAbove,
     "gripper_force_above": lambda ctx, sensors: Gripper(ctx, sensors, "force", above=True),
     "gripper_force_below": lambda ctx, sensors: Gripper(ctx, sensors, "force", above=False),

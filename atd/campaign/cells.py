@@ -7,6 +7,7 @@ from __future__ import annotations
 import hashlib
 import itertools
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -26,6 +27,11 @@ class TrialPlan:
     judge: str | None  # "lift", "place", or None: chosen from the task's states
     perturbation: Perturbation
     budget: float  # simulated seconds before the watchdog
+    record_failed: str | None = None  # a folder: a trial the judge fails is recorded there (MCAP)
+
+    @property
+    def recording_name(self) -> str:
+        return f"{self.cell.key.replace('/', '__')}__{self.index}.mcap"
 
 
 def trial_seed(base_seed: int, cell: Cell, index: int) -> int:
@@ -63,8 +69,10 @@ def parse_only(items: tuple[str, ...]) -> dict[str, set[str]]:
     return only
 
 
-def plans(loaded: LoadedSpec, only: dict[str, set[str]] | None = None, trials: int | None = None) -> list[TrialPlan]:
-    """The trials of the spec's cells, narrowed to `only` and to the first `trials` of each."""
+def plans(loaded: LoadedSpec, only: dict[str, set[str]] | None = None, trials: int | None = None,
+          record_failed: Path | None = None) -> list[TrialPlan]:
+    """The trials of the spec's cells, narrowed to `only` and to the first `trials` of each;
+    with `record_failed`, each trial the judge fails is recorded into that folder."""
     spec = loaded.spec
     count = spec.trials if trials is None else trials
     chosen = []
@@ -73,5 +81,6 @@ def plans(loaded: LoadedSpec, only: dict[str, set[str]] | None = None, trials: i
             continue
         for index in range(count):
             chosen.append(TrialPlan(cell, index, trial_seed(spec.base_seed, cell, index), str(loaded.task_path(task)),
-                                    task.judge, spec.perturbations[cell.perturbation], spec.budget))
+                                    task.judge, spec.perturbations[cell.perturbation], spec.budget,
+                                    str(record_failed) if record_failed else None))
     return chosen

@@ -110,6 +110,8 @@ class _Pool:
                 self._take(left)
                 self._reap(plans, left)
         finally:
+            for channel in (self.todo, self.done):  # plans nobody will take must not hold up the exit
+                channel.cancel_join_thread()
             for process in self.workers.values():
                 if process.is_alive():
                     process.kill()

@@ -64,10 +64,14 @@ def run_trial(plan: TrialPlan) -> TrialRecord:
     except Exception as exc:  # noqa: BLE001 - any failure of one trial is that trial's result
         record.status, record.error = "error", _describe(exc)
     record.wall_time = time.perf_counter() - started
+    if plan.record_failed and record.status == "ok" and not record.judged_succeeded:
+        # Trials are deterministic: running it again with the recorder on records the same run.
+        _run(plan, TrialRecord(cell=plan.cell, index=plan.index, seed=plan.seed), started,
+             Path(plan.record_failed) / plan.recording_name)
     return record
 
 
-def _run(plan: TrialPlan, record: TrialRecord, started: float) -> None:
+def _run(plan: TrialPlan, record: TrialRecord, started: float, recording: Path | None = None) -> None:
     cell = plan.cell
     belief, factory = believed(plan.task_file, cell.robot, cell.arm, cell.grasp, cell.object)
     model = plan.perturbation.model
@@ -80,7 +84,7 @@ def _run(plan: TrialPlan, record: TrialRecord, started: float) -> None:
         scene = replace(scene, object=get(cell.object).realize(scene.object))
     run = Run(approach_taken(belief, model, values), factory, engine=cell.engine, seed=plan.seed,
               budget=plan.budget, scene=true_scene(scene, model, values),
-              robot=true_robot(factory.robot, model, values))
+              robot=true_robot(factory.robot, model, values), record=recording)
     judge = _judge(plan, belief, run)
     record.setup_time = time.perf_counter() - started
     outcome = run.execute(afterwards=judge)

@@ -14,5 +14,6 @@ from atd.cli import run as _run  # noqa: F401  (registers `atd run`)
 from atd.cli import graph as _graph  # noqa: F401  (registers `atd graph`)
 from atd.cli import campaign_run as _campaign_run  # noqa: F401  (registers `atd campaign run`)
 from atd.cli import campaign_report as _campaign_report  # noqa: F401  (registers `atd campaign report|export`)
+from atd.cli import review as _review  # noqa: F401  (registers `atd report`, `atd compare`)
 
 __all__ = ["main", "robots"]

@@ -39,9 +39,12 @@ def _fail(message: str, code: int) -> None:
               help="run only the cells with this value (repeatable; task, robot, arm, engine, grasp, object, "
                    "perturbation)")
 @click.option("--trials", type=click.IntRange(min=1), default=None, help="run only the first N trials of each cell")
+@click.option("--record-failed", type=click.Path(path_type=Path, file_okay=False), default=None, metavar="DIR",
+              help="record every trial the judge fails as MCAP into DIR (see atd report)")
 @click.option("--quiet", "-q", is_flag=True, help="no progress display")
 def run_campaign(spec_file: Path, workers: int | None, ray_address: str | None, store_path: Path | None,
-                 resume: bool, only: tuple[str, ...], trials: int | None, quiet: bool) -> None:
+                 resume: bool, only: tuple[str, ...], trials: int | None, record_failed: Path | None,
+                 quiet: bool) -> None:
     """Run the trials of SPEC.toml, each judged by the simulator's ground truth, into a store.
 
     Every trial's record is committed as it ends, so a stopped campaign (Ctrl-C, a crash)
@@ -54,11 +57,13 @@ def run_campaign(spec_file: Path, workers: int | None, ray_address: str | None, 
     if loaded is None or has_errors(found):
         _fail(render_all(found), EXIT_INVALID)
     try:
-        chosen = plans(loaded, parse_only(only), trials)
+        chosen = plans(loaded, parse_only(only), trials, record_failed and record_failed.resolve())
     except ValueError as exc:
         _fail(f"error: {exc}", EXIT_USAGE)
     if not chosen:
         _fail(f"error: no cell of {spec_file} matches {' '.join('--only ' + o for o in only)}", EXIT_USAGE)
+    if record_failed is not None and not record_failed.is_dir():
+        _fail(f"error: --record-failed {record_failed}: no such folder; create it first", EXIT_USAGE)
     store_path = store_path or Path.cwd() / f"{loaded.spec.name}.sqlite"
     try:
         store = Store.create_or_resume(store_path, loaded.text, loaded.digest, resume)

@@ -138,6 +138,10 @@ _MOVE = {
     "tilt": _p(VEC, "the hand turned away from top-down at the target: roll, pitch, yaw about the world axes "
                     "(ours: an oriented approach, thesis 3.4.1; zeros: top-down)", (0.0, 0.0, 0.0), unit="deg",
                length=3, limits=ranges.TILT),
+    "contact_margin": _p(NUM, "how near the target a contact must come to end a guarded move as arrived (a place "
+                         "meeting its surface); one further away stops it short, an error (a transport meeting "
+                         "resistance); negative = any contact, for a move that looks for one (ours)", -1.0, unit="m",
+                         limits=ranges.CONTACT_MARGIN),
     "filter_time": _FILTER,
 }
 
@@ -337,6 +341,18 @@ _CONDITIONS = (
         "The summed pad force moved by more than force_change since the state began: the held object "
         "touched something.", SensorKind.TACTILE,
         {"force_change": _p(NUM, "change of the summed pad force", 1.0, unit="N"), "for_time": _FOR},
+    ),
+    ConditionSpec(
+        "load_held",
+        "The wrist carries at least `weight` more than the empty hand did as the latest grasp began: the "
+        "object is held, once it has left its support.", SensorKind.FORCE_TORQUE,
+        {
+            "weight": _p(NUM, "least load that counts as the object (ours: half the task's object weight)", 0.02,
+                         unit="kg"),
+            "filter_time": _p(NUM, "time constant of the low-pass on the load: a hand speeding up reads as load "
+                              "too (ours)", 0.05, unit="s"),
+            "for_time": _FOR,
+        },
     ),
     ConditionSpec(
         "wrist_force_above", "The tared, filtered wrench exceeds the threshold.", SensorKind.FORCE_TORQUE,

@@ -60,7 +60,9 @@ DIRECTION = Range(-1.0, 1.0)  # components of a direction or normal
 PADS = Range(1, 64)
 TILT = Range(-90.0, 90.0, "deg")  # the hand turned away from top-down, about each world axis
 
-BY_UNIT = {"m/s": SPEED, "N": FORCE, "N m": TORQUE, "m": DISTANCE, "s": DURATION, "": FRACTION}
+CONTACT_MARGIN = Range(-1.0, 5.0, "m")  # negative: any contact ends a guarded move
+
+BY_UNIT = {"m/s": SPEED, "N": FORCE, "N m": TORQUE, "m": DISTANCE, "s": DURATION, "": FRACTION, "kg": WEIGHT}
 
 # Command line.
 BUDGET = Range(0.0, 86_400.0, "s", low_open=True)

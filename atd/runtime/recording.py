@@ -25,6 +25,7 @@ from atd.sim.models import matrix_to_quat
 from atd.sim.simrobot import SimRobot
 
 PROFILE = "atd"
+RECORDING_FORMAT = 1  # the channels and fields below; a reader refuses another
 DEFAULT_RATE = 100.0  # Hz of simulated time
 
 _NUMBERS = {"type": "array", "items": {"type": "number"}}

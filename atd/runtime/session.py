@@ -17,7 +17,7 @@ from atd.model.estd_xml import estd_to_xml
 from atd.model.files import InputError, read_capped
 from atd.model.xmlsafe import MAX_BYTES
 from atd.runtime.executor import Executor, Observer, Outcome, Progress, build_problems
-from atd.runtime.recording import DEFAULT_RATE, Recording
+from atd.runtime.recording import DEFAULT_RATE, RECORDING_FORMAT, Recording
 from atd.runtime.trace import Trace
 from atd.sim import ENGINES, make_robot
 from atd.sim.scene import Scene, SceneError, scene_from_task
@@ -57,7 +57,7 @@ def belief_scene(estd: Estd) -> Scene:
 
 def _run_info(estd: Estd, engine: str, seed: int) -> dict[str, str]:
     """What a recording says about the run it holds."""
-    return {"atd.run": json.dumps({"robot": estd.robot, "arm": estd.arm, "engine": engine, "seed": seed,
+    return {"atd.run": json.dumps({"format": RECORDING_FORMAT, "robot": estd.robot, "arm": estd.arm, "engine": engine, "seed": seed,
                                    "task": estd.source or ""})}
 
 

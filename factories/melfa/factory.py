@@ -3,8 +3,10 @@
 A 6-DOF industrial arm with a JR3 wrist force-torque sensor and a PG70-based parallel
 gripper with a tactile pad on each finger. Its primitives are simpler than Tombatossals'
 (thesis 7.3): grasp closes until the tactile grasp force is reached, transport keeps
-squeezing so the object does not loosen, place is a transport that stops on the contact
-the pads feel, and there is no slide.
+squeezing so the object does not loosen, place is a transport that descends straight onto
+the surface, and there is no slide. A place ends in success only where the object meets the
+surface the task puts it on: the pads' load changes as soon as the grip settles after a
+grasp, so a place that ended on that (as it once did) could succeed without moving.
 """
 
 from __future__ import annotations
@@ -22,8 +24,6 @@ from factories.base import (
     NodeMapping,
     Sensor,
     Unmappable,
-    all_of,
-    any_of,
     PARALLEL_JAW_SHAPES,
     parallel_jaw_closest,
 )
@@ -69,14 +69,6 @@ class MelfaFactory(Factory):
         if kind in (StateType.TRANSPORT, StateType.PLACE):
             return NodeMapping("transport", arm, self.controller("squeeze"))
         return NodeMapping("move", arm, *self.hand_for_motion(state))
-
-    def success(self, origin: State) -> ConditionNode:
-        if origin.type is not StateType.PLACE:
-            return super().success(origin)
-        success = EventType.SUCCESS
-        return all_of(any_of(self.condition(success, "arm_done"),
-                             self.condition(success, "tactile_load_change", _PADS)),
-                      self.condition(success, "hand_done"))
 
     def sensed_event(self, event_type: EventType, origin: State) -> ConditionNode:
         if event_type is EventType.GRASP_STABLE:

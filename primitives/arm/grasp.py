@@ -14,13 +14,17 @@ import numpy as np
 from primitives.arm.motion import GAIN, orientation_twist, unit
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
-from primitives.blackboard import CONTACT, FINGERS_STOPPED, SHIFT
+from primitives.blackboard import CONTACT, FINGERS_STOPPED, PRESSING, SHIFT
 from primitives.filters import ContactWrench
 from primitives.robot import Readings
 
 SHIFT_TOLERANCE = 0.002  # m: a requested shift counts as made
 BACK_OFF = 0.002  # m: the naive approach settles this far short of its contact
 SHIFT_TIME = 2.0  # s: a shift that has not arrived by then is blocked; the grasp goes on from there
+# s the sliding grasp averages the surface force over: a PyBullet fingertip on the table reads
+# 17 N and 0 N on alternate 5 ms ticks, and a bang-bang slide on each tick's reading drives
+# that chatter instead of riding the surface (SDH2 pinch, grasp_and_lift, seed 0).
+SURFACE_FILTER = 0.05
 
 
 class RobustGraspApproach(Controller):
@@ -30,9 +34,18 @@ class RobustGraspApproach(Controller):
     Alignment (Eq. 3.1, hand frame): while in contact, T_y > T_t moves v_x - v_z,
     T_y < -T_t moves -v_x - v_z; out of contact the hand approaches at v_z; contact with
     |T_y| <= T_t ends the alignment, as does covering MAX_DISTANCE without a contact.
-    Sliding grasp (Eq. 3.2), with the wrench tared when it starts: F_z <= -F_t (fingers
-    pushing on the surface) backs off, F_z >= F_t (the contact taken at the start is
-    lost) moves forward, otherwise the arm stays; it ends when the fingers stop.
+    Sliding grasp (Eq. 3.2): the surface pushes back on the hand with F_s (against the
+    grasp direction, measured against the free hand of the state's start and filtered over
+    SURFACE_FILTER); the approach ended on F_s = F_t, the contact the slide keeps: F_s
+    above it by F_t (fingers pushing on the surface) backs off until F_s is down to F_t
+    again, F_s down to zero (the contact lost) moves forward, otherwise the arm stays; it
+    ends when the fingers stop.
+    While it backs off it tells the hand (PRESSING) to hold its fingers: closing
+    fingertips swing down onto the surface faster than CORRECTION_VELOCITY lifts them, and
+    jammed there they stall on the table short of the object (SDH2 pinch, PyBullet: 30-50 N
+    per tip). Once the fingers have closed the arm holds its place, still backing off while
+    the squeeze presses the fingertips on the surface: left pressing there, they would spring
+    off it as the lift starts, and a guarded lift would read that as meeting resistance.
     """
 
     def __init__(self, ctx: Context) -> None:
@@ -44,10 +57,13 @@ class RobustGraspApproach(Controller):
         self.torque_threshold = float(p["torque_threshold"])
         self.speed = float(p["correction_velocity"])
         self.contact = ContactWrench(float(p["filter_time"]))
+        self.surface = ContactWrench(SURFACE_FILTER)
         self.side = np.array([1.0, 0.0, 0.0])  # v_x of Eq. 3.1
 
     def start(self, readings: Readings) -> None:
         self.contact.start(readings)
+        self.surface.start(readings)
+        self.backing = False  # backing off a surface the fingertips press on
         self.origin = readings.tcp[:3, 3].copy()
         self.rotation = readings.tcp[:3, :3].copy()
         self.phase = "approach"
@@ -69,14 +85,20 @@ class RobustGraspApproach(Controller):
         v = np.zeros(3)  # hand frame
         if self.phase == "approach":
             v = self._align(readings, wrench)
+        pushed = -float(self.surface.update(readings, dt)[:3] @ self.direction)  # F_s
+        # Backing off starts at F_t over the contact the slide keeps and goes on down to it.
+        self.backing = pushed >= 2.0 * self.force_threshold or (self.backing and pushed > self.force_threshold)
+        board[PRESSING] = self.backing and self.phase == "slide"
         if self.phase == "slide":
             if board.get(FINGERS_STOPPED):
                 self.phase, self.goal = "hold", position.copy()
                 self.finish(Status.DONE, "the fingers closed")
-            elif wrench[2] <= -self.force_threshold:
+            elif self.backing:
                 v = -self.speed * self.direction
-            elif wrench[2] >= self.force_threshold:
+            elif pushed <= 0.0:
                 v = self.speed * self.direction
+        if self.phase == "hold" and self.backing:  # squeezing presses the tips down
+            self.goal = self.goal - self.speed * dt * (rotation @ self.direction)
         world = rotation @ v
         if self.phase in ("hold", "shift"):
             world = GAIN * (self.goal - position)
@@ -84,7 +106,7 @@ class RobustGraspApproach(Controller):
                                           or (self.probing and self.contact.force >= self.force_threshold)
                                           or readings.time - self.shift_started > SHIFT_TIME):
                 board[SHIFT] = None  # made, or as far as the surface or the object allows
-                self._slide(readings)
+                self._slide()
         w, _ = orientation_twist(self.rotation, rotation)
         return arm_output(np.concatenate([world, w]))
 
@@ -96,16 +118,15 @@ class RobustGraspApproach(Controller):
                 return self.speed * (self.side - self.direction)
             if torque < -self.torque_threshold:
                 return self.speed * (-self.side - self.direction)
-            self._slide(readings)
+            self._slide()
             return np.zeros(3)
         travelled = float((readings.tcp[:3, 3] - self.origin) @ (readings.tcp[:3, :3] @ self.direction))
         if travelled >= self.max_distance:
-            self._slide(readings)
+            self._slide()
             return np.zeros(3)
         return self.speed * self.direction
 
-    def _slide(self, readings: Readings) -> None:
-        self.contact.start(readings)
+    def _slide(self) -> None:
         self.phase = "slide"
         self.ctx.blackboard[CONTACT] = True
 

@@ -62,8 +62,10 @@ class CartesianMove(Controller):
 
     v = n (x_goal - x) while ||F|| < FORCE_THRESHOLD, else 0, with n keeping v within the
     speed limit. On a guarded move the contact is what the motion looks for, so stopping
-    on it is success; on any other move it is unexpected and the controller gives up
-    (status ERROR), leaving the collision event to say what happened. The hand ends
+    on it is success, unless `contact_margin` says how near the target it must come (a
+    move carrying an object stopped short of where it goes has met resistance); on any
+    other move it is unexpected. Either way the controller gives up (status ERROR),
+    leaving the collision event to say what happened. The hand ends
     top-down (hand z = world -z) with the yaw it started with, turned by `tilt` where given.
     """
 
@@ -76,7 +78,8 @@ class CartesianMove(Controller):
         self.threshold = float(p["force_threshold"])
         self.max_speed = float(p["max_speed"])
         self.tolerance = float(p["tolerance"])
-        self.tilt = rotation_rpy(np.radians(np.asarray(p.get("tilt", (0.0, 0.0, 0.0)), float)))
+        self.tilt = rotation_rpy(np.radians(np.asarray(p["tilt"], float)))
+        self.margin = float(p["contact_margin"])
         self.contact = ContactWrench(float(p["filter_time"]))
         self.shaper = TwistShaper(p["velocity_limits"], p["acceleration_limits"])
         self.detour = ObstacleDetour(p.get("obstacles", ()), p.get("obstacle_sizes", ()))
@@ -103,7 +106,7 @@ class CartesianMove(Controller):
         force = self.contact.force
         if force >= self.threshold:
             self.shaper.stop()
-            self.stopped_by(force)
+            self.stopped_by(force, norm(self.via[-1] - readings.tcp[:3, 3]))
             return self._stay(readings)
 
         position = readings.tcp[:3, 3]
@@ -134,10 +137,16 @@ class CartesianMove(Controller):
             v = v * (ORIENTATION_TOLERANCE / angle)  # turn back first, then move on
         return arm_output(self.shaper(np.concatenate([v, w]), dt))
 
-    def stopped_by(self, force: float) -> None:
-        status = Status.DONE if self.straight else Status.ERROR
-        what = "stopped on contact" if self.straight else "unexpected contact"
-        self.finish(status, f"{what}: |F| = {force:.1f} N >= {self.threshold:g} N")
+    def stopped_by(self, force: float, short: float) -> None:
+        """A contact `short` of the target: what a guarded move looks for, the surface a
+        place was going to (within `contact_margin`), or else something in the way."""
+        felt = f"|F| = {force:.1f} N >= {self.threshold:g} N"
+        if not self.straight:
+            self.finish(Status.ERROR, f"unexpected contact: {felt}")
+        elif 0.0 <= self.margin < short:
+            self.finish(Status.ERROR, f"stopped short: contact {short * 100:.1f} cm before the target, {felt}")
+        else:
+            self.finish(Status.DONE, f"stopped on contact: {felt}")
 
     def sense(self, readings: Readings, leg: np.ndarray, dt: float) -> None:
         """Watch the sensors on the way along `leg` (world frame); a plain move has nothing to watch."""
@@ -207,7 +216,7 @@ class Push(CartesianMove):
         level = float(self.level(np.array([against - self.baseline_sum / self.baseline_for]), dt)[0])
         self.pushed = max(self.pushed, level)
 
-    def stopped_by(self, force: float) -> None:
+    def stopped_by(self, force: float, short: float) -> None:
         self.finish(Status.ERROR, f"the object does not give way: |F| = {force:.1f} N >= {self.threshold:g} N")
 
     def arrived(self, distance: float) -> None:

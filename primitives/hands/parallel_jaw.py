@@ -13,7 +13,8 @@ from __future__ import annotations
 import numpy as np
 
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
-from primitives.blackboard import ARM_NUDGE, CONTACT
+from primitives.blackboard import ARM_NUDGE, CONTACT, EMPTY_HAND
+from primitives.filters import world_load
 from primitives.hands.posture import position_command
 from primitives.robot import HandMode, Readings
 
@@ -82,6 +83,7 @@ class CloseUntilForce(Controller):
     def start(self, readings: Readings) -> None:
         self.reference = float(readings.hand_q[0])
         self.pressing = False
+        self.ctx.memory[EMPTY_HAND] = world_load(readings)  # a grasp begins empty-handed
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         board = self.ctx.blackboard
@@ -151,6 +153,7 @@ class NaiveJawGrasp(Controller):
 
     def start(self, readings: Readings) -> None:
         self.reference = float(readings.hand_q[0])
+        self.ctx.memory[EMPTY_HAND] = world_load(readings)  # a grasp begins empty-handed
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         if self.status is Status.DONE:

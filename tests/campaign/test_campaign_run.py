@@ -206,3 +206,16 @@ def test_workers_that_cannot_start_stop_the_campaign_with_a_message(tmp_path: Pa
     result = subprocess.run([sys.executable, "-"], input=script, cwd=tmp_path, capture_output=True, text=True,
                             timeout=120)
     assert "stopped: a worker process could not start (exit code 1)" in result.stdout, result.stderr
+
+
+def test_the_trials_the_judge_fails_are_recorded_for_atd_report(tmp_path: Path) -> None:
+    folder = tmp_path / "failed"
+    folder.mkdir()
+    result = _atd("campaign", "run", str(DATA / "claims_success.toml"), "--store", str(tmp_path / "c.sqlite"),
+                  "-j", "1", "--record-failed", str(folder), cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    (recording,) = folder.iterdir()
+    assert recording.name == "claims_success__melfa__main__mujoco__robust__task__none__0.mcap"
+    page = _atd("report", str(recording), "-o", str(tmp_path / "r.html"), cwd=tmp_path)
+    assert page.returncode == 0, page.stderr
+    assert "grasp_object" in (tmp_path / "r.html").read_text()

@@ -26,7 +26,7 @@ def test_draws_an_atd_in_every_format(tmp_path):
         out = tmp_path / f"pick.{fmt}"
         result = atd("graph", str(EXAMPLES / "pick_and_place.xml"), "-o", str(out))
         assert result.exit_code == 0, result.output
-        assert f"wrote {out} (10 states, 22 transitions;" in result.output
+        assert f"wrote {out} (10 states, 26 transitions;" in result.output
         assert out.stat().st_size > 1000
     assert "the built-in layout" in result.output
     assert (tmp_path / "pick.dot").read_text().startswith("digraph task {")

@@ -134,18 +134,18 @@ def test_estd_graph_names_primitives_and_controllers(no_graphviz):
 
 def test_estd_conditions_are_shown_on_request():
     graph = from_estd(melfa_estd(), "p.xml", conditions=True)
-    put_down = next(e for e in graph.edges if e.id == "put_down->let_go")
-    text = " ".join(line.strip() for line in put_down.lines)
-    assert text.startswith("success: all(any(arm_done, tactile_load_change[on=tactile_left+tactile_right,")
-    assert len(put_down.lines) > 1  # wrapped: each line as long as the longest unbreakable word allows
-    assert all(len(line) <= 44 or " " not in line.strip() for line in put_down.lines)
+    grasped = next(e for e in graph.edges if e.id == "grasp->lift")
+    text = " ".join(line.strip() for line in grasped.lines)
+    assert "grasp_stable: tactile_force_above[on=tactile_left+tactile_right," in text
+    assert len(grasped.lines) > 1  # wrapped: each line as long as the longest unbreakable word allows
+    assert all(len(line) <= 44 or " " not in line.strip() for line in grasped.lines)
 
 
 def test_graphviz_draws_when_installed(tmp_path, monkeypatch):
     fake_dot(tmp_path, monkeypatch, "dot = sys.stdin.read()\n"
              "sys.stdout.write('<svg><!-- ' + sys.argv[1] + ' ' + str(dot.count(' -> ')) + ' --></svg>')")
     data, drawn_by = render(example_graph("pick_and_place.xml"), "svg")
-    assert (data, drawn_by) == (b"<svg><!-- -Tsvg 22 --></svg>", "graphviz")
+    assert (data, drawn_by) == (b"<svg><!-- -Tsvg 26 --></svg>", "graphviz")
 
 
 def test_a_failing_graphviz_falls_back_unless_asked_for(tmp_path, monkeypatch):

@@ -1,0 +1,61 @@
+"""`atd report` and `atd compare`: looking back at recorded runs."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import click
+
+from atd.cli.app import EXIT_INVALID, OutputFile, main, usage_error
+from atd.model.files import OutputError, write_output
+from atd.review.compare import compare, render_text
+from atd.review.load import Recording, RecordingError, load
+from atd.review.page import report_page
+from atd.review.plots import difference
+
+
+def _load(path: Path) -> Recording:
+    try:
+        return load(path)
+    except RecordingError as exc:
+        click.echo(f"error: {exc}", err=True)
+        raise SystemExit(EXIT_INVALID) from None
+
+
+def _write(path: Path, data: bytes) -> None:
+    try:
+        write_output(path, data)
+    except OutputError as exc:
+        usage_error(str(exc))
+
+
+@main.command()
+@click.argument("recording", metavar="RUN.mcap", type=click.Path(path_type=Path))
+@click.option("-o", "--output", type=OutputFile(), default=None,
+              help="the HTML file (default: RUN.html beside the recording)")
+def report(recording: Path, output: Path | None) -> None:
+    """One self-contained HTML page for a recorded run (atd run --record): the task graph
+    with the path taken, a timeline, the signals with the events marked, and the readings
+    that fired each event. Works offline: nothing is fetched from anywhere."""
+    run = _load(recording)
+    output = output or recording.with_suffix(".html")
+    _write(output, report_page(run).encode())
+    click.echo(f"wrote {output}")
+
+
+@main.command("compare")
+@click.argument("first", metavar="A.mcap", type=click.Path(path_type=Path))
+@click.argument("second", metavar="B.mcap", type=click.Path(path_type=Path))
+@click.option("--plot", type=OutputFile(), default=None, metavar="FILE.svg",
+              help="also draw the differences per state and signal")
+def compare_runs(first: Path, second: Path, plot: Path | None) -> None:
+    """Two runs of one task aligned state by state: time in each state, and per signal the
+    difference of its mean (two seeds, two engines, a simulated and a real run)."""
+    if plot is not None and plot.suffix.lower() != ".svg":
+        usage_error(f"{plot}: --plot writes SVG; give a name ending in .svg")
+    a, b = _load(first), _load(second)
+    click.echo(render_text(a, b))
+    if plot is not None:
+        _, rows = compare(a, b)
+        _write(plot, difference(a, b, rows).encode())
+        click.echo(f"plot: {plot}")

@@ -1,0 +1,93 @@
+"""`atd report`: one self-contained HTML page for one recorded run, readable offline: the
+outcome in ATD terms, the task graph with the path taken, a timeline, the signals with
+the events on them, and the readings that fired each event."""
+
+from __future__ import annotations
+
+import html
+import json
+from collections import defaultdict
+from dataclasses import replace
+
+from jinja2 import Environment
+
+from atd.graph.model import Graph, from_estd
+from atd.graph.render import render
+from atd.review.load import Recording
+from atd.review.plots import signals, timeline
+
+_PAGE = Environment(autoescape=True).from_string("""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8">
+<title>{{ title }}</title>
+<style>
+body { font-family: sans-serif; margin: 2em auto; max-width: 70em; color: #222; }
+h1 { font-size: 1.4em; } h2 { font-size: 1.1em; margin-top: 2em; border-bottom: 1px solid #ccc; }
+.outcome { padding: .6em 1em; border-radius: 4px; }
+.succeeded { background: #e3f4e1; } .failed { background: #fbe4e1; }
+table { border-collapse: collapse; font-size: .85em; } td, th { border: 1px solid #ddd; padding: .25em .5em; text-align: left; vertical-align: top; }
+figure { margin: 0; overflow-x: auto; } figure svg { max-width: 100%; height: auto; }
+code { font-size: .9em; }
+</style></head><body>
+<h1>{{ title }}</h1>
+<p class="outcome {{ 'succeeded' if succeeded else 'failed' }}">{{ outcome.summary or "no outcome recorded" }}
+ &middot; {{ "%.2f"|format(end_time) }} s simulated &middot; seed {{ run.seed }}</p>
+<h2>The task, and the path taken</h2>
+<figure id="graph">{{ graph|safe }}</figure>
+<h2>Timeline</h2>
+<figure id="timeline">{{ timeline|safe }}</figure>
+<table><tr><th>state</th><th>entered (s)</th><th>left (s)</th><th>time spent (s)</th></tr>
+{% for state, start, end in visits %}<tr><td>{{ state }}</td><td>{{ "%.3f"|format(start) }}</td>
+<td>{{ "%.3f"|format(end) if end is not none else "(the end)" }}</td>
+<td>{{ "%.3f"|format((end if end is not none else end_time) - start) }}</td></tr>{% endfor %}
+</table>
+<h2>Signals</h2>
+<p>States are shaded; a dashed red line is an event firing. The last panel is the simulator's
+ground truth, which the robot does not see.</p>
+<figure id="signals">{{ signals|safe }}</figure>
+<h2>Events, and the readings that fired them</h2>
+<table id="events"><tr><th>time (s)</th><th>transition</th><th>event</th><th>conditions and readings</th></tr>
+{% for e in events %}<tr><td>{{ "%.3f"|format(e.t) }}</td><td>{{ e.transition }}</td><td>{{ e.event }}</td>
+<td>{% for c in e.conditions %}<code>{{ c }}</code><br>{% endfor %}</td></tr>{% endfor %}
+</table>
+</body></html>
+""")
+
+
+def _graph(recording: Recording) -> str:
+    """The ESTD's graph as inline SVG, each state visited labelled with its visits and time."""
+    if recording.estd is None:
+        return "<p>(this recording holds no ESTD)</p>"
+    spent: dict[str, float] = defaultdict(float)
+    count: dict[str, int] = defaultdict(int)
+    for state, start, end in recording.visits():
+        top = state.split("/", 1)[0]
+        spent[top] += (recording.end_time if end is None else end) - start
+        count[top] += 1 if "/" not in state else 0
+    graph: Graph = from_estd(recording.estd, recording.run.get("task") or "task")
+    graph.nodes = [replace(n, lines=n.lines + (f">> visited {count[n.id]}x, {spent[n.id]:.2f} s",))
+                   if n.id in spent else n for n in graph.nodes]
+    svg, _ = render(graph, "svg")
+    text = svg.decode()
+    return text[text.index("<svg"):]
+
+
+def _events(recording: Recording) -> list[dict]:
+    found = []
+    for record in recording.trace:
+        if record["type"] == "event":
+            conditions = [f"{c.get('kind')}: " + json.dumps({k: v for k, v in c.items()
+                                                              if k not in ("kind", "atd", "sensors")})
+                          for c in record.get("conditions", [])]
+            found.append({"t": record["t"], "transition": record.get("transition", ""),
+                          "event": record.get("event", ""), "conditions": conditions})
+    return found
+
+
+def report_page(recording: Recording) -> str:
+    run = recording.run
+    title = (f"{html.unescape(str(run.get('task', '')))} on {run.get('robot')} ({run.get('arm')} arm) "
+             f"in {run.get('engine')}")
+    return _PAGE.render(
+        title=title, run=run, outcome=recording.outcome, succeeded=recording.outcome.get("succeeded") == "true",
+        end_time=recording.end_time, graph=_graph(recording), timeline=timeline(recording),
+        signals=signals(recording), visits=recording.visits(), events=_events(recording))

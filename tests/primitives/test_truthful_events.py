@@ -1,0 +1,67 @@
+"""Issue 10, events that tell the truth: a primitive stopped short does not end in success,
+and a task that reports success has done what it says (judged here by the simulator's
+ground truth, which the robot never sees)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from atd.model import load_task
+from atd.sim import load_description, make_robot
+from atd.sim.scene import scene_from_task
+from factories.registry import create
+from tests.primitives.conftest import EXAMPLES, execute, last_reasons, run_example
+from translator import translate
+
+DATA = Path(__file__).resolve().parents[1] / "data"
+
+
+def test_a_melfa_place_straight_after_the_grasp_does_not_succeed_with_the_box_unmoved() -> None:
+    """It once ended in success 55 ms in, on the grip force settling: now the place drags
+    the box on the table, meets its resistance and stops short, an error."""
+    outcome, executor, robot = run_example(DATA / "place_after_grasp.xml")
+    assert not outcome.succeeded, f"succeeded with the box at {robot.object_pose()[:3, 3]}"
+    assert last_reasons(executor)[0].startswith("stopped short: contact"), last_reasons(executor)
+
+
+def test_the_sdh2_puts_the_box_down_on_the_table_before_letting_go() -> None:
+    """The place used to end on the wrist reading the hand speed up (5 N) with the box
+    11 cm above the table, which then fell onto its target when the hand opened."""
+    heights = {}
+
+    def watch(robot, path: str, time: float) -> None:
+        heights.setdefault(path, robot.object_pose()[2, 3])
+
+    outcome, _, _ = run_example(EXAMPLES / "pick_and_place.xml", watch, robot="tombatossals", arm="left")
+    assert outcome.succeeded, outcome.summary
+    assert heights["let_go"] < 0.03, f"the box stood at z = {heights['let_go']:.3f} when the hand opened"
+
+
+def test_the_naive_grasp_on_the_barrett_succeeds_only_with_the_cylinder_lifted() -> None:
+    """The naive grasp's lift once stopped on a 17 N contact 20 ms in and counted it as
+    success, the cylinder left on the table: a guarded transport stopped short is an error."""
+    path = EXAMPLES / "grasp_and_lift.xml"
+    task, _ = load_task(path)
+    estd = translate(task, create("tombatossals", "right", grasp="naive")).estd
+    robot = make_robot(load_description("tombatossals", "right"), scene_from_task(task, path))
+    outcome, _ = execute(estd, robot, task=task)
+    lifted = robot.object_pose()[2, 3] > 0.12
+    assert outcome.succeeded == lifted, f"{outcome.summary}; cylinder at z = {robot.object_pose()[2, 3]:.3f}"
+
+
+def test_a_lift_the_grip_cannot_carry_is_not_a_stable_grasp() -> None:
+    """The pads slide up a slippery 3 kg cylinder, still pressing, while it stays on the
+    table: the lift once reported success and grasp_stable; the wrist never feels the
+    weight, so grasp_stable does not hold and the lift ends on its timeout."""
+    outcome, executor, robot = run_example(DATA / "lift_too_heavy.xml")
+    assert robot.object_pose()[2, 3] < 0.045  # ground truth: it never left the table
+    assert not outcome.succeeded, outcome.summary
+    assert [r["event"] for r in executor.trace.records if r["type"] == "event"][-1] == "timeout"
+
+
+def test_an_sdh2_slide_that_presses_beside_the_box_is_an_error() -> None:
+    """The fingers straddle the box, so the slide sinks past its top to the table: that is
+    not pressing on the object, and the slide ends in an error instead of in success."""
+    outcome, executor, robot = run_example(DATA / "slide_box.xml", robot="tombatossals", arm="left")
+    assert not outcome.succeeded, f"{outcome.summary}; the box at {robot.object_pose()[:3, 3]}"
+    assert last_reasons(executor)[0].startswith("lost the object: the hand sank"), last_reasons(executor)
