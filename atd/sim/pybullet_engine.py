@@ -289,9 +289,22 @@ class PybulletRobot(SimRobot):
         return _matrix(state[4], state[5])
 
     def _contacts(self) -> tuple:
-        """This tick's contact points with the robot as body A (shared by F/T and tactile)."""
+        """This tick's contact points with the robot as body A (shared by F/T and tactile).
+
+        Asked for the robot's contacts, Bullet swaps a pair whose internal body A is the other
+        body and negates its normal but not its friction directions, so a held object's weight
+        read upward on the wrist whenever the object was made after the robot (a mesh object
+        is). The unswapped list, turned here, gives every force as it acts on the robot.
+        """
         if self._contact_cache is None:
-            self._contact_cache = pb.getContactPoints(bodyA=self.body, physicsClientId=self.client)
+            found = []
+            for p in pb.getContactPoints(physicsClientId=self.client):
+                if p[1] == self.body:
+                    found.append(p)
+                elif p[2] == self.body:
+                    found.append((p[0], p[2], p[1], p[4], p[3], p[6], p[5], tuple(-v for v in p[7]), p[8], p[9],
+                                  p[10], tuple(-v for v in p[11]), p[12], tuple(-v for v in p[13])))
+            self._contact_cache = tuple(found)
         return self._contact_cache
 
     def _hand_root(self) -> np.ndarray:

@@ -15,6 +15,7 @@ import pytest
 from atd.model.meshcheck import MeshError
 from atd.sim.convex import convex_parts, mesh_points
 from atd.sim.scene import Body, Scene
+from tests.conftest import REPO
 
 TORUS = Path(pybullet_data.getDataPath()) / "torus" / "torus_textured.obj"
 
@@ -86,3 +87,25 @@ def test_an_unreadable_mesh_gets_a_one_line_error_naming_the_file(tmp_path: Path
     with pytest.raises(MeshError, match=r"broken\.obj: .*'three' is not a number") as error:
         convex_parts(bad)
     assert "\n" not in str(error.value)
+
+
+def test_pybullet_feels_a_held_mesh_object_pull_the_wrist_down() -> None:
+    # Bullet reports a pair with the object as its body A swapped but with its friction
+    # directions unturned: the mug's weight, carried by the pads' friction, read upward.
+    from atd.campaign.objects import get
+    from atd.model import load_task
+    from atd.runtime.session import Run, belief_scene
+    from factories.registry import create
+    from translator import translate
+
+    cup = get("mug")
+    task, _ = load_task(REPO / "examples" / "grasp_and_lift.xml")
+    factory = create("melfa")
+    estd = translate(task.model_copy(update={"object": cup.object_info(0.10, 0.0)}), factory).estd
+    belief = belief_scene(estd)
+    run = Run(estd, factory, engine="pybullet", scene=Scene(cup.realize(belief.object), belief.obstacles, belief.table))
+    empty = run.robot.read().wrench[2]
+    loads: list[float] = []
+    run.execute(afterwards=lambda robot: loads.append(float(robot.read().wrench[2])))
+    assert run.object_position[2] > 0.10, "the cup was lifted"
+    assert loads[0] - empty == pytest.approx(cup.mass * 9.81, abs=0.3), "the wrist carries the cup's weight"
