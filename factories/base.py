@@ -17,8 +17,6 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from functools import cached_property
-from importlib import import_module
-from importlib.util import find_spec
 from pathlib import Path
 from typing import ClassVar, Mapping
 
@@ -28,6 +26,7 @@ from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamValue, SensorKin
 from atd.model.estd import Condition, ConditionGroup, Controller
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
 from atd.model.vocabulary import EventType, HandShape, Movement, StateType
+from factories.beside import description_module, shipped_config
 from factories.config import RobotConfig, load_config
 from factories.description import RobotDescription
 from factories.reach import Reach
@@ -152,8 +151,8 @@ class Factory(ABC):
         if arm is not None and arm not in names:
             raise ValueError(f"robot '{self.name}' has no arm '{arm}'; choose one of: {', '.join(names)}")
         self.arm = self.arms[names.index(arm)] if arm else self.arms[0]
-        shipped = Path(__file__).parent / self.name / "config.toml"
-        self.config = load_config(shipped, self.name) if shipped.is_file() else RobotConfig()
+        shipped = shipped_config(type(self))
+        self.config = load_config(shipped, self.name) if shipped else RobotConfig()
         if config is not None:
             self.config = load_config(config, self.name).over(self.config)
 
@@ -249,11 +248,7 @@ class Factory(ABC):
         `description()` in the `description.py` beside the factory's module, or beside the
         module of the factory it extends; for this arm."""
         arm = self.arm.name if len(self.arms) > 1 else None
-        for cls in type(self).__mro__:
-            package = cls.__module__.rpartition(".")[0]
-            if package and find_spec(f"{package}.description") is not None:
-                return import_module(f"{package}.description").description(arm)
-        raise LookupError(f"factory '{self.name}' has no description.py beside it")
+        return description_module(type(self)).description(arm)
 
     def check_object_reach(self, context: MappingContext, *postures: str) -> None:
         """A grasp happens where the object is: refuse it when the arm cannot get there, or
