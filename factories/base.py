@@ -54,18 +54,27 @@ class Unmappable(Exception):
 @dataclass(frozen=True)
 class Sensor:
     name: str
+    """What conditions and the ESTD call it; a tactile sensor is named as its `FingerPad`."""
     kind: SensorKind
+    """force_torque, tactile, joints or range: which conditions can read it."""
     description: str
+    """One line for `atd robots list` and `show`."""
 
 
 @dataclass(frozen=True)
 class Hand:
     name: str
-    kind: str  # "multi-finger" or "parallel jaw"
-    shapes: frozenset[HandShape]  # shapes it can make
-    closest: Mapping[HandShape, HandShape]  # every other shape -> the closest it can make
-    max_opening: float  # m between the fingertips, fully open
-    cannot_grasp: Mapping[HandShape, str] = field(default_factory=dict)  # grasp shape -> why refused
+    """The hand's model name, as users know it."""
+    kind: str
+    """'multi-finger' or 'parallel jaw', shown by `atd robots`."""
+    shapes: frozenset[HandShape]
+    """The D5 hand shapes it can make."""
+    closest: Mapping[HandShape, HandShape]
+    """Every other shape -> the closest it can make (translation warns when it falls back)."""
+    max_opening: float
+    """m between the fingertips, fully open."""
+    cannot_grasp: Mapping[HandShape, str] = field(default_factory=dict)
+    """Grasp shapes it must refuse -> why (a translation that asks for one fails with that reason)."""
 
 
 @dataclass(frozen=True)
@@ -73,9 +82,13 @@ class Arm:
     """One arm of the robot with its hand and sensors: what `--arm` chooses."""
 
     name: str
+    """What `--arm` chooses."""
     description: str
+    """One line for `atd robots show`."""
     hand: Hand
+    """Its hand's capabilities."""
     sensors: tuple[Sensor, ...]
+    """Every sensor on this arm and hand."""
 
     def sensors_of(self, kind: SensorKind) -> tuple[str, ...]:
         return tuple(s.name for s in self.sensors if s.kind is kind)
@@ -84,8 +97,11 @@ class Arm:
 @dataclass(frozen=True)
 class Capabilities:
     primitives: frozenset[StateType]
+    """The ATD primitives it maps."""
     hand_shapes: frozenset[HandShape]
+    """The hand shapes its arm's hand makes."""
     events: frozenset[EventType]
+    """The abstract events it can detect."""
 
 
 @dataclass(frozen=True)
@@ -93,9 +109,13 @@ class MappingRow:
     """One row of a robot's mapping table, in the columns of thesis Tables 7.3 and 7.4."""
 
     abstract: str
-    concrete: str  # "-" when the robot has no such primitive
+    """The ATD primitive."""
+    concrete: str
+    """The robot's primitive for it; '-' when it has none."""
     extra_parameters: str
+    """What the concrete primitive needs beyond the ATD."""
     control_and_sensors: str
+    """The controllers and sensors it uses."""
 
 
 @dataclass(frozen=True)
@@ -107,7 +127,9 @@ class MappingContext:
     own file need not repeat."""
 
     task: Task
+    """The task being translated: its object and environment."""
     surroundings: Environment | None = None
+    """The environment of the task around a sub-task, or None."""
 
     @property
     def object(self) -> ObjectInfo | None:
@@ -129,9 +151,13 @@ class NodeMapping:
     """The concrete primitive for one ATD node; `notes` become warnings (e.g. shape fallbacks)."""
 
     primitive: str
+    """The concrete primitive's name, written in the ESTD."""
     arm: Controller
+    """The arm controller."""
     hand: Controller
+    """The hand controller."""
     notes: tuple[str, ...] = ()
+    """Warnings for the user (a hand-shape fallback)."""
 
 
 class Factory(ABC):

@@ -56,21 +56,36 @@ class JawSpec:
     position 0 and `stroke` the travel of each jaw.
     """
 
-    prefix: str  # of link and joint names
-    pad_prefix: str  # of pad names: `<pad_prefix>_left` and `_right`
+    prefix: str
+    """Of its link and joint names."""
+    pad_prefix: str
+    """Of its pads' names: `<pad_prefix>_left` and `_right`."""
     body_half: Vec3
+    """Half extents of the gripper body, m."""
     body_mass: float
+    """kg."""
     finger_base_z: float
-    finger_half: Vec3  # finger box half extents (x across, y thickness, z along)
+    """Distance from the mounting face to the finger joints, m."""
+    finger_half: Vec3
+    """Finger box half extents (x across, y thickness, z along), m."""
     finger_mass: float
+    """kg, each."""
     stroke: float
+    """Travel of each jaw, m."""
     gap_closed: float
-    pad_half: tuple[float, float]  # (across, along) half extents of the pad surface
+    """Pad-to-pad gap with the jaws at 0, m."""
+    pad_half: tuple[float, float]
+    """(across, along) half extents of the pad surface, m."""
     pad_thickness: float
-    taxels: tuple[int, int] | None  # (rows along the finger, cols across)
-    effort: float  # N per jaw
-    velocity: float  # m/s per jaw
+    """m."""
+    taxels: tuple[int, int] | None
+    """(rows along the finger, cols across), or None for one force per pad."""
+    effort: float
+    """Force limit per jaw, N."""
+    velocity: float
+    """Speed limit per jaw, m/s."""
     servo: Servo
+    """The jaws' servo."""
 
 
 def parallel_jaw(spec: JawSpec, parent: str, mount: Origin) -> tuple[tuple[Link, ...], HandDof, tuple[FingerPad, ...], float]:
