@@ -415,10 +415,12 @@ def derived_target(state: State, obj: ObjectInfo | None) -> Vec3:
 
 
 def all_of(*children: ConditionNode) -> ConditionGroup:
+    """A condition that holds when every child holds (thesis 7.2.2: arm AND hand done)."""
     return ConditionGroup(op="all", children=children)
 
 
 def any_of(*children: ConditionNode) -> ConditionGroup:
+    """A condition that holds when any child holds (D5 Fig. 2.3: arm OR hand failure)."""
     return ConditionGroup(op="any", children=children)
 
 

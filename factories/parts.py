@@ -29,6 +29,7 @@ def capsule(p0: Vec3, p1: Vec3, radius: float, rgba=METAL) -> Shape:
 
 
 def cylinder(p0: Vec3, p1: Vec3, radius: float, rgba=METAL) -> Shape:
+    """A cylinder whose axis runs from p0 to p1 (link frame)."""
     return _along("cylinder", p0, p1, radius, rgba)
 
 
@@ -44,6 +45,7 @@ def _along(kind, p0: Vec3, p1: Vec3, radius: float, rgba) -> Shape:
 
 
 def box(centre: Vec3, half: Vec3, rgba=METAL, rpy: Vec3 = (0.0, 0.0, 0.0)) -> Shape:
+    """A box with its centre and half extents in the link frame, turned by `rpy`."""
     return Shape("box", half, Origin(centre, rpy), rgba)
 
 
