@@ -50,11 +50,12 @@ from factories.description import (
 )
 from factories.description import Hand as HandModel
 from factories.home import HOME_TCP, with_home
+from factories.kinds import ParallelJawFactory
 from factories.parts import DARK, METAL, JawSpec, box, capsule, cylinder, parallel_jaw
 
 __all__ = [
     # the factory: what it declares and answers
-    "Factory", "Arm", "Hand", "Sensor", "SensorKind", "MappingRow", "MappingContext", "NodeMapping",
+    "Factory", "ParallelJawFactory", "Arm", "Hand", "Sensor", "SensorKind", "MappingRow", "MappingContext", "NodeMapping",
     "ConditionNode", "Unmappable", "all_of", "any_of", "obstacle_params", "grasp_width",
     "PARALLEL_JAW_SHAPES", "parallel_jaw_closest",
     # what it is asked about
