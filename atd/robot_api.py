@@ -49,13 +49,14 @@ from factories.description import (
     Site,
 )
 from factories.description import Hand as HandModel
+from factories.borrowed import installed_hand
 from factories.home import HOME_TCP, with_home
-from factories.kinds import ParallelJawFactory
+from factories.kinds import MultiFingerFactory, ParallelJawFactory
 from factories.parts import DARK, METAL, JawSpec, box, capsule, cylinder, parallel_jaw
 
 __all__ = [
     # the factory: what it declares and answers
-    "Factory", "ParallelJawFactory", "Arm", "Hand", "Sensor", "SensorKind", "MappingRow", "MappingContext", "NodeMapping",
+    "Factory", "ParallelJawFactory", "MultiFingerFactory", "Arm", "Hand", "Sensor", "SensorKind", "MappingRow", "MappingContext", "NodeMapping",
     "ConditionNode", "Unmappable", "all_of", "any_of", "obstacle_params", "grasp_width",
     "PARALLEL_JAW_SHAPES", "parallel_jaw_closest",
     # what it is asked about
@@ -65,4 +66,5 @@ __all__ = [
     "FingerPad", "SensorModel",
     # helpers for descriptions
     "box", "capsule", "cylinder", "JawSpec", "parallel_jaw", "METAL", "DARK", "with_home", "HOME_TCP",
+    "installed_hand",
 ]

@@ -29,8 +29,13 @@ def write_robot_package(site: Path, name: str, config: str = "") -> Path:
             return replace(melfa(arm), name="{name}")
         '''))
     (package / "config.toml").write_text(config)
-    info = site / f"atd_{name}-0.1.dist-info"
-    info.mkdir()
-    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: atd-{name}\nVersion: 0.1\n")
-    (info / "entry_points.txt").write_text(f"[atd.factories]\n{name} = atd_{name}.factory:TwinFactory\n")
+    register_robot(site, name, f"atd_{name}.factory:TwinFactory")
     return package
+
+
+def register_robot(site: Path, name: str, target: str) -> None:
+    """Declare the robot `name` = `target` ("module:Class") in a .dist-info in `site`, as pip would."""
+    info = site / f"atd_{name}-0.1.dist-info"
+    info.mkdir(parents=True)
+    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: atd-{name}\nVersion: 0.1\n")
+    (info / "entry_points.txt").write_text(f"[atd.factories]\n{name} = {target}\n")

@@ -17,7 +17,7 @@ import jinja2
 
 from atd.model.files import describe_write_error, name_too_long
 
-HANDS = ("parallel_jaw",)
+HANDS = ("parallel_jaw", "multi_finger")
 NAME = re.compile(r"[a-z][a-z0-9_]{0,31}")
 
 
@@ -26,7 +26,8 @@ class ScaffoldError(ValueError):
 
 
 _ENV = jinja2.Environment(loader=jinja2.PackageLoader("atd.scaffold", "templates"),
-                          undefined=jinja2.StrictUndefined, keep_trailing_newline=True)
+                          undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
+                          trim_blocks=True, lstrip_blocks=True)
 
 
 def check_name(name: str, taken: list[str]) -> None:
@@ -46,9 +47,9 @@ def package_files(name: str, hand: str) -> dict[str, str]:
         "pyproject.toml": "pyproject.toml.j2",
         "README.md": "README.md.j2",
         f"{package}/__init__.py": "__init__.py.j2",
-        f"{package}/description.py": f"description_{hand}.py.j2",
-        f"{package}/factory.py": f"factory_{hand}.py.j2",
-        f"{package}/config.toml": f"config_{hand}.toml.j2",
+        f"{package}/description.py": "description.py.j2",
+        f"{package}/factory.py": "factory.py.j2",
+        f"{package}/config.toml": "config.toml.j2",
         f"tests/test_{name}.py": "test_robot.py.j2",
         "tests/pick_and_place.xml": "pick_and_place.xml.j2",
     }

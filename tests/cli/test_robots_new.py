@@ -1,4 +1,8 @@
-"""`atd robots new` writes a robot package that pip installs and that runs as generated."""
+"""`atd robots new` writes a robot package that runs as generated, with either hand.
+
+docs/writing-a-robot.md's test installs a generated package with `pip install -e` and runs its
+own tests (self-test and a pick-and-place in both engines); here both hands' packages are
+installed the cheap way, as the .dist-info pip would write beside the package folders."""
 
 from __future__ import annotations
 
@@ -12,38 +16,46 @@ from click.testing import CliRunner
 
 from atd.cli import main
 from tests.conftest import EXAMPLES, REPO
+from tests.plugin_site import register_robot
+
+ROBOTS = {"jaws": "parallel_jaw", "fingers": "multi_finger"}
 
 
 @pytest.fixture(scope="module")
-def demo(tmp_path_factory) -> tuple[Path, dict[str, str]]:
-    """`atd robots new demo` built and installed by pip into a site folder of its own:
-    (package folder, environment). docs/writing-a-robot.md's test installs one in place (-e)."""
+def installed(tmp_path_factory) -> dict[str, str]:
+    """The environment in which both generated robots are installed."""
     root = tmp_path_factory.mktemp("new")
-    result = CliRunner().invoke(main, ["robots", "new", "demo", "--hand", "parallel_jaw", "-o", str(root / "demo")])
-    assert result.exit_code == 0, result.output
-    pip = subprocess.run([sys.executable, "-m", "pip", "install", "-q", "--no-deps", "--target", str(root / "site"),
-                          str(root / "demo")], capture_output=True, text=True, timeout=600)
-    assert pip.returncode == 0, pip.stderr[-2000:]
-    return root / "demo", {**os.environ, "PYTHONPATH": f"{REPO}{os.pathsep}{root / 'site'}"}
+    for name, hand in ROBOTS.items():
+        result = CliRunner().invoke(main, ["robots", "new", name, "--hand", hand, "-o", str(root / name)])
+        assert result.exit_code == 0, result.output
+        register_robot(root / "site", name, f"atd_{name}.factory:{name.capitalize()}Factory")
+    folders = [str(REPO), str(root / "site"), *(str(root / name) for name in ROBOTS)]
+    return {**os.environ, "PYTHONPATH": os.pathsep.join(folders)}
 
 
-def test_a_wheel_of_it_carries_its_config(demo):
-    """Installed from a built wheel, not in place: config.toml must travel as package data."""
-    folder, env = demo
-    shown = subprocess.run([sys.executable, "-m", "atd", "robots", "show", "demo"], env=env, capture_output=True,
-                           text=True, timeout=120).stdout
-    assert "close_until_force: force_source=tactile, grasp_force=15" in shown
-    assert str(folder) not in shown  # the installed copy's description, not the source folder's
+def _atd(env: dict[str, str], *args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "atd", *args], env=env, capture_output=True, text=True, timeout=600)
 
 
 @pytest.mark.parametrize("engine", ["mujoco", "pybullet"])
-def test_the_generated_robot_runs_the_pick_and_place_example(demo, engine):
-    _, env = demo
-    result = subprocess.run([sys.executable, "-m", "atd", "run", str(EXAMPLES / "pick_and_place.xml"),
-                             "--robot", "demo", "--engine", engine], env=env, capture_output=True, text=True,
-                            timeout=600)
+def test_the_multi_finger_robot_passes_the_self_test(installed, engine):
+    result = _atd(installed, "robots", "test", "fingers", "--engine", engine)
+    assert result.returncode == 0 and "7/7 checks passed" in result.stdout, result.stdout + result.stderr
+
+
+@pytest.mark.parametrize("engine", ["mujoco", "pybullet"])
+@pytest.mark.parametrize("robot", list(ROBOTS))
+def test_both_run_the_pick_and_place_example(installed, robot, engine):
+    result = _atd(installed, "run", str(EXAMPLES / "pick_and_place.xml"), "--robot", robot, "--engine", engine)
     assert result.returncode == 0, result.stdout + result.stderr
     assert "outcome: succeeded: reached 'done'" in result.stdout
+
+
+def test_each_maps_as_its_kind_of_hand(installed):
+    jaws, fingers = (_atd(installed, "robots", "show", name).stdout for name in ROBOTS)
+    assert "| grasp | grasp | grasp force |" in jaws and "| slide | - |" in jaws
+    assert "| grasp | robust_grasp | pregrasp size |" in fingers and "| slide | slide |" in fingers
+    assert "grasp_stable: tactile_force_above[on=tactile_f1+tactile_f2+tactile_f3" in fingers  # not the palm
 
 
 def test_it_says_what_it_wrote_and_what_to_do_next(tmp_path, monkeypatch):
@@ -55,7 +67,9 @@ def test_it_says_what_it_wrote_and_what_to_do_next(tmp_path, monkeypatch):
     written = sorted(str(p.relative_to(tmp_path / "atd-gizmo")) for p in (tmp_path / "atd-gizmo").rglob("*.*"))
     assert written == ["README.md", "atd_gizmo/__init__.py", "atd_gizmo/config.toml", "atd_gizmo/description.py",
                        "atd_gizmo/factory.py", "pyproject.toml", "tests/pick_and_place.xml", "tests/test_gizmo.py"]
-    assert 'gizmo = "atd_gizmo.factory:GizmoFactory"' in (tmp_path / "atd-gizmo" / "pyproject.toml").read_text()
+    pyproject = (tmp_path / "atd-gizmo" / "pyproject.toml").read_text()
+    assert 'gizmo = "atd_gizmo.factory:GizmoFactory"' in pyproject
+    assert 'atd_gizmo = ["config.toml"]' in pyproject  # a wheel carries the tuning
 
 
 @pytest.mark.parametrize(("args", "message"), [
