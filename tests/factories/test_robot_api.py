@@ -46,5 +46,5 @@ def test_a_home_is_found_from_the_description_and_an_unreachable_one_is_explaine
     found = api.with_home(replace(robot, home=(0.0,) * 6), (0.0, 0.3, 0.9, 0.0, 0.4, 0.0))
     assert found.home == pytest.approx(robot.home, abs=2e-3)
     far = replace(robot, base=api.Origin((-3.0, 0.0, 0.0)))
-    with pytest.raises(ValueError, match="robot 'melfa': no home found .* move `base` closer to the work area"):
+    with pytest.raises(ValueError, match="robot .melfa.: no home found .* move `base` closer to the work area"):
         api.with_home(far, robot.home)
