@@ -52,6 +52,8 @@ from factories.description import Hand as HandModel
 from factories.borrowed import installed_hand
 from factories.home import HOME_TCP, with_home
 from factories.kinds import MultiFingerFactory, ParallelJawFactory
+from factories.urdf import UrdfError, UrdfModel, read_urdf
+from factories.urdf_hand import urdf_parallel_jaw
 from factories.parts import DARK, METAL, JawSpec, box, capsule, cylinder, parallel_jaw
 
 __all__ = [
@@ -66,5 +68,5 @@ __all__ = [
     "FingerPad", "SensorModel",
     # helpers for descriptions
     "box", "capsule", "cylinder", "JawSpec", "parallel_jaw", "METAL", "DARK", "with_home", "HOME_TCP",
-    "installed_hand",
+    "installed_hand", "read_urdf", "UrdfModel", "UrdfError", "urdf_parallel_jaw",
 ]

@@ -16,6 +16,7 @@ from pathlib import Path
 import jinja2
 
 from atd.model.files import describe_write_error, name_too_long
+from atd.scaffold.from_urdf import UrdfScaffoldError, urdf_values
 
 HANDS = ("parallel_jaw", "multi_finger")
 NAME = re.compile(r"[a-z][a-z0-9_]{0,31}")
@@ -38,16 +39,26 @@ def check_name(name: str, taken: list[str]) -> None:
         raise ScaffoldError(f"a robot '{name}' is already installed; choose another name")
 
 
-def package_files(name: str, hand: str) -> dict[str, str]:
-    """Path inside the package folder -> text, for a robot `name` with a `hand` of HANDS."""
+def package_files(name: str, hand: str, urdf: Path | None = None) -> dict[str, str]:
+    """Path inside the package folder -> text, for a robot `name` with a `hand` of HANDS,
+    its body built in Python or, with `urdf`, read from that URDF."""
     package = f"atd_{name}"
-    values = {"name": name, "hand": hand, "package": package, "urdf_option": "",
-              "cls": "".join(part.capitalize() for part in name.split("_")) + "Factory"}
+    values: dict[str, object] = {"name": name, "hand": hand, "package": package,
+                                 "urdf_option": f" --from-urdf {urdf}" if urdf else "",
+                                 "cls": "".join(part.capitalize() for part in name.split("_")) + "Factory"}
+    if urdf is not None:
+        if hand != "parallel_jaw":
+            raise ScaffoldError("--from-urdf makes a parallel-jaw robot (--hand parallel_jaw): a multi-finger hand's "
+                                "DOFs and postures are not in a URDF; describe it by hand (docs/writing-a-robot.md)")
+        try:
+            values |= urdf_values(urdf, name)
+        except UrdfScaffoldError as exc:
+            raise ScaffoldError(str(exc)) from None
     files = {
         "pyproject.toml": "pyproject.toml.j2",
         "README.md": "README.md.j2",
         f"{package}/__init__.py": "__init__.py.j2",
-        f"{package}/description.py": "description.py.j2",
+        f"{package}/description.py": "description_urdf.py.j2" if urdf else "description.py.j2",
         f"{package}/factory.py": "factory.py.j2",
         f"{package}/config.toml": "config.toml.j2",
         f"tests/test_{name}.py": "test_robot.py.j2",
