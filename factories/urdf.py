@@ -2,7 +2,8 @@
 
 What a URDF says becomes description `Link`s: the tree (parents before children), joint
 origins, axes, limits, damping and friction, masses, centres of mass and inertias, and the
-collision geometry. A collision mesh (OBJ or STL) becomes the box that bounds it in its own
+collision geometry; links that are only frames (welded, massless, bare) are folded into
+their parents. A collision mesh (OBJ or STL) becomes the box that bounds it in its own
 frame, as every description shape is a primitive (the reach and hand-room checks and both
 engines' contacts work on primitives); boxes, cylinders and spheres are taken as they are.
 Visual meshes are checked to exist, as the URDF would not load elsewhere without them.
@@ -13,7 +14,7 @@ description adds. Anything that cannot be imported is a `UrdfError` naming file:
 from __future__ import annotations
 
 import struct
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable
 
@@ -21,6 +22,7 @@ import numpy as np
 from lxml import etree
 
 from atd.model.files import InputError, read_capped
+from atd.model.frames import rpy_of
 from factories.description import Joint, Link, Origin, Servo, Shape, Vec3
 
 MAX_URDF_BYTES = 16 * 1024 * 1024
@@ -154,7 +156,7 @@ class _Reader:
             name = pending.pop(0)
             ordered.append(self.link(elements[name], joints.get(name)))
             pending += [child for child, joint in joints.items() if joint.find("parent").get("link") == name]
-        return tuple(ordered)
+        return _without_bare_frames(ordered)
 
     def link(self, element: etree._Element, joint_element: etree._Element | None) -> Link:
         inertial = element.find("inertial")
@@ -256,6 +258,25 @@ class _Reader:
         centre = origin.matrix() @ np.append((low + high) / 2, 1.0)
         half = tuple(float(max(v, 1e-4)) for v in (high - low) / 2)
         return Shape("box", half, Origin(tuple(float(v) for v in centre[:3]), origin.rpy))  # type: ignore[arg-type]
+
+
+def _without_bare_frames(links: list[Link]) -> tuple[Link, ...]:
+    """The links less those that are only frames (welded, massless, no geometry: a flange,
+    a grasp target), their children hung on their parent with the two origins composed.
+    A massless body is no body to a simulator."""
+    kept: list[Link] = []
+    frames: dict[str, Link] = {}
+    for link in links:
+        parent = frames.get(link.parent or "")
+        if parent is not None:
+            pose = parent.origin.matrix() @ link.origin.matrix()
+            link = replace(link, parent=parent.parent,
+                           origin=Origin(tuple(float(v) for v in pose[:3, 3]), rpy_of(pose[:3, :3])))  # type: ignore[arg-type]
+        if link.parent is not None and link.joint is None and link.mass <= 0 and not link.shapes:
+            frames[link.name] = link
+        else:
+            kept.append(link)
+    return tuple(kept)
 
 
 def _vertices(file: Path) -> np.ndarray:

@@ -44,7 +44,7 @@ def package_files(name: str, hand: str, urdf: Path | None = None) -> dict[str, s
     its body built in Python or, with `urdf`, read from that URDF."""
     package = f"atd_{name}"
     values: dict[str, object] = {"name": name, "hand": hand, "package": package,
-                                 "urdf_option": " --from-urdf URDF" if urdf else "", "urdf_source": "",
+                                 "urdf_option": " --from-urdf URDF" if urdf else "", "urdf_source": "", "dof": 6,
                                  "cls": "".join(part.capitalize() for part in name.split("_")) + "Factory"}
     if urdf is not None:
         if hand != "parallel_jaw":

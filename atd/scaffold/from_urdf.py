@@ -85,5 +85,5 @@ def urdf_values(urdf: Path, name: str) -> dict[str, object]:
     return {"urdf_package": inside[0] if inside else "", "urdf_inside": inside[1] if inside else "",
             "urdf_path": str(urdf), "urdf_shown": f"the installed {inside[0]}'s {inside[1]}" if inside else str(urdf),
             "urdf_source": f" on {inside[0]}'s {inside[1]}" if inside else f" on {urdf}",
-            "arm_joints": repr(arm_joints), "hand_root": hand_root, "fingers": repr(fingers),
+            "arm_joints": repr(arm_joints), "dof": len(arm_joints), "hand_root": hand_root, "fingers": repr(fingers),
             "max_opening": round(2 * hand.dofs[0].open, 6), "base_x": base_x, "home": repr(home)}

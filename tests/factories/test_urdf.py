@@ -22,8 +22,10 @@ def test_the_pandas_urdf_gives_its_tree_limits_masses_and_meshes_as_boxes():
     assert joints["panda_joint4"].lower == pytest.approx(-3.1416) and joints["panda_joint4"].upper == 0.0
     assert joints["panda_joint1"].effort == 87.0 and joints["panda_joint7"].velocity == pytest.approx(2.61)
     assert joints["panda_finger_joint2"].kind == "prismatic" and joints["panda_finger_joint2"].axis == (0, -1, 0)
-    hand = model.link("panda_hand")
-    assert hand.parent == "panda_link8" and hand.joint is None and hand.mass == pytest.approx(0.81)
+    hand = model.link("panda_hand")  # panda_link8 and panda_grasptarget are bare frames, folded away
+    assert "panda_link8" not in [link.name for link in model.links] and len(model.links) == 11
+    assert hand.parent == "panda_link7" and hand.joint is None and hand.mass == pytest.approx(0.81)
+    assert hand.origin.xyz == pytest.approx((0, 0, 0.107)) and hand.origin.rpy == pytest.approx((0, 0, -0.785398))
     assert hand.com == (0, 0, 0.04) and hand.inertia == (0.1, 0.1, 0.1)
     (box,) = hand.shapes  # the collision mesh's bounding box: the hand is about 20 cm across its fingers' travel
     assert box.kind == "box" and 2 * max(box.size) == pytest.approx(0.204, abs=0.002)

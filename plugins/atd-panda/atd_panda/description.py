@@ -1,5 +1,5 @@
-"""The panda robot's body, read from its URDF: the one description both simulators are
-built from.
+"""The Franka Emika Panda's body, read from its URDF: the one description both simulators
+are built from.
 
 `read_urdf` takes the links, joints, limits, masses, inertias and collision geometry from
 the installed pybullet_data's franka_panda/panda.urdf;
