@@ -19,8 +19,8 @@ from typing import ClassVar
 from atd.model.controllers import SensorKind
 from atd.model.task import State
 from atd.model.vocabulary import EventType, HandShape, StateType
-from factories.base import (ConditionNode, Factory, MappingContext, NodeMapping, Unmappable, all_of, any_of,
-                            grasp_width, obstacle_params)
+from factories.base import (ConditionNode, Factory, MappingContext, MappingRow, NodeMapping, Unmappable, all_of,
+                            any_of, grasp_width, obstacle_params)
 
 # The grasp a hand closes into when the task names none, and the preshape that precedes each grasp.
 DEFAULT_GRASP = HandShape.POWER_GRASP
@@ -40,6 +40,15 @@ class ParallelJawFactory(Factory):
 
     primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
                             StateType.PLACE, StateType.RELEASE})
+    node_table = (  # thesis Table 7.4
+        MappingRow("grasp", "grasp", "grasp force", "arm control, tactile sensors"),
+        MappingRow("move", "move", "-", "arm control"),
+        MappingRow("push", "move", "-", "arm control, force-torque sensor (feels the object)"),
+        MappingRow("transport", "transport", "motion constraints", "arm control, tactile"),
+        MappingRow("place", "transport", "motion constraints", "arm control, tactile"),
+        MappingRow("slide", "-", "-", "-"),
+        MappingRow("release", "release", "hand position", "arm control"),
+    )
 
     def map_node(self, state: State, context: MappingContext) -> NodeMapping:
         kind = state.type
@@ -86,6 +95,15 @@ class MultiFingerFactory(Factory):
 
     primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
                             StateType.PLACE, StateType.SLIDE, StateType.RELEASE})
+    node_table = (  # thesis Table 7.3
+        MappingRow("grasp", "robust_grasp", "pregrasp size", "arm control, FT and tactile sensors"),
+        MappingRow("move", "transport", "-", "arm control"),
+        MappingRow("push", "transport", "-", "arm control, force-torque sensor (feels the object)"),
+        MappingRow("transport", "transport", "obstacles, constraints", "arm control"),
+        MappingRow("place", "place", "contact threshold", "arm control, force-torque sensor"),
+        MappingRow("slide", "slide", "slide force threshold", "arm control, force-torque sensor"),
+        MappingRow("release", "release", "hand position", "arm control"),
+    )
     holding_pads: ClassVar[tuple[str, ...]] = ()  # empty: every tactile sensor holds
     refused_grasp_hint: ClassVar[str] = "use another grasp shape"
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 from atd.model.controllers import SensorKind
 from atd.model.task import State
 from atd.model.vocabulary import StateType
-from factories.base import (Arm, Hand, MappingContext, MappingRow, NodeMapping, Sensor, Unmappable,
+from factories.base import (Arm, Hand, MappingContext, NodeMapping, Sensor, Unmappable,
                             PARALLEL_JAW_SHAPES, parallel_jaw_closest)
 from factories.kinds import ParallelJawFactory
 
@@ -29,15 +29,6 @@ class MelfaFactory(ParallelJawFactory):
         Arm("main", "Melfa RV-3SB arm with the WRT-102 gripper", _WRT102,
             (Sensor("wrist_ft", SensorKind.FORCE_TORQUE, "JR3 6-axis force-torque sensor between arm and gripper"),
              *(Sensor(p, SensorKind.TACTILE, f"Weiss tactile pad on the {p.split('_')[1]} finger") for p in _PADS))),
-    )
-    node_table = (  # thesis Table 7.4
-        MappingRow("grasp", "grasp", "grasp force", "arm control, tactile sensors"),
-        MappingRow("move", "move", "-", "arm control"),
-        MappingRow("push", "move", "-", "arm control, force-torque sensor (feels the object)"),
-        MappingRow("transport", "transport", "motion constraints", "arm control, tactile"),
-        MappingRow("place", "transport", "motion constraints", "arm control, tactile"),
-        MappingRow("slide", "-", "-", "-"),
-        MappingRow("release", "release", "hand position", "arm control"),
     )
 
     def map_node(self, state: State, context: MappingContext) -> NodeMapping:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from atd.model.controllers import SensorKind
 from atd.model.vocabulary import HandShape
-from factories.base import Arm, Hand, MappingRow, Sensor
+from factories.base import Arm, Hand, Sensor
 from factories.kinds import MultiFingerFactory
 
 _WRIST_FT = Sensor("wrist_ft", SensorKind.FORCE_TORQUE, "JR3 6-axis force-torque sensor between arm and hand")
@@ -53,12 +53,3 @@ class TombatossalsFactory(MultiFingerFactory):
     )
     holding_pads = _FINGER_PADS
     refused_grasp_hint = "use the right arm (--arm right, Barrett hand) or another grasp shape"
-    node_table = (  # thesis Table 7.3
-        MappingRow("grasp", "robust_grasp", "pregrasp size", "arm control, FT and tactile sensors"),
-        MappingRow("move", "transport", "-", "arm control"),
-        MappingRow("push", "transport", "-", "arm control, force-torque sensor (feels the object)"),
-        MappingRow("transport", "transport", "obstacles, constraints", "arm control"),
-        MappingRow("place", "place", "contact threshold", "arm control, force-torque sensor"),
-        MappingRow("slide", "slide", "slide force threshold", "arm control, force-torque sensor"),
-        MappingRow("release", "release", "hand position", "arm control"),
-    )

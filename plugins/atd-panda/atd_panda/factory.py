@@ -9,7 +9,8 @@ It extends `ParallelJawFactory`, which maps a parallel-jaw robot as the Melfa is
 thesis Table 7.4 (grasp closes until both pads feel the grasp force, transport squeezes,
 place stops on the change of load the pads feel, no slide).
 To map something differently, override `map_node` (primitives), `sensed_event` (events from
-the sensors) or `success`, and call `super()` for the rest.
+the sensors) or `success`, and call `super()` for the rest; `node_table` (what `atd robots
+show` prints as the mapping table) is the thesis table it inherits, until you set your own.
 """
 
 from __future__ import annotations
@@ -18,7 +19,6 @@ from atd.robot_api import (
     PARALLEL_JAW_SHAPES,
     Arm,
     Hand,
-    MappingRow,
     ParallelJawFactory,
     Sensor,
     SensorKind,
@@ -42,12 +42,3 @@ class PandaFactory(ParallelJawFactory):
     description = ("Franka Emika Panda 7-DOF arm with a wrist force-torque sensor and the Franka Hand parallel "
                    "gripper with a tactile pad on each fingertip (body from pybullet_data's panda.urdf)")
     arms = (Arm("main", "Panda arm with the Franka Hand", HAND, SENSORS),)
-    node_table = (  # what `atd robots show panda` prints, in the columns of thesis Table 7.4
-        MappingRow("grasp", "grasp", "grasp force", "arm control, tactile sensors"),
-        MappingRow("move", "move", "-", "arm control"),
-        MappingRow("push", "move", "-", "arm control, force-torque sensor (feels the object)"),
-        MappingRow("transport", "transport", "motion constraints", "arm control, tactile"),
-        MappingRow("place", "transport", "motion constraints", "arm control, tactile"),
-        MappingRow("slide", "-", "-", "-"),
-        MappingRow("release", "release", "hand position", "arm control"),
-    )
