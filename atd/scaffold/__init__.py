@@ -32,6 +32,8 @@ _ENV = jinja2.Environment(loader=jinja2.PackageLoader("atd.scaffold", "templates
 
 
 def check_name(name: str, taken: list[str]) -> None:
+    """A robot's name is also its package's (atd_NAME) and its entry point's: it must suit
+    all three, and not hide an installed robot."""
     if not NAME.fullmatch(name):
         raise ScaffoldError(f"'{name}' cannot name a robot: use a lower-case letter, then up to 31 lower-case "
                             "letters, digits or '_' (it becomes a Python package name)")
