@@ -8,7 +8,8 @@ import subprocess
 import sys
 import textwrap
 from atd.model.estd_xml import read_estd
-from factories.registry import installed
+from atd.sim import variants
+from factories.registry import BUILTIN, installed
 from tests.conftest import EXAMPLES, REPO
 from tests.plugin_site import write_robot_package
 
@@ -96,8 +97,14 @@ def test_check_prints_the_robot_matrix_with_reasons(tmp_path):
     result = atd("check", *map(str, sorted(EXAMPLES.glob("*.xml"))), str(REPO / "tests/data/seeds/fig7_2.xml"))
     assert result.returncode == 0
     header = result.stdout.splitlines()[0].split()
-    assert header == ["task", "baxter:right", "baxter:left", "melfa", "tombatossals:right", "tombatossals:left"]
-    assert any(line.startswith(str(EXAMPLES / "pick_and_place.xml")) and line.count("yes") == 5
+    arms: dict[str, list[str]] = {}
+    for robot, arm in variants():  # one column per installed robot, or per arm of a two-arm one
+        arms.setdefault(robot, []).append(arm)
+    columns = [f"{robot}:{arm}" if len(names) > 1 else robot for robot, names in arms.items() for arm in names]
+    assert header == ["task", *columns]
+    assert [c for c in columns if c.split(":")[0] in BUILTIN] == [
+        "baxter:right", "baxter:left", "melfa", "tombatossals:right", "tombatossals:left"]
+    assert any(line.startswith(str(EXAMPLES / "pick_and_place.xml")) and line.count("yes") == len(columns)
                for line in result.stdout.splitlines())
     assert "why not:" in result.stdout and "fig7_2.xml:14:3: error[TRN001]" in result.stdout
 
