@@ -17,8 +17,6 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from functools import cached_property
-from importlib import import_module
-from importlib.util import find_spec
 from pathlib import Path
 from typing import ClassVar, Mapping
 
@@ -28,6 +26,7 @@ from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamValue, SensorKin
 from atd.model.estd import Condition, ConditionGroup, Controller
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
 from atd.model.vocabulary import EventType, HandShape, Movement, StateType
+from factories.beside import description_module, shipped_config
 from factories.config import RobotConfig, load_config
 from factories.description import RobotDescription
 from factories.reach import Reach
@@ -59,18 +58,27 @@ class Unmappable(Exception):
 @dataclass(frozen=True)
 class Sensor:
     name: str
+    """What conditions and the ESTD call it; a tactile sensor is named as its `FingerPad`."""
     kind: SensorKind
+    """force_torque, tactile, joints or range: which conditions can read it."""
     description: str
+    """One line for `atd robots list` and `show`."""
 
 
 @dataclass(frozen=True)
 class Hand:
     name: str
-    kind: str  # "multi-finger" or "parallel jaw"
-    shapes: frozenset[HandShape]  # shapes it can make
-    closest: Mapping[HandShape, HandShape]  # every other shape -> the closest it can make
-    max_opening: float  # m between the fingertips, fully open
-    cannot_grasp: Mapping[HandShape, str] = field(default_factory=dict)  # grasp shape -> why refused
+    """The hand's model name, as users know it."""
+    kind: str
+    """'multi-finger' or 'parallel jaw', shown by `atd robots`."""
+    shapes: frozenset[HandShape]
+    """The D5 hand shapes it can make."""
+    closest: Mapping[HandShape, HandShape]
+    """Every other shape -> the closest it can make (translation warns when it falls back)."""
+    max_opening: float
+    """m between the fingertips, fully open."""
+    cannot_grasp: Mapping[HandShape, str] = field(default_factory=dict)
+    """Grasp shapes it must refuse -> why (a translation that asks for one fails with that reason)."""
 
 
 @dataclass(frozen=True)
@@ -78,9 +86,13 @@ class Arm:
     """One arm of the robot with its hand and sensors: what `--arm` chooses."""
 
     name: str
+    """What `--arm` chooses."""
     description: str
+    """One line for `atd robots show`."""
     hand: Hand
+    """Its hand's capabilities."""
     sensors: tuple[Sensor, ...]
+    """Every sensor on this arm and hand."""
 
     def sensors_of(self, kind: SensorKind) -> tuple[str, ...]:
         return tuple(s.name for s in self.sensors if s.kind is kind)
@@ -89,8 +101,11 @@ class Arm:
 @dataclass(frozen=True)
 class Capabilities:
     primitives: frozenset[StateType]
+    """The ATD primitives it maps."""
     hand_shapes: frozenset[HandShape]
+    """The hand shapes its arm's hand makes."""
     events: frozenset[EventType]
+    """The abstract events it can detect."""
 
 
 @dataclass(frozen=True)
@@ -98,9 +113,13 @@ class MappingRow:
     """One row of a robot's mapping table, in the columns of thesis Tables 7.3 and 7.4."""
 
     abstract: str
-    concrete: str  # "-" when the robot has no such primitive
+    """The ATD primitive."""
+    concrete: str
+    """The robot's primitive for it; '-' when it has none."""
     extra_parameters: str
+    """What the concrete primitive needs beyond the ATD."""
     control_and_sensors: str
+    """The controllers and sensors it uses."""
 
 
 @dataclass(frozen=True)
@@ -112,7 +131,9 @@ class MappingContext:
     own file need not repeat."""
 
     task: Task
+    """The task being translated: its object and environment."""
     surroundings: Environment | None = None
+    """The environment of the task around a sub-task, or None."""
 
     @property
     def object(self) -> ObjectInfo | None:
@@ -134,9 +155,13 @@ class NodeMapping:
     """The concrete primitive for one ATD node; `notes` become warnings (e.g. shape fallbacks)."""
 
     primitive: str
+    """The concrete primitive's name, written in the ESTD."""
     arm: Controller
+    """The arm controller."""
     hand: Controller
+    """The hand controller."""
     notes: tuple[str, ...] = ()
+    """Warnings for the user (a hand-shape fallback)."""
 
 
 class Factory(ABC):
@@ -156,8 +181,8 @@ class Factory(ABC):
         if arm is not None and arm not in names:
             raise ValueError(f"robot '{self.name}' has no arm '{arm}'; choose one of: {', '.join(names)}")
         self.arm = self.arms[names.index(arm)] if arm else self.arms[0]
-        shipped = Path(__file__).parent / self.name / "config.toml"
-        self.config = load_config(shipped, self.name) if shipped.is_file() else RobotConfig()
+        shipped = shipped_config(type(self))
+        self.config = load_config(shipped, self.name) if shipped else RobotConfig()
         if config is not None:
             self.config = load_config(config, self.name).over(self.config)
 
@@ -266,11 +291,7 @@ class Factory(ABC):
         `description()` in the `description.py` beside the factory's module, or beside the
         module of the factory it extends; for this arm."""
         arm = self.arm.name if len(self.arms) > 1 else None
-        for cls in type(self).__mro__:
-            package = cls.__module__.rpartition(".")[0]
-            if package and find_spec(f"{package}.description") is not None:
-                return import_module(f"{package}.description").description(arm)
-        raise LookupError(f"factory '{self.name}' has no description.py beside it")
+        return description_module(type(self)).description(arm)
 
     def check_object_reach(self, context: MappingContext, *postures: str) -> None:
         """A grasp happens where the object is: refuse it when the arm cannot get there, or
@@ -425,10 +446,12 @@ def derived_target(state: State, obj: ObjectInfo | None) -> Vec3:
 
 
 def all_of(*children: ConditionNode) -> ConditionGroup:
+    """A condition that holds when every child holds (thesis 7.2.2: arm AND hand done)."""
     return ConditionGroup(op="all", children=children)
 
 
 def any_of(*children: ConditionNode) -> ConditionGroup:
+    """A condition that holds when any child holds (D5 Fig. 2.3: arm OR hand failure)."""
     return ConditionGroup(op="any", children=children)
 
 

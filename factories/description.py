@@ -30,7 +30,9 @@ def axis_rotation(axis: np.ndarray, angle: float) -> np.ndarray:
 @dataclass(frozen=True)
 class Origin:
     xyz: Vec3 = (0.0, 0.0, 0.0)
+    """Position in metres, in the parent frame."""
     rpy: Vec3 = (0.0, 0.0, 0.0)
+    """Roll, pitch, yaw in radians (URDF order: about fixed x, then y, then z)."""
 
     def matrix(self) -> np.ndarray:
         m = np.eye(4)
@@ -45,9 +47,13 @@ class Shape:
     (radius, half length of the axis); sphere = (radius,)."""
 
     kind: Literal["box", "capsule", "cylinder", "sphere"]
+    """Which primitive: box, capsule, cylinder or sphere."""
     size: tuple[float, ...]
+    """Box: half extents (3); capsule, cylinder: (radius, half length of the axis); sphere: (radius,)."""
     origin: Origin = Origin()
+    """Pose of the shape in its link frame; capsules and cylinders lie along its z."""
     rgba: tuple[float, float, float, float] = (0.6, 0.6, 0.65, 1.0)
+    """Colour the engines draw it in."""
 
     def inertia(self, mass: float) -> Vec3:
         """Principal moments of a solid of this shape about its own centre, along its axes."""
@@ -82,22 +88,35 @@ class Servo:
     """A joint's position/velocity servo: stiffness kp (N m/rad or N/m) and damping kv."""
 
     kp: float
+    """Stiffness: N m/rad for a revolute joint, N/m for a prismatic one."""
     kv: float
+    """Damping: N m s/rad or N s/m."""
 
 
 @dataclass(frozen=True)
 class Joint:
     name: str
+    """Unique among the robot's joints; the arm's are listed in `RobotDescription.arm_joints`."""
     kind: Literal["revolute", "prismatic"]
+    """revolute (radians) or prismatic (metres)."""
     axis: Vec3
+    """Unit axis in the joint's (= child link's) frame."""
     lower: float
+    """Lower position limit, rad or m."""
     upper: float
-    velocity: float  # rad/s or m/s
-    effort: float  # N m or N
+    """Upper position limit, rad or m."""
+    velocity: float
+    """Speed limit, rad/s or m/s."""
+    effort: float
+    """Torque or force limit, N m or N."""
     servo: Servo
+    """The position/velocity servo that drives it."""
     damping: float = 0.0
-    armature: float = 0.0  # reflected rotor inertia, kg m^2 (kg for prismatic)
-    friction: float = 0.0  # dry friction, N m or N: a self-locking drive resists being pushed back
+    """Viscous damping, N m s/rad or N s/m."""
+    armature: float = 0.0
+    """Reflected rotor inertia, kg m^2 (kg for prismatic)."""
+    friction: float = 0.0
+    """Dry friction, N m or N: a self-locking drive resists being pushed back."""
 
 
 @dataclass(frozen=True)
@@ -105,13 +124,21 @@ class Link:
     """A rigid body. `joint` None means it is welded to its parent."""
 
     name: str
+    """Unique among the robot's links."""
     parent: str | None
+    """The link it hangs from; None for the fixed base (the first link)."""
     origin: Origin
+    """Pose of the link's (and its joint's) frame in the parent link's frame."""
     mass: float
+    """kg."""
     shapes: tuple[Shape, ...] = ()
+    """Collision and visual primitives, in the link frame."""
     joint: Joint | None = None
-    com: Vec3 | None = None  # default: the centre of the first shape
-    inertia: Vec3 | None = None  # principal moments; default: the first shape as a solid
+    """The joint that moves it relative to its parent; None: welded to it."""
+    com: Vec3 | None = None
+    """Centre of mass in the link frame; None: the centre of the first shape."""
+    inertia: Vec3 | None = None
+    """Principal moments, kg m^2; None: the first shape as a solid."""
 
     @property
     def centre_of_mass(self) -> Vec3:
@@ -138,8 +165,11 @@ class Site:
     """A frame of interest on a link (TCP, wrist sensor, IR sensor, attachment)."""
 
     name: str
+    """How sensors and controllers refer to it (tcp, wrist_ft, ...)."""
     link: str
+    """The link it is fixed to."""
     origin: Origin = Origin()
+    """Its pose in that link's frame."""
 
 
 @dataclass(frozen=True)
@@ -151,11 +181,17 @@ class FingerPad:
     """
 
     name: str
+    """The tactile sensor's name, as the factory's `Sensor` and conditions use it."""
     link: str
+    """The finger link it lies on."""
     origin: Origin
+    """Pose of the sensing surface's centre in the link frame; +z points out of the finger."""
     half_size: tuple[float, float]
+    """(x, y) half extents of the sensing surface, m."""
     thickness: float
+    """m; the pad is a thin box behind the surface."""
     taxels: tuple[int, int] | None
+    """(rows along y, cols along x) of its sensor array, or None where one force is measured."""
 
 
 @dataclass(frozen=True)
@@ -168,27 +204,39 @@ class HandDof:
     """
 
     name: str
+    """How the hand controllers name this motion."""
     joints: tuple[tuple[str, float], ...]
-    closing: int  # +1 / -1: direction that closes the hand; 0: does not close it
+    """(joint name, ratio to the DOF value) for each joint it drives."""
+    closing: int
+    """+1 / -1: the direction that closes the hand; 0: it does not close it (a spread)."""
     open: float
+    """DOF value fully open."""
     closed: float
+    """DOF value fully closed."""
     geared: bool = False
+    """True: the first joint carries the motor and the others follow through a linkage."""
 
 
 @dataclass(frozen=True)
 class Hand:
     name: str
+    """Short name of the hand model."""
     dofs: tuple[HandDof, ...]
+    """Its actuated motions, in the order hand commands list them."""
     pads: tuple[FingerPad, ...]
-    postures: dict[str, tuple[float, ...]] = field(default_factory=dict)  # D5 hand shape (or "push") -> DOF values
-    pad_force_from_effort: bool = False  # no tactile array: pad force = measured finger effort
-    test_grasp: str = "power_grasp"  # the hand shape (with its preshape) `atd robots test` lifts a 5 cm box with
-    # Hand shapes that close somewhere else than on the TCP -> where they close, hand frame,
-    # relative to the TCP (a pinch between two fingers that stand off the palm centre).
+    """Its tactile pads."""
+    postures: dict[str, tuple[float, ...]] = field(default_factory=dict)
+    """D5 hand shape (or 'push') -> DOF values; a grasp shape is where the fingers aim to close to."""
+    pad_force_from_effort: bool = False
+    """True where there is no tactile array: a pad's force is the finger's measured effort."""
+    test_grasp: str = "power_grasp"
+    """The hand shape (with its preshape) `atd robots test` lifts a 5 cm box with."""
     grasp_centres: dict[str, Vec3] = field(default_factory=dict)
-    # The posture a closed hand takes to move and push (not a D5 shape): a hand whose fist
-    # meets an object with sloping links names one that leads with a vertical face.
+    """Hand shapes that close elsewhere than on the TCP -> where they close, hand frame, from
+    the TCP (a pinch between two fingers that stand off the palm centre)."""
     push_posture: str = "closed"
+    """The posture a closed hand takes to move and push (not a D5 shape): a hand whose fist
+    meets an object with sloping links names one that leads with a vertical face."""
 
 
 @dataclass(frozen=True)
@@ -198,30 +246,51 @@ class SensorModel:
     Noise and bias are one number for every axis or one per axis (force then torque)."""
 
     noise_std: float | tuple[float, ...] = 0.0
+    """Standard deviation of white noise: one for every axis, or one per axis (force, then torque)."""
     bias: float | tuple[float, ...] = 0.0
+    """Constant offset, one for every axis or one per axis."""
     cutoff_hz: float | None = None
+    """First-order low-pass cutoff, Hz; None: unfiltered."""
     resolution: float = 0.0
+    """Quantisation step; 0: none."""
 
 
 @dataclass(frozen=True)
 class RobotDescription:
     name: str
-    arm: str | None  # which arm of a two-arm robot; None for one-arm robots
-    links: tuple[Link, ...]  # parents before children; the first is the fixed base
-    arm_joints: tuple[str, ...]  # joint names, base to flange
-    hand_root: str  # first hand link: its weld to the arm is where the wrist F/T sensor sits
+    """The robot's name, as its factory's `name`."""
+    arm: str | None
+    """Which arm of a two-arm robot; None for one-arm robots."""
+    links: tuple[Link, ...]
+    """Every link, parents before children; the first is the fixed base."""
+    arm_joints: tuple[str, ...]
+    """The arm's joint names, base to flange: what arm controllers move."""
+    hand_root: str
+    """First hand link: its weld to the arm is where the wrist force-torque sensor measures."""
     hand: Hand
+    """The hand: its DOFs, pads and postures."""
     tcp: Site
-    wrist_sensor: Site  # on hand_root, oriented like the hand frame
-    base: Origin  # placement of the base link in the ATD world frame
-    home: tuple[float, ...]  # arm joint positions
-    sensors: dict[str, SensorModel] = field(default_factory=dict)  # keys: joints, wrench, tactile, range
+    """The tool centre point: where task positions are reached, z along the approach."""
+    wrist_sensor: Site
+    """The wrist force-torque frame, on `hand_root`, oriented like the hand frame."""
+    base: Origin
+    """Placement of the base link in the ATD world frame (origin on the table, x away from the robot)."""
+    home: tuple[float, ...]
+    """Arm joint positions at the start of every run, one per `arm_joints`."""
+    sensors: dict[str, SensorModel] = field(default_factory=dict)
+    """How each sensor kind (joints, wrench, tactile, range) differs from the truth."""
     range_sensor: Site | None = None
-    payload: float | None = None  # kg the arm may carry at its flange, as published (robot-facts.md)
+    """Site of an IR range sensor, if the robot has one."""
+    payload: float | None = None
+    """Kg the arm may carry at its flange, as published (robot-facts.md); None: not checked."""
     range_limits: tuple[float, float] = (0.0, 0.0)
+    """(min, max) distance the range sensor measures, m."""
     extra_sites: tuple[Site, ...] = ()
+    """Other frames of interest (attachment points)."""
     control_period: float = 0.005
+    """Seconds between control ticks."""
     timestep: float = 0.001
+    """Physics step, s."""
 
     @property
     def label(self) -> str:

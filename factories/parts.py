@@ -29,6 +29,7 @@ def capsule(p0: Vec3, p1: Vec3, radius: float, rgba=METAL) -> Shape:
 
 
 def cylinder(p0: Vec3, p1: Vec3, radius: float, rgba=METAL) -> Shape:
+    """A cylinder whose axis runs from p0 to p1 (link frame)."""
     return _along("cylinder", p0, p1, radius, rgba)
 
 
@@ -44,6 +45,7 @@ def _along(kind, p0: Vec3, p1: Vec3, radius: float, rgba) -> Shape:
 
 
 def box(centre: Vec3, half: Vec3, rgba=METAL, rpy: Vec3 = (0.0, 0.0, 0.0)) -> Shape:
+    """A box with its centre and half extents in the link frame, turned by `rpy`."""
     return Shape("box", half, Origin(centre, rpy), rgba)
 
 
@@ -56,21 +58,36 @@ class JawSpec:
     position 0 and `stroke` the travel of each jaw.
     """
 
-    prefix: str  # of link and joint names
-    pad_prefix: str  # of pad names: `<pad_prefix>_left` and `_right`
+    prefix: str
+    """Of its link and joint names."""
+    pad_prefix: str
+    """Of its pads' names: `<pad_prefix>_left` and `_right`."""
     body_half: Vec3
+    """Half extents of the gripper body, m."""
     body_mass: float
+    """kg."""
     finger_base_z: float
-    finger_half: Vec3  # finger box half extents (x across, y thickness, z along)
+    """Distance from the mounting face to the finger joints, m."""
+    finger_half: Vec3
+    """Finger box half extents (x across, y thickness, z along), m."""
     finger_mass: float
+    """kg, each."""
     stroke: float
+    """Travel of each jaw, m."""
     gap_closed: float
-    pad_half: tuple[float, float]  # (across, along) half extents of the pad surface
+    """Pad-to-pad gap with the jaws at 0, m."""
+    pad_half: tuple[float, float]
+    """(across, along) half extents of the pad surface, m."""
     pad_thickness: float
-    taxels: tuple[int, int] | None  # (rows along the finger, cols across)
-    effort: float  # N per jaw
-    velocity: float  # m/s per jaw
+    """m."""
+    taxels: tuple[int, int] | None
+    """(rows along the finger, cols across), or None for one force per pad."""
+    effort: float
+    """Force limit per jaw, N."""
+    velocity: float
+    """Speed limit per jaw, m/s."""
     servo: Servo
+    """The jaws' servo."""
 
 
 def parallel_jaw(spec: JawSpec, parent: str, mount: Origin) -> tuple[tuple[Link, ...], HandDof, tuple[FingerPad, ...], float]:

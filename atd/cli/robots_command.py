@@ -14,6 +14,7 @@ from atd.model.task import Event, State, Task, Transition
 from atd.model.vocabulary import EventType, StateType
 from atd.model.estd import describe
 from factories.base import Factory, MappingContext, Unmappable
+from factories.beside import description_file
 from factories.registry import installed
 
 
@@ -68,8 +69,7 @@ def show(robot: str, arm: str | None) -> None:
         click.echo(f"  sensors: {', '.join(f'{s.name} ({s.kind.value})' for s in a.sensors)}")
     base = factory.robot.base.xyz
     click.echo(f"  placed with its base at ({base[0]:g}, {base[1]:g}, {base[2]:g}) in the ATD world frame; "
-               "reach is checked by inverse kinematics on factories/"
-               f"{factory.name}/description.py with the hand pointing down")
+               f"reach is checked by inverse kinematics on {description_file(type(factory))} with the hand pointing down")
     click.echo(f"\nprimitives ({factory.arm.name} arm):\n{mapping_table(factory)}\n")
     click.echo("events:")
     for label, text in event_rows(factory):

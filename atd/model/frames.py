@@ -20,6 +20,14 @@ def rotation_rpy(rpy: Sequence[float]) -> np.ndarray:
     )
 
 
+def rpy_of(r: np.ndarray) -> tuple[float, float, float]:
+    """URDF roll, pitch, yaw of a rotation matrix (the inverse of `rotation_rpy`)."""
+    pitch = np.arctan2(-r[2, 0], np.hypot(r[0, 0], r[1, 0]))
+    if abs(np.cos(pitch)) < 1e-9:  # gimbal lock: put everything in yaw
+        return (0.0, float(pitch), float(np.arctan2(-r[0, 1], r[1, 1])))
+    return (float(np.arctan2(r[2, 1], r[2, 2])), float(pitch), float(np.arctan2(r[1, 0], r[0, 0])))
+
+
 def rotation_angle(rotation: np.ndarray) -> float:
     """The angle of a rotation matrix, in degrees."""
     cos = (float(np.trace(rotation)) - 1.0) / 2.0

@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 import jinja2
 import numpy as np
 
+from atd.model.frames import rpy_of as matrix_to_rpy
 from atd.sim.scene import TABLE_CENTRE, TABLE_HALF, Body, Scene
 from factories.description import FingerPad, Link, Origin, RobotDescription, Shape
 from factories.parts import PAD
@@ -27,14 +28,6 @@ def matrix_to_quat(r: np.ndarray) -> tuple[float, float, float, float]:
     y = np.copysign(np.sqrt(max(0.0, 1.0 - r[0, 0] + r[1, 1] - r[2, 2])) / 2, r[0, 2] - r[2, 0])
     z = np.copysign(np.sqrt(max(0.0, 1.0 - r[0, 0] - r[1, 1] + r[2, 2])) / 2, r[1, 0] - r[0, 1])
     return (float(w), float(x), float(y), float(z))
-
-
-def matrix_to_rpy(r: np.ndarray) -> tuple[float, float, float]:
-    """URDF roll, pitch, yaw of a rotation matrix."""
-    pitch = np.arctan2(-r[2, 0], np.hypot(r[0, 0], r[1, 0]))
-    if abs(np.cos(pitch)) < 1e-9:  # gimbal lock: put everything in yaw
-        return (0.0, float(pitch), float(np.arctan2(-r[0, 1], r[1, 1])))
-    return (float(np.arctan2(r[2, 1], r[2, 2])), float(pitch), float(np.arctan2(r[1, 0], r[0, 0])))
 
 
 def _fmt(values) -> str:

@@ -8,7 +8,10 @@ import subprocess
 import sys
 import textwrap
 from atd.model.estd_xml import read_estd
+from atd.sim import variants
+from factories.registry import BUILTIN, installed
 from tests.conftest import EXAMPLES, REPO
+from tests.plugin_site import write_robot_package
 
 
 def atd(*args: str, env=None) -> subprocess.CompletedProcess:
@@ -71,7 +74,7 @@ def test_an_output_into_a_missing_folder_is_refused_before_any_work(tmp_path):
 
 def test_unknown_robot_and_arm_are_usage_errors():
     result = atd("translate", str(EXAMPLES / "simple_move.xml"), "--robot", "nao")
-    assert result.returncode == 2 and "no robot 'nao' is installed; installed: baxter, melfa, tombatossals" in result.stderr
+    assert result.returncode == 2 and f"no robot 'nao' is installed; installed: {', '.join(installed())}" in result.stderr
     result = atd("translate", str(EXAMPLES / "simple_move.xml"), "--robot", "melfa", "--arm", "left")
     assert result.returncode == 2 and "robot 'melfa' has no arm 'left'; choose one of: main" in result.stderr
 
@@ -94,8 +97,14 @@ def test_check_prints_the_robot_matrix_with_reasons(tmp_path):
     result = atd("check", *map(str, sorted(EXAMPLES.glob("*.xml"))), str(REPO / "tests/data/seeds/fig7_2.xml"))
     assert result.returncode == 0
     header = result.stdout.splitlines()[0].split()
-    assert header == ["task", "baxter:right", "baxter:left", "melfa", "tombatossals:right", "tombatossals:left"]
-    assert any(line.startswith(str(EXAMPLES / "pick_and_place.xml")) and line.count("yes") == 5
+    arms: dict[str, list[str]] = {}
+    for robot, arm in variants():  # one column per installed robot, or per arm of a two-arm one
+        arms.setdefault(robot, []).append(arm)
+    columns = [f"{robot}:{arm}" if len(names) > 1 else robot for robot, names in arms.items() for arm in names]
+    assert header == ["task", *columns]
+    assert [c for c in columns if c.split(":")[0] in BUILTIN] == [
+        "baxter:right", "baxter:left", "melfa", "tombatossals:right", "tombatossals:left"]
+    assert any(line.startswith(str(EXAMPLES / "pick_and_place.xml")) and line.count("yes") == len(columns)
                for line in result.stdout.splitlines())
     assert "why not:" in result.stdout and "fig7_2.xml:14:3: error[TRN001]" in result.stdout
 
@@ -114,18 +123,7 @@ def test_a_separately_installed_package_adds_a_robot(tmp_path):
     `atd.factories` entry point) in its own site dir: found by real entry-point discovery.
     (Building it with pip needs setuptools >= 68 and wheel, which this offline machine lacks.)"""
     site = tmp_path / "site"
-    (site / "toyrobot").mkdir(parents=True)
-    (site / "toyrobot" / "__init__.py").write_text(textwrap.dedent('''\
-        from factories.melfa.factory import MelfaFactory
-
-        class ToyFactory(MelfaFactory):
-            name = "toyrobot"
-            description = "a Melfa twin from another package"
-        '''))
-    info = site / "toyrobot-0.1.dist-info"
-    info.mkdir()
-    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: toyrobot\nVersion: 0.1\n")
-    (info / "entry_points.txt").write_text("[atd.factories]\ntoyrobot = toyrobot:ToyFactory\n")
+    write_robot_package(site, "toyrobot")
     env = {**os.environ, "PYTHONPATH": f"{REPO}{os.pathsep}{site}"}
     assert "toyrobot: a Melfa twin from another package" in atd("robots", "list", env=env).stdout
     out = tmp_path / "toy.xml"

@@ -1,0 +1,159 @@
+"""Mappings shared by every robot of a kind, so a new robot declares what it has and inherits
+how its primitives and events are mapped.
+
+`ParallelJawFactory`: one arm with a wrist force-torque sensor and a two-jaw gripper with a
+tactile pad on each jaw, mapped as the Melfa is in thesis Table 7.4: grasp closes until the
+pads feel the grasp force, transport keeps squeezing, place is a transport that descends
+straight onto the surface and succeeds only where it meets it (not on the pads' load settling
+after a grasp), release opens the jaws with the arm still, and there is no slide.
+
+`MultiFingerFactory`: one arm with a wrist force-torque sensor and a hand with tactile pads
+on its fingers, mapped as Tombatossals is in thesis Table 7.3: the robust grasp (preshape
+opened to the object, close, adapt the force), place and slide felt on the wrist sensor,
+release backing off the surface, and the hand kept as it is while the arm carries.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+from atd.model.controllers import SensorKind
+from atd.model.task import State
+from atd.model.vocabulary import EventType, HandShape, StateType
+from factories.base import (ConditionNode, Factory, MappingContext, MappingRow, NodeMapping, Unmappable,
+                            grasp_width, obstacle_params)
+
+# The grasp a hand closes into when the task names none, and the preshape that precedes each grasp.
+DEFAULT_GRASP = HandShape.POWER_GRASP
+PRESHAPE_OF = {
+    HandShape.POWER_GRASP: HandShape.POWER_GRASP_PRESHAPE,
+    HandShape.PINCH_GRASP: HandShape.PINCH_GRASP_PRESHAPE,
+    HandShape.CYLINDRICAL_GRASP: HandShape.CYLINDRICAL_GRASP_PRESHAPE,
+    HandShape.SPHERICAL_GRASP: HandShape.SPHERICAL_GRASP_PRESHAPE,
+    HandShape.HOOK_GRASP: HandShape.HOOK_GRASP_PRESHAPE,
+}
+GRASP_OF = {pre: grasp for grasp, pre in PRESHAPE_OF.items()}
+PREGRASP_MARGIN = 0.04  # m of clearance around the object when the hand preshapes (ours)
+
+
+class ParallelJawFactory(Factory):
+    """A parallel-jaw robot as in thesis Table 7.4; its tactile sensors are the two jaws' pads."""
+
+    primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
+                            StateType.PLACE, StateType.RELEASE})
+    node_table = (  # thesis Table 7.4
+        MappingRow("grasp", "grasp", "grasp force", "arm control, tactile sensors"),
+        MappingRow("move", "move", "-", "arm control"),
+        MappingRow("push", "move", "-", "arm control, force-torque sensor (feels the object)"),
+        MappingRow("transport", "transport", "motion constraints", "arm control, tactile"),
+        MappingRow("place", "transport", "motion constraints", "arm control, tactile"),
+        MappingRow("slide", "-", "-", "-"),
+        MappingRow("release", "release", "hand position", "arm control"),
+    )
+
+    def map_node(self, state: State, context: MappingContext) -> NodeMapping:
+        kind = state.type
+        if kind is StateType.SLIDE:
+            raise Unmappable(f"the {self.name} has no slide primitive (a parallel jaw maps as thesis Table 7.4)",
+                             "push the object instead (type=\"push\"), or translate for a robot that slides")
+        if kind is StateType.GRASP:
+            return self.jaw_grasp(state, context)
+        if kind is StateType.RELEASE:  # Table 7.4: a hand position only, the arm stays
+            return self.release(state, arm="hold")
+        target, via = self.motion(state, context)
+        # A place is a transport that ends on contact: it descends straight onto the surface.
+        arm = self.arm_motion(state, target, via, **({"straight_line": True} if kind is StateType.PLACE else {}))
+        if kind in (StateType.TRANSPORT, StateType.PLACE):
+            return NodeMapping("transport", arm, self.controller("squeeze"))
+        return NodeMapping("move", arm, *self.hand_for_motion(state))
+
+    def sensed_event(self, event_type: EventType, origin: State) -> ConditionNode:
+        """Holding is both pads pressed; a contact is either one."""
+        above = {EventType.GRASP_STABLE: 2, EventType.FINGER_CONTACT: 1}
+        below = {EventType.GRASP_LOST: 2, EventType.FINGER_CONTACT_LOST: 1}
+        if event_type in above:
+            return self.condition(event_type, "tactile_force_above", self.pads, min_pads=above[event_type])
+        if event_type in below:
+            return self.condition(event_type, "tactile_force_below", self.pads, min_pads=below[event_type])
+        return super().sensed_event(event_type, origin)
+
+    @property
+    def pads(self) -> tuple[str, ...]:
+        return self.arm.sensors_of(SensorKind.TACTILE)
+
+
+class MultiFingerFactory(Factory):
+    """A multi-finger robot as in thesis Table 7.3. A grasp is stable when two of its
+    `holding_pads` press (a palm pad may touch without holding); any pad is a contact."""
+
+    primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
+                            StateType.PLACE, StateType.SLIDE, StateType.RELEASE})
+    node_table = (  # thesis Table 7.3
+        MappingRow("grasp", "robust_grasp", "pregrasp size", "arm control, FT and tactile sensors"),
+        MappingRow("move", "transport", "-", "arm control"),
+        MappingRow("push", "transport", "-", "arm control, force-torque sensor (feels the object)"),
+        MappingRow("transport", "transport", "obstacles, constraints", "arm control"),
+        MappingRow("place", "place", "contact threshold", "arm control, force-torque sensor"),
+        MappingRow("slide", "slide", "slide force threshold", "arm control, force-torque sensor"),
+        MappingRow("release", "release", "hand position", "arm control"),
+    )
+    holding_pads: ClassVar[tuple[str, ...]] = ()  # empty: every tactile sensor holds
+    refused_grasp_hint: ClassVar[str] = "use another grasp shape"
+
+    def map_node(self, state: State, context: MappingContext) -> NodeMapping:
+        kind = state.type
+        if kind is StateType.GRASP:
+            return self.finger_grasp(state, context)
+        if kind is StateType.RELEASE:
+            return self.release(state)
+        target, via = self.motion(state, context)
+        if kind is StateType.PLACE:
+            return NodeMapping("place", self.controller("place", target=target), self.controller("hold_position"))
+        if kind is StateType.SLIDE:
+            # Thesis 3.3.5: the slide presses with a predefined preshape (a hook on the Barrett).
+            shape, notes = self.shape(HandShape.HOOK_GRASP_PRESHAPE)
+            return NodeMapping("slide", self.controller("slide", target=target),
+                               self.controller("hand_shape", shape=shape.value), notes)
+        arm = self.arm_motion(state, target, via, **(obstacle_params(context) if kind is StateType.TRANSPORT else {}))
+        if kind is StateType.TRANSPORT:  # the fingers keep the grasp as it was
+            return NodeMapping("transport", arm, self.controller("hold_position"))
+        return NodeMapping("transport", arm, *self.hand_for_motion(state))
+
+    def finger_grasp(self, state: State, context: MappingContext) -> NodeMapping:
+        """The robust grasp (thesis 3.3.1): the state's grasp, or the one its preshape leads
+        to, or a power grasp; refused when the hand cannot make it or would hit an obstacle."""
+        grasp = state.hand_shape or (GRASP_OF.get(state.preshape) if state.preshape else None) or DEFAULT_GRASP
+        preshape = state.preshape or PRESHAPE_OF.get(grasp)
+        for wanted in (grasp, preshape):
+            if wanted in self.arm.hand.cannot_grasp:
+                raise Unmappable(f"grasp state '{state.name}' asks for '{wanted.value}': "
+                                 f"{self.arm.hand.cannot_grasp[wanted]}", self.refused_grasp_hint)
+        grasp, notes = self.shape(grasp)
+        preshape_made, pre_notes = self.shape(preshape) if preshape else (None, ())
+        self.check_object_reach(context, grasp.value, *((preshape_made.value,) if preshape_made else ()))
+        hand = self.controller("robust_grasp_hand", grasp_shape=grasp.value,
+                               preshape=preshape_made.value if preshape_made else None,
+                               pregrasp_size=self.pregrasp_size(state, context))
+        return NodeMapping("robust_grasp", self.controller("robust_grasp_approach"), hand, notes + pre_notes)
+
+    def pregrasp_size(self, state: State, context: MappingContext) -> float | None:
+        """Table 7.3's extra parameter: how far to open, from the object's size (0..1)."""
+        size = state.object_size
+        if size is None and context.object is not None and (context.object.size or context.object.object_class):
+            size = grasp_width(context.object)
+        if size is None:
+            return None
+        return round(min(1.0, max(0.2, (size + PREGRASP_MARGIN) / self.arm.hand.max_opening)), 3)
+
+    def sensed_event(self, event_type: EventType, origin: State) -> ConditionNode:
+        pads = self.arm.sensors_of(SensorKind.TACTILE)
+        holding = self.holding_pads or pads
+        if event_type is EventType.GRASP_STABLE:
+            return self.condition(event_type, "tactile_force_above", holding, min_pads=2)
+        if event_type is EventType.GRASP_LOST:
+            return self.condition(event_type, "tactile_force_below", holding, min_pads=2)
+        if event_type is EventType.FINGER_CONTACT:
+            return self.condition(event_type, "tactile_force_above", pads, min_pads=1)
+        if event_type is EventType.FINGER_CONTACT_LOST:
+            return self.condition(event_type, "tactile_force_below", pads, min_pads=1)
+        return super().sensed_event(event_type, origin)

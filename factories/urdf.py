@@ -1,0 +1,303 @@
+"""A robot's links and joints read from its URDF, so nobody retypes a published model.
+
+What a URDF says becomes description `Link`s: the tree (parents before children), joint
+origins, axes, limits, damping and friction, masses, centres of mass and inertias, and the
+collision geometry; links that are only frames (welded, massless, bare) are folded into
+their parents. A collision mesh (OBJ or STL) becomes the box that bounds it in its own
+frame, as every description shape is a primitive (the reach and hand-room checks and both
+engines' contacts work on primitives); boxes, cylinders and spheres are taken as they are.
+Visual meshes are checked to exist, as the URDF would not load elsewhere without them.
+What a URDF lacks (servo gains, sensors, the TCP, the hand's DOFs and pads) the robot's
+description adds. Anything that cannot be imported is a `UrdfError` naming file:line.
+"""
+
+from __future__ import annotations
+
+import struct
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+from lxml import etree
+
+from atd.model.files import InputError, read_capped
+from atd.model.frames import rpy_of
+from factories.description import Joint, Link, Origin, Servo, Shape, Vec3
+
+MAX_URDF_BYTES = 16 * 1024 * 1024
+MAX_MESH_BYTES = 256 * 1024 * 1024
+JOINT_KINDS = {"revolute": "revolute", "continuous": "revolute", "prismatic": "prismatic", "fixed": None}
+
+
+class UrdfError(ValueError):
+    """What cannot be imported, as `FILE:LINE: what; fix`."""
+
+
+@dataclass(frozen=True)
+class UrdfModel:
+    """The links of a URDF in tree order (the root first), and where it was read from."""
+
+    path: Path
+    """The URDF file."""
+    links: tuple[Link, ...]
+    """Every link, parents before children, with its joint, mass, inertia and shapes."""
+
+    def link(self, name: str) -> Link:
+        """The link called `name`; UrdfError naming the URDF when it has none."""
+        for link in self.links:
+            if link.name == name:
+                return link
+        raise UrdfError(f"{self.path}: has no link '{name}'; its links: {', '.join(l.name for l in self.links)}")
+
+
+# What a URDF leaves out of a joint's drive, in proportion to the effort it can give (a
+# bigger drive has a bigger rotor and gearbox); chosen so that the Panda's passes
+# `atd robots test` (hold within 1 mm, no joint over its speed limit when all run at once).
+KP, KV = 150.0, 8.0  # servo gains per N m (or N) of effort
+DAMPING = 0.5  # N m s/rad per N m, where the URDF gives no <dynamics damping>
+ARMATURE = 0.01  # kg m^2 per N m: the reflected rotor inertia, which a URDF never gives
+
+
+def default_servo(effort: float) -> Servo:
+    """A stiff, well-damped position servo for a joint that can give `effort`: a URDF has no gains."""
+    return Servo(kp=KP * effort, kv=KV * effort)
+
+
+def read_urdf(path: Path, servo: Callable[[float], Servo] = default_servo) -> UrdfModel:
+    """The URDF at `path` as description links; `servo(effort)` gives each moving joint its gains."""
+    path = Path(path)
+    try:
+        data = read_capped(path, MAX_URDF_BYTES)
+    except InputError as exc:
+        raise UrdfError(f"{path}: cannot read the URDF: {exc}") from None
+    parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, huge_tree=False)
+    try:
+        root = etree.fromstring(data, parser)
+    except etree.XMLSyntaxError as exc:
+        line = exc.position[0] if exc.position else 1
+        raise UrdfError(f"{path}:{line}: not well-formed XML: {exc.msg}; fix the tag at this line") from None
+    if root.tag != "robot":
+        raise UrdfError(f"{path}:{root.sourceline}: the root element is <{root.tag}>, not <robot>; "
+                        "give a URDF file (a xacro must be expanded first: xacro FILE.xacro > FILE.urdf)")
+    reader = _Reader(path, servo)
+    return UrdfModel(path, reader.links(root))
+
+
+@dataclass
+class _Reader:
+    path: Path
+    servo: Callable[[float], Servo]
+
+    def fail(self, element: etree._Element, what: str, fix: str) -> UrdfError:
+        return UrdfError(f"{self.path}:{element.sourceline}: {what}; {fix}")
+
+    def number(self, element: etree._Element, attribute: str, default: float | None = None) -> float:
+        text = element.get(attribute)
+        if text is None:
+            if default is None:
+                raise self.fail(element, f"<{element.tag}> has no '{attribute}'", f"add {attribute}=\"...\"")
+            return default
+        try:
+            value = float(text)
+        except ValueError:
+            raise self.fail(element, f"{attribute}=\"{text}\" is not a number", "write a decimal number") from None
+        if not np.isfinite(value):
+            raise self.fail(element, f"{attribute}=\"{text}\" is not finite", "write a finite number")
+        return value
+
+    def vector(self, element: etree._Element | None, attribute: str, default: Vec3) -> Vec3:
+        if element is None or element.get(attribute) is None:
+            return default
+        parts = element.get(attribute, "").split()
+        try:
+            values = tuple(float(p) for p in parts)
+        except ValueError:
+            values = ()
+        if len(values) != 3 or not all(np.isfinite(values)):
+            raise self.fail(element, f"{attribute}=\"{element.get(attribute)}\" is not three numbers",
+                            f"write {attribute}=\"x y z\"")
+        return values  # type: ignore[return-value]
+
+    def origin(self, parent: etree._Element) -> Origin:
+        element = parent.find("origin")
+        return Origin(self.vector(element, "xyz", (0.0, 0.0, 0.0)), self.vector(element, "rpy", (0.0, 0.0, 0.0)))
+
+    def links(self, root: etree._Element) -> tuple[Link, ...]:
+        elements = {}
+        for element in root.findall("link"):
+            name = element.get("name")
+            if not name:
+                raise self.fail(element, "a <link> has no name", "add name=\"...\"")
+            if name in elements:
+                raise self.fail(element, f"a second link '{name}'", "give every link its own name")
+            elements[name] = element
+        joints = {}
+        for element in root.findall("joint"):
+            child = element.find("child")
+            if child is None or child.get("link") not in elements:
+                raise self.fail(element, f"joint '{element.get('name')}' has no <child link=...> naming a link",
+                                "name one of the URDF's links")
+            parent = element.find("parent")
+            if parent is None or parent.get("link") not in elements:
+                raise self.fail(element, f"joint '{element.get('name')}' has no <parent link=...> naming a link",
+                                "name one of the URDF's links")
+            if child.get("link") in joints:
+                raise self.fail(element, f"link '{child.get('link')}' is the child of two joints",
+                                "a URDF is a tree: give each link one parent")
+            joints[child.get("link")] = element
+        roots = [name for name in elements if name not in joints]
+        if len(roots) != 1:
+            raise UrdfError(f"{self.path}: a URDF has one root link, this one has {len(roots)} "
+                            f"({', '.join(roots) or 'a loop'}); join them by joints into one tree")
+        ordered: list[Link] = []
+        pending = roots
+        while pending:
+            name = pending.pop(0)
+            ordered.append(self.link(elements[name], joints.get(name)))
+            pending += [child for child, joint in joints.items() if joint.find("parent").get("link") == name]
+        return _without_bare_frames(ordered)
+
+    def link(self, element: etree._Element, joint_element: etree._Element | None) -> Link:
+        inertial = element.find("inertial")
+        mass, com, inertia = 0.0, None, None
+        if inertial is not None:
+            mass_element = inertial.find("mass")
+            mass = self.number(mass_element, "value") if mass_element is not None else 0.0
+            com = self.origin(inertial).xyz
+            tensor = inertial.find("inertia")
+            if tensor is not None:
+                inertia = tuple(self.number(tensor, k, 0.0) for k in ("ixx", "iyy", "izz"))
+        shapes = tuple(shape for collision in element.findall("collision")
+                       for shape in self.geometry(collision, element.get("name")))
+        for visual in element.findall("visual"):
+            mesh = visual.find("geometry/mesh")
+            if mesh is not None:
+                self.mesh_file(mesh)
+        joint, origin, parent = None, Origin(), None
+        if joint_element is not None:
+            parent = joint_element.find("parent").get("link")
+            origin = self.origin(joint_element)
+            joint = self.joint(joint_element)
+        return Link(element.get("name"), parent, origin, mass, shapes, joint, com=com,
+                    inertia=inertia if mass > 0 else None)  # type: ignore[arg-type]
+
+    def joint(self, element: etree._Element) -> Joint | None:
+        kind = element.get("type")
+        if kind not in JOINT_KINDS:
+            raise self.fail(element, f"joint '{element.get('name')}' is of type '{kind}', which atd cannot simulate",
+                            "use revolute, continuous, prismatic or fixed joints (a floating or planar joint "
+                            "has no place in an arm)")
+        if JOINT_KINDS[kind] is None:
+            return None
+        axis = np.asarray(self.vector(element.find("axis"), "xyz", (1.0, 0.0, 0.0)), float)
+        if np.linalg.norm(axis) < 1e-9:
+            raise self.fail(element.find("axis"), f"joint '{element.get('name')}' has a zero axis",
+                            "give its axis xyz as a direction")
+        limit = element.find("limit")
+        if limit is None:
+            raise self.fail(element, f"joint '{element.get('name')}' has no <limit>",
+                            "add <limit effort=\"...\" velocity=\"...\" lower=\"...\" upper=\"...\"/>")
+        if kind == "continuous":
+            lower, upper = -2 * np.pi, 2 * np.pi
+        else:
+            lower, upper = self.number(limit, "lower", 0.0), self.number(limit, "upper", 0.0)
+            if lower >= upper:
+                raise self.fail(limit, f"joint '{element.get('name')}' has lower {lower:g} >= upper {upper:g}",
+                                "give its range with lower below upper")
+        effort, velocity = self.number(limit, "effort"), self.number(limit, "velocity")
+        dynamics = element.find("dynamics")
+        damping = self.number(dynamics, "damping", DAMPING * effort) if dynamics is not None else DAMPING * effort
+        friction = self.number(dynamics, "friction", 0.0) if dynamics is not None else 0.0
+        unit = tuple(float(v) for v in axis / np.linalg.norm(axis))
+        return Joint(element.get("name"), JOINT_KINDS[kind], unit, lower, upper, velocity, effort,  # type: ignore[arg-type]
+                     self.servo(effort), damping=damping, friction=friction, armature=ARMATURE * effort)
+
+    def geometry(self, collision: etree._Element, link: str) -> tuple[Shape, ...]:
+        origin = self.origin(collision)
+        geometry = collision.find("geometry")
+        if geometry is None or len(geometry) == 0:
+            raise self.fail(collision, f"a <collision> of link '{link}' has no <geometry>", "add one, or remove it")
+        shape = geometry[0]
+        if shape.tag == "box":
+            size = self.vector(shape, "size", (0.0, 0.0, 0.0))
+            return (Shape("box", tuple(v / 2 for v in size), origin),)
+        if shape.tag == "sphere":
+            return (Shape("sphere", (self.number(shape, "radius"),), origin),)
+        if shape.tag == "cylinder":
+            return (Shape("cylinder", (self.number(shape, "radius"), self.number(shape, "length") / 2), origin),)
+        if shape.tag == "mesh":
+            return (self.bounding_box(shape, origin),)
+        raise self.fail(shape, f"<{shape.tag}> is not a URDF geometry", "use box, cylinder, sphere or mesh")
+
+    def mesh_file(self, mesh: etree._Element) -> Path:
+        """The mesh's file: `package://` and relative names are looked for beside the URDF, and
+        up its folders (a ROS package's `package://name/...` drops the package's name)."""
+        name = mesh.get("filename", "")
+        if not name:
+            raise self.fail(mesh, "a <mesh> has no filename", "add filename=\"...\"")
+        relative = name.removeprefix("package://").removeprefix("file://")
+        candidates = [Path(relative)] if Path(relative).is_absolute() else [
+            folder / part for folder in (self.path.parent, *self.path.parent.parents)
+            for part in (Path(relative), Path(*Path(relative).parts[1:]) if len(Path(relative).parts) > 1 else None)
+            if part is not None]
+        for candidate in candidates:
+            if candidate.is_file():
+                return candidate
+        raise self.fail(mesh, f"mesh '{name}' is not there (looked for {candidates[0]})",
+                        "install the meshes beside the URDF, or correct the filename")
+
+    def bounding_box(self, mesh: etree._Element, origin: Origin) -> Shape:
+        file = self.mesh_file(mesh)
+        scale = np.asarray(self.vector(mesh, "scale", (1.0, 1.0, 1.0)), float)
+        try:
+            vertices = _vertices(file) * scale
+        except (OSError, InputError, ValueError) as exc:
+            raise self.fail(mesh, f"cannot read mesh {file}: {exc}", "give an OBJ or STL mesh") from None
+        low, high = vertices.min(axis=0), vertices.max(axis=0)
+        centre = origin.matrix() @ np.append((low + high) / 2, 1.0)
+        half = tuple(float(max(v, 1e-4)) for v in (high - low) / 2)
+        return Shape("box", half, Origin(tuple(float(v) for v in centre[:3]), origin.rpy))  # type: ignore[arg-type]
+
+
+def _without_bare_frames(links: list[Link]) -> tuple[Link, ...]:
+    """The links less those that are only frames (welded, massless, no geometry: a flange,
+    a grasp target), their children hung on their parent with the two origins composed.
+    A massless body is no body to a simulator."""
+    kept: list[Link] = []
+    frames: dict[str, Link] = {}
+    for link in links:
+        parent = frames.get(link.parent or "")
+        if parent is not None:
+            pose = parent.origin.matrix() @ link.origin.matrix()
+            link = replace(link, parent=parent.parent,
+                           origin=Origin(tuple(float(v) for v in pose[:3, 3]), rpy_of(pose[:3, :3])))  # type: ignore[arg-type]
+        if link.parent is not None and link.joint is None and link.mass <= 0 and not link.shapes:
+            frames[link.name] = link
+        else:
+            kept.append(link)
+    return tuple(kept)
+
+
+def _vertices(file: Path) -> np.ndarray:
+    """The vertices of an OBJ or STL (ASCII or binary) mesh, (n, 3)."""
+    data = read_capped(file, MAX_MESH_BYTES)
+    suffix = file.suffix.lower()
+    if suffix == ".obj":
+        rows = [line.split()[1:4] for line in data.decode("utf-8", "replace").splitlines() if line.startswith("v ")]
+    elif suffix == ".stl" and data[:5].lower() == b"solid" and b"facet" in data[:1024]:
+        rows = [line.split()[1:4] for line in data.decode("utf-8", "replace").splitlines()
+                if line.strip().startswith("vertex")]
+    elif suffix == ".stl":
+        count = struct.unpack_from("<I", data, 80)[0] if len(data) >= 84 else 0
+        if len(data) < 84 + 50 * count:
+            raise ValueError("the binary STL is shorter than its triangle count says")
+        triangles = np.frombuffer(data, dtype=np.dtype([("n", "<3f4"), ("v", "<9f4"), ("a", "<u2")]),
+                                  count=count, offset=84)
+        rows = triangles["v"].reshape(-1, 3).tolist()
+    else:
+        raise ValueError(f"'{file.suffix}' meshes are not read, only .obj and .stl")
+    vertices = np.asarray(rows, float)
+    if vertices.ndim != 2 or len(vertices) == 0:
+        raise ValueError("it has no vertices")
+    return vertices
