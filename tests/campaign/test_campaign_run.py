@@ -16,7 +16,7 @@ import pytest
 
 from atd.campaign.cells import plans
 from atd.campaign.record import TrialRecord
-from atd.campaign.runner import _Pool, run_local, run_ray
+from atd.campaign.runner import _Pool, run_local
 from atd.campaign.spec import load_spec
 from atd.campaign.store import Store
 from tests.conftest import REPO
@@ -106,16 +106,22 @@ def test_a_campaign_killed_midway_and_resumed_equals_one_run_straight_through(tm
         assert _outcomes(s.records()) == straight
 
 
-def test_one_worker_two_workers_and_ray_give_identical_records(monkeypatch, straight) -> None:
+def test_one_worker_two_workers_and_ray_give_identical_records(tmp_path: Path, straight) -> None:
     two: list[TrialRecord] = []
     run_local(plans(_spec("small.toml")), 2, two.append)
     assert _outcomes(two) == straight
-    ray: list[TrialRecord] = []
+    # Ray through the command line, in its own process: a Ray that cannot start fails the
+    # test at the timeout instead of holding the suite.
     short = tempfile.mkdtemp(prefix="ray", dir="/tmp")  # Ray's socket paths must stay under 108 bytes
-    monkeypatch.setenv("RAY_TMPDIR", short)
-    run_ray(plans(_spec("small.toml")), None, 2, ray.append)
-    shutil.rmtree(short, ignore_errors=True)
-    assert _outcomes(ray) == straight
+    try:
+        result = subprocess.run([sys.executable, "-m", "atd", "campaign", "run", str(DATA / "small.toml"),
+                                 "--ray", "-j", "2", "-q", "--store", str(tmp_path / "ray.sqlite")], cwd=tmp_path,
+                                capture_output=True, text=True, timeout=300, env={**os.environ, "RAY_TMPDIR": short})
+    finally:
+        shutil.rmtree(short, ignore_errors=True)
+    assert result.returncode == 0, result.stderr
+    with Store.open_read(tmp_path / "ray.sqlite") as s:
+        assert _outcomes(s.records()) == straight
     assert len({tuple(sorted(v["sampled"].items())) for v in straight.values()}) == 4, \
         "each trial samples its own approach error"
 
