@@ -20,3 +20,7 @@ FINGERS_STOPPED = "fingers_stopped"
 SHIFT = "shift"
 """Hand -> arm: (3,) hand-frame displacement, m, for the arm to make before the hand
 tries again (finger-lost correction); the arm sets it back to None when done."""
+
+JAWS_EMPTY = "jaws_empty"
+"""Hand -> arm: True from the moment a gripper's jaws closed on nothing until they are
+open again, for an arm that looks for the object elsewhere."""
