@@ -22,6 +22,7 @@ MOTOR_TOUCH = 0.25  # of the grasp force, on the jaw motor: the jaws meet resist
 CONFIRM = 0.95  # of the grasp force: the grip is there
 NAIVE_SPEED = 0.5  # of the jaws' speed limit, for the naive grasp
 EMPTY = 0.001  # m from fully closed: the jaws closed on nothing
+STILL = 0.005  # m/s: jaws slower than this stand on the object (a motor's force alone is felt in motion too)
 SQUEEZE_GAIN = 5.0  # 1/s: how fast the squeeze corrects the motor force towards the pad force wanted
 SQUEEZE_TRIM = 0.5  # the correction stays within +-50 % of the grasp force
 ALIGNED = 0.3  # of a pad's half width: a contact this near the pad's middle needs no move along the jaws
@@ -97,16 +98,17 @@ class CloseUntilForce(Controller):
             return self._reopen(dt)
         if self.status is Status.RUNNING:
             force = self.jaws.force(readings)
-            if self.pressing and force >= CONFIRM * self.grasp_force:
-                board[FINGERS_STOPPED] = True
-                self.finish(Status.DONE, f"grip force {force:.1f} N (asked {self.grasp_force:g} N)")
-            elif not self.pressing and self.jaws.both_touch(readings, self.grasp_force):
-                self.pressing = True
-            elif not self.pressing and self.jaws.empty(readings):
+            if self.jaws.empty(readings):  # a motor pressing on its end stop feels force too
+                self.pressing = False
                 if self.guided:
                     board[JAWS_EMPTY] = True
                 else:
                     self.finish(Status.ERROR, "the jaws closed on nothing")
+            elif self.pressing and force >= CONFIRM * self.grasp_force and abs(float(readings.hand_dq[0])) < STILL:
+                board[FINGERS_STOPPED] = True
+                self.finish(Status.DONE, f"grip force {force:.1f} N (asked {self.grasp_force:g} N)")
+            elif not self.pressing and self.jaws.both_touch(readings, self.grasp_force):
+                self.pressing = True
         if board.get(JAWS_EMPTY):
             return self._reopen(dt)
         if self.pressing:
