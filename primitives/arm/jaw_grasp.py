@@ -3,14 +3,17 @@ an approach that left the jaws off the object before the hand closes.
 
 The approach may end tilted, with a jaw resting on the object's top, above the object,
 or beside it, pressing its side. So the arm first rises above the object's top (as the
-task believes it), then descends along the world's vertical on the wrist sensor. Where the first contact sits across the hand says what was met: under one
-jaw (that jaw is on the object's top: move the hand across by that much, rise, descend
-again), or under the middle (the support under both jaws, or the object under the palm:
-the jaws straddle the object's place, so close). The jaws closing on nothing (JAWS_EMPTY)
-means the object lies beyond the jaws' width, where closing does not sweep: the arm
-rises and tries the next point of a bounded search along the jaws' width, alternating
-sides, around where the approach left it. While the jaws close it follows the hand's
-ARM_NUDGE (re-centring on one-sided pad contact) and ends once FINGERS_STOPPED.
+task believes it), then descends along the world's vertical on the wrist sensor, at most
+down to the object's centre (where the TCP grasps it). Where the first contact sits
+across the hand says what was met: under one jaw, above the object's top (that jaw is on
+the top: move the hand across by that much, rise, descend again), or under the middle or
+below the top (the support under both jaws, or the palm on the object: the jaws straddle
+its place, so close). The jaws closing on nothing (JAWS_EMPTY) means the object lies
+beyond the jaws' width, where closing does not sweep: the arm rises and goes where the
+palm's contact placed the object, or else to the next point of a bounded search along
+the jaws' width, alternating sides, around where the approach left it. While the jaws
+close it follows the hand's ARM_NUDGE (re-centring on the pads' contact) and ends once
+FINGERS_STOPPED.
 """
 
 from __future__ import annotations
@@ -84,6 +87,11 @@ class JawGraspCorrection(Controller):
             return -np.inf
         return float(obj.pose.position[2]) + obj.half_height
 
+    def _grasp_height(self) -> float:
+        """Where the TCP closes on the object: level with its centre, as the task believes it."""
+        obj = self.ctx.object
+        return -np.inf if obj is None or obj.pose is None else float(obj.pose.position[2])
+
     def _above_object(self) -> float:
         """TCP height from which a descent meets the object's top first."""
         return self._object_top() + self.above
@@ -142,7 +150,7 @@ class JawGraspCorrection(Controller):
         stalled = readings.time - self.best_time > STALL_TIME and self.contact.force >= STALL_CONTACT * self.threshold
         if self.contact.force >= self.threshold or stalled:
             self._met(readings, wrench)
-        elif self.top - z >= self.max_depth:
+        elif self.top - z >= self.max_depth or z <= self._grasp_height():
             self._close_here(readings, 0.0)
         return -self.descent * UP if self.phase == "descend" else np.zeros(3)
 
