@@ -86,6 +86,7 @@ class CloseUntilForce(Controller):
         self.grasp_force = float(self.params["grasp_force"])
         self.speed = float(self.params["closing_speed"])
         self.jaws = Jaws(ctx, str(self.params["force_source"]))
+        self.squeeze = Squeeze(ctx)  # presses on until the pads feel the force (a tilted grip loses some)
 
     def start(self, readings: Readings) -> None:
         self.reference = self.opened = float(readings.hand_q[0])
@@ -113,7 +114,7 @@ class CloseUntilForce(Controller):
             return self._reopen(dt)
         if self.pressing:
             board[ARM_NUDGE] = None
-            return self.jaws.command(self.grasp_force)
+            return self.squeeze.update(readings, dt)
         if self.status is Status.ERROR:
             board[ARM_NUDGE] = None
             return position_command(np.array([self.reference]))
