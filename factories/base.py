@@ -339,12 +339,22 @@ class Factory(ABC):
         return shape.value
 
     def jaw_grasp(self, state: State, context: MappingContext) -> NodeMapping:
-        """A parallel gripper's grasp (thesis 7.3, Melfa): the arm holds still while the jaws
-        close until the grip force is reached."""
+        """A parallel gripper's grasp (thesis 7.3, Melfa): the jaws close until the grip force
+        is reached, while the arm corrects the approach on contact (thesis 3.3.1)."""
         notes = self.shape(state.hand_shape)[1] if state.hand_shape else ()
         shape = self.shape(state.hand_shape)[0].value if state.hand_shape else HandShape.CLOSED.value
         self.check_object_reach(context, HandShape.OPEN.value, shape)
-        return NodeMapping("grasp", self.controller("hold"), self.controller("close_until_force"), notes)
+        arm = self.controller("jaw_grasp_correction", wrist_to_tcp=round(self._wrist_to_tcp, 6),
+                              fingertip_reach=round(self.robot.hand_reach(HandShape.OPEN.value), 6))
+        return NodeMapping("grasp", arm, self.controller("close_until_force"), notes)
+
+    @cached_property
+    def _wrist_to_tcp(self) -> float:
+        """Distance from the wrist sensor to the TCP along the hand's approach axis."""
+        robot = self.robot
+        joints = dict(zip(robot.arm_joints, (float(v) for v in robot.home)))
+        tcp = robot.site_pose(robot.tcp, joints)
+        return float((tcp[:3, 3] - robot.site_pose(robot.wrist_sensor, joints)[:3, 3]) @ tcp[:3, 2])
 
     def check_payload(self, context: MappingContext) -> None:
         """An object heavier than the arm's published payload is not this robot's to lift."""

@@ -29,3 +29,6 @@ EMPTY_HAND = "empty_hand"
 """In `Context.memory`, not the blackboard: (3,) world-frame wrist force of the empty hand,
 N, as the latest grasp began; the load a hand carries beyond it is what it holds."""
 
+JAWS_EMPTY = "jaws_empty"
+"""Hand -> arm: True from the moment a gripper's jaws closed on nothing until they are
+open again, for an arm that looks for the object elsewhere."""

@@ -16,6 +16,7 @@ from atd.model.controllers import ARM_CONTROLLERS, CONDITIONS, HAND_CONTROLLERS,
 from atd.model.estd import Condition as Leaf
 from atd.model.estd import Controller as Use
 from primitives.arm.grasp import NaiveGraspApproach, RobustGraspApproach
+from primitives.arm.jaw_grasp import JawGraspCorrection
 from primitives.arm.move import CartesianMove, Hold, Push
 from primitives.arm.surface import Place, ReleaseRetreat, Slide
 from primitives.base import Condition, Context, Controller, Status
@@ -53,6 +54,7 @@ ARM: Mapping[str, ControllerClass] = {
     "release_retreat": ReleaseRetreat,
     "robust_grasp_approach": RobustGraspApproach,
     "naive_grasp_approach": NaiveGraspApproach,
+    "jaw_grasp_correction": JawGraspCorrection,
 }
 
 _POSTURES: Mapping[str, ControllerClass] = {"hold_position": HoldPosition, "hand_shape": HandShape, "open_to": OpenTo}

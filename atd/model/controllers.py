@@ -192,6 +192,42 @@ _ARM_CONTROLLERS = (
         },
     ),
     ControllerSpec(
+        "jaw_grasp_correction", Role.ARM,
+        "Arm side of the robust parallel-jaw grasp: rise above the object's top, descend on the wrist "
+        "sensor; a contact under one jaw moves the hand across by where it sits, jaws closing on "
+        "nothing send the hand to the next point of a search along the jaws' width; then follow the "
+        "gripper's re-centring while it closes.",
+        "thesis 3.3.1 (contact-driven corrections); D5 chapter 3 (parallel jaws)",
+        {
+            "force_threshold": _p(NUM, "contact force on the wrist (thesis FORCE_THRESHOLD)", 2.0, unit="N"),
+            "correction_velocity": _p(NUM, "speed of the corrective moves across and up (ours; the thesis' "
+                                      "5 mm/s would spend the grasp's timeout on one correction)", 0.05,
+                                      unit="m/s"),
+            "descent_velocity": _p(NUM, "speed of the descent onto the object (ours)", 0.04, unit="m/s"),
+            "clearance": _p(NUM, "how far to rise before a correction (ours)", 0.02, unit="m"),
+            "above_object": _p(NUM, "the first descent starts with the TCP this far above the object's top, "
+                               "so the fingertips clear it (ours: more than a fingertip's reach below the "
+                               "TCP)", 0.04, unit="m"),
+            "back_off": _p(NUM, "rise off the contact before closing, so the jaws do not drag on it (ours)",
+                           0.003, unit="m"),
+            "max_depth": _p(NUM, "how far to descend without a contact before closing anyway (ours)", 0.1,
+                            unit="m"),
+            "centre_band": _p(NUM, "a contact this close to the hand's axis is under the palm or both jaws: "
+                              "close (ours)", 0.012, unit="m"),
+            "wrist_to_tcp": _p(NUM, "how far the TCP lies beyond the wrist sensor along the hand's z axis, to "
+                               "place a contact from the wrist's torque (the robot's own geometry)", 0.1, unit="m"),
+            "fingertip_reach": _p(NUM, "how far the open fingertips reach beyond the TCP along the hand's z "
+                                  "axis, to tell the support under them from the object (the robot's own "
+                                  "geometry)", 0.02, unit="m"),
+            "max_shift": _p(NUM, "largest move across towards a contact under one jaw (ours)", 0.04, unit="m"),
+            "max_shifts": _p(INT, "how many times to move across (ours)", 3),
+            "search_step": _p(NUM, "spacing of the search along the jaws' width (ours: under a finger's "
+                              "width plus the object's)", 0.03, unit="m"),
+            "search_points": _p(INT, "points searched after the jaws close on nothing (ours)", 4),
+            "filter_time": _FILTER,
+        },
+    ),
+    ControllerSpec(
         "naive_grasp_approach", Role.ARM,
         "Baseline grasp without corrections: move forward along the grasp direction until a contact or "
         "`distance`, then stay.",

@@ -29,6 +29,10 @@ from primitives.robot import Readings
 VIA_TOLERANCE = 0.01  # m: a via point counts as passed this close
 STALL_TIME = 2.0  # s without getting 1 mm closer: the target cannot be reached
 STALL_PROGRESS = 0.001  # m
+# N of contact force on a stalled guarded move: what stopped it is a contact, not the arm.
+# A position-servoed arm blocked near its target presses with little force (a Melfa jaw
+# resting on the object's top: about 2 N), far below any contact threshold.
+STALL_CONTACT = 1.0
 CRUISE = 0.9  # fraction of max_speed at which a push starts measuring its free-motion level
 
 
@@ -128,6 +132,9 @@ class CartesianMove(Controller):
             self.best, self.best_time = distance, readings.time
         elif readings.time - self.best_time > STALL_TIME:
             self.shaper.stop()
+            if self.straight and force >= STALL_CONTACT:
+                self.stopped_by(force, norm(self.via[-1] - position))
+                return self._stay(readings)
             self.finish(Status.ERROR, f"no progress for {STALL_TIME:g} s, {distance:.3f} m from "
                                       f"({goal[0]:.3f}, {goal[1]:.3f}, {goal[2]:.3f})")
             return self._stay(readings)
@@ -139,8 +146,11 @@ class CartesianMove(Controller):
 
     def stopped_by(self, force: float, short: float) -> None:
         """A contact `short` of the target: what a guarded move looks for, the surface a
-        place was going to (within `contact_margin`), or else something in the way."""
-        felt = f"|F| = {force:.1f} N >= {self.threshold:g} N"
+        place was going to (within `contact_margin`), or else something in the way. It is
+        felt over the threshold, or pressing on while the arm makes no progress (a jaw on an
+        object's top presses only a few newtons against the arm's servo)."""
+        felt = f"|F| = {force:.1f} N " + (f">= {self.threshold:g} N" if force >= self.threshold
+                                          else f"pressing, no progress for {STALL_TIME:g} s")
         if not self.straight:
             self.finish(Status.ERROR, f"unexpected contact: {felt}")
         elif 0.0 <= self.margin < short:

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
-from primitives.blackboard import ARM_NUDGE, CONTACT, EMPTY_HAND
+from primitives.blackboard import ARM_NUDGE, CONTACT, EMPTY_HAND, FINGERS_STOPPED, JAWS_EMPTY
 from primitives.filters import world_load
 from primitives.hands.posture import position_command
 from primitives.robot import HandMode, Readings
@@ -23,8 +23,10 @@ MOTOR_TOUCH = 0.25  # of the grasp force, on the jaw motor: the jaws meet resist
 CONFIRM = 0.95  # of the grasp force: the grip is there
 NAIVE_SPEED = 0.5  # of the jaws' speed limit, for the naive grasp
 EMPTY = 0.001  # m from fully closed: the jaws closed on nothing
+STILL = 0.005  # m/s: jaws slower than this stand on the object (a motor's force alone is felt in motion too)
 SQUEEZE_GAIN = 5.0  # 1/s: how fast the squeeze corrects the motor force towards the pad force wanted
 SQUEEZE_TRIM = 0.5  # the correction stays within +-50 % of the grasp force
+ALIGNED = 0.3  # of a pad's half width: a contact this near the pad's middle needs no move along the jaws
 
 
 class Jaws:
@@ -72,6 +74,12 @@ class CloseUntilForce(Controller):
     closing further would push it across the table; the gripper asks the arm to move
     towards the touching pad as fast as that jaw closes, so the touching pad stands still
     on the object while the other comes to meet it.
+
+    With an arm that corrects the approach (it raises CONTACT when the jaws may close)
+    the jaws wait for CONTACT; closing on nothing is then no error: they say JAWS_EMPTY,
+    reopen, and close again on the arm's next CONTACT. They also stop closing while the
+    pads feel the object off their middle along the jaws' width, and ask the arm to move
+    that way first: a pad's rim closing on a round object pushes it aside.
     """
 
     def __init__(self, ctx: Context) -> None:
@@ -79,40 +87,84 @@ class CloseUntilForce(Controller):
         self.grasp_force = float(self.params["grasp_force"])
         self.speed = float(self.params["closing_speed"])
         self.jaws = Jaws(ctx, str(self.params["force_source"]))
+        self.squeeze = Squeeze(ctx)  # presses on until the pads feel the force (a tilted grip loses some)
 
     def start(self, readings: Readings) -> None:
-        self.reference = float(readings.hand_q[0])
+        self.reference = self.opened = float(readings.hand_q[0])
         self.pressing = False
         self.ctx.memory[EMPTY_HAND] = world_load(readings)  # a grasp begins empty-handed
+        self.guided = CONTACT in self.ctx.blackboard  # the arm says when to close
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         board = self.ctx.blackboard
+        if self.guided and not self.pressing and not board.get(CONTACT):
+            return self._reopen(dt)
         if self.status is Status.RUNNING:
             force = self.jaws.force(readings)
-            if self.pressing and force >= CONFIRM * self.grasp_force:
+            if self.jaws.empty(readings):  # a motor pressing on its end stop feels force too
+                self.pressing = False
+                if self.guided:
+                    board[JAWS_EMPTY] = True
+                else:
+                    self.finish(Status.ERROR, "the jaws closed on nothing")
+            elif self.pressing and force >= CONFIRM * self.grasp_force and abs(float(readings.hand_dq[0])) < STILL:
+                board[FINGERS_STOPPED] = True
                 self.finish(Status.DONE, f"grip force {force:.1f} N (asked {self.grasp_force:g} N)")
             elif not self.pressing and self.jaws.both_touch(readings, self.grasp_force):
                 self.pressing = True
-            elif not self.pressing and self.jaws.empty(readings):
-                self.finish(Status.ERROR, "the jaws closed on nothing")
+        if board.get(JAWS_EMPTY):
+            return self._reopen(dt)
         if self.pressing:
             board[ARM_NUDGE] = None
-            return self.jaws.command(self.grasp_force)
+            return self.squeeze.update(readings, dt)
         if self.status is Status.ERROR:
             board[ARM_NUDGE] = None
             return position_command(np.array([self.reference]))
-        board[ARM_NUDGE] = self._nudge(readings)
-        self.reference += self.jaws.closing * self.speed * dt
+        off_centre = self._across_pads(readings) if self.guided else 0.0
+        board[ARM_NUDGE] = self._nudge(readings, off_centre)
+        if abs(off_centre) <= ALIGNED:  # closing on a pad's rim pushes the object along the jaws' width
+            self.reference += self.jaws.closing * self.speed * dt
         return position_command(np.array([self.reference]))
 
-    def _nudge(self, readings: Readings) -> np.ndarray | None:
+    def _reopen(self, dt: float) -> ControlData:
+        """Back to the opening the grasp began with, at full speed (nothing is in the way);
+        JAWS_EMPTY holds until it is reached."""
+        board = self.ctx.blackboard
+        board[ARM_NUDGE] = None
+        if board.get(JAWS_EMPTY):
+            self.reference -= self.jaws.closing * float(self.ctx.info.hand.velocity_limit[0]) * dt
+            if self.jaws.closing * (self.reference - self.opened) <= 0.0:
+                self.reference = self.opened
+                board[JAWS_EMPTY] = False
+        return position_command(np.array([self.reference]))
+
+    def _nudge(self, readings: Readings, off_centre: float = 0.0) -> np.ndarray | None:
+        """Towards the one touching pad, and along the jaws' width towards the contact."""
         if self.jaws.source != "tactile":
             return None
         touching = readings.pad_force > TOUCH
-        if touching.sum() != 1:
+        if touching.sum() != 1 and off_centre == 0.0:
             return None
-        side = float(self.jaws.sides[touching][0])
-        return readings.tcp[:3, 1] * (side * self.speed)
+        nudge = readings.tcp[:3, 0] * (off_centre * self.speed)
+        if touching.sum() == 1:
+            nudge = nudge + readings.tcp[:3, 1] * (float(self.jaws.sides[touching][0]) * self.speed)
+        return nudge
+
+    def _across_pads(self, readings: Readings) -> float:
+        """Where the touching pads feel the object along the jaws' width (the hand's x), from
+        -1 to 1 of a pad's half width; 0 without a contact or tactile images. The mirrored
+        pads face each other, so the left pad's columns run along the hand's x and the
+        right pad's against it (`factories.parts.parallel_jaw`)."""
+        where, weight = 0.0, 0.0
+        for pad, side, force in zip(self.ctx.info.hand.pads, self.jaws.sides, readings.pad_force):
+            image = readings.taxels.get(pad.name)
+            if image is None or force <= TOUCH:
+                continue
+            columns = image.sum(axis=0)
+            centre = float(columns @ np.arange(len(columns))) / float(columns.sum())
+            where += side * ((centre + 0.5) / len(columns) * 2.0 - 1.0) * force
+            weight += force
+        return where / weight if weight > 0.0 else 0.0
 
 
 class Squeeze(Controller):

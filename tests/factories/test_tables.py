@@ -62,7 +62,7 @@ def test_table_7_3_grasp_uses_wrist_force_torque_and_tactile():
 
 # Table 7.4: abstract -> Melfa primitive and controllers.
 TABLE_7_4 = [
-    (StateType.GRASP, "grasp", "hold", "close_until_force"),
+    (StateType.GRASP, "grasp", "jaw_grasp_correction", "close_until_force"),
     (StateType.MOVE, "move", "cartesian_move", "hold_position"),
     (StateType.PUSH, "move", "push", "hold_position"),
     (StateType.TRANSPORT, "transport", "cartesian_move", "squeeze"),

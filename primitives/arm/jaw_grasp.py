@@ -1,0 +1,209 @@
+"""The arm side of the robust parallel-jaw grasp (thesis 3.3.1; D5 chapter 3): it corrects
+an approach that left the jaws off the object before the hand closes.
+
+The approach may end tilted, with a jaw resting on the object's top, above the object,
+or beside it, pressing its side. So the arm first rises above the object's top (as the
+task believes it), then descends along the world's vertical on the wrist sensor, at most
+down to the object's centre (where the TCP grasps it). Where the first contact sits
+across the hand says what was met: under one jaw, above the object's top (that jaw is on
+the top: move the hand across by that much, rise, descend again), or under the middle or
+below the top (the support under both jaws, or the palm on the object: the jaws straddle
+its place, so close). The jaws closing on nothing (JAWS_EMPTY) means the object lies
+beyond the jaws' width, where closing does not sweep: the arm rises and goes where the
+palm's contact placed the object, or else to the next point of a bounded search along
+the jaws' width, alternating sides, around where the approach left it. While the jaws
+close it follows the hand's ARM_NUDGE (re-centring on the pads' contact) and ends once
+FINGERS_STOPPED.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from primitives.arm.motion import (
+    GAIN,
+    ORIENTATION_TOLERANCE,
+    TwistShaper,
+    clamp_norm,
+    norm,
+    orientation_twist,
+)
+from primitives.arm.move import arm_output
+from primitives.base import Context, ControlData, Controller, Status
+from primitives.blackboard import ARM_NUDGE, CONTACT, FINGERS_STOPPED, JAWS_EMPTY
+from primitives.filters import ContactWrench
+from primitives.robot import Readings
+
+ARRIVED = 0.002  # m: a waypoint of the correction counts as reached
+UP = np.array([0.0, 0.0, 1.0])
+STALL_TIME = 0.5  # s without descending 1 mm while pressing: the descent is on a contact
+STALL_PROGRESS = 0.001  # m
+STALL_CONTACT = 0.5  # of force_threshold: pressing that much when stalled is a contact
+SUPPORT_BAND = 0.01  # m: fingertips this close to the support's top (the world's z = 0) stand on it
+
+
+def search_offsets(step: float, points: int) -> list[float]:
+    """Offsets along the jaws' width: +s, -s, +2s, -2s, ... (`points` of them)."""
+    return [(1 if k % 2 == 0 else -1) * step * (k // 2 + 1) for k in range(points)]
+
+
+class JawGraspCorrection(Controller):
+    """The corrections above, one phase at a time: move (rise, across), descend, close, hold."""
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        p = self.params
+        self.threshold = float(p["force_threshold"])
+        self.clearance = float(p["clearance"])
+        self.above = float(p["above_object"])
+        self.wrist_to_tcp = float(p["wrist_to_tcp"])
+        self.reach = float(p["fingertip_reach"])
+        self.back_off = float(p["back_off"])
+        self.speed = float(p["correction_velocity"])
+        self.descent = float(p["descent_velocity"])
+        self.max_depth = float(p["max_depth"])
+        self.centre_band = float(p["centre_band"])
+        self.max_shift = float(p["max_shift"])
+        self.max_shifts = int(p["max_shifts"])
+        self.offsets = search_offsets(float(p["search_step"]), int(p["search_points"]))
+        self.contact = ContactWrench(float(p["filter_time"]))
+        self.shaper = TwistShaper()  # a sudden reversal shakes the wrist like a contact
+
+    def start(self, readings: Readings) -> None:
+        # The hand keeps the tilt the approach left: turning it upright drove the Melfa's
+        # wrist (j4) onto its limit in 4 of 20 trials with the seeds' approach error.
+        self.rotation = readings.tcp[:3, :3].copy()
+        self.centre = readings.tcp[:3, 3].copy()  # where the approach believes the object is
+        self.searched = 0
+        self.shifts = 0
+        self.hint: np.ndarray | None = None  # where the last contact says the object is, world frame
+        self.ctx.blackboard[CONTACT] = False
+        self._rise(readings, np.zeros(3), self._above_object())
+
+    def _object_top(self) -> float:
+        """Height of the object's top as the task believes it (-inf: the task does not say)."""
+        obj = self.ctx.object
+        if obj is None or obj.pose is None:
+            return -np.inf
+        return float(obj.pose.position[2]) + obj.half_height
+
+    def _grasp_height(self) -> float:
+        """Where the TCP closes on the object: level with its centre, as the task believes it."""
+        obj = self.ctx.object
+        return -np.inf if obj is None or obj.pose is None else float(obj.pose.position[2])
+
+    def _above_object(self) -> float:
+        """TCP height from which a descent meets the object's top first."""
+        return self._object_top() + self.above
+
+    def _rise(self, readings: Readings, across: np.ndarray, height: float = -np.inf) -> None:
+        """Up clear of the contact (at least to `height`), then `across` (world frame), then descend again."""
+        here = readings.tcp[:3, 3]
+        up = np.array([here[0], here[1], max(here[2] + self.clearance, height)])
+        self.route = [up, up + across * np.array([1.0, 1.0, 0.0])]
+        self.phase = "move"
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        board = self.ctx.blackboard
+        position = readings.tcp[:3, 3]
+        w, angle = orientation_twist(self.rotation, readings.tcp[:3, :3])
+        v = np.zeros(3)
+        if self.phase == "move":
+            v = self._follow(readings, angle)
+        elif self.phase == "descend":
+            v = self._descend(readings, dt)
+        elif self.phase == "close":
+            v = self._close(readings, dt)
+        if self.phase in ("close", "hold"):
+            v = GAIN * (self.goal - position) + (v if self.phase == "close" else 0.0)
+        if self.phase == "close" and board.get(FINGERS_STOPPED):
+            self.phase = "hold"
+            self.finish(Status.DONE, f"the jaws hold the object after {self.shifts} moves across and "
+                                     f"{self.searched} search points")
+        return arm_output(self.shaper(np.concatenate([v, w]), dt))
+
+    def _follow(self, readings: Readings, angle: float) -> np.ndarray:
+        position = readings.tcp[:3, 3]
+        goal = self.route[0]
+        if norm(goal - position) < ARRIVED and angle < ORIENTATION_TOLERANCE:
+            self.route.pop(0)
+            if not self.route:
+                if self.ctx.blackboard.get(JAWS_EMPTY):  # the jaws are still opening
+                    self.route = [goal]
+                    return np.zeros(3)
+                self._start_descent(readings)
+                return np.zeros(3)
+            goal = self.route[0]
+        return clamp_norm(GAIN * (goal - position), self.speed)
+
+    def _start_descent(self, readings: Readings) -> None:
+        self.contact.start(readings)
+        self.phase = "descend"
+        self.top = float(readings.tcp[2, 3])
+        self.best, self.best_time = self.top, readings.time
+
+    def _descend(self, readings: Readings, dt: float) -> np.ndarray:
+        wrench = self.contact.update(readings, dt)
+        z = float(readings.tcp[2, 3])
+        if z < self.best - STALL_PROGRESS:
+            self.best, self.best_time = z, readings.time
+        stalled = readings.time - self.best_time > STALL_TIME and self.contact.force >= STALL_CONTACT * self.threshold
+        if self.contact.force >= self.threshold or stalled:
+            self._met(readings, wrench)
+        elif self.top - z >= self.max_depth or z <= self._grasp_height():
+            self._close_here(readings, 0.0)
+        return -self.descent * UP if self.phase == "descend" else np.zeros(3)
+
+    def _met(self, readings: Readings, wrench: np.ndarray) -> None:
+        """The first contact of a descent: where it sits across the hand says what it is."""
+        across = self._contact_across(readings, wrench)
+        off_centre = across is not None and norm(across) > self.centre_band
+        shift = readings.tcp[:3, :3] @ clamp_norm(across, self.max_shift) if off_centre else None
+        if float(readings.tcp[2, 3]) < self._object_top() or shift is None or self.shifts >= self.max_shifts:
+            # Below the object's top the jaws straddle its place: close, and should they
+            # close on nothing, look first where the contact was (the palm on its top;
+            # not the fingertips on the support, which say nothing of the object).
+            on_support = float(readings.tcp[2, 3]) - self.reach < SUPPORT_BAND
+            self.hint = None if shift is None or on_support else readings.tcp[:3, 3] + shift
+            self._close_here(readings, self.back_off)
+            return
+        self.shifts += 1
+        self._rise(readings, shift)
+
+    def _contact_across(self, readings: Readings, wrench: np.ndarray) -> np.ndarray | None:
+        """(x, y, 0) in the hand frame of the contact point: where the contact force's line of
+        action (from the wrist's force and torque, taken about the sensor `wrist_to_tcp` above
+        the TCP) crosses the object's top as the task believes it, or the TCP's height."""
+        force, torque = wrench[:3], wrench[3:]
+        f2 = float(force.dot(force))
+        if f2 < 1e-12 or abs(float(force[2])) < 1e-6:
+            return None
+        closest = np.cross(force, torque) / f2  # the line's point nearest the sensor
+        top = self._object_top()
+        depth = self.wrist_to_tcp + (float(readings.tcp[2, 3]) - top if np.isfinite(top) else 0.0)
+        point = closest + (depth - float(closest[2])) / float(force[2]) * force
+        return np.array([point[0], point[1], 0.0])
+
+    def _close_here(self, readings: Readings, back_off: float) -> None:
+        self.goal = readings.tcp[:3, 3] + back_off * UP
+        self.phase = "close"
+        self.ctx.blackboard[CONTACT] = True
+
+    def _close(self, readings: Readings, dt: float) -> np.ndarray:
+        board = self.ctx.blackboard
+        if board.get(JAWS_EMPTY):
+            board[CONTACT] = False
+            if self.searched >= len(self.offsets):
+                self.phase = "hold"
+                self.finish(Status.ERROR, f"the jaws closed on nothing at {self.searched + 1} points")
+                return np.zeros(3)
+            point = self.centre + readings.tcp[:3, 0] * self.offsets[self.searched] if self.hint is None else self.hint
+            self.searched += 1
+            self.hint = None
+            self._rise(readings, point - readings.tcp[:3, 3], self._above_object())
+            return np.zeros(3)
+        nudge = board.get(ARM_NUDGE)
+        if nudge is None:
+            return np.zeros(3)
+        self.goal = self.goal + np.asarray(nudge, float) * dt
+        return np.asarray(nudge, float)

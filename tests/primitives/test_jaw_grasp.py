@@ -1,0 +1,62 @@
+"""The robust parallel-jaw grasp corrects an approach that left the jaws off the object
+(issue 10): the grasp-and-lift example on the Melfa with a scripted approach error, in
+both engines."""
+
+from __future__ import annotations
+
+import pytest
+
+from atd.campaign.perturbation import approach_taken
+from atd.model import load_task
+from atd.runtime.session import Run
+from factories.registry import create
+from tests.primitives.conftest import EXAMPLES
+from translator import translate
+
+TASK = EXAMPLES / "grasp_and_lift.xml"
+ENGINES = ("mujoco", "pybullet")
+LIFTED = 0.04 + 0.05  # m: the cylinder's centre at least 5 cm above where it stood
+
+
+def _grasp_with_error(robot: str, engine: str, **error: float) -> tuple[bool, float, str]:
+    """Run the task with the approach off by `error` (m, degrees); the outcome, the
+    cylinder's height at the end, and how the arm says the grasp went."""
+    task, _ = load_task(TASK)
+    factory = create(robot)
+    estd = translate(task, factory).estd
+    values = {"dx": 0.0, "dy": 0.0, "dz": 0.0, "roll": 0.0, "pitch": 0.0, "yaw": 0.0, **error}
+    run = Run(approach_taken(estd, "approach", values), factory, engine=engine)
+    outcome = run.execute()
+    grasp = [r for r in run.trace.records if r["type"] == "event" and r["transition"] == "grasp_object->lift_object"]
+    reasons = [c.get("reason", "") for c in grasp[0]["conditions"] if c.get("kind") == "arm_done"] if grasp else []
+    return outcome.succeeded, float(run.object_position[2]), " ".join(reasons)
+
+
+@pytest.mark.parametrize("engine", ENGINES)
+def test_a_jaw_landing_on_the_objects_top_moves_the_hand_across(engine: str) -> None:
+    """4.5 cm to the side: one jaw comes down on the cylinder's top, beside its outer face."""
+    succeeded, height, how = _grasp_with_error("melfa", engine, dy=0.045)
+    assert succeeded and height > LIFTED, (height, how)
+    assert "after 1 moves across" in how or "after 2 moves across" in how, how
+
+
+@pytest.mark.parametrize("engine", ENGINES)
+def test_jaws_closing_on_nothing_search_along_their_width_and_find_the_object(engine: str) -> None:
+    """4.5 cm along the jaws' width: they close beside the cylinder, then the search finds it."""
+    succeeded, height, how = _grasp_with_error("melfa", engine, dx=0.045)
+    assert succeeded and height > LIFTED, (height, how)
+    assert "0 search points" not in how, how
+
+
+@pytest.mark.parametrize("engine", ENGINES)
+def test_a_tilted_approach_is_corrected_on_contact_and_lifts(engine: str) -> None:
+    succeeded, height, how = _grasp_with_error("melfa", engine, roll=12.0, pitch=-12.0, yaw=10.0)
+    assert succeeded and height > LIFTED, (height, how)
+
+
+@pytest.mark.parametrize("engine", ENGINES)
+def test_an_off_centre_object_met_by_one_jaw_first_is_grasped_where_it_stands(engine: str) -> None:
+    """1 cm to the side: one pad touches first and the arm follows it (Melfa's tactile re-centring)."""
+    succeeded, height, how = _grasp_with_error("melfa", engine, dy=0.01, dz=-0.02)
+    assert succeeded and height > LIFTED, (height, how)
+    assert "after 0 moves across and 0 search points" in how, how
