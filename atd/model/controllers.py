@@ -77,6 +77,8 @@ class ParamSpec:
             return self.limits
         if self.type in (ParamType.VECTOR, ParamType.POINTS):
             return ranges.COORDINATE
+        if self.type is ParamType.INTEGER:
+            return ranges.COUNT
         return ranges.BY_UNIT[self.unit]
 
 

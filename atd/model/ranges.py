@@ -58,6 +58,7 @@ SPEED_FRACTION = Range(0.0, 1.0, low_open=True)  # of a joint's speed limit; 0 w
 LIMITS = Range(0.0, 100.0)  # velocity and acceleration limits; 0 means none
 DIRECTION = Range(-1.0, 1.0)  # components of a direction or normal
 PADS = Range(1, 64)
+COUNT = Range(0, 1000)  # how many times a primitive may try something: corrections, search points
 TILT = Range(-90.0, 90.0, "deg")  # the hand turned away from top-down, about each world axis
 
 CONTACT_MARGIN = Range(-1.0, 5.0, "m")  # negative: any contact ends a guarded move

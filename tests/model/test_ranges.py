@@ -96,3 +96,20 @@ def test_every_numeric_parameter_has_a_range_its_default_lies_in() -> None:
             assert isinstance(spec.allowed, Range)
             if isinstance(spec.default, float):
                 assert spec.allowed.problem(spec.default) is None, (controller.name, name)
+
+
+def test_every_default_of_the_vocabulary_lies_in_its_declared_range() -> None:
+    # A parameter added without a range (a count read as a fraction, a weight in kg with
+    # no range for kg) makes every ESTD that uses it untranslatable.
+    from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamType
+
+    outside = []
+    for table in (CONTROLLERS, CONDITIONS):
+        for name, spec in table.items():
+            for param, p in spec.params.items():
+                if p.default is None or p.type in (ParamType.WORD, ParamType.FLAG, ParamType.POINTS):
+                    continue
+                values = p.default if isinstance(p.default, tuple) else (p.default,)
+                outside += [f"{name}.{param} = {v}: {p.allowed.problem(float(v))}"
+                            for v in values if p.allowed.problem(float(v))]
+    assert outside == []
