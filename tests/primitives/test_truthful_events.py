@@ -17,11 +17,15 @@ DATA = Path(__file__).resolve().parents[1] / "data"
 
 
 def test_a_melfa_place_straight_after_the_grasp_does_not_succeed_with_the_box_unmoved() -> None:
-    """It once ended in success 55 ms in, on the grip force settling: now the place drags
-    the box on the table, meets its resistance and stops short, an error."""
+    """It once ended in success 55 ms in, on the grip force settling, the box unmoved. Now
+    it succeeds only with the box standing on the table where the path puts it (a firm grip
+    drags it there), and otherwise stops short on the box's resistance, an error."""
     outcome, executor, robot = run_example(DATA / "place_after_grasp.xml")
-    assert not outcome.succeeded, f"succeeded with the box at {robot.object_pose()[:3, 3]}"
-    assert last_reasons(executor)[0].startswith("stopped short: contact"), last_reasons(executor)
+    x, y, z = robot.object_pose()[:3, 3]
+    if outcome.succeeded:
+        assert abs(x - 0.10) < 0.01 and abs(y - 0.05) < 0.01 and z < 0.03, f"succeeded with the box at {x, y, z}"
+    else:
+        assert last_reasons(executor)[0].startswith("stopped short: contact"), last_reasons(executor)
 
 
 def test_the_sdh2_puts_the_box_down_on_the_table_before_letting_go() -> None:
