@@ -75,9 +75,10 @@ def _percent(g: Group) -> float:
 
 
 def _errors(groups: Sequence[Group]) -> list[list[float]]:
-    """Percent distances from each rate down to its interval's low and up to its high."""
-    return [[_percent(g) - 100 * g.interval[0] for g in groups],
-            [100 * g.interval[1] - _percent(g) for g in groups]]
+    """Percent distances from each rate down to its interval's low and up to its high (at
+    0/n and n/n the Wilson bound sits on the rate, a rounding error either side of it)."""
+    return [[max(0.0, _percent(g) - 100 * g.interval[0]) for g in groups],
+            [max(0.0, 100 * g.interval[1] - _percent(g)) for g in groups]]
 
 
 def _rates(ax: Axes, groups: Sequence[Group]) -> None:

@@ -54,3 +54,10 @@ def test_a_campaign_without_approach_error_draws_the_rates_alone(tmp_path: Path)
     path = tmp_path / "rates.svg"
     path.write_bytes(draw_report(records, build_report(records).groups, "svg"))
     assert "approach translation error" not in path.read_text()
+
+
+def test_cells_of_all_or_no_successes_draw_their_interval(tmp_path: Path) -> None:
+    # At 30/30 the Wilson high can round a hair below the rate: the bar must still draw.
+    records = [trial(i, grasp=g, judged=g == "robust") for g in ("naive", "robust") for i in range(30)]
+    picture = draw_report(records, build_report(records).conditions, "png")
+    assert picture.startswith(b"\x89PNG")
