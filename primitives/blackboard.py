@@ -14,6 +14,12 @@ CONTACT = "contact"
 """Arm -> hand: True once the arm's approach has ended (object found, or nothing within
 reach): the hand may close."""
 
+PRESHAPED = "preshaped"
+"""Hand -> arm: False from the start of a grasp until the hand has opened into its preshape;
+the arm approaches only then (unset: no hand that preshapes, the arm goes at once). Fingers
+still opening as the hand comes down at the approach velocity hit the object from above
+and knock it away (a ball pushed 11 cm aside by the Barrett, PyBullet)."""
+
 PRESSING = "pressing"
 """Arm -> hand: True while the sliding grasp feels the closing fingers press on the surface
 it rides harder than it allows (Eq. 3.2 backing off): the fingers wait for the arm to rise."""

@@ -92,7 +92,8 @@ def _run(plan: TrialPlan, record: TrialRecord, started: float, recording: Path |
     record.task_succeeded = outcome.succeeded
     record.end_state = outcome.end_state
     record.summary = outcome.summary
-    record.events = [{"t": r["t"], "transition": r["transition"], "event": r["event"]}
+    record.events = [{"t": r["t"], "transition": r["transition"], "event": r["event"],
+                      "why": [c["reason"] for c in r["conditions"] if c.get("reason")]}
                      for r in run.trace.records if r["type"] == "event"]
     record.sim_time = outcome.sim_time
     record.judged_succeeded, record.judge_reason = verdict.succeeded, verdict.reason

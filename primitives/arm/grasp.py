@@ -14,7 +14,7 @@ import numpy as np
 from primitives.arm.motion import GAIN, orientation_twist, unit
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
-from primitives.blackboard import CONTACT, FINGERS_STOPPED, PRESSING, SHIFT
+from primitives.blackboard import CONTACT, FINGERS_STOPPED, PRESHAPED, PRESSING, SHIFT
 from primitives.filters import ContactWrench
 from primitives.robot import Readings
 
@@ -33,7 +33,8 @@ class RobustGraspApproach(Controller):
 
     Alignment (Eq. 3.1, hand frame): while in contact, T_y > T_t moves v_x - v_z,
     T_y < -T_t moves -v_x - v_z; out of contact the hand approaches at v_z; contact with
-    |T_y| <= T_t ends the alignment, as does covering MAX_DISTANCE without a contact.
+    |T_y| <= T_t ends the alignment, as does covering MAX_DISTANCE without a contact. Before
+    the first contact the hand moves at the approach velocity, not the correction one.
     Sliding grasp (Eq. 3.2): the surface pushes back on the hand with F_s (against the
     grasp direction, measured against the free hand of the state's start and filtered over
     SURFACE_FILTER); the approach ended on F_s = F_t, the contact the slide keeps: F_s
@@ -56,6 +57,7 @@ class RobustGraspApproach(Controller):
         self.force_threshold = float(p["force_threshold"])
         self.torque_threshold = float(p["torque_threshold"])
         self.speed = float(p["correction_velocity"])
+        self.approach_speed = float(p["approach_velocity"])
         self.contact = ContactWrench(float(p["filter_time"]))
         self.surface = ContactWrench(SURFACE_FILTER)
         self.side = np.array([1.0, 0.0, 0.0])  # v_x of Eq. 3.1
@@ -83,7 +85,7 @@ class RobustGraspApproach(Controller):
             self.contact.start(readings)
             self.shift_started = readings.time
         v = np.zeros(3)  # hand frame
-        if self.phase == "approach":
+        if self.phase == "approach" and board.get(PRESHAPED, True):
             v = self._align(readings, wrench)
         pushed = -float(self.surface.update(readings, dt)[:3] @ self.direction)  # F_s
         # Backing off starts at F_t over the contact the slide keeps and goes on down to it.
@@ -124,7 +126,7 @@ class RobustGraspApproach(Controller):
         if travelled >= self.max_distance:
             self._slide()
             return np.zeros(3)
-        return self.speed * self.direction
+        return self.approach_speed * self.direction
 
     def _slide(self) -> None:
         self.phase = "slide"

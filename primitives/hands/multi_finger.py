@@ -28,18 +28,21 @@ from abc import abstractmethod
 import numpy as np
 
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
-from primitives.blackboard import CONTACT, EMPTY_HAND, FINGERS_STOPPED, PRESSING, SHIFT
+from primitives.blackboard import CONTACT, EMPTY_HAND, FINGERS_STOPPED, PRESHAPED, PRESSING, SHIFT
 from primitives.filters import LowPass, world_load
+from primitives.hands.posture import Stillness
 from primitives.robot import HandMode, Readings
 
 CLOSING_SPEED = 0.3  # of each DOF's speed limit
+# of each DOF's speed limit, opening: at the closing speed a Barrett took 4 s to reopen after
+# closing on nothing, so a grasp had time for two attempts in the 20 s the examples give it
+OPENING_SPEED = 1.0
 LEAD = 0.05  # of a DOF's range: how far a closing finger's reference may run ahead of it
 TOUCH_EFFORT = 0.05  # of the effort limit: a light touch, the least force adaptation starts from
 SETTLE_TIME = 0.1  # s every pad must feel the grasp force (HELD) before the object counts as held
 ADAPT_GAIN = 0.05  # effort (fraction of the limit) per N of missing pad force, per s
 HELD = 0.9  # the weakest grasping pad within 10 % of GRASP_FORCE: the object is held
 STALL_TIME = 0.3  # s a finger may stand still before it counts as stopped
-STILL_SPEED = 0.05  # of a DOF's speed limit: slower than this on average, a finger stands still
 REACHED = 0.02  # of a DOF's range
 FINGER_LOST_SHIFT = 0.015  # m towards the fingers that touched, per correction
 OBJECT_LOST_STEP = 0.01  # m further along the approach, per retry (D5: "a little bit down")
@@ -78,6 +81,7 @@ class FingerGrasp(Controller):
         self.touch = float(self.params["contact_threshold"])
         self.range = hand.upper - hand.lower
         self.rate = CLOSING_SPEED * hand.velocity_limit
+        self.stillness = Stillness(hand.velocity_limit, STALL_TIME)
         # A finger is known by its pad; a DOF belongs to the one finger whose pad it moves
         # (a spread that moves two fingers, and a palm pad no DOF moves, belong to none).
         self.pad_of = {pad.name: i for i, pad in enumerate(hand.pads)}
@@ -102,9 +106,9 @@ class FingerGrasp(Controller):
         self.pressing = moving  # the DOFs pressed by force once holding
         self.retries = 0
         self.phase = "preshape"
-        self.still = np.zeros_like(self.reference)
-        self.anchor = readings.hand_q.copy()  # where each DOF was when it last moved
+        self.stillness.start(readings.hand_q)
         self.ctx.blackboard[FINGERS_STOPPED] = False
+        self.ctx.blackboard[PRESHAPED] = False
         self.ctx.memory[EMPTY_HAND] = world_load(readings)  # a grasp begins empty-handed
         if not self.fingers:
             self.finish(Status.ERROR, "from this posture the grasp shape moves no finger that has a tactile pad")
@@ -116,12 +120,13 @@ class FingerGrasp(Controller):
         if self.phase == "preshape":
             if self._ramp(self.pre, dt, q) or self._blocked(readings, dt):
                 self.phase = "wait"
+                board[PRESHAPED] = True
         elif self.phase == "wait" and board.get(CONTACT):
             self._begin_closing(board)
         elif self.phase == "close":
             self._close(readings, dt, board)
         elif self.phase == "reopen":
-            if self._ramp(self.pre, dt, q) or self._blocked(readings, dt):
+            if self._ramp(self.pre, dt, q, OPENING_SPEED / CLOSING_SPEED) or self._blocked(readings, dt):
                 board[SHIFT] = self.shift
                 self.phase = "shift"
         elif self.phase == "shift" and board.get(SHIFT) is None:
@@ -141,7 +146,7 @@ class FingerGrasp(Controller):
 
     def _begin_closing(self, board: dict) -> None:
         self.phase = "close"
-        self.still[:] = 0.0
+        self.stillness.seconds[:] = 0.0
         board[FINGERS_STOPPED] = False
 
     def _closed(self, readings: Readings, dt: float) -> bool:
@@ -163,8 +168,8 @@ class FingerGrasp(Controller):
         self.reference = np.clip(self.reference, q - lead, q + lead)
         at_limit = np.abs(q - hand.closed) < REACHED * self.range
         self._blocked(readings, dt)
-        self.still[waiting] = 0.0
-        return bool((at_limit | (self.still > STALL_TIME))[self.moving].all())
+        self.stillness.seconds[waiting] = 0.0
+        return bool((at_limit | (self.stillness.seconds > STALL_TIME))[self.moving].all())
 
     def _on_object(self, readings: Readings) -> np.ndarray:
         """Per DOF: the pad of the finger it moves touches something."""
@@ -176,21 +181,13 @@ class FingerGrasp(Controller):
         return [f for f in self.fingers if pads[self.pad_of[f]] >= self.touch]
 
     def _blocked(self, readings: Readings, dt: float) -> bool:
-        """Counts how long each DOF has stood still; true once every moving one has, for
-        STALL_TIME (a preshape that meets the object stops there). Still means it has not
-        moved away from where it stopped by more than STILL_SPEED would take it in
-        STALL_TIME: a finger pressed between the object and the table can shake in place
-        (seen in PyBullet, 5 mrad at 50 Hz), fast enough for its speed to never read zero."""
-        hand = self.ctx.info.hand
-        q = readings.hand_q
-        moved = np.abs(q - self.anchor) > STILL_SPEED * hand.velocity_limit * STALL_TIME
-        self.anchor = np.where(moved, q, self.anchor)
-        self.still = np.where(moved, 0.0, self.still + dt)
-        return bool((self.still[self.moving] > STALL_TIME).all())
+        """Counts how long each DOF has stood still (`Stillness`); true once every moving
+        one has, for STALL_TIME (a preshape that meets the object stops there)."""
+        return bool((self.stillness.update(readings.hand_q, dt)[self.moving] > STALL_TIME).all())
 
     # -- commands -----------------------------------------------------------------------
-    def _ramp(self, goal: np.ndarray, dt: float, q: np.ndarray) -> bool:
-        step = self.rate * dt
+    def _ramp(self, goal: np.ndarray, dt: float, q: np.ndarray, faster: float = 1.0) -> bool:
+        step = faster * self.rate * dt
         self.reference += np.clip(goal - self.reference, -step, step)
         return bool((np.abs(goal - q) < REACHED * self.range + 1e-3).all())
 
@@ -262,7 +259,7 @@ class RobustGraspHand(FingerGrasp):
             return
         self.shift = shift
         self.effort[:] = 0.0
-        self.still[:] = 0.0
+        self.stillness.seconds[:] = 0.0
         self.phase = "reopen"
 
     def _fail(self, what: str) -> None:

@@ -6,12 +6,15 @@ from __future__ import annotations
 
 import numpy as np
 
+from atd.model.vocabulary import HandShape as Shape
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
 from primitives.robot import HandMode, Readings
 
+PRESHAPES = frozenset(s.value for s in Shape if s.value.endswith("_preshape"))
+
 REACHED = 0.02  # of a DOF's range: close enough to the goal
 STALL_TIME = 1.0  # s stopped short of the goal: something blocks the fingers
-STILL_SPEED = 0.05  # of a DOF's speed limit: a finger slower than this has stopped
+STILL_SPEED = 0.05  # of a DOF's speed limit: a finger slower than this on average has stopped
 LOADED = 0.05  # of a DOF's effort limit, in the closing direction: the finger presses on something
 
 
@@ -19,40 +22,61 @@ def position_command(values: np.ndarray) -> ControlData:
     return ControlData(hand=HandCommand(values=values, modes=(HandMode.POSITION,) * len(values)))
 
 
+class Stillness:
+    """How long each DOF has stood still. Still means it has not moved away from where it
+    stopped by more than STILL_SPEED would take it in `window`: a finger pressed between
+    the object and the table can shake in place (seen in PyBullet, 5 mrad at 50 Hz; in
+    MuJoCo a Barrett finger pressed on the table), fast enough for its speed never to read
+    zero."""
+
+    def __init__(self, velocity_limit: np.ndarray, window: float) -> None:
+        self.span = STILL_SPEED * velocity_limit * window
+
+    def start(self, q: np.ndarray) -> None:
+        self.anchor = q.copy()  # where each DOF was when it last moved
+        self.seconds = np.zeros_like(q)
+
+    def update(self, q: np.ndarray, dt: float) -> np.ndarray:
+        moved = np.abs(q - self.anchor) > self.span
+        self.anchor = np.where(moved, q, self.anchor)
+        self.seconds = np.where(moved, 0.0, self.seconds + dt)
+        return self.seconds
+
+
 class PostureDrive(Controller):
     """Ramp every DOF's position reference to `goal` at `speed` times its speed limit.
 
     Done when every DOF is within 2 % of its range of the goal. If the fingers stop
-    short of it for a second, something is in the way: the controller gives up.
+    short of it for a second, something is in the way: the controller gives up, with an
+    error unless `blocked_is_done`.
     """
 
     goal: np.ndarray
+    blocked_is_done = False
 
     def __init__(self, ctx: Context, speed: float = 1.0) -> None:
         super().__init__(ctx)
         hand = ctx.info.hand
         self.rate = speed * hand.velocity_limit
         self.tolerance = np.maximum(REACHED * (hand.upper - hand.lower), 1e-4)
-        self.still = STILL_SPEED * hand.velocity_limit
+        self.stillness = Stillness(hand.velocity_limit, STALL_TIME)
 
     def start(self, readings: Readings) -> None:
         self.reference = readings.hand_q.copy()
-        self.stopped = 0.0
+        self.stillness.start(readings.hand_q)
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         step = self.rate * dt
         self.reference = self.reference + np.clip(self.goal - self.reference, -step, step)
+        still = self.stillness.update(readings.hand_q, dt)
         if self.status is Status.RUNNING:
             short = np.abs(self.goal - readings.hand_q) > self.tolerance
             if not short.any():
                 self.finish(Status.DONE, "reached the hand posture")
-            elif np.array_equal(self.reference, self.goal) and (np.abs(readings.hand_dq) < self.still).all():
-                self.stopped += dt
-                if self.stopped >= STALL_TIME:
-                    where = ", ".join(f"{n} {q:.4g}" for n, q, s in zip(self.ctx.info.hand.dofs, readings.hand_q, short) if s)
-                    self.finish(Status.ERROR, f"fingers blocked short of the posture ({where})")
-            else:
-                self.stopped = 0.0
+            elif np.array_equal(self.reference, self.goal) and (still[short] >= STALL_TIME).all():
+                where = ", ".join(f"{n} {q:.4g}" for n, q, s in zip(self.ctx.info.hand.dofs, readings.hand_q, short) if s)
+                status = Status.DONE if self.blocked_is_done else Status.ERROR
+                self.finish(status, f"fingers blocked short of the posture ({where})")
         return position_command(self.reference)
 
 
@@ -85,7 +109,11 @@ class HoldPosition(PostureDrive):
 
 
 class HandShape(PostureDrive):
-    """Drive the fingers to a named D5 hand shape (2.2.2) this hand can make."""
+    """Drive the fingers to a named D5 hand shape (2.2.2) this hand can make.
+
+    A grasp's preshape only opens the hand for the grasp that follows, which makes its own
+    preshape: stopped against what a guarded approach met (a Barrett fingertip on the table
+    when the approach comes down too low), it has done its part, so that is no error."""
 
     def __init__(self, ctx: Context) -> None:
         super().__init__(ctx, float(ctx.params["speed"]))
@@ -94,6 +122,7 @@ class HandShape(PostureDrive):
         if shape not in postures:
             raise ValueError(f"the hand cannot make the shape '{shape}'; it makes: {', '.join(sorted(postures))}")
         self.goal = np.asarray(postures[shape], float)
+        self.blocked_is_done = shape in PRESHAPES
 
 
 class OpenTo(PostureDrive):
