@@ -190,6 +190,9 @@ _ARM_CONTROLLERS = (
             "torque_threshold": _p(NUM, "alignment torque (thesis TORQUE_THRESHOLD)", 5.0, unit="N m"),
             "correction_velocity": _p(NUM, "speed of corrective motions (thesis CORRECTION_VELOCITY)", 0.005,
                                       unit="m/s"),
+            "level_within": _p(NUM, "a grasp direction this close to the vertical is a grasp from above: the hand "
+                               "turns level first (ours; 0 keeps the tilt the approach left)", 30.0, unit="deg",
+                               limits=ranges.ANGLE),
             "approach_velocity": _p(NUM, "speed along the grasp direction before the first contact (ours: at the "
                                     "correction velocity a 4 cm descent took 8 of the grasp's 20 s)", 0.03,
                                     unit="m/s"),

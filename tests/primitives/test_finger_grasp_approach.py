@@ -1,7 +1,9 @@
-"""The three-finger robust grasp when the approach leaves the hand higher than the ATD
-says (issue 10): before the first contact the arm comes down at the approach velocity, so
-the grasp still ends well inside the 20 s the example gives it. At the correction velocity
-(5 mm/s) the same grasp timed out on the Barrett in MuJoCo."""
+"""The three-finger robust grasp when the approach is not the one the ATD asked for (issue
+10): left higher, the arm comes down at the approach velocity before the first contact, so
+the grasp still ends well inside the 20 s the example gives it (at the correction velocity,
+5 mm/s, the Barrett timed out in MuJoCo); left tilted, a grasp from above turns the hand
+level before it comes down (tilted, one fingertip met the table first and the closing
+fingers pushed the cylinder away)."""
 
 from __future__ import annotations
 
@@ -18,15 +20,29 @@ TASK = EXAMPLES / "grasp_and_lift.xml"
 LIFTED = 0.04 + 0.05  # m: the cylinder's centre at least 5 cm above where it stood
 
 
-@pytest.mark.parametrize("engine", ["mujoco", "pybullet"])
-@pytest.mark.parametrize("arm", ["right", "left"])
-def test_an_approach_ending_3_cm_too_high_still_grasps_and_lifts(arm: str, engine: str) -> None:
+def _lift_with_error(arm: str, engine: str, **error: float) -> tuple[Run, object]:
     task, _ = load_task(TASK)
     factory = create("tombatossals", arm=arm)
     estd = translate(task, factory).estd
-    error = {"dx": 0.0, "dy": 0.0, "dz": 0.03, "roll": 0.0, "pitch": 0.0, "yaw": 0.0}
-    run = Run(approach_taken(estd, "approach", error), factory, engine=engine)
+    values = {"dx": 0.0, "dy": 0.0, "dz": 0.0, "roll": 0.0, "pitch": 0.0, "yaw": 0.0, **error}
+    run = Run(approach_taken(estd, "approach", values), factory, engine=engine)
     outcome = run.execute()
     assert outcome.succeeded and run.object_position[2] > LIFTED, (outcome.summary, run.object_position)
+    return run, outcome
+
+
+@pytest.mark.parametrize("engine", ["mujoco", "pybullet"])
+@pytest.mark.parametrize("arm", ["right", "left"])
+def test_an_approach_ending_3_cm_too_high_still_grasps_and_lifts(arm: str, engine: str) -> None:
+    _, outcome = _lift_with_error(arm, engine, dz=0.03)
     grasp = next(v for v in outcome.visits if v.path == "grasp_object")
     assert grasp.left - grasp.entered < 12.0, grasp.left - grasp.entered
+
+
+@pytest.mark.parametrize("engine", ["mujoco", "pybullet"])
+def test_a_tilted_approach_from_above_is_levelled_and_lifts(engine: str) -> None:
+    """The Barrett left 10 degrees about x and -8 about y; in MuJoCo the SDH2 still loses
+    such a cylinder (issue 10's note)."""
+    run, _ = _lift_with_error("right", engine, roll=10.0, pitch=-8.0)
+    hand_z = run.robot.read().tcp[:3, 2]
+    assert hand_z[2] < -0.99, hand_z  # the hand's approach axis points down, within 8 degrees
