@@ -16,15 +16,19 @@ from factories.kinds import MultiFingerFactory
 
 _WRIST_FT = Sensor("wrist_ft", SensorKind.FORCE_TORQUE, "JR3 6-axis force-torque sensor between arm and hand")
 
-_BARRETT = Hand("Barrett BH8-280", "multi-finger", frozenset(HandShape), {}, max_opening=0.16)
+# Neither hand's description has a posture with one finger stretched out: 'extend_finger'
+# becomes 'extend' (every finger stretched), which points the same way.
+_ONE_FINGER = {HandShape.EXTEND_FINGER: HandShape.EXTEND}
+_BARRETT = Hand("Barrett BH8-280", "multi-finger", frozenset(HandShape) - set(_ONE_FINGER), _ONE_FINGER,
+                max_opening=0.16)
 
 _SDH2_NO_HOOK = ("the Schunk SDH2 cannot make a hook grasp: its finger opposition is limited to 90 degrees "
                  "(thesis A.1.2)")
 _SDH2 = Hand(
     "Schunk SDH2", "multi-finger",
-    frozenset(HandShape) - {HandShape.HOOK_GRASP, HandShape.HOOK_GRASP_PRESHAPE},
+    frozenset(HandShape) - {HandShape.HOOK_GRASP, HandShape.HOOK_GRASP_PRESHAPE} - set(_ONE_FINGER),
     {HandShape.HOOK_GRASP: HandShape.CYLINDRICAL_GRASP,
-     HandShape.HOOK_GRASP_PRESHAPE: HandShape.CYLINDRICAL_GRASP_PRESHAPE},
+     HandShape.HOOK_GRASP_PRESHAPE: HandShape.CYLINDRICAL_GRASP_PRESHAPE, **_ONE_FINGER},
     max_opening=0.14,
     cannot_grasp={HandShape.HOOK_GRASP: _SDH2_NO_HOOK, HandShape.HOOK_GRASP_PRESHAPE: _SDH2_NO_HOOK},
 )

@@ -245,3 +245,13 @@ def test_every_factory_can_be_told_to_use_the_naive_grasp():
         assert naive.map_state(move, context) == robust.map_state(move, context)
     with pytest.raises(ValueError, match="grasp must be one of: robust, naive"):
         create("melfa", grasp="clumsy")
+
+
+@pytest.mark.parametrize("factory", every_factory(), ids=lambda f: f"{f.name}-{f.arm.name}")
+def test_every_shape_a_hand_claims_to_make_is_a_posture_of_its_robot(factory) -> None:
+    """A shape the factory passes on unchanged must exist in the robot's description: a
+    grasp with 'extend_finger' on either Tombatossals hand was a KeyError in the reach check."""
+    missing = sorted(s.value for s in factory.arm.hand.shapes if s.value not in factory.robot.hand.postures)
+    assert not missing, missing
+    for shape in HandShape:
+        assert factory.shape(shape)[0].value in factory.robot.hand.postures, shape
