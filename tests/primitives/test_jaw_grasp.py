@@ -10,6 +10,7 @@ from atd.campaign.perturbation import approach_taken
 from atd.model import load_task
 from atd.runtime.session import Run
 from factories.registry import create
+from primitives.arm.jaw_grasp import bisected
 from tests.primitives.conftest import EXAMPLES
 from translator import translate
 
@@ -60,3 +61,12 @@ def test_an_off_centre_object_met_by_one_jaw_first_is_grasped_where_it_stands(en
     succeeded, height, how = _grasp_with_error("melfa", engine, dy=0.01, dz=-0.02)
     assert succeeded and height > LIFTED, (height, how)
     assert "after 0 moves across and 0 search points" in how, how
+
+
+def test_moves_across_that_turn_back_go_half_as_far_and_bracket_the_object() -> None:
+    """A jaw on the top at +34 mm, then the other jaw on it: the object lies between the two."""
+    assert bisected(0.034, 0.0) == 0.034
+    assert bisected(0.03, 0.034) == 0.03
+    assert bisected(-0.034, 0.034) == pytest.approx(-0.017)
+    assert bisected(-0.01, 0.034) == pytest.approx(-0.01)
+    assert bisected(0.034, -0.017) == pytest.approx(0.0085)
