@@ -176,15 +176,17 @@ class JawGraspCorrection(Controller):
         """The first contact of a descent: where it sits across the hand says what it is."""
         across = self._contact_across(readings, wrench)
         off_centre = across is not None and norm(across) > self.centre_band
-        shift = readings.tcp[:3, :3] @ self._jaw_move(across) if off_centre else None
-        if float(readings.tcp[2, 3]) < self._object_top() or shift is None or self.shifts >= self.max_shifts:
+        if float(readings.tcp[2, 3]) < self._object_top() or not off_centre or self.shifts >= self.max_shifts:
             # Below the object's top the jaws straddle its place: close, and should they
-            # close on nothing, look first where the contact was (the palm on its top;
-            # not the fingertips on the support, which say nothing of the object).
+            # close on nothing, look first where the contact was (the palm on its top, as
+            # wide as the hand; not the fingertips on the support, which say nothing of
+            # the object).
             on_support = float(readings.tcp[2, 3]) - self.reach < SUPPORT_BAND
-            self.hint = None if shift is None or on_support else readings.tcp[:3, 3] + shift
+            self.hint = None if not off_centre or on_support else \
+                readings.tcp[:3, 3] + readings.tcp[:3, :3] @ clamp_norm(across, self.max_shift)
             self._close_here(readings, self.back_off)
             return
+        shift = readings.tcp[:3, :3] @ self._jaw_move(across)
         self.shifts += 1
         self.centre = self.centre + shift * np.array([1.0, 1.0, 0.0])  # the search goes on from there
         self._rise(readings, shift)
