@@ -9,15 +9,14 @@ across the hand says what was met: under one jaw, above the object's top (that j
 the top: move the hand across by that much, along the jaws' width no further than the
 jaw is wide, and by half the last move when it goes back the way the last one came, so
 that moves across bracket the object instead of swinging over it; rise, descend again),
-or under the middle or
-below the top (the support under both jaws, or the palm on the object: the jaws straddle
-its place, so close). The jaws closing on nothing (JAWS_EMPTY) means the object lies
+or under the middle or below the top (the support under both jaws, or the palm on the
+object: the jaws straddle its place, so close). The descent stops with the fingertips
+clear of the support. The jaws closing on nothing (JAWS_EMPTY) means the object lies
 beyond the jaws' width, where closing does not sweep: the arm rises and goes where the
 palm's contact placed the object, or else to the next point of a bounded search along
 the jaws' width, alternating sides, around where the approach left it and the moves
-across have since taken it. While the jaws
-close it follows the hand's ARM_NUDGE (re-centring on the pads' contact) and ends once
-FINGERS_STOPPED.
+across have since taken it. While the jaws close it follows the hand's ARM_NUDGE
+(re-centring on the pads' contact) and ends once FINGERS_STOPPED.
 """
 
 from __future__ import annotations
