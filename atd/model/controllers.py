@@ -228,6 +228,9 @@ _ARM_CONTROLLERS = (
                                   "axis, to tell the support under them from the object (the robot's own "
                                   "geometry)", 0.02, unit="m"),
             "max_shift": _p(NUM, "largest move across towards a contact under one jaw (ours)", 0.04, unit="m"),
+            "jaw_half_width": _p(NUM, "half a jaw's width along the jaws' width: a contact under a jaw lies "
+                                 "within it, so a move across goes no further that way (the robot's own "
+                                 "geometry)", 0.015, unit="m"),
             "max_shifts": _p(INT, "how many times to move across (ours)", 3),
             "search_step": _p(NUM, "spacing of the search along the jaws' width (ours: under a finger's "
                               "width plus the object's)", 0.03, unit="m"),

@@ -3,9 +3,10 @@
 A 7-DOF compliant arm with a light parallel gripper. It has no tactile pads and its
 wrist force-torque sensor is virtual (computed from joint torques): noisy and inaccurate
 but good enough for contact detection (A.4). So contact thresholds are raised and the
-wrench is low-pass filtered (values in `config.toml`), a grasp is judged from the
-gripper itself (motor force, and jaws stopped before closing fully), and the IR range
-sensor in the hand confirms that something sits between the fingers.
+wrench is low-pass filtered (values in `config.toml`), and a grasp is judged from the
+gripper itself (motor force, and jaws stopped before closing fully). The IR range sensor
+in the hand judges no grasp: its beam passes through a hollow object (into a cup, through
+a roll of tape's core) and reads the table beyond the fingertips while the jaws hold it.
 """
 
 from __future__ import annotations
@@ -23,7 +24,6 @@ from factories.base import (
     NodeMapping,
     Sensor,
     all_of,
-    any_of,
     obstacle_params,
     PARALLEL_JAW_SHAPES,
     parallel_jaw_closest,
@@ -51,7 +51,7 @@ class BaxterFactory(Factory):
     primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
                             StateType.PLACE, StateType.SLIDE, StateType.RELEASE})
     node_table = (
-        MappingRow("grasp", "grasp", "grasp force", "arm control, gripper force and opening, IR range"),
+        MappingRow("grasp", "grasp", "grasp force", "arm control, gripper force and opening"),
         MappingRow("move", "move", "-", "arm control, filtered virtual F/T"),
         MappingRow("push", "move", "-", "arm control, filtered virtual F/T (feels the object)"),
         MappingRow("transport", "transport", "obstacles, motion constraints", "arm control, gripper force"),
@@ -79,14 +79,12 @@ class BaxterFactory(Factory):
         return NodeMapping("move", arm, *self.hand_for_motion(state))
 
     def sensed_event(self, event_type: EventType, origin: State) -> ConditionNode:
-        gripper, ir = ("gripper",), ("ir_range",)
+        gripper = ("gripper",)
         if event_type is EventType.GRASP_STABLE:
             return all_of(self.condition(event_type, "gripper_force_above", gripper),
-                          self.condition(event_type, "gripper_opening_above", gripper),
-                          self.condition(event_type, "range_below", ir))
+                          self.condition(event_type, "gripper_opening_above", gripper))
         if event_type is EventType.GRASP_LOST:
-            return any_of(self.condition(event_type, "gripper_opening_below", gripper),
-                          self.condition(event_type, "range_above", ir))
+            return self.condition(event_type, "gripper_opening_below", gripper)
         if event_type is EventType.FINGER_CONTACT:
             return self.condition(event_type, "gripper_force_above", gripper)
         if event_type is EventType.FINGER_CONTACT_LOST:

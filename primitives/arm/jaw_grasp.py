@@ -6,14 +6,17 @@ or beside it, pressing its side. So the arm first rises above the object's top (
 task believes it), then descends along the world's vertical on the wrist sensor, at most
 down to the object's centre (where the TCP grasps it). Where the first contact sits
 across the hand says what was met: under one jaw, above the object's top (that jaw is on
-the top: move the hand across by that much, rise, descend again), or under the middle or
-below the top (the support under both jaws, or the palm on the object: the jaws straddle
-its place, so close). The jaws closing on nothing (JAWS_EMPTY) means the object lies
+the top: move the hand across by that much, along the jaws' width no further than the
+jaw is wide, and by half the last move when it goes back the way the last one came, so
+that moves across bracket the object instead of swinging over it; rise, descend again),
+or under the middle or below the top (the support under both jaws, or the palm on the
+object: the jaws straddle its place, so close). The descent stops with the fingertips
+clear of the support. The jaws closing on nothing (JAWS_EMPTY) means the object lies
 beyond the jaws' width, where closing does not sweep: the arm rises and goes where the
 palm's contact placed the object, or else to the next point of a bounded search along
-the jaws' width, alternating sides, around where the approach left it. While the jaws
-close it follows the hand's ARM_NUDGE (re-centring on the pads' contact) and ends once
-FINGERS_STOPPED.
+the jaws' width, alternating sides, around where the approach left it and the moves
+across have since taken it. While the jaws close it follows the hand's ARM_NUDGE
+(re-centring on the pads' contact) and ends once FINGERS_STOPPED.
 """
 
 from __future__ import annotations
@@ -40,6 +43,15 @@ STALL_TIME = 0.5  # s without descending 1 mm while pressing: the descent is on 
 STALL_PROGRESS = 0.001  # m
 STALL_CONTACT = 0.5  # of force_threshold: pressing that much when stalled is a contact
 SUPPORT_BAND = 0.01  # m: fingertips this close to the support's top (the world's z = 0) stand on it
+FLOOR_CLEARANCE = 0.005  # m: the descent stops with the fingertips this far above the support
+
+
+def bisected(across: float, last: float) -> float:
+    """A move across the jaws (hand y) after the `last` one: back the other way it goes
+    half as far at most, since the object lay between where the two contacts were."""
+    if last * across < 0.0:
+        return float(np.sign(across)) * min(abs(across), abs(last) / 2.0)
+    return across
 
 
 def search_offsets(step: float, points: int) -> list[float]:
@@ -65,6 +77,7 @@ class JawGraspCorrection(Controller):
         self.centre_band = float(p["centre_band"])
         self.max_shift = float(p["max_shift"])
         self.max_shifts = int(p["max_shifts"])
+        self.jaw_half_width = float(p["jaw_half_width"])
         self.offsets = search_offsets(float(p["search_step"]), int(p["search_points"]))
         self.contact = ContactWrench(float(p["filter_time"]))
         self.shaper = TwistShaper()  # a sudden reversal shakes the wrist like a contact
@@ -76,6 +89,7 @@ class JawGraspCorrection(Controller):
         self.centre = readings.tcp[:3, 3].copy()  # where the approach believes the object is
         self.searched = 0
         self.shifts = 0
+        self.last_across = 0.0  # hand y of the last move across
         self.hint: np.ndarray | None = None  # where the last contact says the object is, world frame
         self.ctx.blackboard[CONTACT] = False
         self._rise(readings, np.zeros(3), self._above_object())
@@ -88,9 +102,12 @@ class JawGraspCorrection(Controller):
         return float(obj.pose.position[2]) + obj.half_height
 
     def _grasp_height(self) -> float:
-        """Where the TCP closes on the object: level with its centre, as the task believes it."""
+        """Where the TCP closes on the object: level with its centre, as the task believes it,
+        or higher for an object shorter than the jaws' pads, whose fingertips would otherwise
+        press on the support (and its pads feel that as a grip)."""
         obj = self.ctx.object
-        return -np.inf if obj is None or obj.pose is None else float(obj.pose.position[2])
+        centre = -np.inf if obj is None or obj.pose is None else float(obj.pose.position[2])
+        return max(centre, self.reach + FLOOR_CLEARANCE)
 
     def _above_object(self) -> float:
         """TCP height from which a descent meets the object's top first."""
@@ -158,17 +175,29 @@ class JawGraspCorrection(Controller):
         """The first contact of a descent: where it sits across the hand says what it is."""
         across = self._contact_across(readings, wrench)
         off_centre = across is not None and norm(across) > self.centre_band
-        shift = readings.tcp[:3, :3] @ clamp_norm(across, self.max_shift) if off_centre else None
-        if float(readings.tcp[2, 3]) < self._object_top() or shift is None or self.shifts >= self.max_shifts:
+        if float(readings.tcp[2, 3]) < self._object_top() or not off_centre or self.shifts >= self.max_shifts:
             # Below the object's top the jaws straddle its place: close, and should they
-            # close on nothing, look first where the contact was (the palm on its top;
-            # not the fingertips on the support, which say nothing of the object).
+            # close on nothing, look first where the contact was (the palm on its top, as
+            # wide as the hand; not the fingertips on the support, which say nothing of
+            # the object).
             on_support = float(readings.tcp[2, 3]) - self.reach < SUPPORT_BAND
-            self.hint = None if shift is None or on_support else readings.tcp[:3, 3] + shift
+            self.hint = None if not off_centre or on_support else \
+                readings.tcp[:3, 3] + readings.tcp[:3, :3] @ clamp_norm(across, self.max_shift)
             self._close_here(readings, self.back_off)
             return
+        shift = readings.tcp[:3, :3] @ self._jaw_move(across)
         self.shifts += 1
+        self.centre = self.centre + shift * np.array([1.0, 1.0, 0.0])  # the search goes on from there
         self._rise(readings, shift)
+
+    def _jaw_move(self, across: np.ndarray) -> np.ndarray:
+        """The move across (hand frame) for a jaw on the object's top at `across`: the torque's
+        lever along the jaws' width is short and noisy, and the contact lies within the jaw's
+        width anyway; across the jaws, bisected against the last move."""
+        x = float(np.clip(across[0], -self.jaw_half_width, self.jaw_half_width))
+        y = bisected(float(np.clip(across[1], -self.max_shift, self.max_shift)), self.last_across)
+        self.last_across = y
+        return np.array([x, y, 0.0])
 
     def _contact_across(self, readings: Readings, wrench: np.ndarray) -> np.ndarray | None:
         """(x, y, 0) in the hand frame of the contact point: where the contact force's line of
