@@ -392,13 +392,15 @@ class Factory(ABC):
         that must feel the object), `cartesian_move` with the ATD's movement type otherwise.
         A move carrying the object has arrived only where it was going: a transport that
         meets resistance on the way, or a place that meets it above its surface, stopped
-        short (`contact_margin`)."""
+        short (`contact_margin`); a transport keeps the hand's orientation (`level` off)."""
         flags = arm_motion_flags(state)
         if state.type is StateType.PUSH:
             return self.controller("push", target=target, waypoints=via, keep_orientation=flags["keep_orientation"])
         margin = CARRIED_MARGIN.get(state.type)
-        return self.controller("cartesian_move", target=target, waypoints=via,
-                               **{**flags, **({} if margin is None else {"contact_margin": margin}), **extra})
+        carried = {} if margin is None else {"contact_margin": margin}
+        if state.type is StateType.TRANSPORT:  # the object as the grasp holds it: see cartesian_move's `level`
+            carried["level"] = False
+        return self.controller("cartesian_move", target=target, waypoints=via, **{**flags, **carried, **extra})
 
     def shape_offset(self, state: State) -> Vec3:
         """Where the state's hand shape acts, from the TCP, in the world frame (the hand
@@ -482,6 +484,22 @@ def obstacle_params(context: MappingContext) -> dict[str, tuple[tuple[float, ...
         return {}
     return {"obstacles": tuple(o.position for o in obstacles),
             "obstacle_sizes": tuple(o.size or (0.0, 0.0, 0.0) for o in obstacles)}
+
+
+GRAVITY = 9.81  # m/s^2
+# times the weight friction must carry: a 340 g steel weight (friction 0.5) pinched by two
+# Barrett pads at 5 N turned 12-24 degrees in the hand as it was lifted and slid out within
+# 2 s of the lift's end in PyBullet (Table 3.3 preset, 1df1356); 3.3 N carries it at rest
+GRIP_SAFETY = 2.0
+
+
+def holding_force(obj: ObjectInfo | None) -> float:
+    """The force each of two opposed pads must press with for friction to carry the
+    object's weight GRIP_SAFETY times over; 0 when the task does not say its weight and
+    friction (then the robot's configured grasp force stands)."""
+    if obj is None or obj.weight is None or not obj.friction:
+        return 0.0
+    return GRIP_SAFETY * obj.weight * GRAVITY / (2.0 * obj.friction)
 
 
 def grasp_width(obj: ObjectInfo) -> float:

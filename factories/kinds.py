@@ -21,7 +21,7 @@ from atd.model.controllers import SensorKind
 from atd.model.task import State
 from atd.model.vocabulary import EventType, HandShape, StateType
 from factories.base import (ConditionNode, Factory, MappingContext, MappingRow, NodeMapping, Unmappable,
-                            grasp_width, obstacle_params)
+                            grasp_width, holding_force, obstacle_params)
 
 # The grasp a hand closes into when the task names none, and the preshape that precedes each grasp.
 DEFAULT_GRASP = HandShape.POWER_GRASP
@@ -131,9 +131,12 @@ class MultiFingerFactory(Factory):
         grasp, notes = self.shape(grasp)
         preshape_made, pre_notes = self.shape(preshape) if preshape else (None, ())
         self.check_object_reach(context, grasp.value, *((preshape_made.value,) if preshape_made else ()))
+        configured = float(self.controller("robust_grasp_hand").params["grasp_force"])
+        needed = holding_force(context.object)
         hand = self.controller("robust_grasp_hand", grasp_shape=grasp.value,
                                preshape=preshape_made.value if preshape_made else None,
-                               pregrasp_size=self.pregrasp_size(state, context))
+                               pregrasp_size=self.pregrasp_size(state, context),
+                               grasp_force=round(needed, 3) if needed > configured else None)
         return NodeMapping("robust_grasp", self.controller("robust_grasp_approach"), hand, notes + pre_notes)
 
     def pregrasp_size(self, state: State, context: MappingContext) -> float | None:

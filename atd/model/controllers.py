@@ -140,6 +140,9 @@ _MOVE = {
     "tilt": _p(VEC, "the hand turned away from top-down at the target: roll, pitch, yaw about the world axes "
                     "(ours: an oriented approach, thesis 3.4.1; zeros: top-down)", (0.0, 0.0, 0.0), unit="deg",
                length=3, limits=ranges.TILT),
+    "level": _p(FLAG, "turn the hand top-down (keeping its yaw), then by tilt; off, the hand keeps the orientation "
+                      "it starts with, turned by tilt: a transport carries the object as the grasp left it (ours)",
+                True),
     "contact_margin": _p(NUM, "how near the target a contact must come to end a guarded move as arrived (a place "
                          "meeting its surface); one further away stops it short, an error (a transport meeting "
                          "resistance); negative = any contact, for a move that looks for one (ours)", -1.0, unit="m",

@@ -99,13 +99,15 @@ class HoldPosition(PostureDrive):
         self.forced = loaded & hand.self_locking
         preload = np.where(loaded & ~hand.self_locking, readings.hand_effort / hand.stiffness, 0.0)
         self.goal = readings.hand_q + preload
-        values = np.where(self.forced, readings.hand_effort, self.goal)
-        modes = tuple(HandMode.FORCE if forced else HandMode.POSITION for forced in self.forced)
-        self.command = ControlData(hand=HandCommand(values=values, modes=modes))  # the same every tick
+        self.effort = readings.hand_effort.copy()
+        self.modes = tuple(HandMode.FORCE if forced else HandMode.POSITION for forced in self.forced)
         self.finish(Status.DONE, "holding the fingers")
 
     def update(self, readings: Readings, dt: float) -> ControlData:
-        return self.command
+        hand = self.ctx.info.hand
+        locked = np.clip(self.effort + hand.stiffness * (self.goal - readings.hand_q), -hand.effort_limit, hand.effort_limit)
+        values = np.where(self.forced, locked, self.goal)
+        return ControlData(hand=HandCommand(values=values, modes=self.modes))
 
 
 class HandShape(PostureDrive):

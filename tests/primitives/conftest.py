@@ -119,3 +119,20 @@ def robot() -> MujocoRobot:
 def last_reasons(executor: Executor) -> list[str]:
     """The controller reasons behind the last event that fired."""
     return [c["reason"] for c in events(executor)[-1]["conditions"] if c.get("reason")]
+
+
+PRESET = EXAMPLES / "campaigns" / "table_3_3.toml"
+
+
+def preset_trials(indices: tuple[int, ...], **cell: str) -> list:
+    """Trials `indices` of one cell of the Table 3.3 preset (`cell`: robot, arm, engine,
+    grasp, object, perturbation), run and judged as `atd campaign run` runs them: the same
+    seeds, so the same sampled errors."""
+    from atd.campaign.cells import parse_only, plans
+    from atd.campaign.spec import load_spec
+    from atd.campaign.trial import run_trial
+
+    loaded, diagnostics = load_spec(PRESET)
+    assert loaded is not None, diagnostics
+    only = parse_only(tuple(f"{k}={v}" for k, v in cell.items()))
+    return [run_trial(plan) for plan in plans(loaded, only, max(indices) + 1) if plan.index in indices]
