@@ -16,6 +16,7 @@ EXIT_INVALID = 1  # the input file has errors
 EXIT_USAGE = 2  # click's own code for a bad command line
 EXIT_TASK_FAILED = 3  # a run ended in a failure state
 EXIT_UNTRANSLATABLE = 4  # the robot cannot do the task
+EXIT_ENGINE_CRASHED = 5  # the engine died in its C code (atd run)
 
 
 class OutputFile(click.Path):
