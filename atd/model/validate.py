@@ -89,8 +89,6 @@ def _ambiguity(task: Task) -> list[Diagnostic]:
         events = frozenset((e.type, e.seconds) for e in t.events)
         by_key[(t.origin, events)].append(i)
     for (origin, _), group in by_key.items():
-        if len(group) == 1:
-            continue
         first = task.transitions[group[0]]
         for i in group[1:]:
             t = task.transitions[i]
