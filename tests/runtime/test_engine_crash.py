@@ -16,13 +16,15 @@ import pytest
 
 from tests.conftest import EXAMPLES
 
-# The engine's stepping function, replaced by a crash as its C code would have one.
-CRASHING = {"mujoco": "import mujoco as engine; engine.mj_step = crash",
-            "pybullet": "import pybullet as engine; engine.stepSimulation = crash"}
+# An engine function replaced by a crash, as its C code would have one: stepping, and
+# loading the robot (where a mesh is read).
+CRASHES = {"mujoco-step": ("mujoco", "import mujoco as engine; engine.mj_step = crash", signal.SIGSEGV),
+           "pybullet-step": ("pybullet", "import pybullet as engine; engine.stepSimulation = crash", signal.SIGABRT),
+           "pybullet-load": ("pybullet", "import pybullet as engine; engine.loadURDF = crash", signal.SIGSEGV)}
 
 
-def _atd_with_crashing(engine: str, signum: int) -> str:
-    return (f"import os\ndef crash(*args, **kwargs):\n    os.kill(os.getpid(), {signum})\n{CRASHING[engine]}\n"
+def _atd_with(patch: str, signum: int) -> str:
+    return (f"import os\ndef crash(*args, **kwargs):\n    os.kill(os.getpid(), {signum})\n{patch}\n"
             "from atd.cli import main\nmain()")
 
 
@@ -32,9 +34,10 @@ def folder(tmp_path: Path) -> Path:
     return tmp_path
 
 
-@pytest.mark.parametrize(("engine", "signum"), [("mujoco", signal.SIGSEGV), ("pybullet", signal.SIGABRT)])
-def test_a_crash_in_the_engine_is_one_line_exit_5_and_nothing_written(folder: Path, engine: str, signum: int) -> None:
-    done = subprocess.run([sys.executable, "-c", _atd_with_crashing(engine, signum), "run", "move.xml", "--robot",
+@pytest.mark.parametrize("crash", CRASHES)
+def test_a_crash_in_the_engine_is_one_line_exit_5_and_nothing_written(folder: Path, crash: str) -> None:
+    engine, patch, signum = CRASHES[crash]
+    done = subprocess.run([sys.executable, "-c", _atd_with(patch, signum), "run", "move.xml", "--robot",
                            "melfa", "--engine", engine, "-q", "--trace", "t.jsonl", "--record", "r.mcap"],
                           cwd=folder, capture_output=True, text=True, timeout=300)
     assert done.returncode == 5, done.stderr[-2000:]
