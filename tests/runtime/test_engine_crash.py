@@ -14,6 +14,8 @@ from pathlib import Path
 
 import pytest
 
+from atd.runtime.isolated import in_child
+from atd.runtime.session import Unrunnable
 from tests.conftest import EXAMPLES
 
 # An engine function replaced by a crash, as its C code would have one: stepping, and
@@ -91,3 +93,15 @@ def test_sigterm_ends_the_run_and_its_engine(tmp_path: Path) -> None:
     assert process.returncode == -signal.SIGTERM
     assert _gone(process.pid)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_runs_refusal_reaches_the_command_with_its_words() -> None:
+    """Refusals raised where the engine runs (exit 4, 1, 2 in `atd run`) arrive whole."""
+    def refuse() -> None:
+        raise Unrunnable(["no tactile pads", "no wrist sensor"])
+
+    with pytest.raises(Unrunnable) as refused:
+        in_child(refuse)
+    assert refused.value.problems == ["no tactile pads", "no wrist sensor"]
+    assert str(refused.value) == "this ESTD does not fit the robot:\n  no tactile pads\n  no wrist sensor"
+    assert in_child(lambda: {"answer": 42}) == {"answer": 42}
