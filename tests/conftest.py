@@ -1,18 +1,11 @@
 """Shared test helpers: write a small ATD to a temp dir and read back its diagnostics.
 
 The whole suite runs with a fourth robot installed beside the built-ins: the Panda of
-plugins/atd-panda, registered the way pip would (its folder on the path, its entry point
-in a .dist-info), here and in every `atd` the tests start. Extras cannot name a package by
-a relative path, so the test extras cannot install it; `pip install -e plugins/atd-panda` does.
+plugins/atd-panda, which the test extras install (`pip install -e '.[test]'`).
 """
 
 from __future__ import annotations
 
-import atexit
-import os
-import shutil
-import sys
-import tempfile
 import textwrap
 from pathlib import Path
 from typing import Callable
@@ -20,24 +13,10 @@ from typing import Callable
 import pytest
 
 from atd.model import Diagnostic, load_task
-from tests.plugin_site import register_robot
 
 REPO = Path(__file__).resolve().parents[1]
 EXAMPLES = REPO / "examples"
 SEEDS = REPO / "tests" / "data" / "seeds"
-PANDA_PACKAGE = REPO / "plugins" / "atd-panda"
-
-
-def _install_the_panda() -> None:
-    site = Path(tempfile.mkdtemp(prefix="atd-panda-site-"))
-    atexit.register(shutil.rmtree, site, True)
-    register_robot(site, "panda", "atd_panda.factory:PandaFactory")
-    folders = [str(PANDA_PACKAGE), str(site)]
-    sys.path[:0] = folders
-    os.environ["PYTHONPATH"] = os.pathsep.join([*folders, *filter(None, [os.environ.get("PYTHONPATH")])])
-
-
-_install_the_panda()
 
 
 @pytest.fixture

@@ -20,6 +20,7 @@ from typing import Callable
 from atd.campaign.cells import TrialPlan
 from atd.campaign.record import TrialRecord
 from atd.campaign.trial import run_trial
+from atd.runtime.isolated import signal_name
 
 Sink = Callable[[TrialRecord], None]  # takes each finished trial (the store, the progress display)
 #: Wall-clock seconds per simulated second of budget before a trial counts as hung: far
@@ -163,9 +164,6 @@ class _Pool:
 
 def _exit_reason(code: int | None) -> str:
     if code is not None and code < 0:
-        try:
-            return f"killed by {signal.Signals(-code).name}"
-        except ValueError:
-            return f"signal {-code}"
+        return f"killed by {signal_name(-code)}"
     return f"exit code {code}"
 

@@ -1,6 +1,7 @@
 """The root click group and the exit codes every sub-command shares."""
 
 import faulthandler
+import importlib
 from pathlib import Path
 from typing import Iterable, Mapping, NoReturn
 
@@ -15,6 +16,7 @@ EXIT_INVALID = 1  # the input file has errors
 EXIT_USAGE = 2  # click's own code for a bad command line
 EXIT_TASK_FAILED = 3  # a run ended in a failure state
 EXIT_UNTRANSLATABLE = 4  # the robot cannot do the task
+EXIT_ENGINE_CRASHED = 5  # the engine died in its C code (atd run)
 
 
 class OutputFile(click.Path):
@@ -87,15 +89,34 @@ class SingleValueCommand(click.Command):
 
 
 class Commands(click.Group):
-    """The group class of `atd`: its commands refuse repeated options, its sub-groups too."""
+    """The group class of `atd`: its commands refuse repeated options, its sub-groups too.
+
+    A command's module is imported when the command is asked for, not at start-up:
+    `atd validate` then loads neither the engines nor the campaign tools.
+    """
 
     command_class = SingleValueCommand
+
+    def __init__(self, *args, modules: Mapping[str, str] | None = None, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+        self.modules = dict(modules or {})  # command name -> the module that registers it here
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted({*self.commands, *self.modules})
+
+    def get_command(self, ctx: click.Context, name: str) -> click.Command | None:
+        if name not in self.commands and name in self.modules:
+            importlib.import_module(self.modules[name])
+        return super().get_command(ctx, name)
 
 
 Commands.group_class = Commands
 
 
-@click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]})
+@click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]}, modules={
+    "validate": "atd.cli.validate", "schema": "atd.cli.validate", "translate": "atd.cli.translate",
+    "check": "atd.cli.check", "run": "atd.cli.run", "graph": "atd.cli.graph", "report": "atd.cli.review",
+    "compare": "atd.cli.review"})
 @click.version_option(__version__, prog_name="atd")
 def main() -> None:
     """Describe a manipulation task once (ATD), translate it for a robot (ESTD), run it in simulation."""
@@ -105,7 +126,9 @@ def main() -> None:
         pass
 
 
-@main.group(invoke_without_command=True)
+@main.group(invoke_without_command=True, modules={
+    "list": "atd.cli.robots_command", "show": "atd.cli.robots_command", "test": "atd.cli.robot_test",
+    "new": "atd.cli.robots_new"})
 @click.pass_context
 def robots(ctx: click.Context) -> None:
     """The robots installed through factories (bare `atd robots` lists them)."""
@@ -113,6 +136,7 @@ def robots(ctx: click.Context) -> None:
         ctx.invoke(robots.get_command(ctx, "list"))
 
 
-@main.group()
+@main.group(modules={"run": "atd.cli.campaign_run", "report": "atd.cli.campaign_report",
+                     "export": "atd.cli.campaign_report"})
 def campaign() -> None:
     """Trial campaigns: run a task many times under perturbed truth, judge each trial by the simulator."""

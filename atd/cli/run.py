@@ -3,17 +3,20 @@
 from __future__ import annotations
 
 import sys
+from dataclasses import dataclass
 from pathlib import Path
 
 import click
 
 from atd.cli.translate import GRASP_OPTION
-from atd.cli.app import (EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, EXIT_UNTRANSLATABLE, EXIT_USAGE, OutputFile,
-                         Ranged, guard_outputs, main, usage_error)
+from atd.cli.app import (EXIT_ENGINE_CRASHED, EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, EXIT_UNTRANSLATABLE,
+                         EXIT_USAGE, OutputFile, Ranged, guard_outputs, main, usage_error)
 from atd.model import has_errors, load_task, ranges
 from atd.model.diagnostics import render_all
 from atd.model.estd import Estd
 from atd.model.estd_xml import is_estd_file, read_estd
+from atd.runtime.executor import Outcome
+from atd.runtime.isolated import EngineCrash, in_child
 from atd.runtime.report import summary
 from atd.model.files import OutputError
 from atd.runtime.session import ENGINES, InvalidScene, Run, RunError, Unrunnable
@@ -77,6 +80,16 @@ class _Progress:
             click.echo("\r" + line, err=True, nl=False)
 
 
+@dataclass
+class _Ran:
+    """What the process that ran the engine sends back for the summary."""
+
+    outcome: Outcome
+    records: list[dict]
+    object_position: tuple[float, float, float] | None
+    notes: list[str]
+
+
 class RecordRate(click.ParamType):
     """--rate: Hz of simulated time in its declared range, or 'tick' (None: every control tick)."""
 
@@ -115,35 +128,43 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
     """Run TASK (an ATD, translated on the fly, or an ESTD) on a simulated robot.
 
     Exit status: 0 the task ended in a success state, 3 in a failure state (or the watchdog
-    stopped it), 1 invalid input, 2 usage error, 4 the robot cannot do the task.
+    stopped it), 1 invalid input, 2 usage error, 4 the robot cannot do the task, 5 the
+    engine crashed (it runs in a child process, so that is reported, not fatal).
     """
     guard_outputs({"--trace": trace_path, "--video": video, "--record": record}, [task])
     if record is not None and record.suffix.lower() != ".mcap":
         usage_error(f"{record}: --record writes MCAP; give a file name ending in .mcap")
     estd, factory = _load(task, robot, arm, grasp)
     guard_outputs({"--trace": trace_path, "--video": video, "--record": record}, [task, *estd.files()])
-    try:
+
+    def simulate() -> _Ran:
         session = Run(estd, factory, engine=engine, seed=seed, trace_path=trace_path, realtime=realtime,
                       budget=budget, video=video, viewer=viewer, record=record, record_rate=record_rate)
+        outcome = session.execute(_Progress(quiet))
+        return _Ran(outcome, session.trace.records, session.object_position, session.notes)
+
+    try:
+        ran = in_child(simulate)
     except Unrunnable as exc:
         _fail(f"error: {exc}", EXIT_UNTRANSLATABLE)
     except InvalidScene as exc:
         _fail(f"error: {exc}", EXIT_INVALID)
     except RunError as exc:
         _fail(f"error: {exc}", EXIT_USAGE)
-    try:
-        outcome = session.execute(_Progress(quiet))
     except OutputError as exc:
         usage_error(str(exc))
+    except EngineCrash as exc:
+        _fail(f"error: the {engine} engine crashed ({exc}) running {task}; "
+              f"try --engine {'pybullet' if engine == 'mujoco' else 'mujoco'}", EXIT_ENGINE_CRASHED)
     title = f"{task.name} on {estd.robot} ({estd.arm} arm) in {engine}, seed {seed}"
-    click.echo(summary(outcome, session.trace.records, title))
-    if session.object_position is not None:
-        x, y, z = session.object_position
+    click.echo(summary(ran.outcome, ran.records, title))
+    if ran.object_position is not None:
+        x, y, z = ran.object_position
         click.echo(f"the object rests at ({x:.3f}, {y:.3f}, {z:.3f})")
     if trace_path:
         click.echo(f"trace: {trace_path}")
     if record:
         click.echo(f"recording: {record} (see it with: atd report {record})")
-    for note in session.notes:
+    for note in ran.notes:
         click.echo(note)
-    raise SystemExit(EXIT_OK if outcome.succeeded else EXIT_TASK_FAILED)
+    raise SystemExit(EXIT_OK if ran.outcome.succeeded else EXIT_TASK_FAILED)

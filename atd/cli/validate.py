@@ -8,6 +8,7 @@ from pathlib import Path
 import click
 
 from atd.cli.app import EXIT_INVALID, EXIT_OK, main
+from atd.model.bulk import cyclic_gc_paused
 from atd.model.diagnostics import Diagnostic, Severity, render_all, sort_key
 from atd.model.load import load_task
 from atd.model.task import Task
@@ -22,7 +23,8 @@ def validate(files: tuple[Path, ...], fmt: str) -> None:
 
     Exit status: 0 when no file has errors (warnings allowed), 1 when any has, 2 on usage error.
     """
-    reports: list[tuple[Path, list[Diagnostic]]] = [(f, load_task(f)[1]) for f in files]
+    with cyclic_gc_paused():  # each task is freed as soon as it is read, not rescanned by the collector first
+        reports: list[tuple[Path, list[Diagnostic]]] = [(f, load_task(f)[1]) for f in files]
     everything = [d for _, found in reports for d in found]
     errors = sum(d.severity is Severity.ERROR for d in everything)
     if fmt == "json":

@@ -6,6 +6,7 @@ and hands the rest on so that graph checks still run, as a compiler does.
 
 from __future__ import annotations
 
+import math
 from enum import StrEnum
 from pathlib import Path
 from typing import Iterable, TypeVar
@@ -137,8 +138,9 @@ class TaskReader:
             self._error("ATD106", f"'{bad}' in {what} is not a number", node,
                         "write numbers in metres, kilograms and seconds, e.g. 0.25")
             return None
-        if not all(np.isfinite(values)):
-            self._error("ATD106", f"{what}: {allowed.problem(next(v for v in values if not np.isfinite(v)))}",
+        infinite = next((v for v in values if not math.isfinite(v)), None)
+        if infinite is not None:
+            self._error("ATD106", f"{what}: {allowed.problem(infinite)}",
                         node, "use finite numbers")
             return None
         if count is not None and len(values) != count:

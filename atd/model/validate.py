@@ -8,23 +8,11 @@ from __future__ import annotations
 from collections import defaultdict
 from pathlib import Path
 
-import networkx as nx
-
 from atd.model.diagnostics import Diagnostic, Suggester, did_you_mean, error, has_errors, warning
 from atd.model.files import is_regular_file
 from atd.model.meshcheck import MeshError, check_mesh
 from atd.model.task import State, Task
 from atd.model.vocabulary import StateType
-
-
-def _graph(task: Task) -> nx.MultiDiGraph:
-    graph = nx.MultiDiGraph()
-    graph.add_nodes_from(s.name for s in task.states)
-    names = task.states_by_name
-    graph.add_edges_from(
-        (t.origin, t.destination) for t in task.transitions if t.origin in names and t.destination in names
-    )
-    return graph
 
 
 def check_task(task: Task, unreadable_states: frozenset[str] = frozenset(), read_cleanly: bool = True) -> list[Diagnostic]:
@@ -96,13 +84,14 @@ def _ends(task: Task) -> list[Diagnostic]:
 def _ambiguity(task: Task) -> list[Diagnostic]:
     """Two edges from one state on the same events cannot both be taken: which one wins?"""
     found = []
-    by_key: dict[tuple, list] = defaultdict(list)
-    for tid, t in zip(task.transition_ids, task.transitions):
+    by_key: dict[tuple, list[int]] = defaultdict(list)
+    for i, t in enumerate(task.transitions):
         events = frozenset((e.type, e.seconds) for e in t.events)
-        by_key[(t.origin, events)].append((tid, t))
+        by_key[(t.origin, events)].append(i)
     for (origin, _), group in by_key.items():
-        for tid, t in group[1:]:
-            first_id, first = group[0]
+        first = task.transitions[group[0]]
+        for i in group[1:]:
+            t = task.transitions[i]
             if t.destination != first.destination:
                 found.append(error(
                     "ATD209",
@@ -112,7 +101,8 @@ def _ambiguity(task: Task) -> list[Diagnostic]:
                     "change one of the event sets or remove one transition",
                 ))
             else:
-                found.append(warning("ATD214", f"transition {tid} repeats {first_id}", t.loc, "remove the copy"))
+                found.append(warning("ATD214", f"transition {task.transition_ids[i]} repeats "
+                                               f"{task.transition_ids[group[0]]}", t.loc, "remove the copy"))
     return found
 
 
@@ -152,11 +142,14 @@ def _shape(task: Task) -> list[Diagnostic]:
 
 def _reachability(task: Task) -> list[Diagnostic]:
     found = []
-    graph = _graph(task)
+    after: dict[str, list[str]] = defaultdict(list)
+    before: dict[str, list[str]] = defaultdict(list)
+    for t in task.transitions:
+        after[t.origin].append(t.destination)
+        before[t.destination].append(t.origin)
     start = task.initial_state
-    reached = nx.descendants(graph, start) | {start} if start in graph else set()
-    ends = {s.name for s in task.states if s.type.is_end}
-    finishing = _reaching(graph, ends)
+    reached = _closure({start} if start in task.states_by_name else set(), after)
+    finishing = _closure({s.name for s in task.states if s.type.is_end}, before)
     for state in task.states:
         if state.name not in reached:
             found.append(warning("ATD207", f"state '{state.name}' cannot be reached from the initial state '{start}'",
@@ -167,15 +160,14 @@ def _reachability(task: Task) -> list[Diagnostic]:
     return found
 
 
-def _reaching(graph: nx.MultiDiGraph, targets: set[str]) -> set[str]:
-    """Every node with a path into `targets`: one search backwards from all of them at once."""
-    found, frontier = set(targets), list(targets)
+def _closure(sources: set[str], neighbours: dict[str, list[str]]) -> set[str]:
+    """`sources` and every state reached from them along `neighbours`: one search from all at once."""
+    found, frontier = set(sources), list(sources)
     while frontier:
-        node = frontier.pop()
-        for before in graph.predecessors(node):
-            if before not in found:
-                found.add(before)
-                frontier.append(before)
+        for nxt in neighbours.get(frontier.pop(), ()):
+            if nxt not in found:
+                found.add(nxt)
+                frontier.append(nxt)
     return found
 
 

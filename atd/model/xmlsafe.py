@@ -7,11 +7,11 @@ all (an ATD never needs one). Every refusal is one diagnostic, never an exceptio
 
 from __future__ import annotations
 
-import bisect
 import codecs
 import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Iterable, Iterator
 
 from lxml import etree
 
@@ -22,8 +22,9 @@ from atd.model.task import Location
 MAX_BYTES = 32 * 1024 * 1024  # a 10,000-state task is about 4 MB
 MAX_DEPTH = 256  # libxml2 refuses deeper documents unless huge_tree is set; an ATD nests 4 levels
 
-_START_TAG = re.compile(rb"<([A-Za-z_][\w.\-]*)")
-_SKIPPED = re.compile(rb"<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>", re.S)
+# A start tag's `<name`, or a comment, CDATA section or processing instruction to pass over whole
+# (group 1 is set for start tags only): one scan finds every element's opening in document order.
+_OPENING_OR_SKIPPED = re.compile(rb"<([A-Za-z_])|<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>", re.S)
 _DOCTYPE = re.compile(rb"<!DOCTYPE|<!ENTITY", re.I)
 _DECLARED_ENCODING = re.compile(r"""^(<\?xml[^>]*?encoding\s*=\s*)(["'])[^"']*\2""")
 # libxml2's fixed limits (without huge_tree): the words its messages use, and ours.
@@ -39,15 +40,14 @@ _PARSER_LIMITS = (
 
 @dataclass
 class ParsedXml:
-    """A parsed document and the exact start of every element's tag."""
+    """A parsed document and where every element's start tag begins."""
 
     root: etree._Element
     file: str
-    _starts: dict[etree._Element, tuple[int, int]]
+    _starts: dict[etree._Element, Location]
 
     def loc(self, element: etree._Element) -> Location:
-        line, col = self._starts.get(element, (element.sourceline or 0, 1))
-        return Location(self.file, line, col)
+        return self._starts.get(element) or Location(self.file, element.sourceline or 0, 1)
 
 
 def _parser() -> etree.XMLParser:
@@ -61,32 +61,29 @@ def _parser() -> etree.XMLParser:
     )
 
 
-def _line_col(newlines: list[int], offset: int) -> tuple[int, int]:
-    line = bisect.bisect_right(newlines, offset - 1)
-    start = newlines[line - 1] + 1 if line else 0
-    return line + 1, offset - start + 1
+def _line_cols(data: bytes, offsets: Iterable[int]) -> Iterator[tuple[int, int]]:
+    """(line, column) of each of the increasing byte `offsets`, counting lines as it goes."""
+    line, line_start, done = 1, 0, 0
+    for offset in offsets:
+        newlines = data.count(b"\n", done, offset)
+        if newlines:
+            line += newlines
+            line_start = data.rindex(b"\n", done, offset) + 1
+        done = offset
+        yield line, offset - line_start + 1
 
 
-def _tag_starts(data: bytes, root: etree._Element) -> dict[etree._Element, tuple[int, int]]:
+def _tag_starts(data: bytes, root: etree._Element, file: str) -> dict[etree._Element, Location]:
     """Pair elements in document order with the `<tag` openings in the text.
 
     lxml reports the line where a start tag *ends*; authors expect the line where it
     begins, and a column too, so we find the openings ourselves.
     """
-    newlines = [m.start() for m in re.finditer(rb"\n", data)]
-    skipped = [(m.start(), m.end()) for m in _SKIPPED.finditer(data)]
-    openings = []
-    k = 0
-    for m in _START_TAG.finditer(data):
-        while k < len(skipped) and skipped[k][1] <= m.start():
-            k += 1
-        if k < len(skipped) and skipped[k][0] <= m.start():
-            continue
-        openings.append(m.start())
+    openings = [m.start() for m in _OPENING_OR_SKIPPED.finditer(data) if m.start(1) >= 0]
     elements = list(root.iter(etree.Element))
     if len(elements) != len(openings):
         return {}
-    return {e: _line_col(newlines, off) for e, off in zip(elements, openings)}
+    return {e: Location(file, line, col) for e, (line, col) in zip(elements, _line_cols(data, openings))}
 
 
 def _too_big(size: int, file: str) -> Diagnostic:
@@ -133,7 +130,7 @@ def parse_bytes(data: bytes, file: str) -> tuple[ParsedXml | None, list[Diagnost
         return None, [error("ATD006", f"file {what}", Location(file, 1, 1), "an ATD is an XML text file")]
     doctype = _DOCTYPE.search(data)
     if doctype:
-        line, col = _line_col([m.start() for m in re.finditer(rb"\n", data[: doctype.start()])], doctype.start())
+        [(line, col)] = _line_cols(data, [doctype.start()])
         return None, [
             error(
                 "ATD004",
@@ -162,7 +159,7 @@ def parse_bytes(data: bytes, file: str) -> tuple[ParsedXml | None, list[Diagnost
     except ValueError as exc:  # e.g. undecodable text in the declared encoding
         return None, [error("ATD006", f"cannot decode file: {exc}", Location(file, 1, 1),
                             "save the file as UTF-8")]
-    return ParsedXml(root, file, _tag_starts(data, root)), []
+    return ParsedXml(root, file, _tag_starts(data, root, file)), []
 
 
 def read_file(path: Path, shown_as: str | None = None) -> tuple[ParsedXml | None, list[Diagnostic]]:

@@ -45,6 +45,10 @@ class Unrunnable(RunError):
         super().__init__("this ESTD does not fit the robot:\n" + "\n".join(f"  {p}" for p in problems))
         self.problems = problems
 
+    def __reduce__(self):
+        """Rebuilt from its problems, when it crosses from the process that ran the engine."""
+        return Unrunnable, (self.problems,)
+
 
 def belief_scene(estd: Estd) -> Scene:
     """The world as the ESTD describes it."""

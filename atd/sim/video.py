@@ -8,6 +8,8 @@ numpy and readable by every viewer. Frames use a fixed 3-3-2 bit colour palette.
 
 from __future__ import annotations
 
+import errno
+import os
 import shutil
 import struct
 import subprocess
@@ -22,6 +24,8 @@ FORMATS = (".gif", ".mp4")
 WIDTH, HEIGHT = 320, 240
 FRAME_PERIOD = 0.1  # s of simulated time between frames
 _CLEAR, _END = 256, 257
+# Failures of ffmpeg that are the file system's, reported like those of any other output.
+_WRITE_ERRORS = (errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EACCES, errno.EROFS)
 _RUN = 254  # pixel codes between clear codes
 
 
@@ -91,16 +95,23 @@ def check_video_path(path: Path) -> None:
 
 
 def write_mp4(path: Path, frames: list[np.ndarray], frame_period: float = FRAME_PERIOD) -> None:
-    """Encode RGB frames (h, w, 3; even sizes) as H.264 in MP4, atomically."""
+    """Encode RGB frames (h, w, 3; even sizes) as H.264 in MP4, atomically; OSError when the
+    file system refuses it (full, over a size limit, read-only), VideoError when ffmpeg fails otherwise."""
     height, width = frames[0].shape[:2]
     frames_in = b"".join(np.ascontiguousarray(f).tobytes() for f in frames)
     with replacing(path) as tmp:
         command = [mp4_encoder(), "-y", "-loglevel", "error", "-f", "rawvideo", "-pix_fmt", "rgb24",
                    "-s", f"{width}x{height}", "-r", f"{1 / frame_period:g}", "-i", "-",
                    "-c:v", "libx264", "-pix_fmt", "yuv420p", "-f", "mp4", str(tmp)]
-        done = subprocess.run(command, input=frames_in, capture_output=True)
+        # restore_signals=False: ffmpeg keeps SIGXFSZ ignored, as here, so a file-size limit is
+        # an error it reports (EFBIG) rather than a signal that kills it without a word.
+        done = subprocess.run(command, input=frames_in, capture_output=True, restore_signals=False)
         if done.returncode != 0:
-            raise VideoError(f"ffmpeg could not write {path}: {done.stderr.decode(errors='replace').strip()}")
+            said = done.stderr.decode(errors="replace").strip()
+            write_error = next((code for code in _WRITE_ERRORS if os.strerror(code) in said), None)
+            if write_error is not None:
+                raise OSError(write_error, os.strerror(write_error))
+            raise VideoError(f"ffmpeg could not write {path}: {said}")
 
 
 class Recorder:

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import errno
 import os
 import resource
 import shutil
+import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -76,17 +78,42 @@ def test_an_option_given_twice_is_refused(task: Path) -> None:
 
 
 def _limited_file_size() -> None:
+    """In the child: files of at most 100 bytes, and a write past that fails with EFBIG
+    instead of killing the process (SIGXFSZ ignored, as a shell's `ulimit -f` user sees it)."""
+    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
     resource.setrlimit(resource.RLIMIT_FSIZE, (100, 100))
 
 
-@pytest.mark.parametrize("command", [["translate", "--robot", "melfa", "-q", "-o", "out.xml"],
-                                     ["run", "--robot", "melfa", "-q", "--trace", "out.jsonl"],
-                                     ["run", "--robot", "melfa", "-q", "--video", "out.gif"]])
+WRITING_COMMANDS = [["translate", "--robot", "melfa", "-q", "-o", "out.xml"],
+                    ["graph", "-o", "out.svg"],
+                    ["run", "--robot", "melfa", "-q", "--trace", "out.jsonl"],
+                    ["run", "--robot", "melfa", "-q", "--record", "out.mcap"],
+                    ["run", "--robot", "melfa", "-q", "--video", "out.gif"]]
+
+
+@pytest.mark.parametrize("command", [*WRITING_COMMANDS, ["run", "--robot", "melfa", "-q", "--video", "out.mp4"]])
 def test_a_file_size_limit_is_one_line_exit_2_and_nothing_left(task: Path, command: list[str]) -> None:
     done = subprocess.run([sys.executable, "-m", "atd", command[0], str(task), *command[1:]], cwd=task.parent,
                           capture_output=True, text=True, preexec_fn=_limited_file_size, timeout=120)
-    assert done.returncode == 2
+    assert done.returncode == 2, done.stderr
     assert done.stderr.strip().count("\n") == 0 and "File too large" in done.stderr
+    assert "ulimit -f" in done.stderr and command[-1] in done.stderr
+    assert sorted(p.name for p in task.parent.iterdir()) == ["move.xml"]
+
+
+@pytest.mark.parametrize("command", WRITING_COMMANDS)
+def test_a_full_disk_is_one_line_exit_2_and_nothing_left(task: Path, command: list[str], monkeypatch) -> None:
+    """ENOSPC as a file system reports it when the data reach the disk: at the flush before
+    the output replaces anything."""
+    def disk_full(fd: int) -> None:
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+
+    monkeypatch.setattr(os, "fsync", disk_full)
+    monkeypatch.chdir(task.parent)
+    result = CliRunner().invoke(main, [command[0], str(task), *command[1:]])
+    assert result.exit_code == 2, result.output
+    assert result.stderr.strip().count("\n") == 0 and "No space left on device" in result.stderr
+    assert "free some space" in result.stderr and command[-1] in result.stderr
     assert sorted(p.name for p in task.parent.iterdir()) == ["move.xml"]
 
 

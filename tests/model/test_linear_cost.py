@@ -10,21 +10,7 @@ import time
 from pathlib import Path
 
 from atd.model import load_task
-
-
-def chain(states: int, misspelt: int = 0) -> str:
-    """A chain of moves, each with its own failure end (one end state per move), the first
-    `misspelt` transitions naming states that do not exist."""
-    lines = ["<statemachine>"]
-    for i in range(states):
-        lines.append(f'<state name="s{i}" type="move"><path><position>0.1 0 0.15</position></path></state>')
-        lines.append(f'<state name="f{i}" type="failure"/>')
-    lines.append('<state name="done" type="success"/>')
-    for i in range(states):
-        nxt = f"s{i + 1}" if i + 1 < states else "done"
-        lines.append(f'<transition origin="s{i}" destination="{f"z{i + 1}q" if i < misspelt else nxt}"><success/></transition>')
-        lines.append(f'<transition origin="s{i}" destination="f{i}"><timeout>5</timeout></transition>')
-    return "\n".join(lines + ["</statemachine>"])
+from benchmarks.bench_validate import chain
 
 
 def seconds_to_load(tmp_path: Path, text: str) -> tuple[float, list]:

@@ -1,0 +1,19 @@
+"""The extras, here rather than in pyproject.toml: the `test` extra installs the Panda of
+plugins/atd-panda, and PEP 508 names a local package only by an absolute file URL, which is
+computed here at build time. Everything else is declared in pyproject.toml."""
+
+from pathlib import Path
+
+from setuptools import setup
+
+PANDA = Path(__file__).resolve().parent / "plugins" / "atd-panda"
+# imageio-ffmpeg ships an ffmpeg binary as a wheel: MP4 needs an H.264 encoder, which no one should write by hand.
+VIDEO = ["imageio-ffmpeg>=0.5"]
+# Ray runs a campaign on a cluster (`atd campaign run --ray`); the local pool needs nothing extra.
+RAY = ["ray>=2.9"]
+
+setup(extras_require={
+    "video": VIDEO,
+    "ray": RAY,
+    "test": ["pytest>=8", "hypothesis>=6.100", *VIDEO, *RAY, f"atd-panda @ {PANDA.as_uri()}"],
+})
