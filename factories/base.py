@@ -23,6 +23,8 @@ from typing import ClassVar, Mapping
 import numpy as np
 
 from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamValue, SensorKind, defaults
+from atd.model.frames import rpy_of
+from atd.model.ranges import TILT
 from atd.model.estd import Condition, ConditionGroup, Controller
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
 from atd.model.vocabulary import EventType, HandShape, Movement, StateType
@@ -380,7 +382,9 @@ class Factory(ABC):
     def motion(self, state: State, context: MappingContext) -> tuple[Vec3, tuple[Vec3, ...]]:
         """Target and via points of an arm primitive: the path, or derived from the object,
         for the point the state's hand shape acts at (`shape_offset`), turned into TCP points."""
-        dx, dy, dz = self.shape_offset(state)
+        turn = target_turn(state)
+        offset = np.asarray(self.shape_offset(state), float)
+        dx, dy, dz = offset if turn is None else turn @ offset
         points = [w.position for w in state.path] if state.path else [derived_target(state, context.object)]
         # To the micrometre, so the ESTD's 9-digit numbers read back equal.
         points = [(round(x - dx, 6), round(y - dy, 6), round(z - dz, 6)) for x, y, z in points]
@@ -392,13 +396,17 @@ class Factory(ABC):
         that must feel the object), `cartesian_move` with the ATD's movement type otherwise.
         A move carrying the object has arrived only where it was going: a transport that
         meets resistance on the way, or a place that meets it above its surface, stopped
-        short (`contact_margin`); a transport keeps the hand's orientation (`level` off)."""
+        short (`contact_margin`). A path ending on a `<pose>` turns the hand as the pose
+        says (`tilt`); otherwise a transport keeps the hand's orientation (`level` off)."""
         flags = arm_motion_flags(state)
         if state.type is StateType.PUSH:
             return self.controller("push", target=target, waypoints=via, keep_orientation=flags["keep_orientation"])
         margin = CARRIED_MARGIN.get(state.type)
-        carried = {} if margin is None else {"contact_margin": margin}
-        if state.type is StateType.TRANSPORT:  # the object as the grasp holds it: see cartesian_move's `level`
+        carried: dict[str, ParamValue] = {} if margin is None else {"contact_margin": margin}
+        turn = target_turn(state)
+        if turn is not None:
+            carried["tilt"] = tilt_of(turn)
+        elif state.type is StateType.TRANSPORT:  # the object as the grasp holds it: see cartesian_move's `level`
             carried["level"] = False
         return self.controller("cartesian_move", target=target, waypoints=via, **{**flags, **carried, **extra})
 
@@ -465,6 +473,29 @@ def all_of(*children: ConditionNode) -> ConditionGroup:
 def any_of(*children: ConditionNode) -> ConditionGroup:
     """A condition that holds when any child holds (D5 Fig. 2.3: arm OR hand failure)."""
     return ConditionGroup(op="any", children=children)
+
+
+def target_turn(state: State) -> np.ndarray | None:
+    """The rotation of a path's last waypoint when it is a `<pose>`: how the hand is turned
+    away from pointing straight down (with the yaw it has) at the target, in the world
+    frame, so that the identity is the top-down hand every robot knows (docs/atd-format.md)."""
+    target = state.path[-1] if state.path else None
+    if target is None or target.kind != "pose":
+        return None
+    v = target.values
+    return np.array([v[0:3], v[4:7], v[8:11]], float)
+
+
+def tilt_of(turn: np.ndarray) -> tuple[float, float, float]:
+    """`turn` as cartesian_move's tilt: roll, pitch, yaw about the world axes, in degrees;
+    a turn beyond what an arm controller is asked to make (90 degrees about an axis) is
+    refused: no hand grasps from below the horizontal."""
+    tilt = tuple(round(float(np.degrees(a)), 3) for a in rpy_of(turn))
+    if max(abs(a) for a in tilt) > TILT.high:
+        raise Unmappable(f"its <pose> turns the hand by roll {tilt[0]:g}, pitch {tilt[1]:g}, yaw {tilt[2]:g} degrees "
+                         f"from pointing down, over {TILT.high:g} about some axis",
+                         "give the pose's rotation as the hand's turn away from top-down (identity: straight down)")
+    return tilt  # type: ignore[return-value]
 
 
 def arm_motion_flags(state: State) -> dict[str, bool]:
