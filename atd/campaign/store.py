@@ -6,7 +6,9 @@ process writes; reports open it read-only.
 
 from __future__ import annotations
 
+import fcntl
 import json
+import os
 import sqlite3
 from datetime import datetime, timezone
 from pathlib import Path
@@ -63,6 +65,7 @@ class Store:
     def __init__(self, path: Path, db: sqlite3.Connection) -> None:
         self.path = path
         self._db = db
+        self._lock: int | None = None  # a writer's exclusive lock on the file (`_take_lock`)
         meta = dict(db.execute("SELECT key, value FROM meta"))
         self.spec_text: str = meta["spec_text"]
         self.spec_digest: str = meta["spec_digest"]
@@ -84,9 +87,22 @@ class Store:
                 store.close()
                 raise StoreError(f"{path} was made from a different spec; give another --store, "
                                  f"or run the spec it was made from")
-            return store
-        cls._build(path, spec_text, spec_digest)
-        return cls._open(path, read_only=False)
+        else:
+            cls._build(path, spec_text, spec_digest)
+            store = cls._open(path, read_only=False)
+        store._take_lock()
+        return store
+
+    def _take_lock(self) -> None:
+        """One campaign writes a store at a time: a second one started on it (a resume in
+        another terminal) would run the same trials again and stop on the first it stores."""
+        self._lock = os.open(self.path, os.O_RDONLY)
+        try:
+            fcntl.flock(self._lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            self.close()
+            raise StoreError(f"{self.path} is being written by another campaign; wait for it to end, "
+                             f"or give another --store") from None
 
     @classmethod
     def open_read(cls, path: Path) -> Store:
@@ -184,6 +200,9 @@ class Store:
 
     def close(self) -> None:
         self._db.close()
+        if self._lock is not None:
+            os.close(self._lock)  # and with it the lock
+            self._lock = None
 
     def __enter__(self) -> Store:
         return self

@@ -57,6 +57,19 @@ def test_an_existing_store_is_not_overwritten_without_resume(tmp_path: Path) -> 
         Store.create_or_resume(path, SPEC, "d1", resume=False)
 
 
+def test_a_store_another_campaign_is_writing_is_refused_until_it_ends(tmp_path: Path) -> None:
+    """A resume started in a second terminal would run the first one's trials again."""
+    path = tmp_path / "c.sqlite"
+    with Store.create_or_resume(path, SPEC, "d1", resume=False) as first:
+        with pytest.raises(StoreError, match="is being written by another campaign; wait for it to end"):
+            Store.create_or_resume(path, SPEC, "d1", resume=True)
+        first.add(trial(0))
+        with Store.open_read(path) as report:  # a report may read it meanwhile
+            assert len(report.records()) == 1
+    with Store.create_or_resume(path, SPEC, "d1", resume=True) as second:
+        second.add(trial(1))
+
+
 def test_resume_refuses_a_store_made_from_another_spec(tmp_path: Path) -> None:
     path = tmp_path / "c.sqlite"
     with Store.create_or_resume(path, SPEC, "d1", resume=False) as store:
