@@ -52,11 +52,13 @@ def test_a_crash_in_the_engine_is_one_line_exit_5_and_nothing_written(folder: Pa
 
 def _started_run(folder: Path) -> subprocess.Popen:
     """`atd run` in real time in a session of its own (as a terminal's foreground job), once it
-    has begun to simulate."""
+    has begun to simulate. Its SIGINT is restored as a terminal would have it: a test suite
+    started in the background (`cmd &`) ignores SIGINT, and so would the run, rightly."""
     process = subprocess.Popen([sys.executable, "-m", "atd", "run", str(EXAMPLES / "pick_and_place.xml"),
                                 "--robot", "melfa", "--realtime", "--trace", "t.jsonl"],
                                cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                               start_new_session=True)
+                               start_new_session=True,
+                               preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     assert process.stderr is not None
     first = process.stderr.readline()  # the first progress line: the child is simulating
     assert "real time]" in first, first
