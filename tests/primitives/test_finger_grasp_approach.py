@@ -46,3 +46,14 @@ def test_a_tilted_approach_from_above_is_levelled_and_lifts(engine: str) -> None
     run, _ = _lift_with_error("right", engine, roll=10.0, pitch=-8.0)
     hand_z = run.robot.read().tcp[:3, 2]
     assert hand_z[2] < -0.99, hand_z  # the hand's approach axis points down, within 8 degrees
+
+
+def test_the_approach_looks_for_contact_only_once_the_levelled_hand_is_still() -> None:
+    """Trials 0 and 2 of the preset's SDH2/MuJoCo/tape cell with the approach error: the
+    jolt of turning the hand level, and its weight loading the wrist differently once
+    turned, read as a contact, and the fingers closed in the air (both failed at 1df1356)."""
+    from tests.primitives.conftest import preset_trials
+
+    for record in preset_trials((0, 2), robot="tombatossals", arm="left", engine="mujoco", grasp="robust",
+                                object="tape", perturbation="approach"):
+        assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
