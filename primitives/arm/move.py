@@ -34,6 +34,10 @@ STALL_PROGRESS = 0.001  # m
 # resting on the object's top: about 2 N), far below any contact threshold.
 STALL_CONTACT = 1.0
 CRUISE = 0.9  # fraction of max_speed at which a push starts measuring its free-motion level
+# m a guarded move that ends on contact rests short of it: held where it stopped, the Barrett
+# went on pressing a fingertip on the steel weight's top at 19 N, and the preshape the hand
+# made meanwhile dragged its spread round under that load for 6 s instead of 1.5
+EASE_OFF = 0.003
 
 
 def arm_output(twist: np.ndarray) -> ControlData:
@@ -118,7 +122,11 @@ class CartesianMove(Controller):
         force = self.contact.force
         if force >= self.threshold:
             self.shaper.stop()
-            self.stopped_by(force, norm(self.via[-1] - readings.tcp[:3, 3]))
+            position = readings.tcp[:3, 3]
+            self.stopped_by(force, norm(self.via[-1] - position))
+            if self.status is Status.DONE:  # ease off what it met, or the arm goes on pressing on it
+                leg = self.points[self.leg] - self.leg_start
+                self.rest = position - EASE_OFF * leg / max(norm(leg), 1e-9)
             return self._stay(readings)
 
         position = readings.tcp[:3, 3]

@@ -212,8 +212,10 @@ class RobustGraspHand(FingerGrasp):
     def _begin_closing(self, board: dict) -> None:
         super()._begin_closing(board)
         self.pinched = 0.0
+        self.brushed: set[str] = set()  # the fingers whose pads touched something on the way
 
     def _close(self, readings: Readings, dt: float, board: dict) -> None:
+        self.brushed.update(self._touching(readings))
         if self._closed(readings, dt) or self._pinching(readings, dt, board):
             board[FINGERS_STOPPED] = True
             self.effort = self._starting_effort(readings)
@@ -252,7 +254,13 @@ class RobustGraspHand(FingerGrasp):
         return np.where(self.moving, np.clip(share * hand.effort_limit, touch, hand.effort_limit), 0.0)
 
     def _judge(self, readings: Readings) -> None:
+        """Every grasping finger on the object: hold it. Otherwise correct, towards the
+        fingers that touch it; when none does, towards those that touched something on the
+        way and lost it (the object pushed aside by the finger that met it first), as long
+        as some did not: that side is where the object went."""
         touching = self._touching(readings)
+        if not touching and set(self.fingers) - self.brushed:
+            touching = [f for f in self.fingers if f in self.brushed]
         lost = [f for f in self.fingers if f not in touching]
         if not lost:
             self.phase = "hold"
