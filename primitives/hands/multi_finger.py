@@ -9,6 +9,8 @@ pads:
   pad feels GRASP_FORCE; the grasp succeeds only then, with the object held;
 - some fingers touch and others closed on nothing (finger lost): reopen and ask the arm
   to shift the hand towards the fingers that touched, then close again;
+- no finger touches, but some touched something on the way and others did not (the
+  object pushed aside by the first finger to meet it): as for a finger lost, towards those;
 - no finger touches (object lost, D5 security reflex): reopen, move a little further
   along the approach, close again;
 - the pads never settle at GRASP_FORCE within SETTLE_LIMIT: an error naming the pads
