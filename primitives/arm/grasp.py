@@ -50,8 +50,9 @@ class RobustGraspApproach(Controller):
     knows which way is down. Left tilted, one fingertip lands on the table first, waits
     there while the others close, and they push the object away (rotation-only approach
     error, MuJoCo, 30 trials per hand: Barrett 2 lifted, SDH2 7; levelled: 18 and 15).
-    The approach starts once the hand is level and has been still for LEVEL_SETTLE, its
-    wrist reading taken afresh: the turn changes how the hand's weight loads the sensor.
+    A hand that has to turn level starts its approach once it is level and has been still
+    for LEVEL_SETTLE, its wrist reading taken afresh: the turn changes how the hand's weight
+    loads the sensor.
     Sliding grasp (Eq. 3.2): the surface pushes back on the hand with F_s (against the
     grasp direction, measured against the free hand of the state's start and filtered over
     SURFACE_FILTER); the approach ended on F_s = F_t, the contact the slide keeps: F_s
@@ -88,7 +89,8 @@ class RobustGraspApproach(Controller):
         rotation = readings.tcp[:3, :3]
         from_above = float((rotation @ self.direction) @ WORLD_DOWN) >= np.cos(self.level_within)
         self.rotation = top_down(rotation) if from_above and self.level_within > 0.0 else rotation.copy()
-        self.phase = "level"
+        _, tilt = orientation_twist(self.rotation, rotation)
+        self.phase = "level" if tilt >= ORIENTATION_TOLERANCE else "approach"  # a level hand starts at once
         self.still = 0.0  # s the hand has been level
         self.approach_now = 0.0  # m/s: the approach's speed, rising to the approach velocity
         self.goal: np.ndarray | None = None  # where to stay, or to shift to
