@@ -49,3 +49,19 @@ def test_the_grasp_force_grows_with_the_weight_friction_must_carry() -> None:
 
     assert grasp_force(0.15, 0.8) == 5.0  # the configured force carries it twice over
     assert grasp_force(0.34, 0.5) == pytest.approx(2 * 0.34 * 9.81 / (2 * 0.5), abs=1e-3)
+
+
+def test_an_object_friction_cannot_carry_is_refused_not_squeezed_past_every_limit(tmp_path) -> None:
+    """Found by the translation property test: 2 kg at friction 0.016 asked for 1,256 N per pad,
+    an ESTD the translator's own check then refused as the factory's defect."""
+    from click.testing import CliRunner
+
+    from atd.cli import main
+
+    text = (EXAMPLES / "grasp_and_lift.xml").read_text()
+    slippery = tmp_path / "slippery.xml"
+    slippery.write_text(text.replace("<weight>0.15</weight>", "<weight>2</weight>")
+                        .replace("<friction>0.8</friction>", "<friction>0.015625</friction>"))
+    result = CliRunner().invoke(main, ["translate", str(slippery), "--robot", "tombatossals", "--arm", "right", "-q"])
+    assert result.exit_code == 4, result.output
+    assert "only if each pad presses 1256 N" in result.output and "check the object's <weight> and <friction>" in result.output
