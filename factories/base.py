@@ -23,9 +23,9 @@ from typing import ClassVar, Mapping
 import numpy as np
 
 from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamValue, SensorKind, defaults
+from atd.model.estd import Condition, ConditionGroup, Controller
 from atd.model.frames import rpy_of
 from atd.model.ranges import TILT
-from atd.model.estd import Condition, ConditionGroup, Controller
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
 from atd.model.vocabulary import EventType, HandShape, Movement, StateType
 from factories.beside import description_module, shipped_config

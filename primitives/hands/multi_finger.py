@@ -225,7 +225,7 @@ class RobustGraspHand(FingerGrasp):
             self._judge(readings)
 
     def _pinching(self, readings: Readings, dt: float, board: dict) -> bool:
-        """Every grasping pad has pressed on the object with the grasp force for SETTLE_TIME:
+        """Every grasping pad has pressed on the object with PINCHED times the grasp force for SETTLE_TIME:
         the fingers have closed on it, though they could still creep on. Closing on past
         that squeezes a round object low on its side, where the squeeze pushes the hand up;
         the sliding grasp read that as the table and backed off, and the fingertips rode
