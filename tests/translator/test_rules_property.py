@@ -23,8 +23,9 @@ def _into_work_area(v: tuple[float, ...]) -> tuple[float, float, float]:
 
 def reachable(task: Task, plain: bool) -> Task:
     """The same graph with every target and the object in the work area; `plain` also drops
-    parameter overrides, hook shapes, obstacles (a hand with no room around the object) and
-    objects over 2 kg (Baxter's payload is 2.2 kg), which some robots rightly refuse."""
+    parameter overrides, hook shapes, obstacles (a hand with no room around the object),
+    objects over 2 kg (Baxter's payload is 2.2 kg) and friction under 0.1 (2 kg would need
+    over 1,000 N of grasp force at 0.016), which some robots rightly refuse."""
     def fix(state: State) -> State:
         update: dict = {"path": tuple(Waypoint(kind="position", values=_into_work_area(w.values))
                                       for w in state.path)}
@@ -40,6 +41,8 @@ def reachable(task: Task, plain: bool) -> Task:
         obj = obj.model_copy(update={"pose": Pose.from_position(_into_work_area(obj.pose.matrix))})
     if plain and obj is not None and obj.weight is not None:
         obj = obj.model_copy(update={"weight": min(obj.weight, 2.0)})
+    if plain and obj is not None and obj.friction is not None:
+        obj = obj.model_copy(update={"friction": max(obj.friction, 0.1)})
     update = {"states": tuple(fix(s) for s in task.states), "object": obj}
     if plain:
         update["environment"] = None
