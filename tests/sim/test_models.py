@@ -76,7 +76,8 @@ def test_a_urdf_robots_collision_meshes_stand_where_its_description_puts_them_in
         (shape,) = link.shapes
         assert shape.kind == "mesh"
         geom = model.geom(f"{link.name}_0")
-        assert model.geom_type[geom.id] == mujoco.mjtGeom.mjGEOM_MESH and model.geom_contype[geom.id]
+        assert model.geom_type[geom.id] == mujoco.mjtGeom.mjGEOM_MESH
+        assert model.geom_contype[geom.id] and not model.geom_conaffinity[geom.id]  # touches the world, not itself
         mesh = model.geom_dataid[geom.id]  # MuJoCo keeps the vertices about the mesh's centroid: place them
         start, count = model.mesh_vertadr[mesh], model.mesh_vertnum[mesh]
         world = model.mesh_vert[start:start + count] @ data.geom_xmat[geom.id].reshape(3, 3).T + data.geom_xpos[geom.id]
