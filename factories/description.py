@@ -163,7 +163,8 @@ class Link:
     com: Vec3 | None = None
     """Centre of mass in the link frame; None: the centre of the first shape."""
     inertia: Vec3 | None = None
-    """Moments (ixx, iyy, izz) about the centre of mass along the link axes, kg m^2; None: the first shape as a solid."""
+    """Moments (ixx, iyy, izz) about the centre of mass along the link axes, kg m^2;
+    None: the first shape as a solid."""
     inertia_products: Vec3 = (0.0, 0.0, 0.0)
     """Products (ixy, ixz, iyz) of the same tensor, kg m^2 (as URDF and MJCF's fullinertia write them)."""
 

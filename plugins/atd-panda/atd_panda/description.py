@@ -2,11 +2,12 @@
 are built from.
 
 `read_urdf` takes the links, joints, limits, masses, inertias and collision meshes from
-the installed pybullet_data's franka_panda/panda.urdf; that file's arm inertias are
+the installed pybullet_data's franka_panda/panda.urdf; that file's inertias are
 placeholders (0.1 kg m^2 about every axis of every link), so the arm's links get the
-published identified ones instead (`IDENTIFIED`). What a URDF lacks is added here: the gripper's grip, a tactile pad on each fingertip and
-the TCP between them (`urdf_parallel_jaw`), the wrist force-torque sensor where the hand
-is fixed to the arm, the sensors' noise, where the robot stands and its home posture.
+published identified ones instead (`IDENTIFIED`). What a URDF lacks is added here: the
+gripper's grip, a tactile pad on each fingertip and the TCP between them
+(`urdf_parallel_jaw`), the wrist force-torque sensor where the hand is fixed to the arm,
+the sensors' noise, where the robot stands and its home posture.
 The drives' gains, damping and reflected rotor inertia come from each joint's effort
 limit; to tune a joint, replace its `Joint` in `model.links` (dataclasses.replace) before
 building the robot. The arm's rotor inertia is carried by the link it turns (`_rotor_in_link`).
@@ -45,7 +46,7 @@ MAX_OPENING = 0.08  # m between the fingers, fully open
 # IEEE RA-L 4(4), 2019, supplementary material tables VIII and IX, as the authors list
 # them in github.com/marcocognetti/FrankaEmikaPandaDynModel (DynPars2VREP.m). Link 1's
 # centre of mass lies on joint 1's axis at a height the identification cannot see: 0 there.
-# The hand and fingers keep the URDF's masses, and the URDF's inertias, which nobody has identified.
+# The hand and fingers, which the paper leaves out, keep the URDF's values.
 IDENTIFIED = {
     "panda_link1": (4.970684, (3.875e-03, 2.081e-03, 0.0),
                     (7.0337e-01, 7.0661e-01, 9.1170e-03), (-1.3900e-04, 6.7720e-03, 1.9169e-02)),
