@@ -2,7 +2,8 @@
 
 Frames follow URDF: a link's frame is its joint's frame, placed by `origin` in the parent
 link's frame; shapes, sites and the centre of mass are given in the link frame. Capsules
-and cylinders lie along their local z axis. One description is one arm with its hand
+and cylinders lie along their local z axis; a mesh shape is its file's convex hull, as both
+engines collide it. One description is one arm with its hand
 (plus the fixed body it is mounted on), placed in the ATD world frame by `base`.
 """
 
@@ -10,11 +11,13 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from functools import cached_property
+from pathlib import Path
 from typing import Literal
 
 import numpy as np
 
 from atd.model.frames import rotation_rpy
+from atd.model.meshcheck import mesh_points
 
 Vec3 = tuple[float, float, float]
 GRAVITY = 9.81
@@ -43,20 +46,33 @@ class Origin:
 
 @dataclass(frozen=True)
 class Shape:
-    """A collision primitive. `size`: box = half extents (3); capsule and cylinder =
-    (radius, half length of the axis); sphere = (radius,)."""
+    """A collision shape. `size`: box = half extents (3); capsule and cylinder =
+    (radius, half length of the axis); sphere = (radius,); mesh = its scale along its axes (3)."""
 
-    kind: Literal["box", "capsule", "cylinder", "sphere"]
-    """Which primitive: box, capsule, cylinder or sphere."""
+    kind: Literal["box", "capsule", "cylinder", "sphere", "mesh"]
+    """Which shape: box, capsule, cylinder, sphere, or mesh (the convex hull of `mesh`)."""
     size: tuple[float, ...]
-    """Box: half extents (3); capsule, cylinder: (radius, half length of the axis); sphere: (radius,)."""
+    """Box: half extents (3); capsule, cylinder: (radius, half length of the axis); sphere: (radius,);
+    mesh: scale along its own axes (3)."""
     origin: Origin = Origin()
     """Pose of the shape in its link frame; capsules and cylinders lie along its z."""
     rgba: tuple[float, float, float, float] = (0.6, 0.6, 0.65, 1.0)
     """Colour the engines draw it in."""
+    mesh: Path | None = None
+    """A mesh shape's OBJ or STL file (checked by atd.model.meshcheck), its vertices in the shape's frame."""
+
+    @cached_property
+    def points(self) -> np.ndarray:
+        """A mesh shape's vertices in its own frame, scaled: its convex hull is what the engines collide."""
+        if self.mesh is None:
+            raise ValueError(f"a {self.kind} shape has no mesh")
+        return np.unique(mesh_points(self.mesh, self.size), axis=0)  # type: ignore[arg-type]
 
     def inertia(self, mass: float) -> Vec3:
-        """Principal moments of a solid of this shape about its own centre, along its axes."""
+        """Principal moments of a solid of this shape about its own centre, along its axes
+        (a mesh as the box that bounds it)."""
+        if self.kind == "mesh":
+            return Shape("box", tuple(np.ptp(self.points, axis=0) / 2)).inertia(mass)
         if self.kind == "box":
             a, b, c = (2 * s for s in self.size)
             return (mass * (b * b + c * c) / 12, mass * (a * a + c * c) / 12, mass * (a * a + b * b) / 12)
@@ -72,8 +88,11 @@ class Shape:
         """How far the shape reaches along the unit `direction`: the largest p . direction
         over its points p, with the shape on a link at `link_pose`."""
         pose = link_pose @ self.origin.matrix()
-        d = np.abs(pose[:3, :3].T @ direction)  # the direction in the shape's own axes
+        local = pose[:3, :3].T @ direction  # the direction in the shape's own axes
         centre = float(pose[:3, 3] @ direction)
+        if self.kind == "mesh":
+            return centre + float((self.points @ local).max())
+        d = np.abs(local)
         if self.kind == "box":
             return centre + float(d @ np.asarray(self.size))
         if self.kind == "sphere":
@@ -81,6 +100,12 @@ class Shape:
         r, half = self.size
         across = 1.0 if self.kind == "capsule" else float(np.sqrt(max(0.0, 1.0 - d[2] * d[2])))
         return centre + half * float(d[2]) + r * across
+
+    def bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """The (low, high) corners of the box along the link's axes that holds the shape."""
+        axes = np.eye(3)
+        return (np.array([-self.support(np.eye(4), -a) for a in axes]),
+                np.array([self.support(np.eye(4), a) for a in axes]))
 
 
 @dataclass(frozen=True)
@@ -138,7 +163,10 @@ class Link:
     com: Vec3 | None = None
     """Centre of mass in the link frame; None: the centre of the first shape."""
     inertia: Vec3 | None = None
-    """Principal moments, kg m^2; None: the first shape as a solid."""
+    """Moments (ixx, iyy, izz) about the centre of mass along the link axes, kg m^2;
+    None: the first shape as a solid."""
+    inertia_products: Vec3 = (0.0, 0.0, 0.0)
+    """Products (ixy, ixz, iyz) of the same tensor, kg m^2 (as URDF and MJCF's fullinertia write them)."""
 
     @property
     def centre_of_mass(self) -> Vec3:

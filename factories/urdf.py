@@ -3,17 +3,17 @@
 What a URDF says becomes description `Link`s: the tree (parents before children), joint
 origins, axes, limits, damping and friction, masses, centres of mass and inertias, and the
 collision geometry; links that are only frames (welded, massless, bare) are folded into
-their parents. A collision mesh (OBJ or STL) becomes the box that bounds it in its own
-frame, as every description shape is a primitive (the reach and hand-room checks and both
-engines' contacts work on primitives); boxes, cylinders and spheres are taken as they are.
-Visual meshes are checked to exist, as the URDF would not load elsewhere without them.
+their parents. A collision mesh (OBJ or STL) is read from where the URDF names it, checked
+as every mesh is before an engine sees it, and becomes a mesh shape: both engines collide
+its convex hull. Boxes, cylinders and spheres are taken as they are. Visual meshes are
+checked to exist, as the URDF would not load elsewhere without them; the engines draw the
+collision shapes.
 What a URDF lacks (servo gains, sensors, the TCP, the hand's DOFs and pads) the robot's
 description adds. Anything that cannot be imported is a `UrdfError` naming file:line.
 """
 
 from __future__ import annotations
 
-import struct
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Callable
@@ -22,11 +22,11 @@ import numpy as np
 from lxml import etree
 
 from atd.model.files import InputError, read_capped
-from atd.model.frames import rpy_of
+from atd.model.frames import rotation_rpy, rpy_of
+from atd.model.meshcheck import MeshError, check_mesh
 from factories.description import Joint, Link, Origin, Servo, Shape, Vec3
 
 MAX_URDF_BYTES = 16 * 1024 * 1024
-MAX_MESH_BYTES = 256 * 1024 * 1024
 JOINT_KINDS = {"revolute": "revolute", "continuous": "revolute", "prismatic": "prismatic", "fixed": None}
 
 
@@ -160,14 +160,15 @@ class _Reader:
 
     def link(self, element: etree._Element, joint_element: etree._Element | None) -> Link:
         inertial = element.find("inertial")
-        mass, com, inertia = 0.0, None, None
+        mass, com, inertia, products = 0.0, None, None, (0.0, 0.0, 0.0)
         if inertial is not None:
             mass_element = inertial.find("mass")
             mass = self.number(mass_element, "value") if mass_element is not None else 0.0
-            com = self.origin(inertial).xyz
+            frame = self.origin(inertial)
+            com = frame.xyz
             tensor = inertial.find("inertia")
             if tensor is not None:
-                inertia = tuple(self.number(tensor, k, 0.0) for k in ("ixx", "iyy", "izz"))
+                inertia, products = self.inertia(tensor, frame)
         shapes = tuple(shape for collision in element.findall("collision")
                        for shape in self.geometry(collision, element.get("name")))
         for visual in element.findall("visual"):
@@ -180,7 +181,16 @@ class _Reader:
             origin = self.origin(joint_element)
             joint = self.joint(joint_element)
         return Link(element.get("name"), parent, origin, mass, shapes, joint, com=com,
-                    inertia=inertia if mass > 0 else None)  # type: ignore[arg-type]
+                    inertia=inertia if mass > 0 else None, inertia_products=products)  # type: ignore[arg-type]
+
+    def inertia(self, tensor: etree._Element, frame: Origin) -> tuple[Vec3, Vec3]:
+        """The <inertia>'s moments and products along the link axes: a URDF may give the
+        tensor in axes turned by the <inertial>'s rpy."""
+        xx, yy, zz, xy, xz, yz = (self.number(tensor, k, 0.0) for k in ("ixx", "iyy", "izz", "ixy", "ixz", "iyz"))
+        turn = rotation_rpy(frame.rpy)
+        full = turn @ np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]) @ turn.T
+        return ((float(full[0, 0]), float(full[1, 1]), float(full[2, 2])),
+                (float(full[0, 1]), float(full[0, 2]), float(full[1, 2])))
 
     def joint(self, element: etree._Element) -> Joint | None:
         kind = element.get("type")
@@ -227,7 +237,7 @@ class _Reader:
         if shape.tag == "cylinder":
             return (Shape("cylinder", (self.number(shape, "radius"), self.number(shape, "length") / 2), origin),)
         if shape.tag == "mesh":
-            return (self.bounding_box(shape, origin),)
+            return (self.mesh(shape, origin),)
         raise self.fail(shape, f"<{shape.tag}> is not a URDF geometry", "use box, cylinder, sphere or mesh")
 
     def mesh_file(self, mesh: etree._Element) -> Path:
@@ -247,17 +257,17 @@ class _Reader:
         raise self.fail(mesh, f"mesh '{name}' is not there (looked for {candidates[0]})",
                         "install the meshes beside the URDF, or correct the filename")
 
-    def bounding_box(self, mesh: etree._Element, origin: Origin) -> Shape:
+    def mesh(self, mesh: etree._Element, origin: Origin) -> Shape:
+        """A collision mesh as a mesh shape, once its file has passed the check every mesh
+        passes before an engine reads it."""
         file = self.mesh_file(mesh)
-        scale = np.asarray(self.vector(mesh, "scale", (1.0, 1.0, 1.0)), float)
+        scale = self.vector(mesh, "scale", (1.0, 1.0, 1.0))
         try:
-            vertices = _vertices(file) * scale
-        except (OSError, InputError, ValueError) as exc:
-            raise self.fail(mesh, f"cannot read mesh {file}: {exc}", "give an OBJ or STL mesh") from None
-        low, high = vertices.min(axis=0), vertices.max(axis=0)
-        centre = origin.matrix() @ np.append((low + high) / 2, 1.0)
-        half = tuple(float(max(v, 1e-4)) for v in (high - low) / 2)
-        return Shape("box", half, Origin(tuple(float(v) for v in centre[:3]), origin.rpy))  # type: ignore[arg-type]
+            check_mesh(file, scale)
+        except MeshError as exc:
+            raise self.fail(mesh, f"mesh {file} cannot be simulated: {exc}",
+                            "give an OBJ or STL mesh, in metres once scaled") from None
+        return Shape("mesh", scale, origin, mesh=file)
 
 
 def _without_bare_frames(links: list[Link]) -> tuple[Link, ...]:
@@ -278,26 +288,3 @@ def _without_bare_frames(links: list[Link]) -> tuple[Link, ...]:
             kept.append(link)
     return tuple(kept)
 
-
-def _vertices(file: Path) -> np.ndarray:
-    """The vertices of an OBJ or STL (ASCII or binary) mesh, (n, 3)."""
-    data = read_capped(file, MAX_MESH_BYTES)
-    suffix = file.suffix.lower()
-    if suffix == ".obj":
-        rows = [line.split()[1:4] for line in data.decode("utf-8", "replace").splitlines() if line.startswith("v ")]
-    elif suffix == ".stl" and data[:5].lower() == b"solid" and b"facet" in data[:1024]:
-        rows = [line.split()[1:4] for line in data.decode("utf-8", "replace").splitlines()
-                if line.strip().startswith("vertex")]
-    elif suffix == ".stl":
-        count = struct.unpack_from("<I", data, 80)[0] if len(data) >= 84 else 0
-        if len(data) < 84 + 50 * count:
-            raise ValueError("the binary STL is shorter than its triangle count says")
-        triangles = np.frombuffer(data, dtype=np.dtype([("n", "<3f4"), ("v", "<9f4"), ("a", "<u2")]),
-                                  count=count, offset=84)
-        rows = triangles["v"].reshape(-1, 3).tolist()
-    else:
-        raise ValueError(f"'{file.suffix}' meshes are not read, only .obj and .stl")
-    vertices = np.asarray(rows, float)
-    if vertices.ndim != 2 or len(vertices) == 0:
-        raise ValueError("it has no vertices")
-    return vertices

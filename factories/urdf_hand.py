@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from atd.model.frames import rotation_rpy, rpy_of
+from atd.model.frames import rpy_of
 from factories.description import FingerPad, Hand, HandDof, Link, Origin, Site
 from factories.urdf import UrdfError, UrdfModel
 
@@ -19,16 +19,15 @@ TAXEL_PITCH = 0.0034  # m, as the Weiss pads of the built-in robots
 def _finger_pad(finger: Link, hand_root: str, pad_name: str, hand_in_finger: np.ndarray) -> tuple[FingerPad, float]:
     """The pad on the finger's closing face at its tip, and the pad centre's depth along hand z.
 
-    The finger's first shape (its bounding box) gives the face: the side of the box the
-    joint's closing direction (-axis) points to; the pad spans the box across, `PAD_LENGTH`
-    along the approach, ending at the fingertip."""
-    if not finger.shapes or finger.shapes[0].kind != "box":
+    The box that bounds the finger's first shape along the finger's axes gives the face:
+    the side the joint's closing direction (-axis) points to; the pad spans the box across,
+    `PAD_LENGTH` along the approach, ending at the fingertip."""
+    if not finger.shapes:
         raise UrdfError(f"finger link '{finger.name}' has no collision geometry to put a pad on; "
                         "give it a <collision> in the URDF")
-    box = finger.shapes[0]
-    rotation = rotation_rpy(box.origin.rpy)
-    extent = np.abs(rotation) @ np.asarray(box.size, float)  # half extents along the finger link's axes
-    centre = np.asarray(box.origin.xyz, float)
+    low, high = finger.shapes[0].bounds()
+    extent = (high - low) / 2  # half extents along the finger link's axes
+    centre = (high + low) / 2
     closing = -np.asarray(finger.joint.axis, float)
     approach = hand_in_finger[:3, 2]  # hand z in the finger's frame
     across = np.cross(approach, closing)

@@ -24,7 +24,8 @@ import numpy as np
 import pybullet_data
 
 from atd.model import ObjectClass, ObjectInfo, Pose
-from atd.sim.convex import convex_parts, mesh_points
+from atd.model.meshcheck import mesh_points
+from atd.sim.convex import convex_parts
 from atd.sim.scene import Body, bounding_box
 
 # Quarter turns that stand a mesh file up in the world frame (table z = 0, z up).

@@ -31,8 +31,9 @@ class MeshError(ValueError):
     """A mesh no engine should be given; the message says what is wrong with the file."""
 
 
-def check_mesh(path: Path) -> np.ndarray:
-    """The mesh's triangles (n x 3 x 3 corners), or MeshError saying why the file cannot be simulated."""
+def check_mesh(path: Path, scale: tuple[float, float, float] = (1.0, 1.0, 1.0)) -> np.ndarray:
+    """The mesh's triangles (n x 3 x 3 corners) scaled along its axes (a URDF may draw a
+    mesh in millimetres at scale 0.001), or MeshError saying why the file cannot be simulated."""
     suffix = path.suffix.lower()
     if suffix not in SUFFIXES:
         raise MeshError(f"{suffix or 'no suffix'} meshes are not supported; use an STL or OBJ file")
@@ -40,9 +41,18 @@ def check_mesh(path: Path) -> np.ndarray:
         data = read_capped(path, MAX_BYTES)
     except InputError as exc:
         raise MeshError(str(exc)) from None
-    triangles = _stl_triangles(data) if suffix == ".stl" else _obj_triangles(data)
+    triangles = (_stl_triangles(data) if suffix == ".stl" else _obj_triangles(data)) * np.asarray(scale, float)
     _check_solid(triangles)
     return triangles
+
+
+def mesh_points(path: Path, scale: tuple[float, float, float] = (1.0, 1.0, 1.0)) -> np.ndarray:
+    """Every corner of the mesh's triangles, scaled, one row each; MeshError naming the file
+    when it cannot be simulated."""
+    try:
+        return check_mesh(path, scale).reshape(-1, 3)
+    except MeshError as exc:
+        raise MeshError(f"{path}: {exc}") from None
 
 
 def _number(word: bytes) -> float:

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from atd.model.meshcheck import MeshError, check_mesh
+from atd.model.meshcheck import MeshError, mesh_points
 
 VHACD_RESOLUTION = 100_000  # voxels: about 1 s for a mug, parts within a millimetre of its walls
 _VHACD = "import sys, pybullet; pybullet.vhacd(*sys.argv[1:4], resolution=int(sys.argv[4]))"
@@ -30,14 +30,6 @@ def cache_dir() -> Path:
         return Path(os.environ["ATD_CACHE_DIR"])
     xdg = os.environ.get("XDG_CACHE_HOME")
     return (Path(xdg) if xdg else Path.home() / ".cache") / "atd"
-
-
-def mesh_points(mesh: Path) -> np.ndarray:
-    """Every corner of the mesh's triangles, one row each (checked like any mesh the engines get)."""
-    try:
-        return check_mesh(mesh).reshape(-1, 3)
-    except MeshError as exc:
-        raise MeshError(f"{mesh}: {exc}") from None
 
 
 def convex_parts(mesh: Path) -> tuple[Path, ...]:

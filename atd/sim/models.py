@@ -75,7 +75,9 @@ class BodyView:
 def _geom(name: str, shape: Shape, frame: np.ndarray | None = None) -> GeomView:
     m = shape.origin.matrix() if frame is None else frame
     s = shape.size
-    if shape.kind == "box":
+    if shape.kind == "mesh":  # both engines collide a moving body's mesh as its convex hull
+        urdf = {"filename": str(shape.mesh), "scale": _fmt(s)}
+    elif shape.kind == "box":
         urdf = {"size": _fmt(2 * v for v in s)}
     elif shape.kind == "sphere":
         urdf = {"radius": _fmt(s)}
@@ -182,6 +184,7 @@ def mjcf(d: RobotDescription, scene: Scene) -> str:
         hand_joints=hand_joints,
         key_qpos=_fmt(qpos),
         key_ctrl=_fmt([home.get(name, 0.0) for name in list(d.arm_joints) + hand_joints]),
+        robot_meshes=[g for b in _depth_first(root) for g in b.geoms if g.kind == "mesh"],
         pad_contacts=PAD_CONTACTS,
         fmt=_fmt,
     )

@@ -14,7 +14,7 @@ from atd.campaign.objects import UnknownObject, get, library
 from atd.model import Task, load_task
 from atd.runtime.session import Run, belief_scene
 from atd.sim import ENGINES, load_description, make_robot
-from atd.sim.convex import mesh_points
+from atd.model.meshcheck import mesh_points
 from atd.sim.scene import Scene, bounding_box, scene_from_task
 from factories.registry import create
 from tests.conftest import EXAMPLES

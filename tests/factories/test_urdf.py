@@ -14,7 +14,7 @@ from factories.urdf import UrdfError, read_urdf
 PANDA = Path(pybullet_data.getDataPath()) / "franka_panda" / "panda.urdf"
 
 
-def test_the_pandas_urdf_gives_its_tree_limits_masses_and_meshes_as_boxes():
+def test_the_pandas_urdf_gives_its_tree_limits_masses_and_collision_meshes():
     model = read_urdf(PANDA)
     assert [link.name for link in model.links][:3] == ["panda_link0", "panda_link1", "panda_link2"]
     joints = {link.joint.name: link.joint for link in model.links if link.joint}
@@ -27,11 +27,25 @@ def test_the_pandas_urdf_gives_its_tree_limits_masses_and_meshes_as_boxes():
     assert hand.parent == "panda_link7" and hand.joint is None and hand.mass == pytest.approx(0.81)
     assert hand.origin.xyz == pytest.approx((0, 0, 0.107)) and hand.origin.rpy == pytest.approx((0, 0, -0.785398))
     assert hand.com == (0, 0, 0.04) and hand.inertia == (0.1, 0.1, 0.1)
-    (box,) = hand.shapes  # the collision mesh's bounding box: the hand is about 20 cm across its fingers' travel
-    assert box.kind == "box" and 2 * max(box.size) == pytest.approx(0.204, abs=0.002)
-    # the right finger's mesh is turned half round about z: its box lies on the other side
-    assert model.link("panda_rightfinger").shapes[0].origin.xyz[1] == pytest.approx(
-        -model.link("panda_leftfinger").shapes[0].origin.xyz[1])
+    (mesh,) = hand.shapes  # the collision mesh itself, read from the installed pybullet_data
+    assert mesh.kind == "mesh" and mesh.mesh == PANDA.parent / "meshes" / "collision" / "hand.obj"
+    low, high = mesh.bounds()  # the hand is about 20 cm across its fingers' travel
+    assert max(high - low) == pytest.approx(0.204, abs=0.002)
+    # the right finger's mesh is turned half round about z: it lies on the other side
+    left, right = (model.link(f"panda_{side}finger").shapes[0] for side in ("left", "right"))
+    assert right.bounds()[0][1] == pytest.approx(-left.bounds()[1][1])
+
+
+def test_a_collision_mesh_is_read_at_its_scale_with_the_inertias_products(tmp_path):
+    urdf = URDF.format(kind="revolute").replace(
+        '<cylinder radius="0.03" length="0.2"/>', '<mesh filename="meshes/arm.obj" scale="0.001 0.001 0.001"/>')
+    urdf = urdf.replace('<inertia ixx="0.01" iyy="0.02" izz="0.03"/>',
+                        '<inertia ixx="0.01" iyy="0.02" izz="0.03" ixy="0.001" ixz="-0.002" iyz="0.003"/>')
+    arm = read_urdf(_write(tmp_path, urdf)).links[1]
+    (shape,) = arm.shapes
+    assert shape.kind == "mesh" and shape.origin.xyz == (0, 0, 0.1)
+    assert np.ptp(shape.points, axis=0) == pytest.approx((0.1, 0.2, 0.3))  # drawn in millimetres
+    assert arm.inertia == (0.01, 0.02, 0.03) and arm.inertia_products == (0.001, -0.002, 0.003)
 
 
 URDF = """\
@@ -53,10 +67,15 @@ URDF = """\
 """
 
 
+# A 100 x 200 x 300 mm box, drawn in millimetres as many CAD exports are.
+ARM_MM = "".join(f"v {x} {y} {z}\n" for x in (0, 100) for y in (0, 200) for z in (0, 300)) + \
+    "f 1 2 4 3\nf 5 7 8 6\nf 1 5 6 2\nf 3 4 8 7\nf 1 3 7 5\nf 2 6 8 4\n"
+
+
 def _write(tmp_path: Path, text: str, mesh: bool = True) -> Path:
     if mesh:
         (tmp_path / "meshes").mkdir(exist_ok=True)
-        (tmp_path / "meshes" / "arm.obj").write_text("v 0 0 0\nv 0.1 0.2 0.3\n")
+        (tmp_path / "meshes" / "arm.obj").write_text(ARM_MM)
     path = tmp_path / "robot.urdf"
     path.write_text(textwrap.dedent(text))
     return path
@@ -99,3 +118,18 @@ def test_what_cannot_be_imported_names_the_urdfs_file_and_line(tmp_path, edit, m
     with pytest.raises(UrdfError) as info:
         read_urdf(path)
     assert str(info.value).startswith(str(path)) and message in str(info.value)
+
+
+@pytest.mark.parametrize(("name", "text", "message"), [
+    ("arm.dae", "<COLLADA/>", ".dae meshes are not supported; use an STL or OBJ file"),
+    ("arm.stl", "not a mesh", "not an STL file"),
+    ("arm.obj", ARM_MM, "the mesh's largest extent"),  # millimetres without scale="0.001 ..."
+])
+def test_a_collision_mesh_no_engine_could_take_is_named_at_its_line(tmp_path, name, text, message):
+    path = _write(tmp_path, URDF.format(kind="revolute").replace(
+        '<cylinder radius="0.03" length="0.2"/>', f'<mesh filename="meshes/{name}"/>'))
+    (tmp_path / "meshes" / name).write_text(text)
+    with pytest.raises(UrdfError) as info:
+        read_urdf(path)
+    assert str(info.value).startswith(f"{path}:7: mesh {tmp_path / 'meshes' / name} cannot be simulated: ")
+    assert message in str(info.value)

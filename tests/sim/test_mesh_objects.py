@@ -13,7 +13,8 @@ import pybullet_data
 import pytest
 
 from atd.model.meshcheck import MeshError
-from atd.sim.convex import convex_parts, mesh_points
+from atd.model.meshcheck import mesh_points
+from atd.sim.convex import convex_parts
 from atd.sim.scene import Body, Scene
 from tests.conftest import REPO
 

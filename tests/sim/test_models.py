@@ -61,3 +61,27 @@ def test_links_have_plausible_masses_and_positive_inertias() -> None:
             assert link.mass > 0, link.name
             assert min(link.inertia_diagonal) > 0, link.name
         assert 0.3 < d.hand_mass < 2.5, d.label  # grippers of 0.4 kg to an SDH2 of about 2 kg
+
+
+def test_a_urdf_robots_collision_meshes_stand_where_its_description_puts_them_in_both_models() -> None:
+    d = load_description("panda", None)  # every link collides as its mesh from pybullet_data
+    model = mujoco.MjModel.from_xml_string(mjcf(d, box_scene()))
+    data = mujoco.MjData(model)
+    mujoco.mj_resetDataKeyframe(model, data, model.key("home").id)
+    mujoco.mj_forward(model, data)
+    poses = d.link_poses({model.joint(j).name: data.qpos[model.jnt_qposadr[j]] for j in range(model.njnt)
+                          if model.joint(j).name in d.joints})
+    tree = etree.fromstring(urdf(d).encode())
+    for link in d.links:
+        (shape,) = link.shapes
+        assert shape.kind == "mesh"
+        geom = model.geom(f"{link.name}_0")
+        assert model.geom_type[geom.id] == mujoco.mjtGeom.mjGEOM_MESH
+        assert model.geom_contype[geom.id] and not model.geom_conaffinity[geom.id]  # touches the world, not itself
+        mesh = model.geom_dataid[geom.id]  # MuJoCo keeps the vertices about the mesh's centroid: place them
+        start, count = model.mesh_vertadr[mesh], model.mesh_vertnum[mesh]
+        world = model.mesh_vert[start:start + count] @ data.geom_xmat[geom.id].reshape(3, 3).T + data.geom_xpos[geom.id]
+        for axis in np.vstack([np.eye(3), -np.eye(3)]):
+            assert (world @ axis).max() == pytest.approx(shape.support(poses[link.name], axis), abs=1e-6)
+        (collision,) = tree.find(f"link[@name='{link.name}']").iter("collision")
+        assert collision.find("geometry/mesh").get("filename") == str(shape.mesh)

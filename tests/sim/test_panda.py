@@ -7,6 +7,7 @@ import pytest
 from click.testing import CliRunner
 
 from atd.cli import main
+from atd.sim import load_description
 from tests.conftest import EXAMPLES
 
 
@@ -22,3 +23,11 @@ def test_atd_check_shows_the_panda_doing_the_examples():
     result = CliRunner().invoke(main, ["check", *tasks])
     assert result.exit_code == 0, result.output
     assert "panda" in result.output.splitlines()[0]
+
+
+def test_the_pandas_arm_weighs_as_identified_and_collides_as_its_meshes():
+    d = load_description("panda", None)
+    arm = [d.links_by_name[f"panda_link{i}"] for i in range(1, 8)]
+    assert sum(link.mass for link in arm) == pytest.approx(16.062, abs=0.001)  # Gaz et al. 2019, not the URDF's 14.05
+    assert arm[1].com == (-3.141e-03, -2.872e-02, 3.495e-03) and arm[1].inertia_products[0] == pytest.approx(-3.925e-3)
+    assert all(shape.kind == "mesh" and shape.mesh.is_file() for link in d.links for shape in link.shapes)
