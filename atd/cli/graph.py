@@ -19,8 +19,8 @@ from atd.model.diagnostics import has_errors, render_all
 @click.option("-o", "--output", required=True, type=OutputFile(),
               help="the picture: OUT.dot (graphviz source), OUT.svg or OUT.png")
 @click.option("--renderer", type=click.Choice([r.value for r in Renderer]), default=Renderer.AUTO.value,
-              show_default=True, help="graphviz ('dot' on PATH), or builtin: the library layout (grandalf, and resvg for PNG); "
-              "auto uses graphviz when it is installed")
+              show_default=True, help="graphviz ('dot' on PATH), or builtin: the library layout (grandalf, and resvg "
+              "for PNG); auto uses graphviz when it is installed")
 @click.option("--conditions", is_flag=True, help="ESTD: show each event's concrete conditions and thresholds")
 @click.option("--all-params", is_flag=True, help="ESTD: list every controller parameter, not only the key ones")
 def graph(file: Path, output: Path, renderer: str, conditions: bool, all_params: bool) -> None:

@@ -13,6 +13,7 @@ from click.testing import CliRunner
 from lxml import etree
 
 from atd.cli import main
+from benchmarks.bench_validate import generate
 from atd.graph.source import read_graph
 from tests.conftest import EXAMPLES
 from tests.graph.test_render import SVG, png_image
@@ -124,3 +125,13 @@ def test_graphviz_asked_for_but_missing_is_a_usage_error(tmp_path):
     assert result.exit_code == 2
     assert "graphviz is not installed" in result.output and "--renderer builtin" in result.output
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_task_too_big_for_the_library_layout_is_refused_with_what_to_do(tmp_path):
+    task = tmp_path / "huge.xml"
+    task.write_bytes(generate(301, 900))
+    result = atd("graph", str(task), "-o", str(tmp_path / "huge.svg"))
+    assert result.exit_code == 2
+    assert f"error: {task}: 301 states and 900 transitions are more than the library layout draws" in result.output
+    assert "install graphviz, or write .dot" in result.output
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["huge.xml"]
