@@ -245,7 +245,7 @@ def _self_loops(box: Box, loops: list[Edge]) -> list[Route]:
     label_y = middle - sum(label_size(e)[1] for e in loops) / 2
     for k, edge in enumerate(loops):
         reach = (LOOP_REACH + LOOP_STEP * k) / 0.75  # a cubic reaches 3/4 of the way to its control points
-        rise = min(box.height / 2 - 2, 6 + 4 * k)
+        rise = min(box.height / 2 - 3, 4 + 9 * k)  # arrowheads 9 px apart
         bulge = rise + 8 + 4 * k
         points = ((box.right, middle - rise), (box.right + reach, middle - bulge),
                   (box.right + reach, middle + bulge), (box.right, middle + rise))

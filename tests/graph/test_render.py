@@ -87,6 +87,7 @@ def test_svg_fallback_is_wellformed_with_a_box_per_state_and_an_arrow_per_transi
         assert g.find(f"{SVG}path").get("marker-end") == "url(#arrowhead)"  # every arrow has its head
     labels = {t.text for g in edges for t in g.findall(f"{SVG}text")}
     assert {"success", "success & grasp_stable", "grasp_lost", "timeout(20s)", "hardware_failure"} <= labels
+    assert render(graph, "svg")[0] == data  # same task, same bytes: pictures can be diffed
 
 
 def png_image(data: bytes) -> Image.Image:
