@@ -129,8 +129,9 @@ def layout(graph: Graph) -> Layout:
     for edge in graph.edges:
         if edge.source == edge.target:
             loops[edge.source].append(edge)
-    arrows = Counter(end for e in graph.edges if e.source != e.target for end in ((e.source, 0), (e.target, 1)))
-    sizes = {node.id: box_size(node, max(arrows[(node.id, 0)], arrows[(node.id, 1)])) for node in graph.nodes}
+    leaving = Counter(e.source for e in graph.edges if e.source != e.target)
+    entering = Counter(e.target for e in graph.edges if e.source != e.target)
+    sizes = {node.id: box_size(node, max(leaving[node.id], entering[node.id])) for node in graph.nodes}
     states = {node.id: _state_vertex(node, sizes[node.id], loops.get(node.id, [])) for node in graph.nodes}
     transitions = []
     for edge in graph.edges:
