@@ -96,10 +96,10 @@ def png_image(data: bytes) -> Image.Image:
     return image.convert("RGB")
 
 
-def ink_inside(image: Image.Image, box: Box, scale: int) -> int:
-    """Dark pixels (text) inside a box, away from its border."""
-    inner = image.crop((round((box.x + 5) * scale), round((box.y + 5) * scale),
-                        round((box.right - 5) * scale), round((box.bottom - 5) * scale)))
+def ink_inside(image: Image.Image, box: Box) -> int:
+    """Dark pixels (text) inside a box of a PNG drawn at double size, away from the box's border."""
+    inner = image.crop((round((box.x + 5) * 2), round((box.y + 5) * 2),
+                        round((box.right - 5) * 2), round((box.bottom - 5) * 2)))
     return int((np.asarray(inner, dtype=int).sum(axis=2) < 200).sum())
 
 
@@ -114,7 +114,7 @@ def test_png_fallback_is_the_layout_drawn_at_double_size_with_its_text(no_graphv
     for kind in (NodeKind.PRIMITIVE, NodeKind.SUCCESS, NodeKind.FAILURE):
         assert ImageColor.getrgb(PALETTE[kind][0]) in colours  # box fills
     for box in drawing.boxes.values():  # the text is drawn in every box (from the bundled font)
-        assert ink_inside(image, box, 2) > 50 * len(box.node.lines), box.node.id
+        assert ink_inside(image, box) > 50 * len(box.node.lines), box.node.id
 
 
 def test_estd_graph_names_primitives_and_controllers(no_graphviz):
