@@ -8,7 +8,7 @@ import click
 
 from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_USAGE, OutputFile, guard_outputs, main, write_or_exit
 from atd.graph.dot import GraphvizError
-from atd.graph.png import PictureTooBig
+from atd.graph.layout import PictureTooBig
 from atd.graph.render import FORMATS, Renderer, render
 from atd.graph.source import read_graph
 from atd.model.diagnostics import has_errors, render_all
@@ -19,8 +19,8 @@ from atd.model.diagnostics import has_errors, render_all
 @click.option("-o", "--output", required=True, type=OutputFile(),
               help="the picture: OUT.dot (graphviz source), OUT.svg or OUT.png")
 @click.option("--renderer", type=click.Choice([r.value for r in Renderer]), default=Renderer.AUTO.value,
-              show_default=True, help="graphviz ('dot' on PATH) or the built-in layout; auto uses graphviz when "
-              "it is installed")
+              show_default=True, help="graphviz ('dot' on PATH), or builtin: the library layout (grandalf, and resvg "
+              "for PNG); auto uses graphviz when it is installed")
 @click.option("--conditions", is_flag=True, help="ESTD: show each event's concrete conditions and thresholds")
 @click.option("--all-params", is_flag=True, help="ESTD: list every controller parameter, not only the key ones")
 def graph(file: Path, output: Path, renderer: str, conditions: bool, all_params: bool) -> None:
@@ -28,7 +28,8 @@ def graph(file: Path, output: Path, renderer: str, conditions: bool, all_params:
     transition (its events).
 
     Exit status: 0 written, 1 FILE is not a valid ATD or ESTD, 2 usage error (unknown output
-    extension, graphviz asked for but missing, output not writable). Nothing is written on error.
+    extension, graphviz asked for but missing, task or picture too big, output not writable).
+    Nothing is written on error.
     """
     fmt = output.suffix.lower().lstrip(".")
     if fmt not in FORMATS:

@@ -10,7 +10,7 @@ import shutil
 import subprocess
 
 from atd.graph.model import Graph, NodeKind
-from atd.graph.style import PALETTE  # the same colours as the built-in renderer
+from atd.graph.style import PALETTE  # the same colours as the library layout
 
 DOT_TIMEOUT_S = 60
 

@@ -1,8 +1,7 @@
 """What a task drawing shows, whatever draws it: boxes with lines of text, labelled arrows.
 
-An ATD and an ESTD become the same kind of `Graph`, so the DOT writer and the built-in
-layout never need to know which language they are drawing. Labels are plain ASCII-friendly
-text so every renderer, down to the bitmap font of the PNG writer, can show them.
+An ATD and an ESTD become the same kind of `Graph`, so the DOT writer and the library
+layout never need to know which language they are drawing.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Pick the renderer for an output format: graphviz when asked for or present, else the built-in one."""
+"""Pick the renderer for an output format: graphviz when asked for or present, else the library layout."""
 
 from __future__ import annotations
 
@@ -7,23 +7,24 @@ from enum import StrEnum
 from atd.graph.dot import GraphvizError, graphviz_available, render_with_graphviz, to_dot
 from atd.graph.layout import layout
 from atd.graph.model import Graph
-from atd.graph.png import PNG_METRICS, to_png
-from atd.graph.svg import SVG_METRICS, to_svg
+from atd.graph.png import to_png
+from atd.graph.svg import to_svg
 
 FORMATS = ("dot", "svg", "png")
+LIBRARY_LAYOUT = "the library layout (grandalf)"
 
 
 class Renderer(StrEnum):
-    AUTO = "auto"  # graphviz when `dot` is on PATH, else built-in
+    AUTO = "auto"  # graphviz when `dot` is on PATH, else the library layout
     GRAPHVIZ = "graphviz"
-    BUILTIN = "builtin"
+    BUILTIN = "builtin"  # the library layout: grandalf places, resvg rasterises; no program needed
 
 
 def render(graph: Graph, fmt: str, renderer: Renderer = Renderer.AUTO) -> tuple[bytes, str]:
     """The picture's bytes and what drew it (for the user's message).
 
     With AUTO, a `dot` that fails is reported through GraphvizError only when there is no
-    fallback; otherwise the built-in layout draws the picture and the reason is returned.
+    fallback; otherwise the library layout draws the picture and the reason is returned.
     """
     dot_text = to_dot(graph)
     if fmt == "dot":
@@ -34,9 +35,8 @@ def render(graph: Graph, fmt: str, renderer: Renderer = Renderer.AUTO) -> tuple[
         except GraphvizError as exc:
             if renderer is Renderer.GRAPHVIZ:
                 raise
-            fallback = f"the built-in layout ({exc})"
+            fallback = f"{LIBRARY_LAYOUT} ({exc})"
     else:
-        fallback = "the built-in layout"
-    if fmt == "svg":
-        return to_svg(layout(graph, SVG_METRICS)), fallback
-    return to_png(layout(graph, PNG_METRICS)), fallback
+        fallback = LIBRARY_LAYOUT
+    drawing = layout(graph)
+    return (to_svg(drawing) if fmt == "svg" else to_png(drawing)), fallback

@@ -1,4 +1,4 @@
-"""The look shared by every renderer, so a DOT picture and a built-in one read the same way."""
+"""The look shared by every renderer, so a graphviz picture and a library-layout one read the same way."""
 
 from atd.graph.model import NodeKind
 

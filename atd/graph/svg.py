@@ -1,18 +1,15 @@
-"""SVG from the built-in layout, with the standard library only (no graphviz)."""
+"""SVG from the library layout: boxes, curved arrows with their labels, all text in the one font."""
 
 from __future__ import annotations
 
 from xml.sax.saxutils import escape, quoteattr
 
-from atd.graph.geometry import arrowhead, route_pieces
-from atd.graph.layout import Layout, Metrics, Route
+from atd.graph import text
+from atd.graph.layout import LABEL_PAD, MARGIN, PAD_Y, Layout, Route
 from atd.graph.model import NodeKind
 from atd.graph.style import BACKGROUND, EDGE_COLOUR, LABEL_COLOUR, PALETTE, TEXT_COLOUR
 
-FONT_SIZE = 12.0
-# Monospace glyphs are 0.6 em wide in the common fonts (DejaVu Sans Mono, Menlo, Consolas).
-SVG_METRICS = Metrics(char_width=FONT_SIZE * 0.6, line_height=FONT_SIZE * 1.3)
-FONT = "DejaVu Sans Mono, Menlo, Consolas, monospace"
+FONT = f"{text.FAMILY}, Menlo, Consolas, monospace"
 
 
 def _n(value: float) -> str:
@@ -23,36 +20,48 @@ def _text(lines: tuple[str, ...], x: float, top: float, anchor: str, colour: str
     """One <text> per line, baselines a line apart."""
     out = []
     for k, line in enumerate(lines):
-        baseline = top + SVG_METRICS.line_height * (k + 0.78)
         weight = ' font-weight="bold"' if bold_first and k == 0 else ""
-        out.append(f'<text x="{_n(x)}" y="{_n(baseline)}" text-anchor="{anchor}" fill="{colour}"{weight} '
-                   f'xml:space="preserve">{escape(line)}</text>')
+        out.append(f'<text x="{_n(x)}" y="{_n(top + k * text.LINE_HEIGHT + text.ASCENT)}" text-anchor="{anchor}" '
+                   f'fill="{colour}"{weight} xml:space="preserve">{escape(line)}</text>')
     return "".join(out)
 
 
+def _path(route: Route) -> str:
+    """A self-loop is its one cubic; any other arrow is an S-curve from each point to the next,
+    leaving and arriving vertically, so it is straight where the points line up."""
+    (x0, y0), *rest = route.points
+    if route.loop:
+        return f"M{_n(x0)},{_n(y0)} C" + " ".join(f"{_n(x)},{_n(y)}" for x, y in rest)
+    steps = []
+    for (xa, ya), (xb, yb) in zip(route.points, rest):
+        middle = (ya + yb) / 2
+        steps.append(f" C{_n(xa)},{_n(middle)} {_n(xb)},{_n(middle)} {_n(xb)},{_n(yb)}")
+    return f"M{_n(x0)},{_n(y0)}" + "".join(steps)
+
+
 def _route(route: Route) -> str:
-    pieces = route_pieces(route)
-    start = pieces[0][0]
-    path = f"M{_n(start[0])},{_n(start[1])}" + "".join(
-        f" C{_n(c1[0])},{_n(c1[1])} {_n(c2[0])},{_n(c2[1])} {_n(p[0])},{_n(p[1])}" for _, c1, c2, p in pieces)
-    head = " ".join(f"{_n(px)},{_n(py)}" for px, py in arrowhead(pieces[-1]))
+    label = route.label
     return (f'<g class="edge" data-transition={quoteattr(route.edge.id)}>'
             f'<title>{escape(route.edge.id)}</title>'
-            f'<path d="{path}" fill="none" stroke="{EDGE_COLOUR}" stroke-width="1.2"/>'
-            f'<polygon points="{head}" fill="{EDGE_COLOUR}"/>'
-            f'{_text(route.edge.lines, route.label_at[0], route.label_at[1], "start", LABEL_COLOUR)}</g>')
+            f'<path d="{_path(route)}" fill="none" stroke="{EDGE_COLOUR}" stroke-width="1.2" '
+            f'marker-end="url(#arrowhead)"/>'
+            f'<rect x="{_n(label.x)}" y="{_n(label.y)}" width="{_n(label.width)}" height="{_n(label.height)}" '
+            f'rx="3" fill="{BACKGROUND}"/>'
+            f'{_text(route.edge.lines, label.x + LABEL_PAD, label.y + LABEL_PAD, "start", LABEL_COLOUR)}</g>')
 
 
 def to_svg(drawing: Layout) -> bytes:
     parts = [
         '<?xml version="1.0" encoding="UTF-8"?>',
-        f'<svg xmlns="http://www.w3.org/2000/svg" width="{_n(drawing.width)}" height="{_n(drawing.height)}" '
-        f'viewBox="0 0 {_n(drawing.width)} {_n(drawing.height)}" font-family="{FONT}" font-size="{FONT_SIZE:g}">',
+        f'<svg xmlns="http://www.w3.org/2000/svg" width="{drawing.width}" height="{drawing.height}" '
+        f'viewBox="0 0 {drawing.width} {drawing.height}" font-family="{FONT}" font-size="{text.SIZE:g}">',
+        f'<defs><marker id="arrowhead" viewBox="0 0 10 8" refX="10" refY="4" markerWidth="9" markerHeight="7.2" '
+        f'markerUnits="userSpaceOnUse" orient="auto"><path d="M0,0 L10,4 L0,8 z" fill="{EDGE_COLOUR}"/>'
+        '</marker></defs>',
         f'<rect width="100%" height="100%" fill="{BACKGROUND}"/>',
-        _text((drawing.title,), drawing.title_at[0], drawing.title_at[1], "start", TEXT_COLOUR, bold_first=True),
+        _text((drawing.title,), MARGIN, MARGIN, "start", TEXT_COLOUR, bold_first=True),
     ]
-    for route in drawing.routes:
-        parts.append(_route(route))
+    parts += [_route(route) for route in drawing.routes]
     for box in drawing.boxes.values():
         fill, border = PALETTE[box.node.kind]
         width = 2.5 if box.node.initial else 1.2
@@ -62,8 +71,8 @@ def to_svg(drawing: Layout) -> bytes:
         if box.node.kind in (NodeKind.SUCCESS, NodeKind.FAILURE):
             parts.append(f'<rect x="{_n(box.x + 3)}" y="{_n(box.y + 3)}" width="{_n(box.width - 6)}" '
                          f'height="{_n(box.height - 6)}" rx="4" fill="none" stroke="{border}" stroke-width="1"/>')
-        parts.append(_text(box.node.lines, box.x + box.width / 2, box.y + SVG_METRICS.pad_y, "middle",
-                           TEXT_COLOUR, bold_first=True))
+        parts.append(_text(box.node.lines, box.x + box.width / 2, box.y + PAD_Y, "middle", TEXT_COLOUR,
+                           bold_first=True))
         parts.append("</g>")
     parts.append("</svg>")
     return ("\n".join(parts) + "\n").encode()

@@ -2,14 +2,21 @@
 
 from __future__ import annotations
 
+import os
 import shutil
+import subprocess
+import sys
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 from lxml import etree
 
 from atd.cli import main
+from benchmarks.bench_validate import generate
+from atd.graph.source import read_graph
 from tests.conftest import EXAMPLES
+from tests.graph.test_render import SVG, png_image
 
 
 @pytest.fixture(autouse=True)
@@ -28,11 +35,30 @@ def test_draws_an_atd_in_every_format(tmp_path):
         assert result.exit_code == 0, result.output
         assert f"wrote {out} (10 states, 26 transitions;" in result.output
         assert out.stat().st_size > 1000
-    assert "the built-in layout" in result.output
+    assert "the library layout (grandalf)" in result.output
     assert (tmp_path / "pick.dot").read_text().startswith("digraph task {")
     etree.parse(str(tmp_path / "pick.svg"))
     assert (tmp_path / "pick.png").read_bytes().startswith(b"\x89PNG")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["pick.dot", "pick.png", "pick.svg"]  # no temp files
+
+
+def test_an_estd_is_drawn_without_graphviz_with_every_state_and_event_shown(tmp_path):
+    estd = tmp_path / "pp.estd.xml"
+    assert atd("translate", str(EXAMPLES / "pick_and_place.xml"), "-r", "melfa", "-o", str(estd), "-q").exit_code == 0
+    result = atd("graph", str(estd), "-o", str(tmp_path / "pp.svg"), "--conditions")
+    assert result.exit_code == 0, result.output
+    graph, _ = read_graph(estd, conditions=True)
+    shown = [t.text for t in etree.parse(str(tmp_path / "pp.svg")).iter(f"{SVG}text")]
+    assert set(shown) >= {line for item in graph.nodes + graph.edges for line in item.lines}
+    (tmp_path / "bin").mkdir()  # a PATH with no programs on it: no graphviz, for certain
+    done = subprocess.run([sys.executable, "-m", "atd", "graph", str(estd), "-o", str(tmp_path / "pp.png")],
+                          env={**os.environ, "PATH": str(tmp_path / "bin")}, capture_output=True, text=True,
+                          timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert "(10 states, 26 transitions; the library layout (grandalf))" in done.stdout
+    image = np.asarray(png_image((tmp_path / "pp.png").read_bytes()))
+    assert image.shape[0] > 1000 and image.shape[1] > 1000
+    assert (image.sum(axis=2) < 200).sum() > 20_000  # text and lines, not a blank page
 
 
 def test_draws_a_translated_estd_with_its_subtask(tmp_path):
@@ -99,3 +125,13 @@ def test_graphviz_asked_for_but_missing_is_a_usage_error(tmp_path):
     assert result.exit_code == 2
     assert "graphviz is not installed" in result.output and "--renderer builtin" in result.output
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_task_too_big_for_the_library_layout_is_refused_with_what_to_do(tmp_path):
+    task = tmp_path / "huge.xml"
+    task.write_bytes(generate(301, 900))
+    result = atd("graph", str(task), "-o", str(tmp_path / "huge.svg"))
+    assert result.exit_code == 2
+    assert f"error: {task}: 301 states and 900 transitions are more than the library layout draws" in result.output
+    assert "install graphviz, or write .dot" in result.output
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["huge.xml"]

@@ -1,17 +1,17 @@
-"""The built-in layout: what a reader of the picture relies on, checked on geometry."""
+"""The library layout: what a reader of the picture relies on, checked on geometry."""
 
 from __future__ import annotations
 
+import pytest
 from hypothesis import given, settings
 
-from atd.graph.layout import Box, Layout, Metrics, find_back_edges, layout, longest_path_layers
-from atd.graph.model import Graph, from_task
-from atd.graph.svg import SVG_METRICS
+from atd.graph.layout import MAX_ELEMENTS, Layout, PictureTooBig, Rect, layout
+from atd.graph.model import Edge, Graph, Node, NodeKind, from_task
+from atd.graph.text import text_size
 from atd.model import load_task
 from tests.conftest import EXAMPLES
 from tests.model.strategies import tasks
 
-Rect = tuple[float, float, float, float]  # x0, y0, x1, y1
 EPS = 1e-6
 
 
@@ -22,38 +22,33 @@ def example_graph(name: str) -> Graph:
 
 
 def overlap(a: Rect, b: Rect) -> bool:
-    return a[0] < b[2] - EPS and b[0] < a[2] - EPS and a[1] < b[3] - EPS and b[1] < a[3] - EPS
-
-
-def rect(box: Box) -> Rect:
-    return (box.x, box.y, box.right, box.bottom)
-
-
-def label_rects(drawing: Layout, metrics: Metrics) -> list[Rect]:
-    out = []
-    for route in drawing.routes:
-        width, height = metrics.text_size(route.edge.lines)
-        out.append((route.label_at[0], route.label_at[1], route.label_at[0] + width, route.label_at[1] + height))
-    return out
+    return a.x < b.right - EPS and b.x < a.right - EPS and a.y < b.bottom - EPS and b.y < a.bottom - EPS
 
 
 def inside(point: tuple[float, float], r: Rect) -> bool:
-    return r[0] + EPS < point[0] < r[2] - EPS and r[1] + EPS < point[1] < r[3] - EPS
+    return r.x + EPS < point[0] < r.right - EPS and r.y + EPS < point[1] < r.bottom - EPS
 
 
-def on_border(point: tuple[float, float], box: Box) -> bool:
+def on_border(point: tuple[float, float], box: Rect) -> bool:
     x, y = point
     return box.x - EPS <= x <= box.right + EPS and (abs(y - box.y) < EPS or abs(y - box.bottom) < EPS)
 
 
-def assert_readable(graph: Graph, metrics: Metrics = SVG_METRICS) -> Layout:
-    """No two boxes overlap, no label covers a box or another label, arrows run between boxes and
-    start and end on the boxes they connect."""
-    drawing = layout(graph, metrics)
+def assert_readable(graph: Graph) -> Layout:
+    """Every state has a box big enough for its text and every transition an arrow with a label
+    big enough for its text; no two boxes overlap, no label covers a box or another label; arrows
+    start and end on the boxes they connect and pass through no box on the way."""
+    drawing = layout(graph)
     assert set(drawing.boxes) == {n.id for n in graph.nodes}
-    assert len(drawing.routes) == len(graph.edges)
-    boxes = [rect(b) for b in drawing.boxes.values()]
-    labels = label_rects(drawing, metrics)
+    assert sorted(r.edge.id for r in drawing.routes) == sorted(e.id for e in graph.edges)
+    boxes = list(drawing.boxes.values())
+    for box in boxes:
+        width, height = text_size(box.node.lines)
+        assert box.width > width and box.height > height
+    labels = [r.label for r in drawing.routes]
+    for route in drawing.routes:
+        width, height = text_size(route.edge.lines)
+        assert route.label.width > width and route.label.height > height
     for i, a in enumerate(boxes):
         assert not any(overlap(a, b) for b in boxes[i + 1:]), "boxes overlap"
         assert not any(overlap(a, label) for label in labels), "a label covers a box"
@@ -66,10 +61,12 @@ def assert_readable(graph: Graph, metrics: Metrics = SVG_METRICS) -> Layout:
             continue
         assert on_border(route.points[0], drawing.boxes[route.edge.source])
         assert on_border(route.points[-1], drawing.boxes[route.edge.target])
-        middle = list(route.points[1:-1])
-        middle += [((a[0] + b[0]) / 2, (a[1] + b[1]) / 2) for a, b in zip(middle, middle[1:]) if a[0] == b[0]]
-        assert not any(inside(p, r) for p in middle for r in boxes), f"arrow {route.edge.id} runs through a box"
-    assert all(r[2] <= drawing.width + EPS and r[3] <= drawing.height + EPS for r in boxes + labels)
+        between = route.points[1:-1]
+        assert not any(inside(p, b) for p in between for b in boxes), f"arrow {route.edge.id} runs through a box"
+        ys = [p[1] for p in route.points]
+        assert ys == sorted(ys) or ys == sorted(ys, reverse=True), f"arrow {route.edge.id} turns back"
+    assert all(r.x >= 0 and r.y >= 0 and r.right <= drawing.width and r.bottom <= drawing.height
+               for r in boxes + labels)
     return drawing
 
 
@@ -81,16 +78,23 @@ def test_pick_and_place_reads_top_to_bottom():
     assert drawing.boxes["failed"].y == drawing.boxes["done"].y  # the longest path sets both end states
 
 
-def test_retry_loops_are_back_edges_drawn_upwards():
+def test_the_arrows_into_the_failure_state_stay_apart():
+    drawing = layout(example_graph("pick_and_place.xml"))
+    ends = sorted(r.points[-1][0] for r in drawing.routes if r.edge.target == "failed")
+    assert len(ends) == 18
+    assert min(b - a for a, b in zip(ends, ends[1:])) >= 9.0
+
+
+def test_retry_loops_run_upwards_into_their_target():
     graph = example_graph("retry_grasp.xml")
-    back = {graph.edges[i].id for i in find_back_edges(graph, "approach")}
-    assert back == {"grasp->approach", "lift->approach"}
-    layers = longest_path_layers(graph, find_back_edges(graph, "approach"))
-    assert layers["approach"] == 0 and layers["lift"] == 3
     drawing = assert_readable(graph)
-    retry = next(r for r in drawing.routes if r.edge.id == "lift->approach")
-    assert retry.points[0][1] > retry.points[-1][1]  # leaves lift's top, arrives at approach's bottom
-    assert retry.points[-1][1] == drawing.boxes["approach"].bottom
+    for retry in ("grasp->approach", "lift->approach"):
+        route = next(r for r in drawing.routes if r.edge.id == retry)
+        source, target = drawing.boxes[route.edge.source], drawing.boxes["approach"]
+        assert route.points[0][1] == source.y  # leaves the top of its source
+        assert route.points[-1][1] == target.bottom  # arrives at the bottom of approach
+    lift = next(r for r in drawing.routes if r.edge.id == "lift->approach")
+    assert drawing.boxes["approach"].bottom < lift.label.y < drawing.boxes["lift"].y
 
 
 def test_self_loop_sits_beside_its_state():
@@ -98,10 +102,27 @@ def test_self_loop_sits_beside_its_state():
     loop = next(r for r in drawing.routes if r.loop)
     box = drawing.boxes["pick_one"]
     assert loop.edge.id == "pick_one->pick_one"
-    assert loop.label_at[0] > box.right and box.y <= loop.label_at[1] <= box.bottom
+    assert loop.label.x > box.right and box.y <= loop.label.y <= box.bottom
 
 
-@settings(max_examples=60, deadline=None)
+def test_parallel_transitions_and_unconnected_states_each_get_their_own_place():
+    a, b, c = (Node(name, (name,), NodeKind.PRIMITIVE, name == "a") for name in "abc")
+    graph = Graph("t", [a, b, c], [Edge("a", "b", ("success",), "a->b"), Edge("a", "b", ("error",), "a->b#2"),
+                                    Edge("b", "b", ("timeout(1s)",), "b->b"), Edge("b", "b", ("error",), "b->b#2")])
+    drawing = assert_readable(graph)
+    assert drawing.boxes["c"].x > drawing.boxes["b"].right  # a part of its own, beside the rest
+    loops = [r for r in drawing.routes if r.loop]
+    assert max(p[0] for p in loops[1].points) > max(p[0] for p in loops[0].points)  # nested, not on top
+
+
+def test_a_task_too_big_to_lay_out_is_refused_before_trying():
+    nodes = [Node(f"s{k}", (f"s{k}",), NodeKind.PRIMITIVE, k == 0) for k in range(MAX_ELEMENTS // 2 + 1)]
+    edges = [Edge(f"s{k}", f"s{k + 1}", ("success",), f"e{k}") for k in range(len(nodes) - 1)]
+    with pytest.raises(PictureTooBig, match=r"601 states and 600 transitions .* install graphviz, or write \.dot"):
+        layout(Graph("big", nodes, edges))
+
+
+@settings(max_examples=40, deadline=None)
 @given(tasks())
 def test_any_valid_task_is_drawn_readably(task):
     assert_readable(from_task(task, "generated.xml"))

@@ -1,27 +1,29 @@
-"""DOT, SVG and PNG of real tasks, and the choice between graphviz and the built-in renderer."""
+"""DOT, SVG and PNG of real tasks, and the choice between graphviz and the library layout."""
 
 from __future__ import annotations
 
+import io
 import re
 import shutil
 import stat
 import sys
-import struct
-import zlib
 
+import numpy as np
 import pytest
 from lxml import etree
 
+from PIL import Image, ImageColor
+
+from atd.graph import png
 from atd.graph.dot import GraphvizError, to_dot
-from atd.graph.font import GLYPH_HEIGHT, GLYPH_WIDTH, glyph
+from atd.graph.layout import Box, PictureTooBig, layout
 from atd.graph.model import Node, NodeKind, from_estd
-from atd.graph.raster import colour
 from atd.graph.render import Renderer, render
 from atd.graph.style import PALETTE
 from atd.model import load_task
 from factories.registry import create
 from tests.conftest import EXAMPLES
-from tests.graph.test_layout import example_graph, overlap
+from tests.graph.test_layout import example_graph
 from translator import translate
 
 SVG = "{http://www.w3.org/2000/svg}"
@@ -72,53 +74,47 @@ def test_dot_quotes_awkward_names():
 def test_svg_fallback_is_wellformed_with_a_box_per_state_and_an_arrow_per_transition(no_graphviz):
     graph = example_graph("pick_and_place.xml")
     data, drawn_by = render(graph, "svg")
-    assert drawn_by == "the built-in layout"
+    assert drawn_by == "the library layout (grandalf)"
     root = etree.fromstring(data)
     assert root.tag == f"{SVG}svg"
     states = root.findall(f"{SVG}g[@class='state']")
     assert [g.get("data-state") for g in states] == [n.id for n in graph.nodes]
-    rects = []
-    for g in states:
-        r = g.find(f"{SVG}rect")
-        x, y, w, h = (float(r.get(k)) for k in ("x", "y", "width", "height"))
-        rects.append((x, y, x + w, y + h))
-        assert g.find(f"{SVG}text").text == g.get("data-state")  # the name is the first line
-    assert not any(overlap(a, b) for i, a in enumerate(rects) for b in rects[i + 1:])
+    for g, node in zip(states, graph.nodes):
+        assert [t.text for t in g.findall(f"{SVG}text")] == list(node.lines)  # the name first, then the details
     edges = root.findall(f"{SVG}g[@class='edge']")
     assert sorted(g.get("data-transition") for g in edges) == sorted(e.id for e in graph.edges)
     for g in edges:
-        assert g.find(f"{SVG}path") is not None and len(g.find(f"{SVG}polygon").get("points").split()) == 3
+        assert g.find(f"{SVG}path").get("marker-end") == "url(#arrowhead)"  # every arrow has its head
     labels = {t.text for g in edges for t in g.findall(f"{SVG}text")}
     assert {"success", "success & grasp_stable", "grasp_lost", "timeout(20s)", "hardware_failure"} <= labels
+    assert render(graph, "svg")[0] == data  # same task, same bytes: pictures can be diffed
 
 
-def read_png(data: bytes) -> tuple[int, int, list[bytes]]:
-    """Width, height and the raw RGB rows of a PNG as our writer makes it (filter 0, one IDAT)."""
-    assert data[:8] == b"\x89PNG\r\n\x1a\n"
-    chunks, at = {}, 8
-    while at < len(data):
-        (length,), kind = struct.unpack(">I", data[at:at + 4]), data[at + 4:at + 8]
-        body = data[at + 8:at + 8 + length]
-        assert struct.unpack(">I", data[at + 8 + length:at + 12 + length])[0] == zlib.crc32(kind + body)
-        chunks[kind] = body
-        at += 12 + length
-    width, height, depth, kind, *_ = struct.unpack(">IIBBBBB", chunks[b"IHDR"])
-    assert (depth, kind) == (8, 2) and b"IEND" in chunks
-    raw = zlib.decompress(chunks[b"IDAT"])
-    stride = 1 + 3 * width
-    assert len(raw) == height * stride
-    return width, height, [raw[y * stride + 1:(y + 1) * stride] for y in range(height)]
+def png_image(data: bytes) -> Image.Image:
+    image = Image.open(io.BytesIO(data))
+    image.load()  # decodes every pixel: a truncated or corrupt PNG fails here
+    return image.convert("RGB")
 
 
-def test_png_fallback_is_a_real_picture(no_graphviz):
-    data, drawn_by = render(example_graph("pick_and_place.xml"), "png")
-    assert drawn_by == "the built-in layout"
-    width, height, rows = read_png(data)
-    assert width > 300 and height > 600
-    pixels = {bytes(row[i:i + 3]) for row in rows for i in range(0, len(row), 3)}
+def ink_inside(image: Image.Image, box: Box) -> int:
+    """Dark pixels (text) inside a box of a PNG drawn at double size, away from the box's border."""
+    inner = image.crop((round((box.x + 5) * 2), round((box.y + 5) * 2),
+                        round((box.right - 5) * 2), round((box.bottom - 5) * 2)))
+    return int((np.asarray(inner, dtype=int).sum(axis=2) < 200).sum())
+
+
+def test_png_fallback_is_the_layout_drawn_at_double_size_with_its_text(no_graphviz):
+    graph = example_graph("retry_grasp.xml")
+    data, drawn_by = render(graph, "png")
+    assert drawn_by == "the library layout (grandalf)"
+    drawing = layout(graph)
+    image = png_image(data)
+    assert image.size == (2 * drawing.width, 2 * drawing.height)
+    colours = {c for _, c in image.getcolors(maxcolors=1 << 20)}
     for kind in (NodeKind.PRIMITIVE, NodeKind.SUCCESS, NodeKind.FAILURE):
-        fill, border = PALETTE[kind]
-        assert colour(fill) in pixels and colour(border) in pixels
+        assert ImageColor.getrgb(PALETTE[kind][0]) in colours  # box fills
+    for box in drawing.boxes.values():  # the text is drawn in every box (from the bundled font)
+        assert ink_inside(image, box) > 50 * len(box.node.lines), box.node.id
 
 
 def test_estd_graph_names_primitives_and_controllers(no_graphviz):
@@ -162,24 +158,11 @@ def test_graphviz_asked_for_but_missing(no_graphviz):
         render(example_graph("retry_grasp.xml"), "svg", Renderer.GRAPHVIZ)
 
 
-def test_the_font_has_every_printable_ascii_character():
-    unknown = glyph("\u2603")
-    for code in range(33, 127):
-        pixels = glyph(chr(code))
-        assert pixels and pixels != unknown, chr(code)
-        assert all(0 <= c < GLYPH_WIDTH and 0 <= r < GLYPH_HEIGHT for c, r in pixels), chr(code)
-    assert glyph(" ") == ()
-    assert len({glyph(chr(c)) for c in range(33, 127)}) == 94  # no two characters look the same
-
-
 def test_big_pictures_shrink_then_are_refused(monkeypatch, no_graphviz):
-    from atd.graph import png
-
     graph = example_graph("retry_grasp.xml")
-    full = read_png(render(graph, "png")[0])
+    full = png_image(render(graph, "png")[0]).size
     monkeypatch.setattr(png, "MAX_PIXELS", full[0] * full[1] // 2)  # room for 1x but not 2x
-    half = read_png(render(graph, "png")[0])
-    assert (half[0], half[1]) == (full[0] // 2, full[1] // 2)
+    assert png_image(render(graph, "png")[0]).size == (full[0] // 2, full[1] // 2)
     monkeypatch.setattr(png, "MAX_PIXELS", 1000)
-    with pytest.raises(png.PictureTooBig, match=r"too big for a PNG; draw it as \.svg"):
+    with pytest.raises(PictureTooBig, match=r"too big for a PNG; draw it as \.svg"):
         render(graph, "png")
