@@ -98,8 +98,8 @@ def run_example(path: Path, hook: Hook | None = None, robot: str = "melfa",
     return outcome, executor, sim
 
 
-def simulated(robot: str, arm: str | None = None, scene: Scene | None = None) -> SimRobot:
-    return make_robot(load_description(robot, arm), scene)
+def simulated(robot: str, arm: str | None = None, scene: Scene | None = None, engine: str = "mujoco") -> SimRobot:
+    return make_robot(load_description(robot, arm), scene, engine)
 
 
 def events(executor: Executor) -> list[dict]:
