@@ -327,6 +327,12 @@ _HAND_CONTROLLERS = (
             "grasp_force": _p(NUM, "fingertip force after force adaptation (ours)", 5.0, unit="N"),
             "contact_threshold": _p(NUM, "pad force counted as finger contact (ours)", 0.3, unit="N"),
             "finger_lost_correction": _p(FLAG, "reopen and shift when a finger misses (thesis 3.3.1)", True),
+            "finger_lost_shift": _p(NUM, "shift towards the fingers that touched, per finger-lost correction (ours; "
+                                    "D5 moves 5 cm, the Barrett's distance between fingers)", 0.015, unit="m"),
+            "object_lost_step": _p(NUM, "step along the approach when no finger touched (D5's security reflex: "
+                                   "'a little bit down')", 0.01, unit="m"),
+            "search_step": _p(NUM, "step across the pinch line when two pinching fingers touched nothing: one "
+                              "side, then the other (ours)", 0.025, unit="m"),
         },
     ),
     ControllerSpec(

@@ -12,7 +12,7 @@ pads:
 - no finger touches, but some touched something on the way and others did not (the
   object pushed aside by the first finger to meet it): as for a finger lost, towards those;
 - no finger touches (object lost): where two fingers pinch, the object lies off the line
-  they close along, so search across it, one side then the other (SEARCH_STEP); other
+  they close along, so search across it, one side then the other (`search_step`); other
   hands take D5's security reflex: reopen, move a little further along the approach,
   close again;
 - the pads never settle at GRASP_FORCE within SETTLE_LIMIT: an error naming the pads
@@ -48,15 +48,6 @@ ADAPT_GAIN = 0.05  # effort (fraction of the limit) per N of missing pad force, 
 HELD = 0.9  # the weakest grasping pad within 10 % of GRASP_FORCE: the object is held
 STALL_TIME = 0.3  # s a finger may stand still before it counts as stopped
 REACHED = 0.02  # of a DOF's range
-FINGER_LOST_SHIFT = 0.015  # m towards the fingers that touched, per correction
-OBJECT_LOST_STEP = 0.01  # m further along the approach, per retry (D5: "a little bit down")
-# m across the pinch line, per search step: two closing fingertips sweep a narrow strip, and
-# the seeds' approach error leaves the object up to 5 cm off it; stepping down instead found
-# nothing, the hand already on the table (Barrett, MuJoCo, the preset's approach error,
-# trials 0-2 of each object: 21 of 24 failures closed on nothing again and again). Made at
-# the surface: rising clear of the object and approaching again from above took so long
-# that the grasp timed out after one step (6 of those 30 lifted, against 10 this way).
-SEARCH_STEP = 0.025
 # s the pad forces are averaged over before the hold is judged: a pad on a tilted object
 # can swing by +-3 N from one 5 ms tick to the next about a steady mean (PyBullet,
 # grasp_and_lift seed 22), and force adaptation, an integrator, settles the mean only.
@@ -219,6 +210,9 @@ class RobustGraspHand(FingerGrasp):
         self.base = {pad.name: np.array(pad.base) for pad in ctx.info.hand.pads}
         self.grasp_force = float(self.params["grasp_force"])
         self.correct = bool(self.params["finger_lost_correction"])
+        self.finger_lost_shift = float(self.params["finger_lost_shift"])
+        self.object_lost_step = float(self.params["object_lost_step"])
+        self.search_step = float(self.params["search_step"])
 
     def start(self, readings: Readings) -> None:
         super().start(readings)
@@ -288,20 +282,26 @@ class RobustGraspHand(FingerGrasp):
             self._fail(what)
         elif touching:  # finger lost: shift towards the fingers that touched
             toward = np.mean([self.base[f] for f in touching], axis=0) - np.mean([self.base[f] for f in lost], axis=0)
-            self._try_again(np.array([*toward / np.linalg.norm(toward), 0.0]) * FINGER_LOST_SHIFT, what)
+            self._try_again(np.array([*toward / np.linalg.norm(toward), 0.0]) * self.finger_lost_shift, what)
         else:
             self._try_again(self._search_step(), what)
 
     def _search_step(self) -> np.ndarray:
         """Where to look next when the fingers closed on nothing (hand frame): across the
-        pinch line, SEARCH_STEP to one side, then as far to the other, then back to the
-        middle a little lower; without a pinch line, D5's step along the approach."""
+        pinch line, `search_step` to one side, then as far to the other, then back to the
+        middle a little lower. Two closing fingertips sweep a narrow strip, and the seeds'
+        approach error leaves the object up to 5 cm off it; D5's step down found nothing,
+        the hand already on the table (Barrett, MuJoCo, the preset's approach error, trials
+        0-2 of each object: 21 of 24 failures closed on nothing again and again). The steps
+        are made at the surface: rising clear of the object and approaching again from above
+        took so long that the grasp timed out after one step (6 of those 30 lifted, against
+        10 this way)."""
         if len(self.fingers) != 2:
-            return np.array([0.0, 0.0, OBJECT_LOST_STEP])
+            return np.array([0.0, 0.0, self.object_lost_step])
         line = self.base[self.fingers[1]] - self.base[self.fingers[0]]
         across = np.array([-line[1], line[0], 0.0]) / np.linalg.norm(line)
-        steps = [SEARCH_STEP * across, -2.0 * SEARCH_STEP * across,
-                 SEARCH_STEP * across + np.array([0.0, 0.0, OBJECT_LOST_STEP])]
+        step = self.search_step * across
+        steps = [step, -2.0 * step, step + np.array([0.0, 0.0, self.object_lost_step])]
         self.searches += 1
         return steps[min(self.searches - 1, len(steps) - 1)]
 
