@@ -59,7 +59,8 @@ FELT_TIME = SETTLE_TIME
 # pinching a box at 150 N did at 14.3 s (MuJoCo), where reopening, backing off and a second
 # hold took it to 22.5 s, past the 20 s the examples give a grasp.
 SETTLE_LIMIT = 4.0
-RETRIES = 3  # corrections of any kind, per grasp
+RETRIES = 5  # corrections of any kind, per grasp
+SEARCH_POINTS = 4  # points searched across the pinch line, about where the hand first closed
 PINCHED = 2.0  # times the grasp force on every grasping pad: the fingers have closed on the object
 
 
@@ -288,22 +289,22 @@ class RobustGraspHand(FingerGrasp):
 
     def _search_step(self) -> np.ndarray:
         """Where to look next when the fingers closed on nothing (hand frame): across the
-        pinch line, `search_step` to one side, then as far to the other, then back to the
-        middle a little lower. Two closing fingertips sweep a narrow strip, and the seeds'
+        pinch line, `search_step` to one side of where the hand first closed, then as far to
+        the other, then twice as far each way (SEARCH_POINTS), then D5's step along the
+        approach. Two closing fingertips sweep a narrow strip, and the seeds'
         approach error leaves the object up to 5 cm off it; D5's step down found nothing,
         the hand already on the table (Barrett, MuJoCo, the preset's approach error, trials
         0-2 of each object: 21 of 24 failures closed on nothing again and again). The steps
         are made at the surface: rising clear of the object and approaching again from above
         took so long that the grasp timed out after one step (6 of those 30 lifted, against
         10 this way)."""
-        if len(self.fingers) != 2:
+        if len(self.fingers) != 2 or self.searches >= SEARCH_POINTS:
             return np.array([0.0, 0.0, self.object_lost_step])
         line = self.base[self.fingers[1]] - self.base[self.fingers[0]]
         across = np.array([-line[1], line[0], 0.0]) / np.linalg.norm(line)
-        step = self.search_step * across
-        steps = [step, -2.0 * step, step + np.array([0.0, 0.0, self.object_lost_step])]
         self.searches += 1
-        return steps[min(self.searches - 1, len(steps) - 1)]
+        offset = lambda k: (-1) ** (k + 1) * ((k + 1) // 2) * self.search_step  # +1, -1, +2, -2 steps
+        return (offset(self.searches) - offset(self.searches - 1)) * across
 
     def _try_again(self, shift: np.ndarray, what: str) -> None:
         """A failed attempt: reopen, have the arm make `shift` (hand frame), close again.
