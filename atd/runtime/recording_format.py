@@ -94,11 +94,10 @@ def encode(message: dict[str, Any]) -> bytes:
     return orjson.dumps(message, option=orjson.OPT_SERIALIZE_NUMPY)
 
 
-def _pose(matrix: list[float]) -> dict[str, Any]:
-    """A 4x4 pose, row by row, as a position and a unit quaternion in the field names Foxglove reads."""
-    rotation = np.reshape(matrix, (4, 4))[:3, :3]
-    w, x, y, z = (round(q, DECIMALS) for q in matrix_to_quat(rotation))
-    return {"position": _xyz(matrix[3], matrix[7], matrix[11]), "orientation": {"x": x, "y": y, "z": z, "w": w}}
+def _pose(matrix: np.ndarray) -> dict[str, Any]:
+    """A 4x4 pose as a position and a unit quaternion, in the field names Foxglove reads."""
+    w, x, y, z = (round(q, DECIMALS) for q in matrix_to_quat(matrix[:3, :3]))
+    return {"position": _xyz(*matrix[:3, 3].tolist()), "orientation": {"x": x, "y": y, "z": z, "w": w}}
 
 
 def _xyz(x: float, y: float, z: float) -> dict[str, float]:
@@ -128,7 +127,7 @@ def messages(layout: Layout, block: np.ndarray, samples: list[Sample],
         "twist", "joint_velocity", "hand_values")}
     taxels = {name: rounded[:, f[f"taxels {name}"]].reshape(len(block), *shape).tolist()
               for name, shape in layout.taxel_pads}
-    poses = {name: block[:, f[name]].tolist() for name in ("tcp", "true_tcp", "object")}
+    poses = {name: block[:, f[name]].reshape(len(block), -1, 4) for name in ("tcp", "true_tcp", "object")}
     pad_names = [name for name, _ in layout.pads]
     pending = iter(traces)
     trace = next(pending, None)
