@@ -86,8 +86,7 @@ class Recording:
             parts.append(self.robot.object_pose().ravel())
         np.concatenate(parts, out=self.block[len(self.samples)])
         pads, points, forces = self.robot.true_pad_contacts()
-        contacts = np.column_stack((pads, points, forces)).tobytes() if len(pads) else b""
-        self.samples.append((self.state, self.modes_sent, contacts))
+        self.samples.append((self.state, self.modes_sent, (pads.tolist(), points.tolist(), forces.tolist())))
         if len(self.samples) == BLOCK:
             self._send()
 

@@ -110,10 +110,17 @@ def _vector(values: list[float]) -> list[float] | None:
 
 
 #: What the control loop sends besides a row: the state's (path, ATD state), the hand
-#: modes commanded (None before the first command), and the true pad contacts as the bytes
-#: of a (k, 4) float array (pad index, x and y in the pad's frame, normal force). Plain
-#: tuples: pickled to the writer, they cost a fraction of what a dataclass would.
-Sample = tuple[tuple[str, str], "list[str] | None", bytes]
+#: modes commanded (None before the first command), and the true pad contacts (each one's
+#: pad index, point in the pad's frame, normal force). Plain tuples and lists: pickled to
+#: the writer, they cost a fraction of what arrays or a dataclass would.
+Sample = tuple[tuple[str, str], "list[str] | None", tuple[list[int], list[list[float]], list[float]]]
+
+
+def _contacts(pad_names: list[str], pads: list[int], points: list[list[float]], forces: list[float]) -> list[dict[str, Any]]:
+    if not pads:
+        return []
+    xy, force = np.round(points, DECIMALS).tolist(), np.round(forces, DECIMALS).tolist()
+    return [{"pad": pad_names[k], "x": x, "y": y, "force": f} for k, (x, y), f in zip(pads, xy, force)]
 
 
 def messages(layout: Layout, block: np.ndarray, samples: list[Sample],
@@ -151,7 +158,6 @@ def messages(layout: Layout, block: np.ndarray, samples: list[Sample],
         yield "/truth", ns, {
             "object": _pose(poses["object"][i]) if layout.has_object else None,
             "tcp": _pose(poses["true_tcp"][i]),
-            "pad_contacts": [{"pad": pad_names[int(k)], "x": x, "y": y, "force": force}
-                             for k, x, y, force in np.frombuffer(contacts).reshape(-1, 4).round(DECIMALS).tolist()]}
+            "pad_contacts": _contacts(pad_names, *contacts)}
     for _, record in ([trace] if trace else []) + list(pending):
         yield "/task/trace", int(round(record["t"] * 1e9)), record
