@@ -88,11 +88,21 @@ def test_a_recording_must_be_named_mcap_and_a_bad_rate_is_refused(tmp_path: Path
         assert not list(tmp_path.iterdir())
 
 
-def test_a_run_that_raises_leaves_no_recording_and_no_writer_process(tmp_path: Path) -> None:
+def _simple_move(record: Path | None) -> Run:
     task, _ = load_task(REPO / "examples" / "simple_move.xml")
     factory = create("melfa")
-    path = tmp_path / "run.mcap"
-    run = Run(translate(task, factory).estd, factory, record=path, record_rate=None)
+    return Run(translate(task, factory).estd, factory, record=record, record_rate=None)
+
+
+def test_recording_every_tick_leaves_the_run_as_it_was(tmp_path: Path) -> None:
+    bare, recorded = _simple_move(None), _simple_move(tmp_path / "run.mcap")
+    assert bare.execute().summary == recorded.execute().summary
+    assert bare.trace.records == recorded.trace.records
+    assert (tmp_path / "run.mcap").stat().st_size > 0
+
+
+def test_a_run_that_raises_leaves_no_recording_and_no_writer_process(tmp_path: Path) -> None:
+    run = _simple_move(tmp_path / "run.mcap")
     steps = 0
     step = run.robot.step
 
