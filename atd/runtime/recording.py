@@ -51,9 +51,6 @@ class Recording:
         self.state: tuple[str, str] = ("", "")
         self.hand_modes: tuple | None = None
         self.modes_sent: list[str] | None = None
-        self.taxel_pads = [name for name, _ in self.layout.taxel_pads]
-        self.no_arm, self.no_hand = np.full(self.layout.arm, np.nan), np.full(self.layout.hand, np.nan)
-        self.no_twist, self.no_range = np.full(6, np.nan), np.full(1, np.nan)
         self.writer = RecordingWriter(path)
         self.writer.send(("start", self.layout, {"arm_joints": " ".join(robot.info.arm_joints),
                                                  "hand_dofs": " ".join(hand.dofs), "wrench_frame": "hand"},
@@ -65,26 +62,16 @@ class Recording:
         if sim_time + 1e-9 < self.next:
             return
         self.next = sim_time + self.period
-        r = self.robot.read()
         command = self.executor.command
-        twist = joint_velocity = hand_values = None
-        if command is not None:
-            twist, joint_velocity, hand_values = command.twist, command.joint_velocity, command.hand_values
-            if command.hand_modes != self.hand_modes:
-                self.hand_modes = command.hand_modes
-                self.modes_sent = [str(m) for m in command.hand_modes]
+        if command is not None and command.hand_modes != self.hand_modes:
+            self.hand_modes = command.hand_modes
+            self.modes_sent = [str(m) for m in command.hand_modes]
         visit = self.executor.machine.innermost().visit
         if visit is not self.visit:
             self.visit, self.state = visit, (visit.path, visit.atd)
-        parts = [(sim_time,), r.arm_q, r.arm_dq, r.arm_effort, r.hand_q, r.hand_dq, r.hand_effort, r.tcp.ravel(),
-                 r.wrench, r.pad_force, *(r.taxels[name].ravel() for name in self.taxel_pads),
-                 self.no_range if r.range is None else (r.range,),
-                 self.no_twist if twist is None else twist,
-                 self.no_arm if joint_velocity is None else joint_velocity,
-                 self.no_hand if hand_values is None else hand_values, self.robot.true_tcp().ravel()]
-        if self.layout.has_object:
-            parts.append(self.robot.object_pose().ravel())
-        np.concatenate(parts, out=self.block[len(self.samples)])
+        row = self.layout.row(sim_time, self.robot.read(), command, self.robot.true_tcp(),
+                              self.robot.object_pose() if self.layout.has_object else None)
+        np.concatenate(row, out=self.block[len(self.samples)])
         pads, points, forces = self.robot.true_pad_contacts()
         self.samples.append((self.state, self.modes_sent, (pads.tolist(), points.tolist(), forces.tolist())))
         if len(self.samples) == BLOCK:

@@ -16,13 +16,18 @@ from typing import Any, Iterator
 import numpy as np
 import orjson
 
+from atd.runtime.arbitrator import RobotCommand
 from atd.sim.models import matrix_to_quat
+from primitives.robot import Readings
 
 PROFILE = "atd"
 RECORDING_FORMAT = 1  # the channels and fields below; a reader refuses another
 DEFAULT_RATE = 100.0  # Hz of simulated time
 DECIMALS = 6  # as the trace: micro-units (um, uN, urad) are finer than any sensor here tells apart,
 # and a short number costs JSON about half of what a full-precision one does
+
+JOINTS = ("arm_q", "arm_dq", "arm_effort", "hand_q", "hand_dq", "hand_effort")  # fields of /sensors
+COMMANDED = ("twist", "joint_velocity", "hand_values")  # vectors of /commands
 
 _NUMBERS = {"type": "array", "items": {"type": "number"}}
 _MAYBE_NUMBERS = {"type": ["array", "null"], "items": {"type": "number"}}
@@ -33,7 +38,7 @@ _PAD = {"type": "object", "properties": {"force": {"type": "number"},
                                          "taxels": {"type": ["array", "null"], "items": _NUMBERS}}}
 SCHEMAS: dict[str, dict[str, Any]] = {
     "atd.Sensors": {"type": "object", "properties": {
-        **{k: _NUMBERS for k in ("arm_q", "arm_dq", "arm_effort", "hand_q", "hand_dq", "hand_effort")},
+        **{k: _NUMBERS for k in JOINTS},
         "tcp": _POSE,
         "wrench": {"type": "object", "properties": {"force": _VECTOR3, "torque": _VECTOR3}},
         "pads": {"type": "object", "additionalProperties": _PAD},
@@ -84,6 +89,27 @@ class Layout:
     def taxel_pads(self) -> list[tuple[str, tuple[int, int]]]:
         return [(name, shape) for name, shape in self.pads if shape is not None]
 
+    def row(self, t: float, r: Readings, command: RobotCommand | None, true_tcp: np.ndarray,
+            object_pose: np.ndarray | None) -> list[np.ndarray | tuple[float]]:
+        """The pieces of one sample's row, in the order of `fields` (NaN for what is None)."""
+        twist, joint_velocity, hand_values = (None, None, None) if command is None else (
+            command.twist, command.joint_velocity, command.hand_values)
+        missing = self._missing
+        parts = [(t,), r.arm_q, r.arm_dq, r.arm_effort, r.hand_q, r.hand_dq, r.hand_effort, r.tcp.ravel(), r.wrench,
+                 r.pad_force, *(r.taxels[name].ravel() for name, _ in self.taxel_pads),
+                 missing["range"] if r.range is None else (r.range,),
+                 missing["twist"] if twist is None else twist,
+                 missing["joint_velocity"] if joint_velocity is None else joint_velocity,
+                 missing["hand_values"] if hand_values is None else hand_values, true_tcp.ravel()]
+        if object_pose is not None:
+            parts.append(object_pose.ravel())
+        return parts
+
+    @cached_property
+    def _missing(self) -> dict[str, np.ndarray]:
+        return {name: np.full(self.fields[name].stop - self.fields[name].start, np.nan)
+                for name in ("range", "twist", "joint_velocity", "hand_values")}
+
     @property
     def width(self) -> int:
         return self.fields["object"].stop
@@ -116,7 +142,8 @@ def _vector(values: list[float]) -> list[float] | None:
 Sample = tuple[tuple[str, str], "list[str] | None", tuple[list[int], list[list[float]], list[float]]]
 
 
-def _contacts(pad_names: list[str], pads: list[int], points: list[list[float]], forces: list[float]) -> list[dict[str, Any]]:
+def _contacts(pad_names: list[str], pads: list[int], points: list[list[float]],
+              forces: list[float]) -> list[dict[str, Any]]:
     if not pads:
         return []
     xy, force = np.round(points, DECIMALS).tolist(), np.round(forces, DECIMALS).tolist()
@@ -129,9 +156,7 @@ def messages(layout: Layout, block: np.ndarray, samples: list[Sample],
     row whose index it comes with (an index past the last row: after them)."""
     rounded = block.round(DECIMALS)
     f = layout.fields
-    column = {name: rounded[:, f[name]].tolist() for name in (
-        "arm_q", "arm_dq", "arm_effort", "hand_q", "hand_dq", "hand_effort", "wrench", "pad_force",
-        "twist", "joint_velocity", "hand_values")}
+    column = {name: rounded[:, f[name]].tolist() for name in (*JOINTS, "wrench", "pad_force", *COMMANDED)}
     taxels = {name: rounded[:, f[f"taxels {name}"]].reshape(len(block), *shape).tolist()
               for name, shape in layout.taxel_pads}
     poses = {name: block[:, f[name]].reshape(len(block), -1, 4) for name in ("tcp", "true_tcp", "object")}
@@ -146,14 +171,13 @@ def messages(layout: Layout, block: np.ndarray, samples: list[Sample],
         ns = int(round(t * 1e9))
         force, torque = column["wrench"][i][:3], column["wrench"][i][3:]
         yield "/sensors", ns, {
-            **{name: column[name][i] for name in ("arm_q", "arm_dq", "arm_effort", "hand_q", "hand_dq", "hand_effort")},
+            **{name: column[name][i] for name in JOINTS},
             "tcp": _pose(poses["tcp"][i]), "wrench": {"force": _xyz(*force), "torque": _xyz(*torque)},
             "pads": {name: {"force": pad_force, "taxels": taxels[name][i] if name in taxels else None}
                      for name, pad_force in zip(pad_names, column["pad_force"][i])},
             "range": distance if math.isfinite(distance) else None}
         if hand_modes is not None:
-            yield "/commands", ns, {name: _vector(column[name][i]) for name in ("twist", "joint_velocity", "hand_values")} | {
-                "hand_modes": hand_modes}
+            yield "/commands", ns, {**{name: _vector(column[name][i]) for name in COMMANDED}, "hand_modes": hand_modes}
         yield "/task/state", ns, {"path": state[0], "atd": state[1]}
         yield "/truth", ns, {
             "object": _pose(poses["object"][i]) if layout.has_object else None,
