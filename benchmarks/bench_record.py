@@ -49,9 +49,8 @@ def main() -> int:
         Run(estd, factory).execute()  # warm up
         for _ in range(args.repeat):
             for record, times, cpu in ((None, bare, bare_cpu), (path, recorded, recorded_cpu)):
-                run = Run(estd, factory, record=record, record_rate=args.rate)
                 started, cpu_started, writer_started = time.perf_counter(), time.process_time(), _children_cpu()
-                outcome = run.execute()
+                outcome = Run(estd, factory, record=record, record_rate=args.rate).execute()  # with forking the writer
                 times.append(time.perf_counter() - started)
                 cpu.append(time.process_time() - cpu_started)
                 if record:

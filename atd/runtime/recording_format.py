@@ -120,14 +120,15 @@ def encode(message: dict[str, Any]) -> bytes:
     return orjson.dumps(message, option=orjson.OPT_SERIALIZE_NUMPY)
 
 
-def _pose(matrix: np.ndarray) -> dict[str, Any]:
-    """A 4x4 pose as a position and a unit quaternion, in the field names Foxglove reads."""
+def _pose(matrix: np.ndarray, rounded: list[float]) -> dict[str, Any]:
+    """A 4x4 pose (and the same, rounded, row by row) as a position and a unit quaternion,
+    in the field names Foxglove reads."""
     w, x, y, z = (round(q, DECIMALS) for q in matrix_to_quat(matrix[:3, :3]))
-    return {"position": _xyz(*matrix[:3, 3].tolist()), "orientation": {"x": x, "y": y, "z": z, "w": w}}
+    return {"position": _xyz(rounded[3], rounded[7], rounded[11]), "orientation": {"x": x, "y": y, "z": z, "w": w}}
 
 
 def _xyz(x: float, y: float, z: float) -> dict[str, float]:
-    return {"x": round(x, DECIMALS), "y": round(y, DECIMALS), "z": round(z, DECIMALS)}
+    return {"x": x, "y": y, "z": z}
 
 
 def _vector(values: list[float]) -> list[float] | None:
@@ -156,7 +157,8 @@ def messages(layout: Layout, block: np.ndarray, samples: list[Sample],
     row whose index it comes with (an index past the last row: after them)."""
     rounded = block.round(DECIMALS)
     f = layout.fields
-    column = {name: rounded[:, f[name]].tolist() for name in (*JOINTS, "wrench", "pad_force", *COMMANDED)}
+    column = {name: rounded[:, f[name]].tolist()
+              for name in (*JOINTS, "wrench", "pad_force", *COMMANDED, "tcp", "true_tcp", "object")}
     taxels = {name: rounded[:, f[f"taxels {name}"]].reshape(len(block), *shape).tolist()
               for name, shape in layout.taxel_pads}
     poses = {name: block[:, f[name]].reshape(len(block), -1, 4) for name in ("tcp", "true_tcp", "object")}
@@ -172,7 +174,7 @@ def messages(layout: Layout, block: np.ndarray, samples: list[Sample],
         force, torque = column["wrench"][i][:3], column["wrench"][i][3:]
         yield "/sensors", ns, {
             **{name: column[name][i] for name in JOINTS},
-            "tcp": _pose(poses["tcp"][i]), "wrench": {"force": _xyz(*force), "torque": _xyz(*torque)},
+            "tcp": _pose(poses["tcp"][i], column["tcp"][i]), "wrench": {"force": _xyz(*force), "torque": _xyz(*torque)},
             "pads": {name: {"force": pad_force, "taxels": taxels[name][i] if name in taxels else None}
                      for name, pad_force in zip(pad_names, column["pad_force"][i])},
             "range": distance if math.isfinite(distance) else None}
@@ -180,8 +182,8 @@ def messages(layout: Layout, block: np.ndarray, samples: list[Sample],
             yield "/commands", ns, {**{name: _vector(column[name][i]) for name in COMMANDED}, "hand_modes": hand_modes}
         yield "/task/state", ns, {"path": state[0], "atd": state[1]}
         yield "/truth", ns, {
-            "object": _pose(poses["object"][i]) if layout.has_object else None,
-            "tcp": _pose(poses["true_tcp"][i]),
+            "object": _pose(poses["object"][i], column["object"][i]) if layout.has_object else None,
+            "tcp": _pose(poses["true_tcp"][i], column["true_tcp"][i]),
             "pad_contacts": _contacts(pad_names, *contacts)}
     for _, record in ([trace] if trace else []) + list(pending):
         yield "/task/trace", int(round(record["t"] * 1e9)), record
