@@ -12,6 +12,7 @@ import pytest
 from mcap.reader import make_reader
 
 from atd.model import load_task
+from atd.model.files import OutputError
 from atd.runtime.session import Run
 from factories.registry import create
 from tests.conftest import REPO
@@ -120,3 +121,12 @@ def test_a_run_that_raises_leaves_no_recording_and_no_writer_process(tmp_path: P
     assert not list(tmp_path.iterdir()), "no recording, whole or partial"
     with pytest.raises(ChildProcessError):
         os.waitpid(writer, os.WNOHANG)  # already ended and reaped
+
+
+def test_a_recording_that_cannot_be_written_says_why(tmp_path: Path) -> None:
+    folder = tmp_path / "gone"
+    folder.mkdir()
+    run = _simple_move(folder / "run.mcap")
+    folder.rmdir()  # after the run started, as when a disk is unmounted
+    with pytest.raises(OutputError, match=r"cannot write .*run.mcap: the folder .*gone does not exist"):
+        run.execute()
