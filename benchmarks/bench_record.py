@@ -8,9 +8,10 @@ it: on a shared machine the wall-time ratio depends on whether that core is free
 
     python benchmarks/bench_record.py [--repeat 5] [--rate 100]
 
-Times on a shared machine move with its load; instructions do not. `--once setup|bare|recorded`
-does only that once (the task translated; and one run without or with recording), for
-counting instructions under valgrind, each process (the run's, the writer's) in its file:
+Times on a shared machine move with its load; instructions do not. `--once
+setup|built|bare|recorded` does only that once (the task translated; the run built, not
+run; one run without or with recording), for counting instructions under valgrind, each
+process (the run's, the writer's) in its own file:
 
     valgrind --tool=cachegrind --cache-sim=no --cachegrind-out-file=cg.%p \
         python benchmarks/bench_record.py --once recorded
@@ -46,14 +47,17 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--repeat", type=int, default=5, help="runs of each; the medians count")
     parser.add_argument("--rate", type=float, default=100.0, help="recording rate, Hz of simulated time")
-    parser.add_argument("--once", choices=("setup", "bare", "recorded"), help="do only this, once (for valgrind)")
+    parser.add_argument("--once", choices=("setup", "built", "bare", "recorded"),
+                        help="do only this, once (for valgrind)")
     args = parser.parse_args()
     task, _ = load_task(TASK)
     factory = create("melfa")
     estd = translate(task, factory).estd
     if args.once:
         with tempfile.TemporaryDirectory() as folder:
-            if args.once != "setup":
+            if args.once == "built":
+                Run(estd, factory).robot.close()
+            elif args.once != "setup":
                 record = Path(folder) / "run.mcap" if args.once == "recorded" else None
                 Run(estd, factory, record=record, record_rate=args.rate).execute()
         return 0
