@@ -27,7 +27,7 @@ from atd.sim.simrobot import SimRobot
 
 __all__ = ["DEFAULT_RATE", "RECORDING_FORMAT", "Recording"]
 
-BLOCK = 25  # samples per block sent: about 50 KB, under what a pipe holds, so sending rarely waits
+BLOCK = 25  # samples per block sent: about 50 KB
 
 
 class Recording:

@@ -12,6 +12,7 @@ into it is ever finalised there.
 
 from __future__ import annotations
 
+import fcntl
 import gc
 import io
 import json
@@ -27,6 +28,7 @@ from atd.model.files import OutputError, write_output
 from atd.runtime.recording_format import CHANNELS, PROFILE, SCHEMAS, Layout, encode, messages
 
 WRITTEN = "written"  # the writer's answer when the file is
+PIPE_SIZE = 1 << 20  # bytes: about 20 blocks, 5 s of a run recorded at 100 Hz (Linux's default limit)
 
 
 class RecordingWriter:
@@ -35,6 +37,7 @@ class RecordingWriter:
 
     def __init__(self, path: Path) -> None:
         feed_out, feed_in = os.pipe()
+        _widen(feed_in)
         answer_out, answer_in = os.pipe()
         signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})  # none may land before the child ignores it
         pid = os.fork()
@@ -89,6 +92,15 @@ class RecordingWriter:
                 feed.close()
             except BrokenPipeError:
                 pass  # what was still buffered is lost with the writer; `finish` says so
+
+
+def _widen(pipe: int) -> None:
+    """Let the pipe hold seconds of samples, not one block: on a busy machine the writer is
+    not always scheduled when a block comes, and the control loop should not wait for it."""
+    try:
+        fcntl.fcntl(pipe, fcntl.F_SETPIPE_SZ, PIPE_SIZE)
+    except (AttributeError, OSError):
+        pass  # not Linux, or a lower limit set for this system: the pipe keeps its own size
 
 
 def _serve(path: Path, feed: BinaryIO, answer: int) -> NoReturn:
