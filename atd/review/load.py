@@ -16,7 +16,7 @@ from mcap.reader import make_reader
 from atd.model.estd import Estd
 from atd.model.estd_xml import parse_estd
 from atd.model.files import InputError, read_capped
-from atd.runtime.recording import RECORDING_FORMAT
+from atd.runtime.recording_format import RECORDING_FORMAT
 
 RECORDING_CAP = 2 << 30  # bytes: hours of a run at 100 Hz
 

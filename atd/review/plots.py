@@ -69,7 +69,9 @@ def signals(recording: Recording) -> str:
             axis.plot(t, values, linewidth=1, label=name)
         axis.set_ylabel(label, fontsize=8)
         if lines:
-            axis.legend(fontsize=7, loc="upper right", ncol=min(len(lines), 7))
+            # Beside the panel, not on it: inside, a legend hid the lines that ran under it
+            # (the SDH2's swivel DOF, for one).
+            axis.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.005, 1.0), borderaxespad=0)
     axes[-1].plot(truth_t, height, color="black", linewidth=1.2)
     axes[-1].set_ylabel("object z (m)\nground truth", fontsize=8)
     axes[-1].set_xlabel("simulated time (s)")

@@ -182,4 +182,6 @@ class Run:
                 self.notes.append(self.video.write())
             return outcome
         finally:
+            if self.recorder:
+                self.recorder.abandon()
             self.robot.close()

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -10,7 +11,12 @@ from pathlib import Path
 import pytest
 from mcap.reader import make_reader
 
+from atd.model import load_task
+from atd.model.files import OutputError
+from atd.runtime.session import Run
+from factories.registry import create
 from tests.conftest import REPO
+from translator import translate
 
 TOPICS = {"/sensors", "/commands", "/task/state", "/task/trace", "/truth"}
 
@@ -81,3 +87,46 @@ def test_a_recording_must_be_named_mcap_and_a_bad_rate_is_refused(tmp_path: Path
                                  "--robot", "melfa", "-q", *args], capture_output=True, text=True, timeout=120)
         assert result.returncode == 2 and words in result.stderr
         assert not list(tmp_path.iterdir())
+
+
+def _simple_move(record: Path | None) -> Run:
+    task, _ = load_task(REPO / "examples" / "simple_move.xml")
+    factory = create("melfa")
+    return Run(translate(task, factory).estd, factory, record=record, record_rate=None)
+
+
+def test_recording_every_tick_leaves_the_run_as_it_was(tmp_path: Path) -> None:
+    bare, recorded = _simple_move(None), _simple_move(tmp_path / "run.mcap")
+    assert bare.execute().summary == recorded.execute().summary
+    assert bare.trace.records == recorded.trace.records
+    assert (tmp_path / "run.mcap").stat().st_size > 0
+
+
+def test_a_run_that_raises_leaves_no_recording_and_no_writer_process(tmp_path: Path) -> None:
+    run = _simple_move(tmp_path / "run.mcap")
+    steps = 0
+    step = run.robot.step
+
+    def failing_step() -> None:
+        nonlocal steps
+        steps += 1
+        if steps == 200:  # after several blocks of samples went to the writer
+            raise RuntimeError("the engine failed")
+        step()
+
+    run.robot.step = failing_step
+    writer = run.recorder.writer.pid
+    with pytest.raises(RuntimeError, match="the engine failed"):
+        run.execute()
+    assert not list(tmp_path.iterdir()), "no recording, whole or partial"
+    with pytest.raises(ChildProcessError):
+        os.waitpid(writer, os.WNOHANG)  # already ended and reaped
+
+
+def test_a_recording_that_cannot_be_written_says_why(tmp_path: Path) -> None:
+    folder = tmp_path / "gone"
+    folder.mkdir()
+    run = _simple_move(folder / "run.mcap")
+    folder.rmdir()  # after the run started, as when a disk is unmounted
+    with pytest.raises(OutputError, match=r"cannot write .*run.mcap: the folder .*gone does not exist"):
+        run.execute()

@@ -1,4 +1,4 @@
-"""`atd report` and `atd compare` on real recordings from both engines."""
+"""`atd report` and `atd compare` on real recordings from both engines and every robot."""
 
 from __future__ import annotations
 
@@ -6,35 +6,67 @@ import re
 import subprocess
 import sys
 from pathlib import Path
+from typing import NamedTuple
 
 import pytest
 from lxml import etree, html
 
+from atd.review.load import load
 from tests.conftest import REPO
+
+
+class Recorded(NamedTuple):
+    task: str
+    robot: str
+    arm: str
+    engine: str
+    end: str  # the success state the run reaches
+    pads: set[str]  # the hand's tactile pads, each plotted
+
+
+_PICK, _LIFT = "pick_and_place", "grasp_and_lift"  # grasp_and_lift: the shorter task, for the costlier robots
+RUNS = {
+    "melfa_mj": Recorded(_PICK, "melfa", "main", "mujoco", "done", {"tactile_left", "tactile_right"}),
+    "melfa_pb": Recorded(_PICK, "melfa", "main", "pybullet", "done", {"tactile_left", "tactile_right"}),
+    "baxter_mj": Recorded(_PICK, "baxter", "right", "mujoco", "done", {"gripper_left", "gripper_right"}),
+    "barrett_mj": Recorded(_LIFT, "tombatossals", "right", "mujoco", "success_end",
+                           {"tactile_f1", "tactile_f2", "tactile_f3", "tactile_palm"}),
+    "sdh2_pb": Recorded(_LIFT, "tombatossals", "left", "pybullet", "success_end",
+                        {"tactile_f1", "tactile_f2", "tactile_f3"}),
+    "panda_mj": Recorded(_LIFT, "panda", "main", "mujoco", "success_end", {"tactile_left", "tactile_right"}),
+    "panda_pb": Recorded(_LIFT, "panda", "main", "pybullet", "success_end", {"tactile_left", "tactile_right"}),
+}
 
 
 def _atd(*args: str, cwd: Path) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "atd", *args], cwd=cwd, capture_output=True, text=True, timeout=300)
 
 
-@pytest.fixture(scope="module")
-def recordings(tmp_path_factory) -> dict[str, Path]:
-    """The Melfa's pick-and-place recorded in MuJoCo and PyBullet, and Baxter's in MuJoCo."""
-    folder = tmp_path_factory.mktemp("recordings")
-    found = {}
-    for name, robot, engine in (("melfa_mj", "melfa", "mujoco"), ("melfa_pb", "melfa", "pybullet"),
-                                ("baxter_mj", "baxter", "mujoco")):
-        path = folder / f"{name}.mcap"
-        result = _atd("run", str(REPO / "examples" / "pick_and_place.xml"), "--robot", robot, "--engine", engine,
-                      "-q", "--record", str(path), "--rate", "50", cwd=folder)
+class _Recordings(dict):
+    """Each run of RUNS recorded (at 50 Hz) the first time a test asks for it."""
+
+    def __init__(self, folder: Path) -> None:
+        super().__init__()
+        self.folder = folder
+
+    def __missing__(self, name: str) -> Path:
+        run = RUNS[name]
+        path = self.folder / f"{name}.mcap"
+        result = _atd("run", str(REPO / "examples" / f"{run.task}.xml"), "--robot", run.robot, "--arm", run.arm,
+                      "--engine", run.engine, "-q", "--record", str(path), "--rate", "50", cwd=self.folder)
         assert result.returncode == 0, result.stderr
-        found[name] = path
-    return found
+        self[name] = path
+        return path
 
 
-@pytest.mark.parametrize("name", ["melfa_mj", "melfa_pb", "baxter_mj"])
+@pytest.fixture(scope="module")
+def recordings(tmp_path_factory) -> _Recordings:
+    return _Recordings(tmp_path_factory.mktemp("recordings"))
+
+
+@pytest.mark.parametrize("name", list(RUNS))
 def test_the_report_is_one_offline_page_with_the_graph_every_plot_and_the_events(recordings, name, tmp_path) -> None:
-    page = tmp_path / "report.html"
+    run, page = RUNS[name], tmp_path / "report.html"
     result = _atd("report", str(recordings[name]), "-o", str(page), cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     text = page.read_text()
@@ -48,20 +80,27 @@ def test_the_report_is_one_offline_page_with_the_graph_every_plot_and_the_events
         assert node.xpath(".//*[local-name()='svg']"), f"{figure} holds an SVG"
     graph = etree.tostring(tree.xpath("//figure[@id='graph']")[0], encoding="unicode")
     assert "visited 1x" in graph and "grasp" in graph
-    assert "succeeded: reached &#39;done&#39;" in text or "succeeded: reached 'done'" in text
-    events = tree.xpath("//table[@id='events']//tr")
-    assert len(events) > 8 and "grasp_stable" in etree.tostring(events[0].getparent(), encoding="unicode")
+    assert f"succeeded: reached &#39;{run.end}&#39;" in text or f"succeeded: reached '{run.end}'" in text
+    signals = etree.tostring(tree.xpath("//figure[@id='signals']")[0], encoding="unicode")
+    assert {pad for pad in run.pads if pad in signals} == run.pads, "a pad-force line for each of the hand's pads"
+    events = tree.xpath("//table[@id='events']//tr")[1:]
+    fired = [r for r in load(recordings[name]).trace if r["type"] == "event"]
+    assert len(events) == len(fired) and any("grasp_stable" in r.text_content() for r in events)
 
 
-def test_compare_aligns_two_engines_state_by_state(recordings, tmp_path) -> None:
+@pytest.mark.parametrize("a, b", [("melfa_mj", "melfa_pb"), ("panda_mj", "panda_pb"), ("barrett_mj", "sdh2_pb")])
+def test_compare_aligns_two_runs_state_by_state(recordings, a, b, tmp_path) -> None:
     plot = tmp_path / "diff.svg"
-    result = _atd("compare", str(recordings["melfa_mj"]), str(recordings["melfa_pb"]), "--plot", str(plot),
-                  cwd=tmp_path)
+    result = _atd("compare", str(recordings[a]), str(recordings[b]), "--plot", str(plot), cwd=tmp_path)
     assert result.returncode == 0, result.stderr
-    rows = {line.split()[0]: line for line in result.stdout.splitlines() if line and line.split()[0] in (
-        "approach", "descend", "grasp", "lift", "carry", "put_down", "let_go", "retreat")}
-    assert len(rows) == 8
-    assert "(A 15" in rows["carry"], "A's pad force while carrying is the 15 N grasp force"
+    states = [r["state"] for r in load(recordings[a]).trace if r["type"] == "enter"]
+    rows = {line.split()[0]: line for line in result.stdout.splitlines() if line and line.split()[0] in states}
+    assert set(rows) == set(states), "a row for every state both runs entered"
+    holding = "carry" if RUNS[a].task == _PICK else "lift_object"
+    (pad_force_a,) = re.findall(r"\(A ([-\d.e+]+)\)", rows[holding])[:1]
+    assert float(pad_force_a) > 1.0, "while the object is held, A's mean pad force is the grip's"
+    if a == "melfa_mj":
+        assert "(A 15" in rows["carry"], "A's pad force while carrying is the 15 N grasp force"
     assert etree.fromstring(plot.read_bytes()).tag.endswith("svg")
 
 

@@ -1,0 +1,165 @@
+"""The process that writes a recording: it takes sample rows from the control loop through
+a pipe, turns them into JSON messages and MCAP records on the other core, and writes the
+file whole when told the run ended. If the feed ends without that word (the run raised,
+was stopped with Ctrl-C, or its engine crashed) it writes nothing, so a recording, like
+every other output, is either complete or absent.
+
+It is forked, not spawned: it starts in milliseconds with every module loaded. It touches
+no engine (it only encodes numbers and writes bytes), so forking beside a live engine is
+safe; it freezes what it inherited from the garbage collector, so no engine object copied
+into it is ever finalised there.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import gc
+import io
+import json
+import os
+import pickle
+import signal
+from pathlib import Path
+from typing import Any, BinaryIO, NoReturn
+
+from mcap.writer import CompressionType, Writer
+
+from atd.model.files import OutputError, write_output
+from atd.runtime.recording_format import CHANNELS, PROFILE, SCHEMAS, Layout, encode, messages
+
+WRITTEN = "written"  # the writer's answer when the file is
+PIPE_SIZE = 1 << 20  # bytes: about 20 blocks, 5 s of a run recorded at 100 Hz (Linux's default limit)
+
+
+class RecordingWriter:
+    """The control loop's end of the writer process: `send` feeds it, `finish` has it write
+    the file, `abandon` has it end without writing."""
+
+    def __init__(self, path: Path) -> None:
+        feed_out, feed_in = os.pipe()
+        _widen(feed_in)
+        answer_out, answer_in = os.pipe()
+        signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})  # none may land before the child ignores it
+        pid = os.fork()
+        if pid == 0:
+            os.close(feed_in)
+            os.close(answer_out)
+            signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C stops the run, which tells this process
+            signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+            _serve(path, os.fdopen(feed_out, "rb"), answer_in)
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
+        os.close(feed_out)
+        os.close(answer_in)
+        self.path, self.answer = path, answer_out
+        self.pid: int | None = pid
+        self.feed: BinaryIO | None = os.fdopen(feed_in, "wb")
+
+    def send(self, item: tuple) -> None:
+        """Pass `item` on; a writer that has already ended is heard of at `finish`."""
+        if self.feed is None:
+            return
+        try:
+            pickle.dump(item, self.feed, protocol=pickle.HIGHEST_PROTOCOL)
+        except BrokenPipeError:
+            self._close_feed()
+
+    def finish(self, outcome: dict[str, str]) -> None:
+        """Have the file written; OutputError when it could not be."""
+        self.send(("end", outcome))
+        self._close_feed()
+        with os.fdopen(self.answer, "rb") as answer:
+            said = answer.read().decode()
+        self._reap()
+        if said != WRITTEN:
+            raise OutputError(said or f"cannot write {self.path}: the recording's writer process ended early")
+
+    def abandon(self) -> None:
+        """End the writer without a file (the run did not end); after `finish`, nothing."""
+        if self.pid is None:
+            return
+        self._close_feed()
+        os.close(self.answer)
+        self._reap()
+
+    def _reap(self) -> None:
+        os.waitpid(self.pid, 0)
+        self.pid = None
+
+    def _close_feed(self) -> None:
+        if self.feed is not None:
+            feed, self.feed = self.feed, None
+            try:
+                feed.close()
+            except BrokenPipeError:
+                pass  # what was still buffered is lost with the writer; `finish` says so
+
+
+def _widen(pipe: int) -> None:
+    """Let the pipe hold seconds of samples, not one block: on a busy machine the writer is
+    not always scheduled when a block comes, and the control loop should not wait for it."""
+    try:
+        fcntl.fcntl(pipe, fcntl.F_SETPIPE_SZ, PIPE_SIZE)
+    except (AttributeError, OSError):
+        pass  # not Linux, or a lower limit set for this system: the pipe keeps its own size
+
+
+def _serve(path: Path, feed: BinaryIO, answer: int) -> NoReturn:
+    """The writer process: read the feed to its end, write the file if the run ended, and
+    answer what went wrong (WRITTEN when nothing did). It never returns into the caller's code."""
+    try:
+        gc.freeze()
+        try:
+            problem = _write(path, feed)
+        except OutputError as exc:
+            problem = str(exc)
+        except Exception as exc:  # noqa: BLE001 - whatever it is, the run's process must hear of it
+            problem = f"cannot write {path}: the recording's writer failed ({type(exc).__name__}: {exc})"
+        if problem is not None:
+            os.write(answer, (problem or WRITTEN).encode())
+    finally:
+        os._exit(0)
+
+
+def _write(path: Path, feed: BinaryIO) -> str | None:
+    """The feed's messages, into `path` when it ends with the word "end" (then ""); None
+    when it ends without it."""
+    buffer = io.BytesIO()
+    writer = Writer(buffer, compression=CompressionType.ZSTD)
+    writer.start(profile=PROFILE, library="atd")
+    channels: dict[str, int] = {}
+    layout: Layout | None = None
+    sequence = 0
+    while True:
+        try:
+            item: tuple[Any, ...] = pickle.load(feed)
+        except (EOFError, pickle.UnpicklingError):
+            return None
+        if item[0] == "start":
+            _, layout, meta, info, attachments = item
+            channels = _start(writer, meta, info, attachments)
+        elif item[0] == "rows":
+            assert layout is not None, "the feed starts with the layout"
+            for topic, ns, message in messages(layout, *item[1:]):
+                sequence += 1
+                writer.add_message(channels[topic], ns, encode(message), ns, sequence)
+        else:
+            writer.add_metadata("atd.outcome", item[1])
+            writer.finish()
+            write_output(path, buffer.getvalue())
+            return ""
+
+
+def _start(writer: Writer, meta: dict[str, str], info: dict[str, str], attachments: dict[str, bytes]) -> dict[str, int]:
+    """Schemas, channels (each with `ground_truth`, /sensors with `meta`), the run's metadata
+    and attachments; the channel id of each topic."""
+    schema_ids = {name: writer.register_schema(name, "jsonschema", json.dumps(schema).encode())
+                  for name, schema in SCHEMAS.items()}
+    channels = {}
+    for topic, schema, truth in CHANNELS:
+        metadata = {"ground_truth": "true" if truth else "false", **(meta if topic == "/sensors" else {})}
+        channels[topic] = writer.register_channel(topic, "json", schema_ids[schema], metadata)
+    for name, data in info.items():
+        writer.add_metadata(name, {"value": data})
+    for name, data in attachments.items():
+        writer.add_attachment(0, 0, name, "application/xml", data)
+    return channels
