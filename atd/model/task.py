@@ -9,9 +9,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
-import numpy as np
 from atd.model.frozen import Frozen
 from pydantic import Field
 
@@ -23,6 +22,9 @@ from atd.model.vocabulary import (
     ObjectClass,
     StateType,
 )
+
+if TYPE_CHECKING:
+    import numpy as np
 
 Vec3 = tuple[float, float, float]
 
@@ -62,11 +64,12 @@ class Pose(AtdElement):
 
     @classmethod
     def from_position(cls, xyz: Vec3) -> Pose:
-        m = np.eye(4)
-        m[:3, 3] = xyz
-        return cls(matrix=tuple(float(v) for v in m.ravel()))
+        x, y, z = (float(v) for v in xyz)
+        return cls(matrix=(1.0, 0.0, 0.0, x, 0.0, 1.0, 0.0, y, 0.0, 0.0, 1.0, z, 0.0, 0.0, 0.0, 1.0))
 
     def as_array(self) -> np.ndarray:
+        import numpy as np  # here, not at the top: reading and checking tasks needs no numpy (start-up time)
+
         return np.asarray(self.matrix, dtype=float).reshape(4, 4)
 
     @property
