@@ -17,6 +17,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 
 from atd.campaign.perturbation import PERTURBATIONS
 from atd.campaign.record import DIMENSIONS
+from atd.model import ranges
 from atd.model.diagnostics import Diagnostic, did_you_mean, error
 from atd.model.files import InputError, read_capped
 from atd.model.task import Location
@@ -67,7 +68,7 @@ class Perturbation(_Strict):
 class CampaignSpec(_Strict):
     name: str = Field(min_length=1, pattern=r"^[A-Za-z0-9_.-]+$")
     base_seed: int = Field(0, ge=0, lt=2**63)
-    trials: int = Field(10, ge=1, le=100_000, description="trials per cell")
+    trials: int = Field(10, ge=ranges.TRIALS.low, le=ranges.TRIALS.high, description="trials per cell")
     budget: float = Field(120.0, gt=0, le=3600, description="simulated seconds before the watchdog stops a trial")
     tasks: tuple[Union[str, TaskEntry], ...] = Field(min_length=1)
     robots: tuple[Union[str, RobotEntry], ...] = Field(min_length=1)

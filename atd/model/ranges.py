@@ -70,3 +70,5 @@ BY_UNIT = {"m/s": SPEED, "N": FORCE, "N m": TORQUE, "m": DISTANCE, "s": DURATION
 BUDGET = Range(0.0, 86_400.0, "s", low_open=True)
 SEED = Range(0, 2**32 - 1)  # numpy's seed range
 RECORD_RATE = Range(0.0, 10_000.0, "Hz", low_open=True)  # of simulated time; a tick is 200-1000 Hz
+WORKERS = Range(1, 512)  # campaign worker processes, each holding an engine: more only exhausts memory
+TRIALS = Range(1, 100_000)  # per cell, in a campaign spec or --trials
