@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from atd.cli.app import EXIT_INVALID, OutputFile, main, usage_error, write_or_exit
+from atd.cli.app import EXIT_INVALID, OutputFile, guard_outputs, main, usage_error, write_or_exit
 from atd.review.compare import compare, render_text
 from atd.review.load import Recording, RecordingError, load
 from atd.review.page import report_page
@@ -29,8 +29,10 @@ def report(recording: Path, output: Path | None) -> None:
     """One self-contained HTML page for a recorded run (atd run --record): the task graph
     with the path taken, a timeline, the signals with the events marked, and the readings
     that fired each event. Works offline: nothing is fetched from anywhere."""
+    if output is None:  # RUN.html beside the recording, which may be the recording itself
+        output = recording.with_suffix(".html")
+        guard_outputs({"the default -o": output}, [recording])
     run = _load(recording)
-    output = output or recording.with_suffix(".html")
     write_or_exit(output, report_page(run).encode())
     click.echo(f"wrote {output}")
 
