@@ -33,6 +33,15 @@ class Range:
             return f"{value:g} is outside {self}"
         return None
 
+    def first_problem(self, values: tuple[float, ...]) -> str | None:
+        """`problem` of the first value refused; None when all are allowed. Tried whole first
+        (a task holds hundreds of thousands of numbers, nearly all in range)."""
+        if values and all(map(math.isfinite, values)):
+            lowest = min(values)
+            if self.low <= lowest and max(values) <= self.high and not (self.low_open and lowest == self.low):
+                return None
+        return next(filter(None, map(self.problem, values)), None)
+
 
 def _number(value: float) -> str:
     return str(int(value)) if float(value).is_integer() else f"{value:g}"

@@ -154,7 +154,7 @@ class TaskReader:
             self._error("ATD105", f"{what} needs {count} number{'s' * (count != 1)}, found {len(values)}", node,
                         _count_hint(what, count))
             return None
-        problem = next(filter(None, map(allowed.problem, values)), None)
+        problem = allowed.first_problem(values)
         if problem:
             self._error("ATD108", f"{what}: {problem}", node, f"give {what} in {allowed}")
             return None
@@ -288,30 +288,29 @@ class TaskReader:
 
     def state(self, node: etree._Element) -> Fields | None:
         self._check_attributes(node, ("name", "type", "file"))
-        name = node.get("name")
+        name, word, file = node.get("name"), node.get("type"), node.get("file")
         if not name:
             self._error("ATD102", "<state> has no name", node, 'add name="..." (unique within the task)')
         kind = None
-        if node.get("type") is None:
+        if word is None:
             self._error("ATD102", f"state '{name}' has no type", node,
                         f"add type=\"...\", one of: {', '.join(t.value for t in StateType)}")
         else:
-            kind = self._enum(node, StateType, "state type", text=node.get("type"))
-        if kind is StateType.TASK and not node.get("file"):
+            kind = self._enum(node, StateType, "state type", text=word)
+        if kind is StateType.TASK and not file:
             self._error("ATD102", f"task state '{name}' names no file", node,
                         'add file="sub_task.xml", relative to this file')
-        if kind is not None and kind is not StateType.TASK and node.get("file") is not None:
+        if kind is not None and kind is not StateType.TASK and file is not None:
             self._error("ATD103", f"only type=\"task\" states take a file, not type=\"{kind.value}\"", node,
                         'remove file="..." or set type="task"')
         fields = self._state_properties(node)
-        if node.get("file") and not self._file_name(node, node.get("file", ""), "file"):
+        if file and not self._file_name(node, file, "file"):
             kind = None
         if name is None or kind is None:
             if name:
                 self.dropped_states.add(name)
             return None
-        fields.update(name=name, type=kind, file=node.get("file") if kind is StateType.TASK else None,
-                      loc=self.doc.loc(node))
+        fields.update(name=name, type=kind, file=file if kind is StateType.TASK else None, loc=self.doc.loc(node))
         return fields
 
     def _state_properties(self, node: etree._Element) -> dict:
@@ -393,10 +392,9 @@ class TaskReader:
 
     def transition(self, node: etree._Element) -> Fields | None:
         self._check_attributes(node, ("origin", "destination"))
-        ends = {}
-        for end in ("origin", "destination"):
-            ends[end] = node.get(end)
-            if not ends[end]:
+        ends = {"origin": node.get("origin"), "destination": node.get("destination")}
+        for end, name in ends.items():
+            if not name:
                 self._error("ATD102", f"<transition> has no {end}", node, f'add {end}="state name"')
         events = []
         children = _elements(node)

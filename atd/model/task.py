@@ -7,12 +7,11 @@ and reports what is wrong with the file, `atd.model.validate` checks the graph.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from functools import cached_property
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Literal, NamedTuple
 
 from atd.model.frozen import Frozen
-from pydantic import Field
+from pydantic import Field, InstanceOf
 
 from atd.model.vocabulary import (
     DEFAULT_SIZE,
@@ -29,9 +28,9 @@ if TYPE_CHECKING:
 Vec3 = tuple[float, float, float]
 
 
-@dataclass(frozen=True)
-class Location:
-    """Where an element was written, so every diagnostic can point at it."""
+class Location(NamedTuple):
+    """Where an element was written, so every diagnostic can point at it. A named tuple, not a
+    dataclass: a large task has one per element, and a tuple is half the cost to make."""
 
     file: str
     line: int
@@ -48,7 +47,7 @@ class AtdElement(Frozen):
     meaning, so a task read back from the file it was written to equals the original.
     """
 
-    loc: Location | None = Field(default=None, exclude=True, repr=False)
+    loc: InstanceOf[Location] | None = Field(default=None, exclude=True, repr=False)  # made by the reader, not a user
 
     def __eq__(self, other: object) -> bool:
         return type(self) is type(other) and self.model_dump() == other.model_dump()  # type: ignore[union-attr]

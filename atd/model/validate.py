@@ -56,6 +56,8 @@ def _endpoints(task: Task, unreadable: frozenset[str]) -> list[Diagnostic]:
     names = task.states_by_name
     suggester: Suggester | None = None  # built at the first unknown name, shared by the rest
     for t in task.transitions:
+        if t.origin in names and t.destination in names:
+            continue
         for end, name in (("origin", t.origin), ("destination", t.destination)):
             if name not in names and name not in unreadable:
                 suggester = suggester or Suggester(names)

@@ -7,11 +7,11 @@ all (an ATD never needs one). Every refusal is one diagnostic, never an exceptio
 
 from __future__ import annotations
 
-import bisect
 import codecs
 import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Iterable, Iterator
 
 from lxml import etree
 
@@ -25,7 +25,6 @@ MAX_DEPTH = 256  # libxml2 refuses deeper documents unless huge_tree is set; an 
 # A start tag's `<name`, or a comment, CDATA section or processing instruction to pass over whole
 # (group 1 is set for start tags only): one scan finds every element's opening in document order.
 _OPENING_OR_SKIPPED = re.compile(rb"<([A-Za-z_])|<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>", re.S)
-_NEWLINE = re.compile(rb"\n")
 _DOCTYPE = re.compile(rb"<!DOCTYPE|<!ENTITY", re.I)
 _DECLARED_ENCODING = re.compile(r"""^(<\?xml[^>]*?encoding\s*=\s*)(["'])[^"']*\2""")
 # libxml2's fixed limits (without huge_tree): the words its messages use, and ours.
@@ -41,34 +40,14 @@ _PARSER_LIMITS = (
 
 @dataclass
 class ParsedXml:
-    """A parsed document and where every element's start tag begins.
-
-    Offsets become lines and columns only for the elements asked about, which is most of
-    them in a valid task but saves building a location for every element up front.
-    """
+    """A parsed document and where every element's start tag begins."""
 
     root: etree._Element
     file: str
-    _starts: dict[etree._Element, int]  # byte offset of each element's `<tag`
-    _lines: TextLines
+    _starts: dict[etree._Element, Location]
 
     def loc(self, element: etree._Element) -> Location:
-        offset = self._starts.get(element)
-        if offset is None:
-            return Location(self.file, element.sourceline or 0, 1)
-        return self._lines.location(self.file, offset)
-
-
-class TextLines:
-    """Where the lines of a text begin, to turn byte offsets into lines and columns."""
-
-    def __init__(self, data: bytes) -> None:
-        self.newlines = [m.start() for m in _NEWLINE.finditer(data)]
-
-    def location(self, file: str, offset: int) -> Location:
-        line = bisect.bisect_left(self.newlines, offset)  # the newlines before `offset`
-        line_start = self.newlines[line - 1] + 1 if line else 0
-        return Location(file, line + 1, offset - line_start + 1)
+        return self._starts.get(element) or Location(self.file, element.sourceline or 0, 1)
 
 
 def _parser() -> etree.XMLParser:
@@ -82,8 +61,20 @@ def _parser() -> etree.XMLParser:
     )
 
 
-def _tag_starts(data: bytes, root: etree._Element) -> dict[etree._Element, int]:
-    """Pair elements in document order with the offsets of the `<tag` openings in the text.
+def _line_cols(data: bytes, offsets: Iterable[int]) -> Iterator[tuple[int, int]]:
+    """(line, column) of each of the increasing byte `offsets`, counting lines as it goes."""
+    line, line_start, done = 1, 0, 0
+    for offset in offsets:
+        newlines = data.count(b"\n", done, offset)
+        if newlines:
+            line += newlines
+            line_start = data.rindex(b"\n", done, offset) + 1
+        done = offset
+        yield line, offset - line_start + 1
+
+
+def _tag_starts(data: bytes, root: etree._Element, file: str) -> dict[etree._Element, Location]:
+    """Pair elements in document order with the `<tag` openings in the text.
 
     lxml reports the line where a start tag *ends*; authors expect the line where it
     begins, and a column too, so we find the openings ourselves.
@@ -92,7 +83,7 @@ def _tag_starts(data: bytes, root: etree._Element) -> dict[etree._Element, int]:
     elements = list(root.iter(etree.Element))
     if len(elements) != len(openings):
         return {}
-    return dict(zip(elements, openings))
+    return {e: Location(file, line, col) for e, (line, col) in zip(elements, _line_cols(data, openings))}
 
 
 def _too_big(size: int, file: str) -> Diagnostic:
@@ -139,11 +130,12 @@ def parse_bytes(data: bytes, file: str) -> tuple[ParsedXml | None, list[Diagnost
         return None, [error("ATD006", f"file {what}", Location(file, 1, 1), "an ATD is an XML text file")]
     doctype = _DOCTYPE.search(data)
     if doctype:
+        [(line, col)] = _line_cols(data, [doctype.start()])
         return None, [
             error(
                 "ATD004",
                 "DOCTYPE and entity declarations are not allowed in an ATD",
-                TextLines(data).location(file, doctype.start()),
+                Location(file, line, col),
                 "remove the <!DOCTYPE ...> block; ATD files need no DTD or entities",
             )
         ]
@@ -167,7 +159,7 @@ def parse_bytes(data: bytes, file: str) -> tuple[ParsedXml | None, list[Diagnost
     except ValueError as exc:  # e.g. undecodable text in the declared encoding
         return None, [error("ATD006", f"cannot decode file: {exc}", Location(file, 1, 1),
                             "save the file as UTF-8")]
-    return ParsedXml(root, file, _tag_starts(data, root), TextLines(data)), []
+    return ParsedXml(root, file, _tag_starts(data, root, file)), []
 
 
 def read_file(path: Path, shown_as: str | None = None) -> tuple[ParsedXml | None, list[Diagnostic]]:
