@@ -13,7 +13,7 @@ import tomllib
 from pathlib import Path
 from typing import Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationInfo, field_validator
 
 from atd.campaign.perturbation import PERTURBATIONS
 from atd.campaign.record import DIMENSIONS
@@ -58,10 +58,12 @@ class Perturbation(_Strict):
 
     @field_validator("mass", "friction", "noise", "bias")
     @classmethod
-    def _range(cls, value: tuple[float, float]) -> tuple[float, float]:
+    def _range(cls, value: tuple[float, float], info: ValidationInfo) -> tuple[float, float]:
+        allowed = ranges.MASS_SCALE if info.field_name == "mass" else ranges.SCALE
         low, high = value
-        if not (0 <= low <= high <= 100):
-            raise ValueError(f"give [low, high] with 0 <= low <= high <= 100, got [{low:g}, {high:g}]")
+        problem = allowed.first_problem(value)
+        if problem or low > high:
+            raise ValueError(f"give [low, high] with low <= high, each in {allowed}: {problem or f'{low:g} > {high:g}'}")
         return value
 
 

@@ -29,10 +29,10 @@ def report(recording: Path, output: Path | None) -> None:
     """One self-contained HTML page for a recorded run (atd run --record): the task graph
     with the path taken, a timeline, the signals with the events marked, and the readings
     that fired each event. Works offline: nothing is fetched from anywhere."""
-    if output is None:  # RUN.html beside the recording, which may be the recording itself
+    run = _load(recording)
+    if output is None:  # RUN.html beside the recording (now read: a file, never '/'), which may be itself
         output = recording.with_suffix(".html")
         guard_outputs({"the default -o": output}, [recording])
-    run = _load(recording)
     write_or_exit(output, report_page(run).encode())
     click.echo(f"wrote {output}")
 

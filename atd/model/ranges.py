@@ -81,3 +81,5 @@ SEED = Range(0, 2**32 - 1)  # numpy's seed range
 RECORD_RATE = Range(0.0, 10_000.0, "Hz", low_open=True)  # of simulated time; a tick is 200-1000 Hz
 WORKERS = Range(1, 512)  # campaign worker processes, each holding an engine: more only exhausts memory
 TRIALS = Range(1, 100_000)  # per cell, in a campaign spec or --trials
+SCALE = Range(0.0, 100.0)  # a campaign's perturbation factors (friction, sensor noise and bias)
+MASS_SCALE = Range(0.0, 100.0, low_open=True)  # an object of no mass is one no engine can simulate

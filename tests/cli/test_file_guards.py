@@ -168,6 +168,16 @@ def test_an_output_name_over_255_bytes_is_refused(task: Path) -> None:
     assert result.exit_code == 2 and "over the 255" in result.output
 
 
+@pytest.mark.parametrize("command", [["translate", "{path}", "--robot", "melfa"], ["report", "{path}"]])
+@pytest.mark.parametrize("path", [".", "/"])
+def test_a_folder_as_the_input_of_a_command_with_a_default_output_is_refused_as_input(command: list[str],
+                                                                                        path: str) -> None:
+    """The default output is named after the input, once that input has been read as a file."""
+    result = atd(*(a.format(path=path) for a in command))
+    assert result.exit_code == 1 and "directory" in result.output
+    assert result.exception is None or isinstance(result.exception, SystemExit)
+
+
 def test_unknown_robot_for_robots_test_is_a_usage_error() -> None:
     assert atd("robots", "test", "nosuch").exit_code == 2
 
@@ -255,9 +265,10 @@ def test_no_command_writes_over_a_file_its_command_line_reads(tmp_path: Path, co
     assert store.read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == ["done.sqlite"]
 
 
-def test_the_default_report_name_is_never_the_recording_itself(tmp_path: Path) -> None:
+def test_the_default_report_name_is_never_the_recording_itself(tmp_path: Path, monkeypatch) -> None:
     recording = tmp_path / "run.html"
     recording.write_bytes(b"a recording named .html")
+    monkeypatch.setattr("atd.cli.review.load", lambda path: "a run read from it")
     result = atd("report", recording)
     assert result.exit_code == 2 and "input of this command" in result.output
     assert recording.read_bytes() == b"a recording named .html"
