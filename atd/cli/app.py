@@ -8,6 +8,7 @@ from typing import Iterable, Mapping, NoReturn
 import click
 
 from atd import __version__
+from atd.model import ranges
 from atd.model.ranges import Range
 from atd.model.files import OutputError, output_problem, output_problems, write_output
 
@@ -44,8 +45,9 @@ class Ranged(click.ParamType):
 
     def convert(self, value, param, ctx) -> float | int:
         try:
-            number = int(value) if self.integer else float(value)
-        except (TypeError, ValueError):
+            text = str(value)  # a default is already a number
+            number = ranges.integer(text) if self.integer else ranges.numbers([text.strip()])[0]
+        except ValueError:
             self.fail(f"'{value}' is not {'an integer' if self.integer else 'a number'}; give one in {self.allowed}",
                       param, ctx)
         problem = self.allowed.problem(number)

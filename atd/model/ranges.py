@@ -8,7 +8,9 @@ sensibly: a speed limit of 0 would be no limit, a mass of a microgram makes MuJo
 
 from __future__ import annotations
 
+import itertools
 import math
+import re
 from dataclasses import dataclass
 
 
@@ -41,6 +43,30 @@ class Range:
             if self.low <= lowest and max(values) <= self.high and not (self.low_open and lowest == self.low):
                 return None
         return next(filter(None, map(self.problem, values)), None)
+
+
+# A number as a person writes it in a file or on a command line: ASCII digits, a point, an
+# exponent; the words for infinity and NaN too, so that they are refused as not finite. Python's
+# float() and int() would also take '1_000' and other scripts' digits ('١٢'), which no XML
+# schema, TOML file or other tool reads as numbers.
+_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?|[+-]?(?:inf|infinity|nan)",
+                     re.IGNORECASE)
+_INTEGER = re.compile(r"[+-]?[0-9]+")
+
+
+def numbers(words: list[str]) -> tuple[float, ...]:
+    """The numbers written as `words`; ValueError naming the first word that is not one."""
+    bad = next(itertools.filterfalse(_NUMBER.fullmatch, words), None)
+    if bad is not None:
+        raise ValueError(f"'{bad}' is not a number")
+    return tuple(map(float, words))
+
+
+def integer(word: str) -> int:
+    """The whole number written as `word`; ValueError when it is not one."""
+    if not _INTEGER.fullmatch(word.strip()):
+        raise ValueError(f"'{word.strip()}' is not an integer")
+    return int(word)
 
 
 def _number(value: float) -> str:

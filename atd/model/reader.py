@@ -139,10 +139,9 @@ class TaskReader:
         self._no_children(node)
         words = _words(node) if words is None else words
         try:
-            values = tuple(map(float, words))
-        except ValueError:
-            bad = next(w for w in words if not _is_float(w))
-            self._error("ATD106", f"'{bad}' in {what} is not a number", node,
+            values = ranges.numbers(words)
+        except ValueError as exc:
+            self._error("ATD106", f"{exc} in {what}", node,
                         "write numbers in metres, kilograms and seconds, e.g. 0.25")
             return None
         infinite = next(itertools.filterfalse(math.isfinite, values), None)
@@ -428,14 +427,6 @@ def _members(enum: type[E]) -> dict[str, E]:
     """An enum's members by value: a dict lookup, where calling the enum costs a Python-level
     call and an exception for every word that is not a member."""
     return {member.value: member for member in enum}
-
-
-def _is_float(word: str) -> bool:
-    try:
-        float(word)
-    except ValueError:
-        return False
-    return True
 
 
 def _count_hint(what: str, count: int) -> str:
