@@ -3,7 +3,9 @@
 Uses the same generated task as bench_validate.py. Prints, per robot, the best of 3
 translation times (model in, ESTD model out) and the time to write the ESTD XML, and the
 ratio of translating to reading and validating the same ATD, measured in the same run.
-Target: translation < 3 s per robot.
+Target: translation < 3 s per robot. Then issue 12's near-linear cost: translating chains of
+1,000 and 8,000 moves (each with its own failure end) for the Melfa, whose times should
+stand about 8:1, far from the 64:1 of a quadratic cost.
 
     python benchmarks/bench_translate.py
 """
@@ -19,7 +21,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from atd.model import load_task  # noqa: E402
 from atd.model.estd_xml import estd_to_xml  # noqa: E402
-from benchmarks.bench_validate import STATES, TRANSITIONS, best_of, generate  # noqa: E402
+from benchmarks.bench_validate import STATES, TRANSITIONS, best_of, chain, generate  # noqa: E402
 from factories.registry import create  # noqa: E402
 from translator import translate  # noqa: E402
 
@@ -53,7 +55,25 @@ def main() -> int:
         print(f"  {robot:13s} translate {seconds:5.2f} s ({seconds / baseline:.1f}x baseline)   "
               f"write XML {write:5.2f} s ({size / 1e6:.1f} MB)")
     print(f"slowest translation {worst:.2f} s, target < {TARGET_SECONDS:g} s: {'ok' if worst < TARGET_SECONDS else 'MISSED'}")
-    return 0 if worst < TARGET_SECONDS else 1
+    ratio = scaling()
+    return 0 if worst < TARGET_SECONDS and ratio < 16 else 1
+
+
+def scaling() -> float:
+    """Seconds to translate chains of 1,000 and 8,000 moves for the Melfa, and their ratio."""
+    factory = create("melfa")
+    seconds = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for moves in (1_000, 8_000):
+            path = Path(tmp) / f"chain{moves}.xml"
+            path.write_text(chain(moves))
+            task, found = load_task(path)
+            assert task is not None and not found, found[:3]
+            seconds[moves] = best_of(3, lambda: translate(task, factory))
+    ratio = seconds[8_000] / seconds[1_000]
+    print(f"translate chains of 1,000 and 8,000 moves (melfa): {seconds[1_000]:.3f} s, {seconds[8_000]:.3f} s, "
+          f"ratio {ratio:.1f} for 8x the size (linear: 8, quadratic: 64)")
+    return ratio
 
 
 if __name__ == "__main__":

@@ -13,10 +13,11 @@ import tomllib
 from pathlib import Path
 from typing import Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationInfo, field_validator
 
 from atd.campaign.perturbation import PERTURBATIONS
 from atd.campaign.record import DIMENSIONS
+from atd.model import ranges
 from atd.model.diagnostics import Diagnostic, did_you_mean, error
 from atd.model.files import InputError, read_capped
 from atd.model.task import Location
@@ -57,17 +58,19 @@ class Perturbation(_Strict):
 
     @field_validator("mass", "friction", "noise", "bias")
     @classmethod
-    def _range(cls, value: tuple[float, float]) -> tuple[float, float]:
+    def _range(cls, value: tuple[float, float], info: ValidationInfo) -> tuple[float, float]:
+        allowed = ranges.MASS_SCALE if info.field_name == "mass" else ranges.SCALE
         low, high = value
-        if not (0 <= low <= high <= 100):
-            raise ValueError(f"give [low, high] with 0 <= low <= high <= 100, got [{low:g}, {high:g}]")
+        problem = allowed.first_problem(value)
+        if problem or low > high:
+            raise ValueError(f"give [low, high] with low <= high, each in {allowed}: {problem or f'{low:g} > {high:g}'}")
         return value
 
 
 class CampaignSpec(_Strict):
     name: str = Field(min_length=1, pattern=r"^[A-Za-z0-9_.-]+$")
     base_seed: int = Field(0, ge=0, lt=2**63)
-    trials: int = Field(10, ge=1, le=100_000, description="trials per cell")
+    trials: int = Field(10, ge=ranges.TRIALS.low, le=ranges.TRIALS.high, description="trials per cell")
     budget: float = Field(120.0, gt=0, le=3600, description="simulated seconds before the watchdog stops a trial")
     tasks: tuple[Union[str, TaskEntry], ...] = Field(min_length=1)
     robots: tuple[Union[str, RobotEntry], ...] = Field(min_length=1)

@@ -17,7 +17,7 @@ from typing import Any
 
 from atd.campaign.record import DIMENSIONS, Cell, TrialRecord
 from atd.model import replacing
-from atd.model.files import output_problem
+from atd.model.files import describe_write_error, output_problem
 
 #: Bumped when a column's meaning changes; a store of a newer format is refused, not misread.
 FORMAT_VERSION = 1
@@ -124,15 +124,20 @@ class Store:
             "spec_digest": spec_digest,
             "created": datetime.now(timezone.utc).isoformat(timespec="seconds"),
         }
-        with replacing(path) as tmp:
-            db = sqlite3.connect(tmp)
-            try:
-                db.executescript(_SCHEMA)
-                with db:
-                    db.executemany("INSERT INTO meta VALUES (?, ?)", meta.items())
-                db.execute("PRAGMA journal_mode=WAL")
-            finally:
-                db.close()
+        try:
+            with replacing(path) as tmp:
+                db = sqlite3.connect(tmp)
+                try:
+                    db.executescript(_SCHEMA)
+                    with db:
+                        db.executemany("INSERT INTO meta VALUES (?, ?)", meta.items())
+                    db.execute("PRAGMA journal_mode=WAL")
+                finally:
+                    db.close()
+        except OSError as exc:
+            raise StoreError(describe_write_error(path, exc)) from None
+        except sqlite3.OperationalError as exc:
+            raise _write_failed(path, exc) from None
 
     @classmethod
     def _open(cls, path: Path, read_only: bool) -> Store:
@@ -175,6 +180,8 @@ class Store:
         except sqlite3.IntegrityError:
             raise StoreError(f"{self.path}: trial {record.index} of cell {record.cell.key} "
                              f"is already stored") from None
+        except sqlite3.OperationalError as exc:
+            raise _write_failed(self.path, exc) from None
 
     def done(self) -> set[tuple[str, int]]:
         """(cell key, trial index) of every stored trial, errors included: they ran."""
@@ -210,3 +217,10 @@ class Store:
     def __exit__(self, kind: type[BaseException] | None, exc: BaseException | None,
                  tb: TracebackType | None) -> None:
         self.close()
+
+
+def _write_failed(path: Path, exc: sqlite3.OperationalError) -> StoreError:
+    """SQLite's word for a failed write ("disk I/O error", "database or disk is full") does not
+    say what to do; the usual causes do."""
+    return StoreError(f"cannot write {path}: {exc} (a full disk, a file-size limit or no permission); "
+                      "free some space or write elsewhere")

@@ -8,6 +8,7 @@ from typing import Iterable, Mapping, NoReturn
 import click
 
 from atd import __version__
+from atd.model import ranges
 from atd.model.ranges import Range
 from atd.model.files import OutputError, output_problem, output_problems, write_output
 
@@ -20,17 +21,18 @@ EXIT_ENGINE_CRASHED = 5  # the engine died in its C code (atd run)
 
 
 class OutputFile(click.Path):
-    """A file a command will write, refused up front (exit 2) when it could not be written
-    safely: see `atd.model.files.output_problem`."""
+    """A file a command will write, refused up front when it could not be written safely (see
+    `atd.model.files.output_problem`): one line and exit 2, as every other output refusal and
+    write error is, not click's usage text."""
 
     def __init__(self) -> None:
-        super().__init__(dir_okay=False, path_type=Path)
+        super().__init__(path_type=Path)  # a directory too is refused below, in the same words
 
     def convert(self, value, param, ctx) -> Path:
         path = super().convert(value, param, ctx)
         problem = output_problem(path)
         if problem:
-            self.fail(f"{path}: {problem}", param, ctx)
+            usage_error(f"{param.opts[0] if param else 'output'} {path}: {problem}")
         return path
 
 
@@ -43,8 +45,9 @@ class Ranged(click.ParamType):
 
     def convert(self, value, param, ctx) -> float | int:
         try:
-            number = int(value) if self.integer else float(value)
-        except (TypeError, ValueError):
+            text = str(value)  # a default is already a number
+            number = ranges.integer(text) if self.integer else ranges.numbers([text.strip()])[0]
+        except ValueError:
             self.fail(f"'{value}' is not {'an integer' if self.integer else 'a number'}; give one in {self.allowed}",
                       param, ctx)
         problem = self.allowed.problem(number)
@@ -75,8 +78,12 @@ def write_or_exit(path: Path, data: bytes) -> None:
         usage_error(str(exc))
 
 
-class SingleValueCommand(click.Command):
-    """Refuses an option given twice (e.g. two `-o`): click would silently keep the last."""
+class GuardedCommand(click.Command):
+    """The class of every `atd` command: it refuses an option given twice (e.g. two `-o`:
+    click would silently keep the last), and before the command does anything, an output
+    (an `OutputFile` option) naming one of the paths the command line gives it to read, or
+    the same file as another output. A command checks what it learns later (sub-tasks,
+    meshes, an output's default name) with `guard_outputs` itself."""
 
     def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
         if not ctx.resilient_parsing:
@@ -87,6 +94,20 @@ class SingleValueCommand(click.Command):
                 raise click.UsageError(f"{repeated.opts[-1]} is given more than once; give it once", ctx)
         return super().parse_args(ctx, args)
 
+    def invoke(self, ctx: click.Context):
+        outputs = {p.opts[0]: ctx.params.get(p.name) for p in self.params if isinstance(p.type, OutputFile)}
+        inputs = [path for p in self.params if isinstance(p.type, click.Path) and not isinstance(p.type, OutputFile)
+                  for path in _paths(ctx.params.get(p.name))]
+        guard_outputs(outputs, inputs)
+        return super().invoke(ctx)
+
+
+def _paths(value: object) -> list[Path]:
+    """The paths of a parameter's value: none, one, or several (an argument with nargs=-1)."""
+    if value is None:
+        return []
+    return [Path(v) for v in value] if isinstance(value, (tuple, list)) else [Path(value)]
+
 
 class Commands(click.Group):
     """The group class of `atd`: its commands refuse repeated options, its sub-groups too.
@@ -95,7 +116,7 @@ class Commands(click.Group):
     `atd validate` then loads neither the engines nor the campaign tools.
     """
 
-    command_class = SingleValueCommand
+    command_class = GuardedCommand
 
     def __init__(self, *args, modules: Mapping[str, str] | None = None, **kwargs) -> None:
         super().__init__(*args, **kwargs)

@@ -15,8 +15,8 @@ from atd.campaign.progress import Progress
 from atd.campaign.runner import WorkerError, run_local, run_ray
 from atd.campaign.spec import load_spec
 from atd.campaign.store import Store, StoreError
-from atd.cli.app import EXIT_INVALID, EXIT_USAGE, OutputFile, campaign
-from atd.model import has_errors
+from atd.cli.app import EXIT_INVALID, EXIT_USAGE, OutputFile, Ranged, campaign
+from atd.model import has_errors, ranges
 from atd.model.diagnostics import render_all
 
 EXIT_INTERRUPTED = 130  # the shell's code for a command stopped by Ctrl-C
@@ -33,7 +33,7 @@ def _stop(signum: int, frame: object) -> None:
 
 @campaign.command("run")
 @click.argument("spec_file", metavar="SPEC.toml", type=click.Path(path_type=Path, exists=True, dir_okay=False))
-@click.option("--workers", "-j", type=click.IntRange(min=1), default=None,
+@click.option("--workers", "-j", type=Ranged(ranges.WORKERS, integer=True), default=None,
               help="worker processes (default: every core)")
 @click.option("--ray", "ray_address", is_flag=False, flag_value="", default=None, metavar="[ADDRESS]",
               help="run the trials on Ray: a local instance, or the cluster at ADDRESS")
@@ -43,7 +43,7 @@ def _stop(signum: int, frame: object) -> None:
 @click.option("--only", multiple=True, metavar="DIMENSION=VALUE",
               help="run only the cells with this value (repeatable; task, robot, arm, engine, grasp, object, "
                    "perturbation)")
-@click.option("--trials", type=click.IntRange(min=1), default=None, help="run only the first N trials of each cell")
+@click.option("--trials", type=Ranged(ranges.TRIALS, integer=True), default=None, help="run only the first N trials of each cell")
 @click.option("--record-failed", type=click.Path(path_type=Path, file_okay=False), default=None, metavar="DIR",
               help="record every trial the judge fails as MCAP into DIR (see atd report)")
 @click.option("--quiet", "-q", is_flag=True, help="no progress display")
@@ -94,7 +94,7 @@ def run_campaign(spec_file: Path, workers: int | None, ray_address: str | None, 
                 run_ray(todo, ray_address or None, workers, keep)
             else:
                 run_local(todo, workers, keep)
-        except WorkerError as exc:
+        except (WorkerError, StoreError) as exc:
             progress.close()
             _fail(f"error: {exc}; {progress.done} finished trials are kept in {store_path}", EXIT_USAGE)
         except KeyboardInterrupt:

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import click
 
-from atd.cli.app import EXIT_INVALID, OutputFile, main, usage_error, write_or_exit
+from atd.cli.app import EXIT_INVALID, OutputFile, guard_outputs, main, usage_error, write_or_exit
 from atd.review.compare import compare, render_text
 from atd.review.load import Recording, RecordingError, load
 from atd.review.page import report_page
@@ -30,7 +30,9 @@ def report(recording: Path, output: Path | None) -> None:
     with the path taken, a timeline, the signals with the events marked, and the readings
     that fired each event. Works offline: nothing is fetched from anywhere."""
     run = _load(recording)
-    output = output or recording.with_suffix(".html")
+    if output is None:  # RUN.html beside the recording (now read: a file, never '/'), which may be itself
+        output = recording.with_suffix(".html")
+        guard_outputs({"the default -o": output}, [recording])
     write_or_exit(output, report_page(run).encode())
     click.echo(f"wrote {output}")
 

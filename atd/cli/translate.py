@@ -83,12 +83,12 @@ def translate(task: Path, robot: str, arm: str | None, config: Path | None, outp
     task (nothing written; every reason is listed with its file:line).
     """
     factory = make_factory(robot, arm, config, grasp)
-    target = output or default_output(task, factory, fmt)
-    guard_outputs({"-o": target}, [task, *([config] if config else [])])
     atd_task, found = load_task(task)
     if atd_task is None or has_errors(found):
         _report(found)
         raise SystemExit(EXIT_INVALID)
+    target = output or default_output(task, factory, fmt)  # named after a file now read: never '.' or '/'
+    guard_outputs({"-o": target}, [task, *([config] if config else [])])
     result = translate_task(atd_task, factory)
     warnings = [d for d in found if d.severity is Severity.WARNING] + result.diagnostics
     if result.estd is None:

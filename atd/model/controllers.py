@@ -472,11 +472,11 @@ def parse_value(spec: ParamSpec, text: str) -> ParamValue:
         return coerce_value(spec, text)
     if spec.type is ParamType.POINTS:
         points = [p for p in text.split(";") if p.strip()]
-        return coerce_value(spec, tuple(tuple(float(v) for v in p.split()) for p in points))
+        return coerce_value(spec, tuple(ranges.numbers(p.split()) for p in points))
     if spec.type is ParamType.VECTOR:
-        return coerce_value(spec, tuple(float(v) for v in text.split()))
+        return coerce_value(spec, ranges.numbers(text.split()))
     try:
-        value = int(text) if spec.type is ParamType.INTEGER else float(text)
+        value = ranges.integer(text) if spec.type is ParamType.INTEGER else ranges.numbers([text])[0]
     except ValueError:
         raise ValueError(f"'{text}' is not a {spec.type.value}") from None
     return coerce_value(spec, value)

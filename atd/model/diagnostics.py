@@ -37,7 +37,7 @@ class Diagnostic:
     def as_dict(self) -> dict:
         d = asdict(self)
         d["severity"] = self.severity.value
-        d["loc"] = asdict(self.loc) if self.loc else None
+        d["loc"] = self.loc._asdict() if self.loc else None
         return d
 
 

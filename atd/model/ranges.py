@@ -8,7 +8,9 @@ sensibly: a speed limit of 0 would be no limit, a mass of a microgram makes MuJo
 
 from __future__ import annotations
 
+import itertools
 import math
+import re
 from dataclasses import dataclass
 
 
@@ -32,6 +34,39 @@ class Range:
         if value < self.low or value > self.high or (self.low_open and value == self.low):
             return f"{value:g} is outside {self}"
         return None
+
+    def first_problem(self, values: tuple[float, ...]) -> str | None:
+        """`problem` of the first value refused; None when all are allowed. Tried whole first
+        (a task holds hundreds of thousands of numbers, nearly all in range)."""
+        if values and all(map(math.isfinite, values)):
+            lowest = min(values)
+            if self.low <= lowest and max(values) <= self.high and not (self.low_open and lowest == self.low):
+                return None
+        return next(filter(None, map(self.problem, values)), None)
+
+
+# A number as a person writes it in a file or on a command line: ASCII digits, a point, an
+# exponent; the words for infinity and NaN too, so that they are refused as not finite. Python's
+# float() and int() would also take '1_000' and other scripts' digits ('١٢'), which no XML
+# schema, TOML file or other tool reads as numbers.
+_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?|[+-]?(?:inf|infinity|nan)",
+                     re.IGNORECASE)
+_INTEGER = re.compile(r"[+-]?[0-9]+")
+
+
+def numbers(words: list[str]) -> tuple[float, ...]:
+    """The numbers written as `words`; ValueError naming the first word that is not one."""
+    bad = next(itertools.filterfalse(_NUMBER.fullmatch, words), None)
+    if bad is not None:
+        raise ValueError(f"'{bad}' is not a number")
+    return tuple(map(float, words))
+
+
+def integer(word: str) -> int:
+    """The whole number written as `word`; ValueError when it is not one."""
+    if not _INTEGER.fullmatch(word.strip()):
+        raise ValueError(f"'{word.strip()}' is not an integer")
+    return int(word)
 
 
 def _number(value: float) -> str:
@@ -70,3 +105,7 @@ BY_UNIT = {"m/s": SPEED, "N": FORCE, "N m": TORQUE, "m": DISTANCE, "s": DURATION
 BUDGET = Range(0.0, 86_400.0, "s", low_open=True)
 SEED = Range(0, 2**32 - 1)  # numpy's seed range
 RECORD_RATE = Range(0.0, 10_000.0, "Hz", low_open=True)  # of simulated time; a tick is 200-1000 Hz
+WORKERS = Range(1, 512)  # campaign worker processes, each holding an engine: more only exhausts memory
+TRIALS = Range(1, 100_000)  # per cell, in a campaign spec or --trials
+SCALE = Range(0.0, 100.0)  # a campaign's perturbation factors (friction, sensor noise and bias)
+MASS_SCALE = Range(0.0, 100.0, low_open=True)  # an object of no mass is one no engine can simulate

@@ -7,13 +7,11 @@ and reports what is wrong with the file, `atd.model.validate` checks the graph.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from functools import cached_property
-from typing import Literal
+from typing import TYPE_CHECKING, Literal, NamedTuple
 
-import numpy as np
 from atd.model.frozen import Frozen
-from pydantic import Field
+from pydantic import Field, InstanceOf
 
 from atd.model.vocabulary import (
     DEFAULT_SIZE,
@@ -24,12 +22,15 @@ from atd.model.vocabulary import (
     StateType,
 )
 
+if TYPE_CHECKING:
+    import numpy as np
+
 Vec3 = tuple[float, float, float]
 
 
-@dataclass(frozen=True)
-class Location:
-    """Where an element was written, so every diagnostic can point at it."""
+class Location(NamedTuple):
+    """Where an element was written, so every diagnostic can point at it. A named tuple, not a
+    dataclass: a large task has one per element, and a tuple is half the cost to make."""
 
     file: str
     line: int
@@ -46,7 +47,7 @@ class AtdElement(Frozen):
     meaning, so a task read back from the file it was written to equals the original.
     """
 
-    loc: Location | None = Field(default=None, exclude=True, repr=False)
+    loc: InstanceOf[Location] | None = Field(default=None, exclude=True, repr=False)  # made by the reader, not a user
 
     def __eq__(self, other: object) -> bool:
         return type(self) is type(other) and self.model_dump() == other.model_dump()  # type: ignore[union-attr]
@@ -62,11 +63,12 @@ class Pose(AtdElement):
 
     @classmethod
     def from_position(cls, xyz: Vec3) -> Pose:
-        m = np.eye(4)
-        m[:3, 3] = xyz
-        return cls(matrix=tuple(float(v) for v in m.ravel()))
+        x, y, z = (float(v) for v in xyz)
+        return cls(matrix=(1.0, 0.0, 0.0, x, 0.0, 1.0, 0.0, y, 0.0, 0.0, 1.0, z, 0.0, 0.0, 0.0, 1.0))
 
     def as_array(self) -> np.ndarray:
+        import numpy as np  # here, not at the top: reading and checking tasks needs no numpy (start-up time)
+
         return np.asarray(self.matrix, dtype=float).reshape(4, 4)
 
     @property

@@ -10,7 +10,6 @@ from pathlib import Path
 
 from atd.model.diagnostics import Diagnostic, Suggester, did_you_mean, error, has_errors, warning
 from atd.model.files import is_regular_file
-from atd.model.meshcheck import MeshError, check_mesh
 from atd.model.task import State, Task
 from atd.model.vocabulary import StateType
 
@@ -57,6 +56,8 @@ def _endpoints(task: Task, unreadable: frozenset[str]) -> list[Diagnostic]:
     names = task.states_by_name
     suggester: Suggester | None = None  # built at the first unknown name, shared by the rest
     for t in task.transitions:
+        if t.origin in names and t.destination in names:
+            continue
         for end, name in (("origin", t.origin), ("destination", t.destination)):
             if name not in names and name not in unreadable:
                 suggester = suggester or Suggester(names)
@@ -72,10 +73,11 @@ def _ends(task: Task) -> list[Diagnostic]:
                            'add <state name="done" type="success"/> and a transition into it'))
     leaving = {t.origin for t in task.transitions}
     for state in task.states:
-        if state.type.is_end and state.name in leaving:
+        ends_task = state.type.is_end
+        if ends_task and state.name in leaving:
             found.append(error("ATD205", f"end state '{state.name}' has outgoing transitions", state.loc,
                                f"a {state.type.value} state ends the task; remove its transitions"))
-        elif not state.type.is_end and state.name not in leaving:
+        elif not ends_task and state.name not in leaving:
             found.append(error("ATD206", f"state '{state.name}' is a dead end: no transition leaves it", state.loc,
                                "add a transition, e.g. on <success/>, to the next state or an end state"))
     return found
@@ -84,25 +86,23 @@ def _ends(task: Task) -> list[Diagnostic]:
 def _ambiguity(task: Task) -> list[Diagnostic]:
     """Two edges from one state on the same events cannot both be taken: which one wins?"""
     found = []
-    by_key: dict[tuple, list[int]] = defaultdict(list)
+    first_on: dict[tuple, int] = {}  # (origin, events): the first transition leaving on them
     for i, t in enumerate(task.transitions):
-        events = frozenset((e.type, e.seconds) for e in t.events)
-        by_key[(t.origin, events)].append(i)
-    for (origin, _), group in by_key.items():
-        first = task.transitions[group[0]]
-        for i in group[1:]:
-            t = task.transitions[i]
-            if t.destination != first.destination:
-                found.append(error(
-                    "ATD209",
-                    f"ambiguous: '{origin}' leaves on {t.label} both to '{first.destination}' and to '{t.destination}'",
-                    t.loc,
-                    f"the other transition is at line {first.loc.line if first.loc else '?'}; "
-                    "change one of the event sets or remove one transition",
-                ))
-            else:
-                found.append(warning("ATD214", f"transition {task.transition_ids[i]} repeats "
-                                               f"{task.transition_ids[group[0]]}", t.loc, "remove the copy"))
+        j = first_on.setdefault((t.origin, frozenset([(e.type, e.seconds) for e in t.events])), i)
+        if j == i:
+            continue
+        first = task.transitions[j]
+        if t.destination != first.destination:
+            found.append(error(
+                "ATD209",
+                f"ambiguous: '{t.origin}' leaves on {t.label} both to '{first.destination}' and to '{t.destination}'",
+                t.loc,
+                f"the other transition is at line {first.loc.line if first.loc else '?'}; "
+                "change one of the event sets or remove one transition",
+            ))
+        else:
+            found.append(warning("ATD214", f"transition {task.transition_ids[i]} repeats "
+                                           f"{task.transition_ids[j]}", t.loc, "remove the copy"))
     return found
 
 
@@ -128,6 +128,8 @@ def _shape(task: Task) -> list[Diagnostic]:
         return []
     mesh = Path(task.source).parent / obj.shape
     if is_regular_file(mesh):
+        from atd.model.meshcheck import MeshError, check_mesh  # numpy: only for a task that names a mesh
+
         try:
             check_mesh(mesh)
         except MeshError as exc:

@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 import os
+import resource
 import signal
 import sqlite3
 import subprocess
 import sys
+from contextlib import contextmanager
 from pathlib import Path
+from typing import Iterator
 
 import pytest
 
@@ -85,6 +88,33 @@ def test_a_trial_stored_twice_is_refused(tmp_path: Path) -> None:
         store.add(trial(0))
         with pytest.raises(StoreError, match="trial 0 of cell .* is already stored"):
             store.add(trial(0))
+
+
+@contextmanager
+def files_limited_to(size: int) -> Iterator[None]:
+    """A file-size limit (`ulimit -f`) on this process for the block; a write past it fails
+    with EFBIG, as the shell's user sees it."""
+    soft, hard = resource.getrlimit(resource.RLIMIT_FSIZE)
+    handler = signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    resource.setrlimit(resource.RLIMIT_FSIZE, (size, hard))
+    try:
+        yield
+    finally:
+        resource.setrlimit(resource.RLIMIT_FSIZE, (soft, hard))
+        signal.signal(signal.SIGXFSZ, handler)
+
+
+def test_a_store_that_cannot_be_written_is_a_store_error_not_a_traceback(tmp_path: Path) -> None:
+    """A full disk or a size limit while a campaign stores its trials: StoreError, which the
+    command reports in one line, keeping the trials stored before."""
+    with Store.create_or_resume(tmp_path / "c.sqlite", SPEC, "d1", resume=False) as store:
+        store.add(trial(0))
+        with files_limited_to(100), pytest.raises(StoreError, match="cannot write .*c.sqlite: .*write elsewhere"):
+            store.add(trial(1))
+        assert [r.index for r in store.records()] == [0]
+    with files_limited_to(100), pytest.raises(StoreError, match="cannot write .*new.sqlite"):
+        Store.create_or_resume(tmp_path / "new.sqlite", SPEC, "d1", resume=False)
+    assert sorted(p.name for p in tmp_path.iterdir() if "new" in p.name) == []
 
 
 def test_store_paths_that_cannot_hold_a_store_are_refused(tmp_path: Path) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import ctypes
 import errno
 import os
 import resource
@@ -14,9 +15,12 @@ from pathlib import Path
 import pytest
 from click.testing import CliRunner
 
+from atd.campaign.store import Store
 from atd.cli import main
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+CAMPAIGN_SPEC = EXAMPLES.parent / "tests" / "data" / "campaign" / "small.toml"
+PR_CAPBSET_DROP, CAP_DAC_OVERRIDE, CAP_DAC_READ_SEARCH = 24, 1, 2  # linux/prctl.h, linux/capability.h
 
 
 @pytest.fixture
@@ -164,6 +168,16 @@ def test_an_output_name_over_255_bytes_is_refused(task: Path) -> None:
     assert result.exit_code == 2 and "over the 255" in result.output
 
 
+@pytest.mark.parametrize("command", [["translate", "{path}", "--robot", "melfa"], ["report", "{path}"]])
+@pytest.mark.parametrize("path", [".", "/"])
+def test_a_folder_as_the_input_of_a_command_with_a_default_output_is_refused_as_input(command: list[str],
+                                                                                        path: str) -> None:
+    """The default output is named after the input, once that input has been read as a file."""
+    result = atd(*(a.format(path=path) for a in command))
+    assert result.exit_code == 1 and "directory" in result.output
+    assert result.exception is None or isinstance(result.exception, SystemExit)
+
+
 def test_unknown_robot_for_robots_test_is_a_usage_error() -> None:
     assert atd("robots", "test", "nosuch").exit_code == 2
 
@@ -177,3 +191,91 @@ def test_a_sub_task_or_mesh_of_the_task_is_never_an_output(tmp_path: Path) -> No
     assert atd("translate", task, "--robot", "melfa", "-o", sub).exit_code == 2
     assert atd("run", task, "--robot", "melfa", "--trace", sub).exit_code == 2
     assert sub.read_bytes() == before
+
+
+def _without_root_file_access() -> None:
+    """In the child: no permission bypass, so a read-only folder refuses root as it refuses
+    anyone (root is otherwise exempt, and CI runs as root). The capabilities that bypass file
+    permissions leave the bounding set, so the command exec'd next never gets them."""
+    if os.geteuid() != 0:
+        return
+    libc = ctypes.CDLL(None, use_errno=True)
+    for capability in (CAP_DAC_OVERRIDE, CAP_DAC_READ_SEARCH):
+        if libc.prctl(PR_CAPBSET_DROP, capability, 0, 0, 0) != 0:
+            raise OSError(ctypes.get_errno(), "prctl(PR_CAPBSET_DROP) failed")
+
+
+@pytest.fixture
+def read_only(tmp_path: Path) -> Path:
+    folder = tmp_path / "read_only"
+    folder.mkdir()
+    folder.chmod(0o555)
+    yield folder
+    folder.chmod(0o755)
+
+
+def _store(folder: Path) -> Path:
+    path = folder / "done.sqlite"
+    Store.create_or_resume(path, "[campaign]\n", "digest", resume=False).close()
+    return path
+
+
+@pytest.mark.parametrize("command", [
+    ["translate", "{task}", "--robot", "melfa", "-o", "{out}/out.xml"],
+    ["graph", "{task}", "-o", "{out}/out.svg"],
+    ["run", "{task}", "--robot", "melfa", "--trace", "{out}/out.jsonl"],
+    ["campaign", "run", "{spec}", "--store", "{out}/c.sqlite"],
+    ["campaign", "run", "{spec}"],  # the store's default place: the current folder
+    ["campaign", "export", "{store}", "--format", "csv", "-o", "{out}/c.csv"],
+    ["campaign", "report", "{store}", "-o", "{out}/report.txt"],
+])
+def test_no_permission_to_write_is_one_line_exit_2_and_nothing_left(task: Path, read_only: Path,
+                                                                  command: list[str]) -> None:
+    """A real EACCES: the folder is read-only and the command runs without root's bypass."""
+    names = {"task": task, "out": read_only, "spec": CAMPAIGN_SPEC, "store": _store(task.parent)}
+    done = subprocess.run([sys.executable, "-m", "atd", *(a.format(**names) for a in command)], cwd=read_only,
+                          capture_output=True, text=True, preexec_fn=_without_root_file_access, timeout=120)
+    assert done.returncode == 2, done.stderr
+    assert done.stderr.strip().count("\n") == 0 and "not writable" in done.stderr
+    assert str(read_only) in done.stderr or "read_only" in done.stderr
+    assert list(read_only.iterdir()) == []
+
+
+def test_a_campaign_store_over_the_file_size_limit_is_one_line_exit_2_and_nothing_left(tmp_path: Path) -> None:
+    done = subprocess.run([sys.executable, "-m", "atd", "campaign", "run", str(CAMPAIGN_SPEC), "-q"], cwd=tmp_path,
+                          capture_output=True, text=True, preexec_fn=_limited_file_size, timeout=120)
+    assert done.returncode == 2, done.stderr
+    assert done.stderr.strip().count("\n") == 0 and "cannot write" in done.stderr and "file-size limit" in done.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("command", [
+    ["campaign", "report", "{store}", "-o", "{store}"],
+    ["campaign", "export", "{store}", "--format", "csv", "-o", "{store}"],
+    ["campaign", "report", "{store}", "--plot", "{dir}/r.svg", "-o", "{dir}/r.svg"],
+    ["campaign", "run", "{store}", "--store", "{store}"],
+    ["report", "{store}", "-o", "{store}"],
+    ["compare", "{store}", "{dir}/b.mcap", "--plot", "{store}"],
+])
+def test_no_command_writes_over_a_file_its_command_line_reads(tmp_path: Path, command: list[str]) -> None:
+    store = _store(tmp_path)
+    before = store.read_bytes()
+    result = atd(*(a.format(store=store, dir=tmp_path) for a in command))
+    assert result.exit_code == 2, result.output
+    assert store.read_bytes() == before and sorted(p.name for p in tmp_path.iterdir()) == ["done.sqlite"]
+
+
+def test_the_default_report_name_is_never_the_recording_itself(tmp_path: Path, monkeypatch) -> None:
+    recording = tmp_path / "run.html"
+    recording.write_bytes(b"a recording named .html")
+    monkeypatch.setattr("atd.cli.review.load", lambda path: "a run read from it")
+    result = atd("report", recording)
+    assert result.exit_code == 2 and "input of this command" in result.output
+    assert recording.read_bytes() == b"a recording named .html"
+
+
+@pytest.mark.parametrize("option", [["-j", "100000"], ["-j", "0"], ["--trials", "nan"], ["--trials", "-3"]])
+def test_campaign_counts_outside_their_range_are_refused_before_any_work(tmp_path: Path, option: list[str]) -> None:
+    result = atd("campaign", "run", CAMPAIGN_SPEC, "--store", tmp_path / "c.sqlite", *option)
+    assert result.exit_code == 2 and "[1, " in result.output
+    assert list(tmp_path.iterdir()) == []

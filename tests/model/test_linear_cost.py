@@ -14,11 +14,15 @@ from benchmarks.bench_validate import chain
 
 
 def seconds_to_load(tmp_path: Path, text: str) -> tuple[float, list]:
+    """The best of three loads: one slowed by another process would fake a quadratic cost."""
     path = tmp_path / f"t{len(text)}.xml"
     path.write_text(text)
-    started = time.perf_counter()
-    _, found = load_task(path)
-    return time.perf_counter() - started, found
+    times = []
+    for _ in range(3):
+        started = time.perf_counter()
+        _, found = load_task(path)
+        times.append(time.perf_counter() - started)
+    return min(times), found
 
 
 def test_many_end_states_validate_in_linear_time(tmp_path: Path) -> None:

@@ -113,3 +113,21 @@ def test_every_default_of_the_vocabulary_lies_in_its_declared_range() -> None:
                 outside += [f"{name}.{param} = {v}: {p.allowed.problem(float(v))}"
                             for v in values if p.allowed.problem(float(v))]
     assert outside == []
+
+
+@pytest.mark.parametrize("word", ["1_0", "١٢", "0x10"])
+def test_numbers_only_python_reads_are_refused_everywhere_a_number_is_read(tmp_path: Path, word: str) -> None:
+    """float() takes '1_0' as 10 and Arabic-Indic digits as ours; no schema, TOML or other tool does."""
+    task = with_moving_state_text(tmp_path, f'<parameter name="force_threshold">{word}</parameter>'
+                                            f'<hand_opening>{word}</hand_opening>')
+    _, found = load_task(task)
+    assert {d.code for d in found} == {"ATD106", "ATD108"}
+    assert all(f"'{word}' is not a number" in d.message for d in found)
+    for option in (["--seed", word], ["--budget", word]):
+        result = CliRunner().invoke(main, ["run", str(EXAMPLE), "--robot", "melfa", *option])
+        assert result.exit_code == 2 and f"'{word}' is not" in result.output
+
+
+def test_the_plain_forms_of_a_number_are_read() -> None:
+    spec = CONTROLLERS["cartesian_move"].params["max_speed"]
+    assert [parse_value(spec, text) for text in ("1", "+.5", "2.", "1E-1", " 0.25 ")] == [1.0, 0.5, 2.0, 0.1, 0.25]
