@@ -29,6 +29,7 @@ RUNS = {
     "melfa_mj": Recorded(_PICK, "melfa", "main", "mujoco", "done", {"tactile_left", "tactile_right"}),
     "melfa_pb": Recorded(_PICK, "melfa", "main", "pybullet", "done", {"tactile_left", "tactile_right"}),
     "baxter_mj": Recorded(_PICK, "baxter", "right", "mujoco", "done", {"gripper_left", "gripper_right"}),
+    "baxter_pb": Recorded(_PICK, "baxter", "right", "pybullet", "done", {"gripper_left", "gripper_right"}),
     "barrett_mj": Recorded(_LIFT, "tombatossals", "right", "mujoco", "success_end",
                            {"tactile_f1", "tactile_f2", "tactile_f3", "tactile_palm"}),
     "sdh2_pb": Recorded(_LIFT, "tombatossals", "left", "pybullet", "success_end",
@@ -88,7 +89,8 @@ def test_the_report_is_one_offline_page_with_the_graph_every_plot_and_the_events
     assert len(events) == len(fired) and any("grasp_stable" in r.text_content() for r in events)
 
 
-@pytest.mark.parametrize("a, b", [("melfa_mj", "melfa_pb"), ("panda_mj", "panda_pb"), ("barrett_mj", "sdh2_pb")])
+@pytest.mark.parametrize("a, b", [("melfa_mj", "melfa_pb"), ("panda_mj", "panda_pb"), ("barrett_mj", "sdh2_pb"),
+                                  ("baxter_mj", "baxter_pb")])
 def test_compare_aligns_two_runs_state_by_state(recordings, a, b, tmp_path) -> None:
     plot = tmp_path / "diff.svg"
     result = _atd("compare", str(recordings[a]), str(recordings[b]), "--plot", str(plot), cwd=tmp_path)
