@@ -36,6 +36,7 @@ from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import ARM_NUDGE, CONTACT, FINGERS_STOPPED, JAWS_EMPTY
 from primitives.filters import ContactWrench
 from primitives.robot import Readings
+from primitives.search import search_offsets
 
 ARRIVED = 0.002  # m: a waypoint of the correction counts as reached
 UP = np.array([0.0, 0.0, 1.0])
@@ -52,11 +53,6 @@ def bisected(across: float, last: float) -> float:
     if last * across < 0.0:
         return float(np.sign(across)) * min(abs(across), abs(last) / 2.0)
     return across
-
-
-def search_offsets(step: float, points: int) -> list[float]:
-    """Offsets along the jaws' width: +s, -s, +2s, -2s, ... (`points` of them)."""
-    return [(1 if k % 2 == 0 else -1) * step * (k // 2 + 1) for k in range(points)]
 
 
 class JawGraspCorrection(Controller):

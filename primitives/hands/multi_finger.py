@@ -36,6 +36,7 @@ from primitives.blackboard import CONTACT, EMPTY_HAND, FINGERS_STOPPED, PRESHAPE
 from primitives.filters import LowPass, world_load
 from primitives.hands.posture import Stillness
 from primitives.robot import HandMode, Readings
+from primitives.search import search_offsets
 
 CLOSING_SPEED = 0.3  # of each DOF's speed limit
 # of each DOF's speed limit, opening: at the closing speed a Barrett took 4 s to reopen after
@@ -302,9 +303,9 @@ class RobustGraspHand(FingerGrasp):
             return np.array([0.0, 0.0, self.object_lost_step])
         line = self.base[self.fingers[1]] - self.base[self.fingers[0]]
         across = np.array([-line[1], line[0], 0.0]) / np.linalg.norm(line)
+        offsets = [0.0, *search_offsets(self.search_step, SEARCH_POINTS)]
         self.searches += 1
-        offset = lambda k: (-1) ** (k + 1) * ((k + 1) // 2) * self.search_step  # +1, -1, +2, -2 steps
-        return (offset(self.searches) - offset(self.searches - 1)) * across
+        return (offsets[self.searches] - offsets[self.searches - 1]) * across
 
     def _try_again(self, shift: np.ndarray, what: str) -> None:
         """A failed attempt: reopen, have the arm make `shift` (hand frame), close again.
