@@ -9,7 +9,6 @@ import click
 
 from atd import __version__
 from atd.model import ranges
-from atd.model.ranges import Range
 from atd.model.files import OutputError, output_problem, output_problems, write_output
 
 EXIT_OK = 0
@@ -39,7 +38,7 @@ class OutputFile(click.Path):
 class Ranged(click.ParamType):
     """A number on the command line, checked against its declared range (atd.model.ranges)."""
 
-    def __init__(self, allowed: Range, integer: bool = False) -> None:
+    def __init__(self, allowed: ranges.Range, integer: bool = False) -> None:
         self.allowed, self.integer = allowed, integer
         self.name = f"{'integer' if integer else 'number'} in {allowed}"
 

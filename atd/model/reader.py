@@ -15,7 +15,7 @@ from typing import Iterable, TypeVar
 
 from lxml import etree
 
-from atd.model.diagnostics import Diagnostic, did_you_mean, error, warning
+from atd.model.diagnostics import Diagnostic, did_you_mean, error
 from atd.model import ranges
 from atd.model.controllers import CONTROLLERS, parse_value
 from atd.model.files import name_too_long
@@ -89,9 +89,6 @@ class TaskReader:
     # -- reporting ---------------------------------------------------------------------
     def _error(self, code: str, message: str, node: etree._Element, hint: str | None = None) -> None:
         self.diagnostics.append(error(code, message, self.doc.loc(node), hint))
-
-    def _warning(self, code: str, message: str, node: etree._Element, hint: str | None = None) -> None:
-        self.diagnostics.append(warning(code, message, self.doc.loc(node), hint))
 
     def _unknown_element(self, node: etree._Element, parent: str, allowed: Iterable[str]) -> None:
         allowed = list(allowed)
