@@ -1,12 +1,14 @@
 """The extras, here rather than in pyproject.toml: the `test` extra installs the Panda of
-plugins/atd-panda, and PEP 508 names a local package only by an absolute file URL, which is
+plugins/panda, and PEP 508 names a local package only by an absolute file URL, which is
 computed here at build time. Everything else is declared in pyproject.toml."""
 
 from pathlib import Path
 
 from setuptools import setup
 
-PANDA = Path(__file__).resolve().parent / "plugins" / "atd-panda"
+# Not "atd-panda": pip caches a wheel built from a folder whose name reads as name-version and
+# reuses it for the same path, so a clone at a fixed path would install a stale Panda.
+PANDA = Path(__file__).resolve().parent / "plugins" / "panda"
 # imageio-ffmpeg ships an ffmpeg binary as a wheel: MP4 needs an H.264 encoder, which no one should write by hand.
 VIDEO = ["imageio-ffmpeg>=0.5"]
 # Ray runs a campaign on a cluster (`atd campaign run --ray`); the local pool needs nothing extra.

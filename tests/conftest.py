@@ -1,7 +1,7 @@
 """Shared test helpers: write a small ATD to a temp dir and read back its diagnostics.
 
 The whole suite runs with a fourth robot installed beside the built-ins: the Panda of
-plugins/atd-panda, which the test extras install (`pip install -e '.[test]'`).
+plugins/panda, which the test extras install (`pip install -e '.[test]'`).
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""The fourth robot, the Franka Emika Panda of plugins/atd-panda (made from pybullet_data's
+"""The fourth robot, the Franka Emika Panda of plugins/panda (made from pybullet_data's
 URDF by `atd robots new --from-urdf`), runs the examples to success in both engines."""
 
 from __future__ import annotations
