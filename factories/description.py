@@ -46,7 +46,7 @@ class Origin:
 
 @dataclass(frozen=True)
 class Shape:
-    """A collision shape. `size`: box = half extents (3); capsule and cylinder =
+    """A collision or visual shape. `size`: box = half extents (3); capsule and cylinder =
     (radius, half length of the axis); sphere = (radius,); mesh = its scale along its axes (3)."""
 
     kind: Literal["box", "capsule", "cylinder", "sphere", "mesh"]
@@ -157,7 +157,7 @@ class Link:
     mass: float
     """kg."""
     shapes: tuple[Shape, ...] = ()
-    """Collision and visual primitives, in the link frame."""
+    """Collision primitives, in the link frame; the engines also draw them where `visuals` is empty."""
     joint: Joint | None = None
     """The joint that moves it relative to its parent; None: welded to it."""
     com: Vec3 | None = None
@@ -167,6 +167,9 @@ class Link:
     None: the first shape as a solid."""
     inertia_products: Vec3 = (0.0, 0.0, 0.0)
     """Products (ixy, ixz, iyz) of the same tensor, kg m^2 (as URDF and MJCF's fullinertia write them)."""
+    visuals: tuple[Shape, ...] = ()
+    """What the engines draw in place of `shapes` (a URDF's detailed visual meshes), in the link
+    frame: no contact, no mass. Empty: the collision shapes are drawn."""
 
     @property
     def centre_of_mass(self) -> Vec3:

@@ -3,12 +3,21 @@ URDF by `atd robots new --from-urdf`), runs the examples to success in both engi
 
 from __future__ import annotations
 
+from pathlib import Path
+
+import mujoco
+import numpy as np
+import pybullet as pb
+import pybullet_data
 import pytest
 from click.testing import CliRunner
 
 from atd.cli import main
+from atd.model.meshcheck import read_mesh
 from atd.sim import load_description
 from tests.conftest import EXAMPLES
+
+MESHES = Path(pybullet_data.getDataPath()) / "franka_panda" / "meshes"
 
 
 @pytest.mark.parametrize("task", ["pick_and_place", "grasp_and_lift", "push_object"])
@@ -31,3 +40,29 @@ def test_the_pandas_arm_weighs_as_identified_and_collides_as_its_meshes():
     assert sum(link.mass for link in arm) == pytest.approx(16.062, abs=0.001)  # Gaz et al. 2019, not the URDF's 14.05
     assert arm[1].com == (-3.141e-03, -2.872e-02, 3.495e-03) and arm[1].inertia_products[0] == pytest.approx(-3.925e-3)
     assert all(shape.kind == "mesh" and shape.mesh.is_file() for link in d.links for shape in link.shapes)
+
+
+def test_mujoco_draws_the_pandas_visual_meshes_whole_and_collides_its_collision_meshes(robot_of):
+    d = load_description("panda", None)
+    m = robot_of(d, "mujoco").model
+    body = {link.name: mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, link.name) for link in d.links}
+    mesh = m.geom_type == mujoco.mjtGeom.mjGEOM_MESH
+    drawn = mesh & (m.geom_contype == 0) & (m.geom_conaffinity == 0) & (m.geom_group == 2)
+    (hand,) = np.flatnonzero(drawn & (m.geom_bodyid == body["panda_hand"]))
+    vertices, faces = read_mesh(MESHES / "visual" / "hand.obj")
+    # all five objects of the file: MuJoCo reading the OBJ itself keeps the first only (42 triangles)
+    assert m.mesh_facenum[m.geom_dataid[hand]] == len(faces) == 7078
+    collided = {mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_GEOM, g) for g in np.flatnonzero(mesh & (m.geom_contype == 1))}
+    assert collided == {f"{link.name}_0" for link in d.links}  # one collision mesh a link, as the URDF's
+    assert [m.body_mass[body[link.name]] for link in d.links] == pytest.approx([link.mass for link in d.links])
+
+
+def test_pybullet_draws_the_pandas_visual_meshes_and_collides_its_collision_meshes(robot_of):
+    d = load_description("panda", None)
+    robot = robot_of(d, "pybullet")
+    client, hand = robot.client, robot._index["link:panda_hand"]
+    drawn = {v[1]: Path(v[4].decode()) for v in pb.getVisualShapeData(robot.body, physicsClientId=client)}
+    assert drawn[hand] == MESHES / "visual" / "hand.obj"
+    assert drawn[-1] == MESHES / "collision" / "link0.obj"  # the URDF draws the base as its collision mesh
+    (collision,) = pb.getCollisionShapeData(robot.body, hand, physicsClientId=client)
+    assert Path(collision[4].decode()) == MESHES / "collision" / "hand.obj"
