@@ -21,8 +21,9 @@ def _id(m: mujoco.MjModel, kind: mujoco.mjtObj, name: str) -> int:
     return mujoco.mj_name2id(m, kind, name)
 
 
-def _compiled(xml: str, description: RobotDescription) -> mujoco.MjModel:
-    """The model of `xml`, its visual meshes given as the triangles of every object of their files."""
+def compile_mjcf(xml: str, description: RobotDescription) -> mujoco.MjModel:
+    """The model of `mjcf(description, ...)`: what `MjModel.from_xml_string` makes of it, with the
+    visual meshes given as the triangles of every object of their files."""
     spec = mujoco.MjSpec.from_string(xml)
     for name, shape in visual_meshes(description).items():
         vertices, faces = read_mesh(shape.mesh, shape.size)  # type: ignore[arg-type]
@@ -39,7 +40,7 @@ class MujocoRobot(SimRobot):
         super().__init__(description, scene, seed)
         d = description
         self.xml = mjcf(d, scene)
-        self.model = m = _compiled(self.xml, d)
+        self.model = m = compile_mjcf(self.xml, d)
         self.data = mujoco.MjData(m)
         mujoco.mj_resetDataKeyframe(m, self.data, 0)
         mujoco.mj_forward(m, self.data)
