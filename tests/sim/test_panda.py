@@ -34,12 +34,15 @@ def test_atd_check_shows_the_panda_doing_the_examples():
     assert "panda" in result.output.splitlines()[0]
 
 
-def test_the_pandas_arm_weighs_as_identified_and_collides_as_its_meshes():
+def test_the_pandas_arm_and_hand_weigh_as_published_and_collide_as_their_meshes():
     d = load_description("panda", None)
     arm = [d.links_by_name[f"panda_link{i}"] for i in range(1, 8)]
     assert sum(link.mass for link in arm) == pytest.approx(16.062, abs=0.001)  # Gaz et al. 2019, not the URDF's 14.05
     assert arm[1].com == (-3.141e-03, -2.872e-02, 3.495e-03) and arm[1].inertia_products[0] == pytest.approx(-3.925e-3)
     assert all(shape.kind == "mesh" and shape.mesh.is_file() for link in d.links for shape in link.shapes)
+    hand = d.links_by_name["panda_hand"]  # Franka's 0.73 kg hand, not the URDF's 0.81 kg at 0.1 kg m^2
+    assert (hand.mass, hand.com, hand.inertia) == (0.73, (-0.01, 0.0, 0.03), (1.0e-3, 2.5e-3, 1.7e-3))
+    assert d.hand_mass == pytest.approx(0.76)  # with two 15 g fingers
 
 
 def test_mujoco_draws_the_pandas_visual_meshes_whole_and_collides_its_collision_meshes(robot_of):
