@@ -69,3 +69,17 @@ def test_pybullet_draws_the_pandas_visual_meshes_and_collides_its_collision_mesh
     assert drawn[-1] == MESHES / "collision" / "link0.obj"  # the URDF draws the base as its collision mesh
     (collision,) = pb.getCollisionShapeData(robot.body, hand, physicsClientId=client)
     assert Path(collision[4].decode()) == MESHES / "collision" / "hand.obj"
+
+
+def test_the_panda_is_refused_the_walled_box_by_the_margin_not_by_its_walls(tmp_path):
+    d = load_description("panda", None)
+    walls = [((0.10, -0.16, 0.03), (0.16, 0.01, 0.06)), ((0.10, 0.0, 0.03), (0.16, 0.01, 0.06))]  # empty_the_box.xml
+    tcp = np.eye(4)
+    tcp[:3, :3], tcp[:3, 3] = np.diag([-1.0, 1.0, -1.0]), (0.10, -0.08, 0.025)  # hand down, at the cube's centre
+    assert d.hand_in_boxes("open", tcp, walls) == {}  # the 20 cm housing passes over the walls, the fingers inside
+    grown = [(centre, tuple(v + 0.02 for v in size)) for centre, size in walls]  # 1 cm all round
+    assert d.hand_in_boxes("open", tcp, grown) == {0: ["panda_hand", "panda_rightfinger"],
+                                                    1: ["panda_hand", "panda_leftfinger"]}
+    result = CliRunner().invoke(main, ["translate", str(EXAMPLES / "empty_the_box.xml"), "--robot", "panda",
+                                       "-o", str(tmp_path / "box.estd.xml")])
+    assert result.exit_code == 4 and "with its panda_hand, panda_leftfinger and panda_rightfinger" in result.output
