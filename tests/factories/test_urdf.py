@@ -160,3 +160,12 @@ def test_what_a_bare_frame_draws_is_drawn_by_its_parent(tmp_path):
     assert [link.name for link in model.links] == ["base", "arm"]
     arm_mesh, sphere = model.links[1].visuals
     assert arm_mesh.kind == "mesh" and sphere.kind == "sphere" and sphere.origin.xyz == pytest.approx((0, 0, 0.25))
+
+
+def test_a_broken_visual_mesh_is_named_at_its_line_as_a_collision_mesh_is(tmp_path):
+    path = _write(tmp_path, URDF.format(kind="revolute"))
+    (tmp_path / "meshes" / "arm.obj").write_text("v 0 0 0\nv 0.1 0.1 0.1\n")  # two points, no faces
+    with pytest.raises(UrdfError) as info:
+        read_urdf(path)
+    assert str(info.value).startswith(f"{path}:8: mesh {tmp_path / 'meshes' / 'arm.obj'} cannot be simulated: ")
+    assert "has no faces" in str(info.value)
