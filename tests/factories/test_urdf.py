@@ -112,6 +112,8 @@ def test_a_continuous_joint_turns_two_full_turns_either_way(tmp_path):
      ":3: <capsule> is not a URDF geometry; use box, cylinder, sphere or mesh"),
     (lambda t: t.format(kind="revolute").replace("</robot>", "<robot>"),
      "not well-formed XML"),
+    (lambda t: t.format(kind="revolute").replace("</visual>", '<material name="m"><color rgba="red"/></material></visual>'),
+     ':8: rgba="red" is not four numbers in [0, 1]; write rgba="r g b a"'),
 ])
 def test_what_cannot_be_imported_names_the_urdfs_file_and_line(tmp_path, edit, message):
     path = _write(tmp_path, edit(URDF))
