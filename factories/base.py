@@ -317,11 +317,14 @@ class Factory(ABC):
             if hit:
                 where = " and ".join(f"({', '.join(f'{v:g}' for v in obstacles[k].position)}) sized "
                                      f"{' x '.join(f'{v:g}' for v in obstacles[k].size)}" for k in hit)
+                links = [name for name in self.robot.hand_links if any(name in names for names in hit.values())]
+                them = "them" if len(hit) > 1 else "it"
                 raise Unmappable(
                     f"the {self.arm.hand.name} in its '{posture}' posture, closing on the object at "
                     f"({', '.join(f'{v:g}' for v in centre)}), would come within {HAND_CLEARANCE * 100:g} cm of the "
-                    f"{'obstacles' if len(hit) > 1 else 'obstacle'} at {where}: "
-                    f"its fingers would close on {'them' if len(hit) > 1 else 'it'}, not on the object",
+                    f"{'obstacles' if len(hit) > 1 else 'obstacle'} at {where} with its "
+                    f"{' and '.join([', '.join(links[:-1]), links[-1]] if len(links) > 1 else links)}: "
+                    f"it would close on {them} or land on {them}, not on the object",
                     "give the hand more room around the object (move the obstacle away), "
                     "or choose a robot or arm with a smaller hand")
 

@@ -46,7 +46,7 @@ class Origin:
 
 @dataclass(frozen=True)
 class Shape:
-    """A collision shape. `size`: box = half extents (3); capsule and cylinder =
+    """A collision or visual shape. `size`: box = half extents (3); capsule and cylinder =
     (radius, half length of the axis); sphere = (radius,); mesh = its scale along its axes (3)."""
 
     kind: Literal["box", "capsule", "cylinder", "sphere", "mesh"]
@@ -157,7 +157,7 @@ class Link:
     mass: float
     """kg."""
     shapes: tuple[Shape, ...] = ()
-    """Collision and visual primitives, in the link frame."""
+    """Collision primitives, in the link frame; the engines also draw them where `visuals` is empty."""
     joint: Joint | None = None
     """The joint that moves it relative to its parent; None: welded to it."""
     com: Vec3 | None = None
@@ -167,6 +167,9 @@ class Link:
     None: the first shape as a solid."""
     inertia_products: Vec3 = (0.0, 0.0, 0.0)
     """Products (ixy, ixz, iyz) of the same tensor, kg m^2 (as URDF and MJCF's fullinertia write them)."""
+    visuals: tuple[Shape, ...] = ()
+    """What the engines draw in place of `shapes` (a URDF's detailed visual meshes), in the link
+    frame: no contact, no mass. Empty: the collision shapes are drawn."""
 
     @property
     def centre_of_mass(self) -> Vec3:
@@ -397,9 +400,10 @@ class RobotDescription:
                        for name in self.hand_links for shape in self.links_by_name[name].shapes)
         return farthest - float(tcp[:3, 3] @ approach)
 
-    def hand_in_boxes(self, posture: str, tcp: np.ndarray, boxes: list[tuple[Vec3, Vec3]]) -> list[int]:
+    def hand_in_boxes(self, posture: str, tcp: np.ndarray, boxes: list[tuple[Vec3, Vec3]]) -> dict[int, list[str]]:
         """Which of the world-aligned `boxes` (centre, size) the hand's links would cut into
-        with its TCP at the pose `tcp` (4x4, world) and its fingers in `posture`.
+        with its TCP at the pose `tcp` (4x4, world) and its fingers in `posture`: box index ->
+        the links that would.
 
         A link and a box are apart when some axis separates them: the world axes (the box's
         own) or the link shape's axes. The edge-by-edge axes of a full separating-axis test
@@ -407,17 +411,17 @@ class RobotDescription:
         a few millimetres; a hand that close to an obstacle has no room to close anyway."""
         poses = self.link_poses(self.hand_joint_targets(np.asarray(self.hand.postures[posture], float)))
         to_world = tcp @ np.linalg.inv(poses[self.tcp.link] @ self.tcp.origin.matrix())
-        placed = [(shape, to_world @ poses[name]) for name in self.hand_links
+        placed = [(name, shape, to_world @ poses[name]) for name in self.hand_links
                   for shape in self.links_by_name[name].shapes]
-        hit = []
+        hit: dict[int, list[str]] = {}
         for k, (centre, size) in enumerate(boxes):
             centre, half = np.asarray(centre, float), np.asarray(size, float) / 2
-            for shape, pose in placed:
+            for name, shape, pose in placed:
                 axes = [*np.eye(3), *(pose @ shape.origin.matrix())[:3, :3].T]
-                if not any(shape.support(pose, d) <= centre @ d - half @ np.abs(d)
-                           or -shape.support(pose, -d) >= centre @ d + half @ np.abs(d) for d in axes):
-                    hit.append(k)
-                    break
+                if name not in hit.get(k, ()) and not any(
+                        shape.support(pose, d) <= centre @ d - half @ np.abs(d)
+                        or -shape.support(pose, -d) >= centre @ d + half @ np.abs(d) for d in axes):
+                    hit.setdefault(k, []).append(name)
         return hit
 
     def tcp_pose(self, arm_q: np.ndarray, hand_dofs: np.ndarray | None = None) -> np.ndarray:

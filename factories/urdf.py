@@ -2,19 +2,19 @@
 
 What a URDF says becomes description `Link`s: the tree (parents before children), joint
 origins, axes, limits, damping and friction, masses, centres of mass and inertias, and the
-collision geometry; links that are only frames (welded, massless, bare) are folded into
-their parents. A collision mesh (OBJ or STL) is read from where the URDF names it, checked
-as every mesh is before an engine sees it, and becomes a mesh shape: both engines collide
-its convex hull. Boxes, cylinders and spheres are taken as they are. Visual meshes are
-checked to exist, as the URDF would not load elsewhere without them; the engines draw the
-collision shapes.
+collision and visual geometry; links that are only frames (welded, massless, bare) are
+folded into their parents. A mesh (OBJ or STL) is read from where the URDF names it, checked
+as every mesh is before an engine sees it, and becomes a mesh shape: both engines collide a
+collision mesh's convex hull and draw a visual mesh as it is, without contact or mass. Boxes,
+cylinders and spheres are taken as they are. A link whose visual mesh no engine can load (a
+COLLADA .dae) is drawn as its collision shapes instead.
 What a URDF lacks (servo gains, sensors, the TCP, the hand's DOFs and pads) the robot's
 description adds. Anything that cannot be imported is a `UrdfError` naming file:line.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Callable
 
@@ -23,7 +23,7 @@ from lxml import etree
 
 from atd.model.files import InputError, read_capped
 from atd.model.frames import rotation_rpy, rpy_of
-from atd.model.meshcheck import MeshError, check_mesh
+from atd.model.meshcheck import SUFFIXES as MESH_SUFFIXES, MeshError, check_mesh
 from factories.description import Joint, Link, Origin, Servo, Shape, Vec3
 
 MAX_URDF_BYTES = 16 * 1024 * 1024
@@ -88,6 +88,8 @@ def read_urdf(path: Path, servo: Callable[[float], Servo] = default_servo) -> Ur
 class _Reader:
     path: Path
     servo: Callable[[float], Servo]
+    colours: dict[str, tuple[float, float, float, float]] = field(default_factory=dict)
+    """rgba by material name: a URDF defines a material once and names it in later <visual>s."""
 
     def fail(self, element: etree._Element, what: str, fix: str) -> UrdfError:
         return UrdfError(f"{self.path}:{element.sourceline}: {what}; {fix}")
@@ -124,6 +126,10 @@ class _Reader:
         return Origin(self.vector(element, "xyz", (0.0, 0.0, 0.0)), self.vector(element, "rpy", (0.0, 0.0, 0.0)))
 
     def links(self, root: etree._Element) -> tuple[Link, ...]:
+        for material in root.iter("material"):
+            colour = material.find("color")
+            if colour is not None and material.get("name"):
+                self.colours[material.get("name")] = self.rgba(colour)
         elements = {}
         for element in root.findall("link"):
             name = element.get("name")
@@ -171,17 +177,45 @@ class _Reader:
                 inertia, products = self.inertia(tensor, frame)
         shapes = tuple(shape for collision in element.findall("collision")
                        for shape in self.geometry(collision, element.get("name")))
-        for visual in element.findall("visual"):
-            mesh = visual.find("geometry/mesh")
-            if mesh is not None:
-                self.mesh_file(mesh)
+        visuals = self.visuals(element)
         joint, origin, parent = None, Origin(), None
         if joint_element is not None:
             parent = joint_element.find("parent").get("link")
             origin = self.origin(joint_element)
             joint = self.joint(joint_element)
         return Link(element.get("name"), parent, origin, mass, shapes, joint, com=com,
-                    inertia=inertia if mass > 0 else None, inertia_products=products)  # type: ignore[arg-type]
+                    inertia=inertia if mass > 0 else None, inertia_products=products,  # type: ignore[arg-type]
+                    visuals=visuals)
+
+    def visuals(self, link: etree._Element) -> tuple[Shape, ...]:
+        """The link's <visual> shapes in their colours, or none (draw the collision shapes)
+        when one is a mesh in a format no engine loads, as a COLLADA .dae."""
+        drawn = []
+        for visual in link.findall("visual"):
+            mesh = visual.find("geometry/mesh")
+            if mesh is not None and self.mesh_file(mesh).suffix.lower() not in MESH_SUFFIXES:
+                return ()
+            drawn += [replace(shape, rgba=self.colour(visual)) for shape in self.geometry(visual, link.get("name"))]
+        return tuple(drawn)
+
+    def colour(self, visual: etree._Element) -> tuple[float, float, float, float]:
+        """A <visual>'s colour: its material's <color>, else that of the material it names."""
+        material = visual.find("material")
+        if material is None:
+            return Shape.rgba
+        colour = material.find("color")
+        return self.rgba(colour) if colour is not None else self.colours.get(material.get("name", ""), Shape.rgba)
+
+    def rgba(self, colour: etree._Element) -> tuple[float, float, float, float]:
+        values = colour.get("rgba", "").split()
+        try:
+            rgba = tuple(float(v) for v in values)
+        except ValueError:
+            rgba = ()
+        if len(rgba) != 4 or not all(0 <= v <= 1 for v in rgba):
+            raise self.fail(colour, f"rgba=\"{colour.get('rgba')}\" is not four numbers in [0, 1]",
+                            "write rgba=\"r g b a\"")
+        return rgba  # type: ignore[return-value]
 
     def inertia(self, tensor: etree._Element, frame: Origin) -> tuple[Vec3, Vec3]:
         """The <inertia>'s moments and products along the link axes: a URDF may give the
@@ -223,11 +257,12 @@ class _Reader:
         return Joint(element.get("name"), JOINT_KINDS[kind], unit, lower, upper, velocity, effort,  # type: ignore[arg-type]
                      self.servo(effort), damping=damping, friction=friction, armature=ARMATURE * effort)
 
-    def geometry(self, collision: etree._Element, link: str) -> tuple[Shape, ...]:
-        origin = self.origin(collision)
-        geometry = collision.find("geometry")
+    def geometry(self, element: etree._Element, link: str) -> tuple[Shape, ...]:
+        """A <collision>'s or <visual>'s geometry as a shape in the link frame."""
+        origin = self.origin(element)
+        geometry = element.find("geometry")
         if geometry is None or len(geometry) == 0:
-            raise self.fail(collision, f"a <collision> of link '{link}' has no <geometry>", "add one, or remove it")
+            raise self.fail(element, f"a <{element.tag}> of link '{link}' has no <geometry>", "add one, or remove it")
         shape = geometry[0]
         if shape.tag == "box":
             size = self.vector(shape, "size", (0.0, 0.0, 0.0))
@@ -258,8 +293,8 @@ class _Reader:
                         "install the meshes beside the URDF, or correct the filename")
 
     def mesh(self, mesh: etree._Element, origin: Origin) -> Shape:
-        """A collision mesh as a mesh shape, once its file has passed the check every mesh
-        passes before an engine reads it."""
+        """A mesh as a mesh shape, once its file has passed the check every mesh passes before
+        an engine reads it."""
         file = self.mesh_file(mesh)
         scale = self.vector(mesh, "scale", (1.0, 1.0, 1.0))
         try:
@@ -273,18 +308,26 @@ class _Reader:
 def _without_bare_frames(links: list[Link]) -> tuple[Link, ...]:
     """The links less those that are only frames (welded, massless, no geometry: a flange,
     a grasp target), their children hung on their parent with the two origins composed.
-    A massless body is no body to a simulator."""
-    kept: list[Link] = []
+    A massless body is no body to a simulator; what a frame draws is drawn by the parent."""
+    kept: dict[str, Link] = {}
     frames: dict[str, Link] = {}
     for link in links:
         parent = frames.get(link.parent or "")
         if parent is not None:
-            pose = parent.origin.matrix() @ link.origin.matrix()
-            link = replace(link, parent=parent.parent,
-                           origin=Origin(tuple(float(v) for v in pose[:3, 3]), rpy_of(pose[:3, :3])))  # type: ignore[arg-type]
+            link = replace(link, parent=parent.parent, origin=_composed(parent.origin, link.origin))
         if link.parent is not None and link.joint is None and link.mass <= 0 and not link.shapes:
             frames[link.name] = link
+            if link.visuals:
+                holder = kept[link.parent]
+                kept[holder.name] = replace(holder, visuals=(holder.visuals or holder.shapes) + tuple(
+                    replace(shape, origin=_composed(link.origin, shape.origin)) for shape in link.visuals))
         else:
-            kept.append(link)
-    return tuple(kept)
+            kept[link.name] = link
+    return tuple(kept.values())
+
+
+def _composed(outer: Origin, inner: Origin) -> Origin:
+    """The pose `inner` (in a frame placed by `outer`) in the frame `outer` is given in."""
+    pose = outer.matrix() @ inner.matrix()
+    return Origin(tuple(float(v) for v in pose[:3, 3]), rpy_of(pose[:3, :3]))  # type: ignore[arg-type]
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import re
 import struct
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -34,16 +35,37 @@ class MeshError(ValueError):
 def check_mesh(path: Path, scale: tuple[float, float, float] = (1.0, 1.0, 1.0)) -> np.ndarray:
     """The mesh's triangles (n x 3 x 3 corners) scaled along its axes (a URDF may draw a
     mesh in millimetres at scale 0.001), or MeshError saying why the file cannot be simulated."""
+    vertices, faces = read_mesh(path, scale)
+    return vertices[faces]
+
+
+def read_mesh(path: Path, scale: tuple[float, float, float] = (1.0, 1.0, 1.0)) -> tuple[np.ndarray, np.ndarray]:
+    """The mesh's vertices (n x 3, scaled) and triangles (m x 3 vertex indices), every object
+    of an OBJ file in one, once checked as `check_mesh` checks them. Read-only arrays, read
+    once per process while the file is unchanged: a robot's visual meshes are megabytes of
+    text, wanted by its description and again by each model built from it."""
     suffix = path.suffix.lower()
     if suffix not in SUFFIXES:
         raise MeshError(f"{suffix or 'no suffix'} meshes are not supported; use an STL or OBJ file")
     try:
+        info = path.stat()
+        version = info.st_mtime_ns, info.st_size
+    except OSError:  # reading it says why
+        version = 0, 0
+    return _read_mesh(path, *version, tuple(float(v) for v in scale))
+
+
+@lru_cache(maxsize=256)
+def _read_mesh(path: Path, mtime_ns: int, size: int, scale: tuple[float, ...]) -> tuple[np.ndarray, np.ndarray]:
+    try:
         data = read_capped(path, MAX_BYTES)
     except InputError as exc:
         raise MeshError(str(exc)) from None
-    triangles = (_stl_triangles(data) if suffix == ".stl" else _obj_triangles(data)) * np.asarray(scale, float)
-    _check_solid(triangles)
-    return triangles
+    vertices, faces = _stl_mesh(data) if path.suffix.lower() == ".stl" else _obj_mesh(data)
+    vertices = vertices * np.asarray(scale, float)
+    _check_solid(vertices[faces])
+    vertices.flags.writeable = faces.flags.writeable = False
+    return vertices, faces
 
 
 def mesh_points(path: Path, scale: tuple[float, float, float] = (1.0, 1.0, 1.0)) -> np.ndarray:
@@ -74,6 +96,12 @@ def _shown(word: bytes) -> str:
     return "".join(c if c.isprintable() else "?" for c in word[:20].decode(errors="replace"))
 
 
+def _stl_mesh(data: bytes) -> tuple[np.ndarray, np.ndarray]:
+    """An STL's corners as vertices, three a triangle (STL shares none)."""
+    triangles = _stl_triangles(data)
+    return triangles.reshape(-1, 3), np.arange(3 * len(triangles)).reshape(-1, 3)
+
+
 def _stl_triangles(data: bytes) -> np.ndarray:
     if len(data) >= 84:
         (count,) = struct.unpack_from("<I", data, 80)
@@ -91,7 +119,7 @@ def _stl_triangles(data: bytes) -> np.ndarray:
     return np.asarray(vertices, dtype=float).reshape(-1, 3, 3)
 
 
-def _obj_triangles(data: bytes) -> np.ndarray:
+def _obj_mesh(data: bytes) -> tuple[np.ndarray, np.ndarray]:
     vertices: list[list[float]] = []
     corners: list[int] = []  # three vertex indices per triangle, each face split into a fan
     for number, line in enumerate(data.splitlines(), 1):
@@ -119,7 +147,7 @@ def _obj_triangles(data: bytes) -> np.ndarray:
             raise MeshError(f"line {number}: '{_shown(words[0])}' is not an OBJ statement")
     if not corners:
         raise MeshError("the OBJ file has no faces")
-    return np.asarray(vertices, dtype=float)[corners].reshape(-1, 3, 3)
+    return np.asarray(vertices, dtype=float), np.asarray(corners, dtype=np.intp).reshape(-1, 3)
 
 
 def _check_solid(triangles: np.ndarray) -> None:

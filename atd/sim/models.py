@@ -59,6 +59,7 @@ class GeomView:
     urdf_size: dict[str, str]
     at: Placed
     rgba: str
+    shape: Shape
 
 
 @dataclass
@@ -66,6 +67,9 @@ class BodyView:
     link: Link
     at: Placed
     geoms: list[GeomView]
+    """What collides."""
+    visuals: list[GeomView]
+    """What is drawn: the link's visual shapes, else its collision geoms themselves."""
     sites: list[tuple[str, Placed]]
     pads: list[tuple[FingerPad, GeomView]]
     gravcomp: bool
@@ -83,7 +87,7 @@ def _geom(name: str, shape: Shape, frame: np.ndarray | None = None) -> GeomView:
         urdf = {"radius": _fmt(s)}
     else:  # URDF lengths are whole (PyBullet's capsule length excludes the caps, as MJCF's does)
         urdf = {"radius": _fmt(s[:1]), "length": _fmt([2 * s[1]])}
-    return GeomView(name, shape.kind, _fmt(s), urdf, Placed.of(m), _fmt(shape.rgba))
+    return GeomView(name, shape.kind, _fmt(s), urdf, Placed.of(m), _fmt(shape.rgba), shape)
 
 
 def _pad_frame(pad: FingerPad) -> np.ndarray:
@@ -108,10 +112,12 @@ def body_tree(d: RobotDescription) -> BodyView:
     views: dict[str, BodyView] = {}
     root = None
     for link in d.links:
+        geoms = [_geom(f"{link.name}_{i}", s) for i, s in enumerate(link.shapes)]
         view = BodyView(
             link=link,
             at=Placed.of((d.base if link.parent is None else link.origin).matrix()),
-            geoms=[_geom(f"{link.name}_{i}", s) for i, s in enumerate(link.shapes)],
+            geoms=geoms,
+            visuals=[_geom(f"{link.name}_visual_{i}", s) for i, s in enumerate(link.visuals)] or geoms,
             sites=[(s.name, Placed.of(s.origin.matrix())) for s in d.sites if s.link == link.name],
             pads=[(p, _pad_geom(p)) for p in d.hand.pads if p.link == link.name],
             gravcomp=link.name in arm_moved,
@@ -165,6 +171,17 @@ def _body(body: Body) -> dict:
             "meshes": _meshes(body)}
 
 
+def _visual_meshes(root: BodyView) -> list[GeomView]:
+    return [g for b in _depth_first(root) if b.visuals is not b.geoms for g in b.visuals if g.kind == "mesh"]
+
+
+def visual_meshes(d: RobotDescription) -> dict[str, Shape]:
+    """The mesh assets of `mjcf(d, ...)` that are only drawn, by name. MuJoCo's OBJ reader
+    keeps only a file's first object, and a visual OBJ is often several (pybullet_data's
+    Panda hand: five), so the MuJoCo engine gives it these meshes' triangles itself."""
+    return {g.name: g.shape for g in _visual_meshes(body_tree(d))}
+
+
 def mjcf(d: RobotDescription, scene: Scene) -> str:
     """The whole MuJoCo world: options, defaults, table, object, obstacles, robot, sensors, home key."""
     hand_home = d.hand_joint_targets(np.array([dof.open for dof in d.hand.dofs]))
@@ -184,7 +201,7 @@ def mjcf(d: RobotDescription, scene: Scene) -> str:
         hand_joints=hand_joints,
         key_qpos=_fmt(qpos),
         key_ctrl=_fmt([home.get(name, 0.0) for name in list(d.arm_joints) + hand_joints]),
-        robot_meshes=[g for b in _depth_first(root) for g in b.geoms if g.kind == "mesh"],
+        robot_meshes=[g for b in _depth_first(root) for g in b.geoms if g.kind == "mesh"] + _visual_meshes(root),
         pad_contacts=PAD_CONTACTS,
         fmt=_fmt,
     )

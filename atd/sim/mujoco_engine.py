@@ -10,7 +10,8 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from atd.sim.models import mjcf
+from atd.model.meshcheck import read_mesh
+from atd.sim.models import mjcf, visual_meshes
 from atd.sim.scene import CAMERA_AZIMUTH, CAMERA_DISTANCE, CAMERA_ELEVATION, CAMERA_TARGET, Scene
 from atd.sim.simrobot import SimRobot
 from factories.description import RobotDescription
@@ -20,6 +21,18 @@ def _id(m: mujoco.MjModel, kind: mujoco.mjtObj, name: str) -> int:
     return mujoco.mj_name2id(m, kind, name)
 
 
+def compile_mjcf(xml: str, description: RobotDescription) -> mujoco.MjModel:
+    """The model of `mjcf(description, ...)`: what `MjModel.from_xml_string` makes of it, with the
+    visual meshes given as the triangles of every object of their files."""
+    spec = mujoco.MjSpec.from_string(xml)
+    for name, shape in visual_meshes(description).items():
+        vertices, faces = read_mesh(shape.mesh, shape.size)  # type: ignore[arg-type]
+        mesh = spec.mesh(name)
+        mesh.file, mesh.scale = "", [1.0, 1.0, 1.0]
+        mesh.uservert, mesh.userface = vertices.ravel(), faces.ravel()
+    return spec.compile()
+
+
 class MujocoRobot(SimRobot):
     engine = "mujoco"
 
@@ -27,7 +40,7 @@ class MujocoRobot(SimRobot):
         super().__init__(description, scene, seed)
         d = description
         self.xml = mjcf(d, scene)
-        self.model = m = mujoco.MjModel.from_xml_string(self.xml)
+        self.model = m = compile_mjcf(self.xml, d)
         self.data = mujoco.MjData(m)
         mujoco.mj_resetDataKeyframe(m, self.data, 0)
         mujoco.mj_forward(m, self.data)

@@ -56,7 +56,7 @@ URDF = """\
   <link name="arm">
     <inertial><origin xyz="0 0 0.1"/><mass value="1.5"/><inertia ixx="0.01" iyy="0.02" izz="0.03"/></inertial>
     <collision><origin xyz="0 0 0.1"/><geometry><cylinder radius="0.03" length="0.2"/></geometry></collision>
-    <visual><geometry><mesh filename="package://meshes/arm.obj"/></geometry></visual>
+    <visual><geometry><mesh filename="package://meshes/arm.obj" scale="0.001 0.001 0.001"/></geometry></visual>
   </link>
   <joint name="shoulder" type="{kind}">
     <parent link="base"/><child link="arm"/>
@@ -112,6 +112,8 @@ def test_a_continuous_joint_turns_two_full_turns_either_way(tmp_path):
      ":3: <capsule> is not a URDF geometry; use box, cylinder, sphere or mesh"),
     (lambda t: t.format(kind="revolute").replace("</robot>", "<robot>"),
      "not well-formed XML"),
+    (lambda t: t.format(kind="revolute").replace("</visual>", '<material name="m"><color rgba="red"/></material></visual>'),
+     ':8: rgba="red" is not four numbers in [0, 1]; write rgba="r g b a"'),
 ])
 def test_what_cannot_be_imported_names_the_urdfs_file_and_line(tmp_path, edit, message):
     path = _write(tmp_path, edit(URDF))
@@ -133,3 +135,39 @@ def test_a_collision_mesh_no_engine_could_take_is_named_at_its_line(tmp_path, na
         read_urdf(path)
     assert str(info.value).startswith(f"{path}:7: mesh {tmp_path / 'meshes' / name} cannot be simulated: ")
     assert message in str(info.value)
+
+
+def test_a_visual_mesh_is_read_in_its_materials_colour_apart_from_the_collision_shapes(tmp_path):
+    urdf = URDF.format(kind="revolute").replace(
+        "</geometry></visual>", '</geometry><material name="blue"><color rgba="0 0 1 1"/></material></visual>')
+    arm = read_urdf(_write(tmp_path, urdf)).links[1]
+    (drawn,) = arm.visuals
+    assert drawn.kind == "mesh" and drawn.mesh == tmp_path / "meshes" / "arm.obj" and drawn.rgba == (0, 0, 1, 1)
+    assert [shape.kind for shape in arm.shapes] == ["cylinder"]  # what collides is the <collision>
+
+
+def test_a_visual_mesh_no_engine_loads_leaves_the_link_drawn_as_its_collision_shapes(tmp_path):
+    path = _write(tmp_path, URDF.format(kind="revolute").replace("meshes/arm.obj", "meshes/arm.dae"))
+    (tmp_path / "meshes" / "arm.dae").write_text("<COLLADA/>")
+    arm = read_urdf(path).links[1]
+    assert arm.visuals == () and arm.shapes[0].kind == "cylinder"
+
+
+def test_what_a_bare_frame_draws_is_drawn_by_its_parent(tmp_path):
+    flange = """<link name="flange"><visual><origin xyz="0 0 0.05"/><geometry><sphere radius="0.01"/></geometry>
+      </visual></link>
+      <joint name="weld" type="fixed"><parent link="arm"/><child link="flange"/><origin xyz="0 0 0.2"/></joint>
+    </robot>"""
+    model = read_urdf(_write(tmp_path, URDF.format(kind="revolute").replace("</robot>", flange)))
+    assert [link.name for link in model.links] == ["base", "arm"]
+    arm_mesh, sphere = model.links[1].visuals
+    assert arm_mesh.kind == "mesh" and sphere.kind == "sphere" and sphere.origin.xyz == pytest.approx((0, 0, 0.25))
+
+
+def test_a_broken_visual_mesh_is_named_at_its_line_as_a_collision_mesh_is(tmp_path):
+    path = _write(tmp_path, URDF.format(kind="revolute"))
+    (tmp_path / "meshes" / "arm.obj").write_text("v 0 0 0\nv 0.1 0.1 0.1\n")  # two points, no faces
+    with pytest.raises(UrdfError) as info:
+        read_urdf(path)
+    assert str(info.value).startswith(f"{path}:8: mesh {tmp_path / 'meshes' / 'arm.obj'} cannot be simulated: ")
+    assert "has no faces" in str(info.value)

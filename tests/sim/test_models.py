@@ -9,13 +9,14 @@ from lxml import etree
 
 from atd.sim import load_description, variants
 from atd.sim.models import mjcf, urdf
+from atd.sim.mujoco_engine import compile_mjcf
 from atd.sim.scene import box_scene
 
 
 @pytest.mark.parametrize(("robot", "arm"), variants())
 def test_mjcf_and_urdf_have_the_same_joints_axes_and_limits(robot, arm) -> None:
     d = load_description(robot, arm)
-    model = mujoco.MjModel.from_xml_string(mjcf(d, box_scene()))
+    model = compile_mjcf(mjcf(d, box_scene()), d)
     tree = etree.fromstring(urdf(d).encode())
     moving = {j.get("name"): j for j in tree.iter("joint") if j.get("type") != "fixed"}
     assert set(moving) == set(d.joints)
@@ -30,7 +31,7 @@ def test_mjcf_and_urdf_have_the_same_joints_axes_and_limits(robot, arm) -> None:
 
 
 def test_mujoco_model_follows_menagerie_conventions(melfa) -> None:
-    model = mujoco.MjModel.from_xml_string(mjcf(melfa, box_scene()))
+    model = compile_mjcf(mjcf(melfa, box_scene()), melfa)
     groups = {int(g) for g in model.geom_group}
     assert {2, 3} <= groups  # visual and collision geoms apart
     visual = model.geom_group == 2
@@ -46,7 +47,7 @@ def test_mujoco_model_follows_menagerie_conventions(melfa) -> None:
 
 
 def test_robot_geoms_touch_the_world_but_not_each_other(melfa) -> None:
-    model = mujoco.MjModel.from_xml_string(mjcf(melfa, box_scene()))
+    model = compile_mjcf(mjcf(melfa, box_scene()), melfa)
     robot = [g for g in range(model.ngeom) if model.geom_group[g] == 3]
     table = model.geom("table").id
     for g in robot:
@@ -65,7 +66,7 @@ def test_links_have_plausible_masses_and_positive_inertias() -> None:
 
 def test_a_urdf_robots_collision_meshes_stand_where_its_description_puts_them_in_both_models() -> None:
     d = load_description("panda", None)  # every link collides as its mesh from pybullet_data
-    model = mujoco.MjModel.from_xml_string(mjcf(d, box_scene()))
+    model = compile_mjcf(mjcf(d, box_scene()), d)
     data = mujoco.MjData(model)
     mujoco.mj_resetDataKeyframe(model, data, model.key("home").id)
     mujoco.mj_forward(model, data)

@@ -1,10 +1,10 @@
 """The Franka Emika Panda's body, read from its URDF: the one description both simulators
 are built from.
 
-`read_urdf` takes the links, joints, limits, masses, inertias and collision meshes from
-the installed pybullet_data's franka_panda/panda.urdf; that file's inertias are
+`read_urdf` takes the links, joints, limits, masses, inertias, collision and visual meshes
+from the installed pybullet_data's franka_panda/panda.urdf; that file's inertias are
 placeholders (0.1 kg m^2 about every axis of every link), so the arm's links get the
-published identified ones instead (`IDENTIFIED`). What a URDF lacks is added here: the
+published identified ones instead (`IDENTIFIED`), and the hand and fingers Franka's (`HAND`). What a URDF lacks is added here: the
 gripper's grip, a tactile pad on each fingertip and the TCP between them
 (`urdf_parallel_jaw`), the wrist force-torque sensor where the hand is fixed to the arm,
 the sensors' noise, where the robot stands and its home posture.
@@ -46,7 +46,6 @@ MAX_OPENING = 0.08  # m between the fingers, fully open
 # IEEE RA-L 4(4), 2019, supplementary material tables VIII and IX, as the authors list
 # them in github.com/marcocognetti/FrankaEmikaPandaDynModel (DynPars2VREP.m). Link 1's
 # centre of mass lies on joint 1's axis at a height the identification cannot see: 0 there.
-# The hand and fingers, which the paper leaves out, keep the URDF's values.
 IDENTIFIED = {
     "panda_link1": (4.970684, (3.875e-03, 2.081e-03, 0.0),
                     (7.0337e-01, 7.0661e-01, 9.1170e-03), (-1.3900e-04, 6.7720e-03, 1.9169e-02)),
@@ -63,6 +62,17 @@ IDENTIFIED = {
     "panda_link7": (7.35522e-01, (1.0517e-02, -4.252e-03, 6.1597e-02),
                     (1.2516e-02, 1.0027e-02, 4.8150e-03), (-4.2800e-04, -1.1960e-03, -7.4100e-04)),
 }
+# The hand and fingers, which the paper leaves out, as Franka Emika give them in franka_ros
+# (franka_description/robots/common/inertial.yaml, in the same link frames): the hand 0.73 kg
+# (the URDF says 0.81) with its centre of mass 3 cm up from the flange, each finger 15 g (the
+# URDF: 100 g), in place of the URDF's 0.1 kg m^2 about every axis, a hundred times the hand's
+# real inertia. That file puts a finger's centre of mass at its joint, below the finger; the
+# URDF's, 2 cm up inside the finger's mesh, is kept.
+HAND = {
+    "panda_hand": (0.73, (-0.01, 0.0, 0.03), (1.0e-3, 2.5e-3, 1.7e-3), (0.0, 0.0, 0.0)),
+    "panda_leftfinger": (0.015, (0.0, 0.01, 0.02), (2.375e-6, 2.375e-6, 7.5e-7), (0.0, 0.0, 0.0)),
+    "panda_rightfinger": (0.015, (0.0, -0.01, 0.02), (2.375e-6, 2.375e-6, 7.5e-7), (0.0, 0.0, 0.0)),
+}
 # Behind the table, facing along world x, its base level with the table top, set back by 0.4
 # of the arm's summed joint offsets (45 cm for the Panda): the work area then lies mid-reach.
 BASE = Origin((-0.444, 0.0, 0.0))
@@ -77,7 +87,7 @@ def description(arm: str | None = None) -> RobotDescription:
     if arm not in (None, "main"):
         raise ValueError(f"the panda has one arm, 'main'; got arm '{arm}' (leave --arm out)")
     model = read_urdf(URDF)
-    links = tuple(_rotor_in_link(_identified(link)) for link in model.links)
+    links = tuple(_rotor_in_link(_published(link)) for link in model.links)
     hand, tcp = urdf_parallel_jaw(model, HAND_ROOT, FINGERS)
     return RobotDescription(
         name="panda",
@@ -98,11 +108,11 @@ def description(arm: str | None = None) -> RobotDescription:
     )
 
 
-def _identified(link: Link) -> Link:
-    """The link with its identified mass and inertia, where the paper gives them."""
-    if link.name not in IDENTIFIED:
+def _published(link: Link) -> Link:
+    """The link with its published mass and inertia (IDENTIFIED, HAND) in place of the URDF's."""
+    if link.name not in IDENTIFIED | HAND:
         return link
-    mass, com, moments, products = IDENTIFIED[link.name]
+    mass, com, moments, products = (IDENTIFIED | HAND)[link.name]
     return replace(link, mass=mass, com=com, inertia=moments, inertia_products=products)
 
 
