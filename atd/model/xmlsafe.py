@@ -58,6 +58,7 @@ def _parser() -> etree.XMLParser:
         dtd_validation=False,
         huge_tree=False,
         remove_pis=True,
+        remove_comments=True,  # no reader needs them, and an element's children are then elements only
     )
 
 

@@ -178,3 +178,14 @@ def test_initial_attribute_chooses_the_first_state(atd_file):
                          root='<statemachine initial="first">'))
     loaded, found = load_task(path)
     assert loaded.initial_state == "first" and found == []
+
+
+def test_comments_anywhere_are_ignored(atd_file):
+    """A comment inside a list of numbers or between a transition's events is not part of the task."""
+    from atd.model import load_task
+    path = atd_file(task('  <state name="go" type="move"><!-- reach --><path><position>0.1 <!-- x --> 0 0.2</position>'
+                         '</path></state>\n',
+                         '  <transition origin="go" destination="done"><!-- a --><success/><!-- b --></transition>\n'))
+    loaded, found = load_task(path)
+    assert found == [] and loaded.states_by_name["go"].target.values == (0.1, 0.0, 0.2)
+    assert [e.type.value for e in loaded.transitions[0].events] == ["success"]
