@@ -19,7 +19,7 @@ from atd.campaign.perturbation import PERTURBATIONS
 from atd.campaign.record import DIMENSIONS
 from atd.model import ranges
 from atd.model.diagnostics import Diagnostic, did_you_mean, error
-from atd.model.files import InputError, read_capped
+from atd.model.files import InputError, read_capped, real_path
 from atd.model.task import Location
 
 GRASP_MODES = ("naive", "robust")
@@ -102,7 +102,7 @@ class LoadedSpec(BaseModel):
         return hashlib.sha256(self.text.encode()).hexdigest()
 
     def task_path(self, entry: TaskEntry) -> Path:
-        return (self.path.parent / entry.file).resolve()
+        return real_path(self.path.parent / entry.file)
 
 
 def load_spec(path: Path) -> tuple[LoadedSpec | None, list[Diagnostic]]:
@@ -119,13 +119,13 @@ def load_spec(path: Path) -> tuple[LoadedSpec | None, list[Diagnostic]]:
         line = int(m.group(1)) if (m := re.search(r"line (\d+)", str(exc))) else 0
         return None, [error("CMP002", f"not valid TOML: {exc}", Location(where, line), "fix the TOML syntax")]
     lines = _KeyLines(text)
-    found = _check_names(data, path.resolve().parent, where, lines)
+    found = _check_names(data, real_path(path).parent, where, lines)
     try:
         spec = CampaignSpec.model_validate(data)
     except ValidationError as exc:
         found += [_diagnostic(e, where, lines) for e in exc.errors()]
         return None, sorted(found, key=lambda d: d.loc.line)
-    return LoadedSpec(spec=spec, path=path.resolve(), text=text), found
+    return LoadedSpec(spec=spec, path=real_path(path), text=text), found
 
 
 def _diagnostic(e: dict, where: str, lines: _KeyLines) -> Diagnostic:
@@ -174,7 +174,7 @@ def _check_names(data: dict, folder: Path, where: str, lines: _KeyLines) -> list
     for i, entry in _entries(data, "tasks"):
         file = entry.get("file") if isinstance(entry, dict) else entry
         if isinstance(file, str) and not (folder / file).is_file():
-            found.append(error("CMP020", f"no task file {(folder / file).resolve()}", lines.find(("tasks", i), where),
+            found.append(error("CMP020", f"no task file {real_path(folder / file)}", lines.find(("tasks", i), where),
                                "task files are relative to the spec"))
     robots = installed()
     for i, entry in _entries(data, "robots"):

@@ -18,6 +18,7 @@ from atd.campaign.store import Store, StoreError
 from atd.cli.app import EXIT_INVALID, EXIT_USAGE, OutputFile, Ranged, campaign
 from atd.model import has_errors, ranges
 from atd.model.diagnostics import render_all
+from atd.model.files import real_path
 
 EXIT_INTERRUPTED = 130  # the shell's code for a command stopped by Ctrl-C
 
@@ -62,7 +63,7 @@ def run_campaign(spec_file: Path, workers: int | None, ray_address: str | None, 
     if loaded is None or has_errors(found):
         _fail(render_all(found), EXIT_INVALID)
     try:
-        chosen = plans(loaded, parse_only(only), trials, record_failed and record_failed.resolve())
+        chosen = plans(loaded, parse_only(only), trials, record_failed and real_path(record_failed))
     except ValueError as exc:
         _fail(f"error: {exc}", EXIT_USAGE)
     if not chosen:

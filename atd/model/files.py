@@ -49,6 +49,12 @@ def is_regular_file(path: Path) -> bool:
         return False
 
 
+def real_path(path: Path) -> Path:
+    """`path` made absolute, its symbolic links followed as far as they lead. `Path.resolve`
+    raises RuntimeError on a symlink loop (Python 3.11), and a user can name one anywhere."""
+    return Path(os.path.realpath(path))
+
+
 def read_capped(path: Path, cap: int) -> bytes:
     """The bytes of a regular file, at most `cap` of them (InputError beyond that).
 

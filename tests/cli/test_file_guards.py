@@ -279,3 +279,20 @@ def test_campaign_counts_outside_their_range_are_refused_before_any_work(tmp_pat
     result = atd("campaign", "run", CAMPAIGN_SPEC, "--store", tmp_path / "c.sqlite", *option)
     assert result.exit_code == 2 and "[1, " in result.output
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_symlink_loop_named_anywhere_is_one_line_not_a_traceback(task: Path) -> None:
+    """A loop named as a campaign's task, a task's mesh or a folder to record into."""
+    loop = task.parent / "loop"
+    loop.symlink_to(loop)
+    spec = task.parent / "spec.toml"
+    spec.write_text(CAMPAIGN_SPEC.read_text().replace("../../../examples/grasp_and_lift.xml", "loop"))
+    meshed = task.parent / "meshed.xml"
+    meshed.write_text(task.read_text().replace("<class>", "<shape>loop</shape><class>"))
+    for command, code, said in [(["campaign", "run", spec, "--store", task.parent / "c.sqlite"], 1, "CMP020"),
+                                (["run", meshed, "--robot", "melfa"], 1, "shape 'loop'"),
+                                (["campaign", "run", CAMPAIGN_SPEC, "--record-failed", loop], 2, "--record-failed")]:
+        result = atd(*command)
+        assert (result.exit_code, type(result.exception)) == (code, SystemExit), result.output
+        assert said in result.output
+    assert sorted(p.name for p in task.parent.iterdir()) == ["loop", "meshed.xml", "move.xml", "spec.toml"]
