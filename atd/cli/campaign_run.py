@@ -15,7 +15,7 @@ from atd.campaign.progress import Progress
 from atd.campaign.runner import WorkerError, run_local, run_ray
 from atd.campaign.spec import load_spec
 from atd.campaign.store import Store, StoreError
-from atd.cli.app import EXIT_INVALID, EXIT_USAGE, OutputFile, Ranged, campaign
+from atd.cli.app import EXIT_INVALID, EXIT_USAGE, OutputFile, Ranged, campaign, guard_outputs
 from atd.model import has_errors, ranges
 from atd.model.diagnostics import render_all
 from atd.model.files import real_path
@@ -71,6 +71,7 @@ def run_campaign(spec_file: Path, workers: int | None, ray_address: str | None, 
     if record_failed is not None and not record_failed.is_dir():
         _fail(f"error: --record-failed {record_failed}: no such folder; create it first", EXIT_USAGE)
     store_path = store_path or Path.cwd() / f"{loaded.spec.name}.sqlite"
+    guard_outputs({"--store": store_path}, [loaded.task_path(entry) for entry in loaded.spec.task_entries])
     try:
         store = Store.create_or_resume(store_path, loaded.text, loaded.digest, resume)
     except StoreError as exc:

@@ -296,3 +296,13 @@ def test_a_symlink_loop_named_anywhere_is_one_line_not_a_traceback(task: Path) -
         assert (result.exit_code, type(result.exception)) == (code, SystemExit), result.output
         assert said in result.output
     assert sorted(p.name for p in task.parent.iterdir()) == ["loop", "meshed.xml", "move.xml", "spec.toml"]
+
+
+@pytest.mark.parametrize("resume", [[], ["--resume"]])
+def test_a_campaign_store_is_never_one_of_the_spec_s_tasks(task: Path, resume: list[str]) -> None:
+    spec = task.parent / "spec.toml"
+    spec.write_text(CAMPAIGN_SPEC.read_text().replace("../../../examples/grasp_and_lift.xml", task.name))
+    before = task.read_bytes()
+    result = atd("campaign", "run", spec, "--store", task, *resume)
+    assert result.exit_code == 2 and "input of this command" in result.output, result.output
+    assert task.read_bytes() == before and sorted(p.name for p in task.parent.iterdir()) == ["move.xml", "spec.toml"]
