@@ -28,11 +28,12 @@ class Range:
         return f"{text} {self.unit}" if self.unit else text
 
     def problem(self, value: float) -> str | None:
-        """Why `value` is refused, in words naming the allowed range; None when it is allowed."""
-        if not math.isfinite(value):
+        """Why `value` is refused, in words naming the allowed range; None when it is allowed.
+        An integer is compared as it is: one of 400 digits overflows a float."""
+        if not isinstance(value, int) and not math.isfinite(value):
             return f"{value} is not a finite number; give one in {self}"
         if value < self.low or value > self.high or (self.low_open and value == self.low):
-            return f"{value:g} is outside {self}"
+            return f"{_number(value)} is outside {self}"
         return None
 
     def first_problem(self, values: tuple[float, ...]) -> str | None:
@@ -70,7 +71,12 @@ def integer(word: str) -> int:
 
 
 def _number(value: float) -> str:
-    return str(int(value)) if float(value).is_integer() else f"{value:g}"
+    """A number as a message shows it: a whole one in digits (a seed of 4294967296, not 4.29497e+09),
+    up to 20 of them; any other as %g."""
+    if isinstance(value, int):
+        digits = str(value)
+        return digits if len(digits) <= 20 else f"{digits[:10]}... ({len(digits)} digits)"
+    return str(int(value)) if value.is_integer() and abs(value) < 1e15 else f"{value:g}"
 
 
 # ATD values: the object, the world, the task's timing.

@@ -3,6 +3,7 @@ infinities never pass, and the refusal names the place and the allowed range."""
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -76,10 +77,26 @@ def test_a_config_file_nan_names_the_file_table_and_range(tmp_path: Path) -> Non
 @pytest.mark.parametrize("option, value, said", [("--budget", "nan", "not a finite number"),
                                                   ("--budget", "0", "outside (0, 86400] s"),
                                                   ("--seed", "-1", "outside [0, 4294967295]"),
-                                                  ("--seed", "2.5", "not an integer")])
+                                                  ("--seed", "2.5", "not an integer"),
+                                                  ("--seed", "4294967296", "4294967296 is outside"),
+                                                  ("--seed", "9" * 400, "9999999999... (400 digits) is outside")])
 def test_command_line_numbers_are_checked_before_anything_runs(option: str, value: str, said: str) -> None:
     result = CliRunner().invoke(main, ["run", str(EXAMPLE), "--robot", "melfa", option, value])
     assert result.exit_code == 2 and said in result.output and "Traceback" not in result.output
+
+
+@pytest.mark.parametrize("table, line, said", [
+    ("conditions.grasp_stable.tactile_force_above", "min_pads = " + "9" * 400, "(400 digits) is outside [1, 64]"),
+    ("controllers.close_until_force", "grasp_force = " + "9" * 400, "(400 digits) is outside (0, 1000] N"),
+    ("conditions.grasp_stable.tactile_force_above", "min_pads = 2.5", "2.5 is not an integer"),
+    ("controllers.cartesian_move", "velocity_limits = [true, 0, 0, 0, 0, 0]", "True is not a number"),
+])
+def test_config_values_no_float_can_hold_or_that_are_no_numbers_are_refused(tmp_path: Path, table: str, line: str,
+                                                                            said: str) -> None:
+    config = tmp_path / "c.toml"
+    config.write_text(f"[melfa.{table}]\n{line}\n")
+    with pytest.raises(ConfigError, match=re.escape(said)):
+        load_config(config, "melfa")
 
 
 def test_vectors_and_points_are_checked_number_by_number() -> None:
