@@ -21,6 +21,7 @@ from atd.model import ranges
 from atd.model.diagnostics import Diagnostic, did_you_mean, error
 from atd.model.files import InputError, read_capped, real_path
 from atd.model.task import Location
+from atd.model.toml_lines import TomlLines
 
 GRASP_MODES = ("naive", "robust")
 JUDGES = ("lift", "place")
@@ -118,7 +119,7 @@ def load_spec(path: Path) -> tuple[LoadedSpec | None, list[Diagnostic]]:
     except tomllib.TOMLDecodeError as exc:
         line = int(m.group(1)) if (m := re.search(r"line (\d+)", str(exc))) else 0
         return None, [error("CMP002", f"not valid TOML: {exc}", Location(where, line), "fix the TOML syntax")]
-    lines = _KeyLines(text)
+    lines = TomlLines(text)
     found = _check_names(data, real_path(path).parent, where, lines)
     try:
         spec = CampaignSpec.model_validate(data)
@@ -128,7 +129,7 @@ def load_spec(path: Path) -> tuple[LoadedSpec | None, list[Diagnostic]]:
     return LoadedSpec(spec=spec, path=real_path(path), text=text), found
 
 
-def _diagnostic(e: dict, where: str, lines: _KeyLines) -> Diagnostic:
+def _diagnostic(e: dict, where: str, lines: TomlLines) -> Diagnostic:
     loc = tuple(p for p in e["loc"] if p not in ("str", "TaskEntry", "RobotEntry"))
     dotted = ".".join(str(p) for p in loc)
     message = e["msg"]
@@ -164,7 +165,7 @@ def _hint(loc: tuple) -> str | None:
     return None
 
 
-def _check_names(data: dict, folder: Path, where: str, lines: _KeyLines) -> list[Diagnostic]:
+def _check_names(data: dict, folder: Path, where: str, lines: TomlLines) -> list[Diagnostic]:
     """What the schema cannot know: task files exist, robots and arms are installed,
     objects are in the library. Read from the raw TOML, so these are found together
     with the schema's own errors; entries of the wrong type are the schema's to report."""
@@ -205,40 +206,6 @@ def _check_names(data: dict, folder: Path, where: str, lines: _KeyLines) -> list
 def _entries(data: dict, key: str) -> list[tuple[int, object]]:
     value = data.get(key)
     return list(enumerate(value)) if isinstance(value, list) else []
-
-
-class _KeyLines:
-    """Where each key of a TOML text stands: enough of TOML's grammar to point a
-    diagnostic at the line of a key, a table or an array-of-tables entry."""
-
-    _HEADER = re.compile(r"^\s*(\[\[?)\s*([^\]]+?)\s*\]\]?")
-    _KEY = re.compile(r"^\s*([A-Za-z0-9_\-\"'.]+)\s*=")
-
-    def __init__(self, text: str) -> None:
-        self.lines: dict[tuple, int] = {}
-        counts: dict[tuple, int] = {}
-        table: tuple = ()
-        for number, line in enumerate(text.splitlines(), start=1):
-            if m := self._HEADER.match(line):
-                path = tuple(p.strip().strip("\"'") for p in m.group(2).split("."))
-                if m.group(1) == "[[":
-                    index = counts.get(path, 0)
-                    counts[path] = index + 1
-                    path = path + (index,)
-                table = path
-                self.lines.setdefault(table, number)
-            elif m := self._KEY.match(line):
-                key = tuple(p.strip().strip("\"'") for p in m.group(1).split("."))
-                self.lines.setdefault(table + key, number)
-
-    def find(self, loc: tuple, where: str) -> Location:
-        """The line of `loc`, or of its nearest enclosing key or table."""
-        path = tuple(loc)
-        while path:
-            if path in self.lines:
-                return Location(where, self.lines[path])
-            path = path[:-1]
-        return Location(where, 1)
 
 
 __all__ = ["DIMENSIONS", "GRASP_MODES", "JUDGES", "TASK_OBJECT", "CampaignSpec", "LoadedSpec", "Perturbation",

@@ -66,10 +66,10 @@ def test_timeouts_are_finite_and_positive(tmp_path: Path, seconds: str) -> None:
     assert "timeout" in timeout.message and "(0, 86400] s" in timeout.message
 
 
-def test_a_config_file_nan_names_the_file_table_and_range(tmp_path: Path) -> None:
+def test_a_config_file_nan_names_the_file_line_table_and_range(tmp_path: Path) -> None:
     config = tmp_path / "c.toml"
-    config.write_text("[melfa.conditions.grasp_stable.tactile_force_above]\nforce_threshold = nan\n")
-    with pytest.raises(ConfigError, match=r"c\.toml: \[melfa\.conditions\.grasp_stable\.tactile_force_above\] "
+    config.write_text("# a user's tuning\n[melfa.conditions.grasp_stable.tactile_force_above]\nforce_threshold = nan\n")
+    with pytest.raises(ConfigError, match=r"c\.toml:3:1: \[melfa\.conditions\.grasp_stable\.tactile_force_above\] "
                                           r"force_threshold: nan is not a finite number; give one in \(0, 1000\] N"):
         load_config(config, "melfa")
 
