@@ -3,6 +3,7 @@ infinities never pass, and the refusal names the place and the allowed range."""
 
 from __future__ import annotations
 
+import json
 import re
 from pathlib import Path
 
@@ -148,3 +149,25 @@ def test_numbers_only_python_reads_are_refused_everywhere_a_number_is_read(tmp_p
 def test_the_plain_forms_of_a_number_are_read() -> None:
     spec = CONTROLLERS["cartesian_move"].params["max_speed"]
     assert [parse_value(spec, text) for text in ("1", "+.5", "2.", "1E-1", " 0.25 ")] == [1.0, 0.5, 2.0, 0.1, 0.25]
+
+
+@pytest.mark.parametrize("field, value, said", [
+    ('"weight": 0.1', '"weight": NaN', "'nan' is not a valid value"),
+    ('"weight": 0.1', '"weight": ' + "9" * 400, "'inf' is not a valid value"),
+    ('"matrix": [1.0', '"matrix": [Infinity', "'inf' is not a valid value"),
+    ('"size": [0.05', '"size": [-0.05', "-0.05 is outside (0, 10] m"),
+    ('"initial": "reach"', '"initial": "re\\u0000ach"', "no NULL bytes"),
+])
+def test_an_estd_in_json_is_checked_as_its_xml_form_is(field: str, value: str, said: str) -> None:
+    """A NaN weight in a JSON ESTD crashed MuJoCo's model compiler; an infinite pose ran to the watchdog."""
+    from atd.model.estd_xml import estd_to_json, parse_estd_json
+    from factories.registry import create
+    from translator import translate
+
+    task, _ = load_task(EXAMPLE.parent / "pick_one.xml")
+    text = json.dumps(json.loads(estd_to_json(translate(task, create("melfa")).estd)))
+    assert parse_estd_json(text.encode(), "e.json")[1] == []
+    assert field in text
+    estd, found = parse_estd_json(text.replace(field, value, 1).encode(), "e.json")
+    assert estd is None and found and said in found[0].message, found
+    assert str(found[0].loc) == "e.json"
