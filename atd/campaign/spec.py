@@ -11,9 +11,9 @@ import hashlib
 import re
 import tomllib
 from pathlib import Path
-from typing import Literal, Union
+from typing import Annotated, Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationInfo, field_validator
+from pydantic import BaseModel, ConfigDict, Field, Strict, ValidationError, ValidationInfo, field_validator
 
 from atd.campaign.perturbation import PERTURBATIONS
 from atd.campaign.record import DIMENSIONS
@@ -33,6 +33,11 @@ class _Strict(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
 
 
+# Numbers as TOML writes them: an integer may stand for a float, but `true` is not 1 and 2.0 is not a count.
+Number = Annotated[float, Strict()]
+Count = Annotated[int, Strict()]
+
+
 class TaskEntry(_Strict):
     file: str
     judge: Literal["lift", "place"] | None = None  # None: chosen from the task's states
@@ -47,15 +52,15 @@ class Perturbation(_Strict):
     """One named perturbation model with its parameters; see `atd.campaign.perturbation`."""
 
     model: Literal["none", "approach", "object_pose", "object_physics", "sensors"]
-    translation: float = Field(0.05, ge=0, le=0.2, description="approach: ± m per axis")
-    rotation: float = Field(15.0, ge=0, le=90, description="approach: ± degrees about each axis")
-    x: float = Field(0.03, ge=0, le=0.2, description="object_pose: ± m along x")
-    y: float = Field(0.03, ge=0, le=0.2, description="object_pose: ± m along y")
-    yaw: float = Field(20.0, ge=0, le=180, description="object_pose: ± degrees about z")
-    mass: tuple[float, float] = Field((0.5, 2.0), description="object_physics: mass scale range")
-    friction: tuple[float, float] = Field((0.5, 1.5), description="object_physics: friction scale range")
-    noise: tuple[float, float] = Field((1.0, 3.0), description="sensors: noise scale range")
-    bias: tuple[float, float] = Field((0.0, 2.0), description="sensors: bias scale range")
+    translation: Number = Field(0.05, ge=0, le=0.2, description="approach: ± m per axis")
+    rotation: Number = Field(15.0, ge=0, le=90, description="approach: ± degrees about each axis")
+    x: Number = Field(0.03, ge=0, le=0.2, description="object_pose: ± m along x")
+    y: Number = Field(0.03, ge=0, le=0.2, description="object_pose: ± m along y")
+    yaw: Number = Field(20.0, ge=0, le=180, description="object_pose: ± degrees about z")
+    mass: tuple[Number, Number] = Field((0.5, 2.0), description="object_physics: mass scale range")
+    friction: tuple[Number, Number] = Field((0.5, 1.5), description="object_physics: friction scale range")
+    noise: tuple[Number, Number] = Field((1.0, 3.0), description="sensors: noise scale range")
+    bias: tuple[Number, Number] = Field((0.0, 2.0), description="sensors: bias scale range")
 
     @field_validator("mass", "friction", "noise", "bias")
     @classmethod
@@ -70,9 +75,9 @@ class Perturbation(_Strict):
 
 class CampaignSpec(_Strict):
     name: str = Field(min_length=1, pattern=r"^[A-Za-z0-9_.-]+$")
-    base_seed: int = Field(0, ge=0, lt=2**63)
-    trials: int = Field(10, ge=ranges.TRIALS.low, le=ranges.TRIALS.high, description="trials per cell")
-    budget: float = Field(120.0, gt=0, le=3600, description="simulated seconds before the watchdog stops a trial")
+    base_seed: Count = Field(0, ge=0, lt=2**63)
+    trials: Count = Field(10, ge=ranges.TRIALS.low, le=ranges.TRIALS.high, description="trials per cell")
+    budget: Number = Field(120.0, gt=0, le=3600, description="simulated seconds before the watchdog stops a trial")
     tasks: tuple[Union[str, TaskEntry], ...] = Field(min_length=1)
     robots: tuple[Union[str, RobotEntry], ...] = Field(min_length=1)
     engines: tuple[Literal["mujoco", "pybullet"], ...] = Field(("mujoco",), min_length=1)
