@@ -200,7 +200,7 @@ def parse_estd_json(data: bytes, file: str) -> tuple[Estd | None, list[Diagnosti
     """An ESTD from JSON bytes, its values checked as those of its XML form are (ranges, rigid
     poses, the vocabulary): JSON's types let through a NaN weight or an infinite pose."""
     try:
-        estd = Estd.model_validate_json(data)
+        estd = Estd.model_validate_json(data, strict=True)  # JSON true is no number, nor "0.1"
         as_xml = estd_to_xml(estd)
     except ValidationError as exc:
         first = exc.errors()[0]

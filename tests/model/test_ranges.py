@@ -157,6 +157,8 @@ def test_the_plain_forms_of_a_number_are_read() -> None:
     ('"matrix": [1.0', '"matrix": [Infinity', "'inf' is not a valid value"),
     ('"size": [0.05', '"size": [-0.05', "-0.05 is outside (0, 10] m"),
     ('"initial": "reach"', '"initial": "re\\u0000ach"', "no NULL bytes"),
+    ('"weight": 0.1', '"weight": true', "should be a valid number"),
+    ('"weight": 0.1', '"weight": "0.1"', "should be a valid number"),
 ])
 def test_an_estd_in_json_is_checked_as_its_xml_form_is(field: str, value: str, said: str) -> None:
     """A NaN weight in a JSON ESTD crashed MuJoCo's model compiler; an infinite pose ran to the watchdog."""
