@@ -55,6 +55,15 @@ BAD = {
     "truncated binary stl": ("m.stl", binary_stl()[:-7], "not an STL file"),
     "in millimetres": ("m.stl", binary_stl(CUBE * 1000), "outside (0, 10] m"),
     "unsupported format": ("m.dae", b"<COLLADA/>", "use an STL or OBJ file"),
+    "NaN vertex in binary STL": ("m.stl", binary_stl(np.where(CUBE == 0.04, np.nan, CUBE)), "not a finite number"),
+    "zero-area binary STL": ("m.stl", binary_stl(faces=[(0, 0, 0), (1, 1, 1)]), "degenerate"),
+    # float() and int() read '1_0' as 10; no engine's mesh loader does
+    "underscore in an OBJ coordinate": ("m.obj", obj_text().replace("0.04", "0_04", 1).encode(),
+                                        "line 2: '0_04' is not a number"),
+    "underscore in a vertex number": ("m.obj", obj_text().replace("f 1 2 4", "f 1 2 0_4").encode(),
+                                      "line 9: '0_4' is not a vertex number"),
+    "underscore in an ASCII STL": ("m.stl", ascii_stl().replace("0.04", "0_04", 1).encode(),
+                                   "line 5: '0_04' is not a number"),
 }
 
 
