@@ -109,6 +109,8 @@ def output_problem(path: Path) -> str | None:
         return long
     folder = path.parent
     if not folder.is_dir():
+        if folder.exists():
+            return f"{folder} is not a folder; write elsewhere"
         return f"the folder {folder} does not exist; create it or write elsewhere"
     if not os.access(folder, os.W_OK):
         return f"the folder {folder} is not writable; write elsewhere"
@@ -136,10 +138,9 @@ def output_problems(outputs: Mapping[str, Path | None], inputs: Iterable[Path] =
         problem = output_problem(path)
         if problem:
             problems.append(f"{option} {path}: {problem}")
-        for source in sources:
-            if _same(path, source):
-                problems.append(f"{option} {path}: that is an input of this command and would be overwritten; "
-                                "write elsewhere")
+        if any(_same(path, source) for source in sources):
+            problems.append(f"{option} {path}: that is an input of this command and would be overwritten; "
+                            "write elsewhere")
         for other_option, other in given[:i]:
             if _same(path, other):
                 problems.append(f"{option} {path}: {other_option} names the same file; give each output its own name")

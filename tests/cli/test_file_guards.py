@@ -306,3 +306,10 @@ def test_a_campaign_store_is_never_one_of_the_spec_s_tasks(task: Path, resume: l
     result = atd("campaign", "run", spec, "--store", task, *resume)
     assert result.exit_code == 2 and "input of this command" in result.output, result.output
     assert task.read_bytes() == before and sorted(p.name for p in task.parent.iterdir()) == ["move.xml", "spec.toml"]
+
+
+def test_each_output_problem_is_said_once_and_in_its_own_words(task: Path) -> None:
+    result = atd("compare", task, task, "--plot", task)
+    assert result.exit_code == 2 and result.output.count("input of this command") == 1, result.output
+    result = atd("translate", task, "--robot", "melfa", "-o", task / "out.xml")
+    assert result.exit_code == 2 and f"{task} is not a folder" in result.output
