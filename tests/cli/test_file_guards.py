@@ -313,3 +313,18 @@ def test_each_output_problem_is_said_once_and_in_its_own_words(task: Path) -> No
     assert result.exit_code == 2 and result.output.count("input of this command") == 1, result.output
     result = atd("translate", task, "--robot", "melfa", "-o", task / "out.xml")
     assert result.exit_code == 2 and f"{task} is not a folder" in result.output
+
+
+def test_a_sub_task_or_mesh_that_is_no_file_is_named_for_what_it_is(tmp_path: Path) -> None:
+    for name in ("empty_the_box.xml", "simple_move.xml"):
+        shutil.copy(EXAMPLES / name, tmp_path)
+    (tmp_path / "folder.xml").mkdir()
+    os.mkfifo(tmp_path / "pipe.obj")
+    task = tmp_path / "empty_the_box.xml"
+    task.write_text(task.read_text().replace('file="pick_one.xml"', 'file="folder.xml"'))
+    meshed = tmp_path / "simple_move.xml"
+    meshed.write_text(meshed.read_text().replace("<class>", "<shape>pipe.obj</shape><class>"))
+    result = atd("validate", task, meshed)
+    assert result.exit_code == 1
+    assert "error[ATD211]: sub-task file 'folder.xml' of state 'pick_one': is a directory" in result.output
+    assert "error[ATD216]: object shape 'pipe.obj': is not a regular file" in result.output
