@@ -33,7 +33,7 @@ def _stop(signum: int, frame: object) -> None:
 
 
 @campaign.command("run")
-@click.argument("spec_file", metavar="SPEC.toml", type=click.Path(path_type=Path, exists=True, dir_okay=False))
+@click.argument("spec_file", metavar="SPEC.toml", type=click.Path(path_type=Path))  # read by the input guard
 @click.option("--workers", "-j", type=Ranged(ranges.WORKERS, integer=True), default=None,
               help="worker processes (default: every core)")
 @click.option("--ray", "ray_address", is_flag=False, flag_value="", default=None, metavar="[ADDRESS]",

@@ -328,3 +328,17 @@ def test_a_sub_task_or_mesh_that_is_no_file_is_named_for_what_it_is(tmp_path: Pa
     assert result.exit_code == 1
     assert "error[ATD211]: sub-task file 'folder.xml' of state 'pick_one': is a directory" in result.output
     assert "error[ATD216]: object shape 'pipe.obj': is not a regular file" in result.output
+
+
+@pytest.mark.parametrize("kind", ["missing", "folder", "fifo"])
+def test_an_unreadable_config_or_campaign_spec_is_invalid_input_exit_1(task: Path, kind: str) -> None:
+    """click refused a missing or folder --config and SPEC with exit 2, a FIFO got exit 1."""
+    path = task.parent / "given.toml"
+    if kind == "folder":
+        path.mkdir()
+    elif kind == "fifo":
+        os.mkfifo(path)
+    said = {"missing": "no such file", "folder": "is a directory", "fifo": "not a regular file"}[kind]
+    for command in (["translate", task, "--robot", "melfa", "--config", path], ["campaign", "run", path]):
+        result = atd(*command)
+        assert result.exit_code == 1 and said in result.output, (command, result.output)
