@@ -81,7 +81,9 @@ def _number(value: float) -> str:
 
 # ATD values: the object, the world, the task's timing.
 COORDINATE = Range(-10.0, 10.0, "m")  # positions, targets, waypoints: a robot's workspace and then some
-SIZE = Range(0.0, 10.0, "m", low_open=True)  # object and obstacle dimensions (a wall is an obstacle too)
+# Object and obstacle dimensions (a wall is an obstacle too). A millimetre at least: MuJoCo refuses
+# the model of a smaller object (its inertia falls below mjMINVAL), 1e-9 m crashed `atd run`.
+SIZE = Range(0.001, 10.0, "m")
 OBSTACLE_EXTENT = Range(0.0, 10.0, "m")  # in an ESTD: 0 0 0 is an obstacle of no given size
 WEIGHT = Range(0.001, 50.0, "kg")  # what both engines simulate stably next to a robot hand
 INERTIA = Range(-10.0, 10.0, "kg m^2")
@@ -114,4 +116,4 @@ RECORD_RATE = Range(0.0, 10_000.0, "Hz", low_open=True)  # of simulated time; a 
 WORKERS = Range(1, 512)  # campaign worker processes, each holding an engine: more only exhausts memory
 TRIALS = Range(1, 100_000)  # per cell, in a campaign spec or --trials
 SCALE = Range(0.0, 100.0)  # a campaign's perturbation factors (friction, sensor noise and bias)
-MASS_SCALE = Range(0.0, 100.0, low_open=True)  # an object of no mass is one no engine can simulate
+MASS_SCALE = Range(0.01, 100.0)  # of no mass, or a 1 g object scaled far below a gram, no engine can simulate

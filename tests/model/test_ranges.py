@@ -46,7 +46,8 @@ MINIMAL = """<statemachine>
     ("<weight>1e-12</weight>", "[0.001, 50] kg"),
     ("<weight>NaN</weight>", "[0.001, 50] kg"),
     ("<friction>-0.5</friction>", "[0, 10]"),
-    ("<size>0.05 0.05 inf</size>", "(0, 10] m"),
+    ("<size>0.05 0.05 inf</size>", "[0.001, 10] m"),
+    ("<size>0.05 1e-9 0.05</size>", "[0.001, 10] m"),  # MuJoCo refused the model: a traceback from atd run
 ])
 def test_object_values_outside_what_the_engines_simulate_are_refused(tmp_path: Path, element: str,
                                                                        allowed: str) -> None:
@@ -155,7 +156,7 @@ def test_the_plain_forms_of_a_number_are_read() -> None:
     ('"weight": 0.1', '"weight": NaN', "'nan' is not a valid value"),
     ('"weight": 0.1', '"weight": ' + "9" * 400, "'inf' is not a valid value"),
     ('"matrix": [1.0', '"matrix": [Infinity', "'inf' is not a valid value"),
-    ('"size": [0.05', '"size": [-0.05', "-0.05 is outside (0, 10] m"),
+    ('"size": [0.05', '"size": [-0.05', "-0.05 is outside [0.001, 10] m"),
     ('"initial": "reach"', '"initial": "re\\u0000ach"', "no NULL bytes"),
     ('"weight": 0.1', '"weight": true', "should be a valid number"),
     ('"weight": 0.1', '"weight": "0.1"', "should be a valid number"),
