@@ -11,7 +11,7 @@ import mujoco
 import numpy as np
 
 from atd.sim.models import mjcf
-from atd.sim.scene import CAMERA_AZIMUTH, CAMERA_DISTANCE, CAMERA_ELEVATION, CAMERA_TARGET, Scene
+from atd.sim.scene import CAMERA_AZIMUTH, CAMERA_DISTANCE, CAMERA_ELEVATION, CAMERA_TARGET, Scene, SceneError
 from atd.sim.simrobot import SimRobot
 from factories.description import RobotDescription
 
@@ -27,7 +27,10 @@ class MujocoRobot(SimRobot):
         super().__init__(description, scene, seed)
         d = description
         self.xml = mjcf(d, scene)
-        self.model = m = mujoco.MjModel.from_xml_string(self.xml)
+        try:
+            self.model = m = mujoco.MjModel.from_xml_string(self.xml)
+        except ValueError as exc:  # its compiler refuses what it cannot simulate, e.g. a body of almost no inertia
+            raise SceneError(f"MuJoCo cannot simulate this world: {' '.join(str(exc).split())}") from None
         self.data = mujoco.MjData(m)
         mujoco.mj_resetDataKeyframe(m, self.data, 0)
         mujoco.mj_forward(m, self.data)
