@@ -23,6 +23,7 @@ from pathlib import Path
 
 from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamSpec, ParamValue, coerce_value
 from atd.model.files import InputError, read_capped
+from atd.model.toml_lines import TomlLines
 from atd.model.vocabulary import EventType
 
 Params = dict[str, ParamValue]
@@ -49,53 +50,65 @@ class RobotConfig:
         return RobotConfig(controllers, conditions)
 
 
-def _params(file: Path, table: str, specs: dict[str, ParamSpec], values: object) -> Params:
-    if not isinstance(values, dict):
-        raise ConfigError(f"{file}: [{table}] must be a table of parameter = value")
+def _table(at: TomlLines, where: str, path: tuple[str, ...], value: object) -> dict:
+    """A table of the config, or ConfigError at its line when a plain value stands there."""
+    if not isinstance(value, dict):
+        raise ConfigError(f"{at.find(path, where)}: [{'.'.join(path)}] must be a table, not {value!r}")
+    return value
+
+
+def _params(at: TomlLines, where: str, table: tuple[str, ...], specs: dict[str, ParamSpec],
+            values: object) -> Params:
     params: Params = {}
-    for name, value in values.items():
+    for name, value in _table(at, where, table, values).items():
+        place = f"{at.find(table + (name,), where)}: [{'.'.join(table)}]"
         spec = specs.get(name)
         if spec is None or not spec.tunable:
             tunable = ", ".join(sorted(n for n, s in specs.items() if s.tunable)) or "none"
             why = "comes from the task" if spec is not None else "is not a parameter here"
-            raise ConfigError(f"{file}: [{table}] '{name}' {why}; tunable parameters: {tunable}")
+            raise ConfigError(f"{place} '{name}' {why}; tunable parameters: {tunable}")
         try:
             params[name] = coerce_value(spec, value)
         except ValueError as exc:
-            raise ConfigError(f"{file}: [{table}] {name}: {exc}") from None
+            raise ConfigError(f"{place} {name}: {exc}") from None
     return params
 
 
 def load_config(path: Path, robot: str) -> RobotConfig:
-    """The part of a config file that concerns `robot` (empty when the file does not mention it)."""
+    """The part of a config file that concerns `robot` (empty when the file does not mention it).
+    Every refusal names the file and the line, as a diagnostic does."""
     try:
-        data = tomllib.loads(read_capped(Path(path), MAX_CONFIG_BYTES).decode("utf-8"))
+        text = read_capped(Path(path), MAX_CONFIG_BYTES).decode("utf-8")
+        data = tomllib.loads(text)
     except InputError as exc:
         raise ConfigError(f"{path}: cannot read config file: {exc}") from None
     except UnicodeDecodeError:
         raise ConfigError(f"{path}: not UTF-8 text; save the config file as UTF-8") from None
     except tomllib.TOMLDecodeError as exc:
         raise ConfigError(f"{path}: not valid TOML: {exc}") from None
-    section = data.get(robot, {})
+    at, where = TomlLines(text), str(path)
+    section = _table(at, where, (robot,), data.get(robot, {}))
     unknown = set(section) - {"controllers", "conditions"}
     if unknown:
-        raise ConfigError(f"{path}: [{robot}.{sorted(unknown)[0]}] is not a section; use "
+        first = sorted(unknown)[0]
+        raise ConfigError(f"{at.find((robot, first), where)}: [{robot}.{first}] is not a section; use "
                           f"[{robot}.controllers.NAME] or [{robot}.conditions.EVENT.KIND]")
     controllers = {}
-    for name, values in section.get("controllers", {}).items():
+    for name, values in _table(at, where, (robot, "controllers"), section.get("controllers", {})).items():
+        table = (robot, "controllers", name)
         if name not in CONTROLLERS:
-            raise ConfigError(f"{path}: [{robot}.controllers.{name}] names no controller; known: "
+            raise ConfigError(f"{at.find(table, where)}: [{'.'.join(table)}] names no controller; known: "
                               f"{', '.join(sorted(CONTROLLERS))}")
-        controllers[name] = _params(path, f"{robot}.controllers.{name}", dict(CONTROLLERS[name].params), values)
+        controllers[name] = _params(at, where, table, dict(CONTROLLERS[name].params), values)
     conditions = {}
-    for event, kinds in section.get("conditions", {}).items():
+    for event, kinds in _table(at, where, (robot, "conditions"), section.get("conditions", {})).items():
         if event not in EventType.__members__.values():
-            raise ConfigError(f"{path}: [{robot}.conditions.{event}] names no abstract event; known: "
-                              f"{', '.join(e.value for e in EventType)}")
-        for kind, values in kinds.items():
+            raise ConfigError(f"{at.find((robot, 'conditions', event), where)}: [{robot}.conditions.{event}] names "
+                              f"no abstract event; known: {', '.join(e.value for e in EventType)}")
+        for kind, values in _table(at, where, (robot, "conditions", event), kinds).items():
+            table = (robot, "conditions", event, kind)
             if kind not in CONDITIONS:
-                raise ConfigError(f"{path}: [{robot}.conditions.{event}.{kind}] names no condition kind; known: "
+                raise ConfigError(f"{at.find(table, where)}: [{'.'.join(table)}] names no condition kind; known: "
                                   f"{', '.join(sorted(CONDITIONS))}")
-            table = f"{robot}.conditions.{event}.{kind}"
-            conditions[(event, kind)] = _params(path, table, dict(CONDITIONS[kind].params), values)
+            conditions[(event, kind)] = _params(at, where, table, dict(CONDITIONS[kind].params), values)
     return RobotConfig(controllers, conditions)

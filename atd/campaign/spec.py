@@ -11,16 +11,17 @@ import hashlib
 import re
 import tomllib
 from pathlib import Path
-from typing import Literal, Union
+from typing import Annotated, Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, ValidationInfo, field_validator
+from pydantic import BaseModel, ConfigDict, Field, Strict, ValidationError, ValidationInfo, field_validator
 
 from atd.campaign.perturbation import PERTURBATIONS
 from atd.campaign.record import DIMENSIONS
 from atd.model import ranges
 from atd.model.diagnostics import Diagnostic, did_you_mean, error
-from atd.model.files import InputError, read_capped
+from atd.model.files import InputError, read_capped, real_path
 from atd.model.task import Location
+from atd.model.toml_lines import TomlLines
 
 GRASP_MODES = ("naive", "robust")
 JUDGES = ("lift", "place")
@@ -30,6 +31,11 @@ SPEC_CAP = 1 << 20  # bytes: a spec is a page of TOML
 
 class _Strict(BaseModel):
     model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+# Numbers as TOML writes them: an integer may stand for a float, but `true` is not 1 and 2.0 is not a count.
+Number = Annotated[float, Strict()]
+Count = Annotated[int, Strict()]
 
 
 class TaskEntry(_Strict):
@@ -46,15 +52,15 @@ class Perturbation(_Strict):
     """One named perturbation model with its parameters; see `atd.campaign.perturbation`."""
 
     model: Literal["none", "approach", "object_pose", "object_physics", "sensors"]
-    translation: float = Field(0.05, ge=0, le=0.2, description="approach: ± m per axis")
-    rotation: float = Field(15.0, ge=0, le=90, description="approach: ± degrees about each axis")
-    x: float = Field(0.03, ge=0, le=0.2, description="object_pose: ± m along x")
-    y: float = Field(0.03, ge=0, le=0.2, description="object_pose: ± m along y")
-    yaw: float = Field(20.0, ge=0, le=180, description="object_pose: ± degrees about z")
-    mass: tuple[float, float] = Field((0.5, 2.0), description="object_physics: mass scale range")
-    friction: tuple[float, float] = Field((0.5, 1.5), description="object_physics: friction scale range")
-    noise: tuple[float, float] = Field((1.0, 3.0), description="sensors: noise scale range")
-    bias: tuple[float, float] = Field((0.0, 2.0), description="sensors: bias scale range")
+    translation: Number = Field(0.05, ge=0, le=0.2, description="approach: ± m per axis")
+    rotation: Number = Field(15.0, ge=0, le=90, description="approach: ± degrees about each axis")
+    x: Number = Field(0.03, ge=0, le=0.2, description="object_pose: ± m along x")
+    y: Number = Field(0.03, ge=0, le=0.2, description="object_pose: ± m along y")
+    yaw: Number = Field(20.0, ge=0, le=180, description="object_pose: ± degrees about z")
+    mass: tuple[Number, Number] = Field((0.5, 2.0), description="object_physics: mass scale range")
+    friction: tuple[Number, Number] = Field((0.5, 1.5), description="object_physics: friction scale range")
+    noise: tuple[Number, Number] = Field((1.0, 3.0), description="sensors: noise scale range")
+    bias: tuple[Number, Number] = Field((0.0, 2.0), description="sensors: bias scale range")
 
     @field_validator("mass", "friction", "noise", "bias")
     @classmethod
@@ -69,9 +75,9 @@ class Perturbation(_Strict):
 
 class CampaignSpec(_Strict):
     name: str = Field(min_length=1, pattern=r"^[A-Za-z0-9_.-]+$")
-    base_seed: int = Field(0, ge=0, lt=2**63)
-    trials: int = Field(10, ge=ranges.TRIALS.low, le=ranges.TRIALS.high, description="trials per cell")
-    budget: float = Field(120.0, gt=0, le=3600, description="simulated seconds before the watchdog stops a trial")
+    base_seed: Count = Field(0, ge=0, lt=2**63)
+    trials: Count = Field(10, ge=ranges.TRIALS.low, le=ranges.TRIALS.high, description="trials per cell")
+    budget: Number = Field(120.0, gt=0, le=3600, description="simulated seconds before the watchdog stops a trial")
     tasks: tuple[Union[str, TaskEntry], ...] = Field(min_length=1)
     robots: tuple[Union[str, RobotEntry], ...] = Field(min_length=1)
     engines: tuple[Literal["mujoco", "pybullet"], ...] = Field(("mujoco",), min_length=1)
@@ -102,7 +108,7 @@ class LoadedSpec(BaseModel):
         return hashlib.sha256(self.text.encode()).hexdigest()
 
     def task_path(self, entry: TaskEntry) -> Path:
-        return (self.path.parent / entry.file).resolve()
+        return real_path(self.path.parent / entry.file)
 
 
 def load_spec(path: Path) -> tuple[LoadedSpec | None, list[Diagnostic]]:
@@ -118,17 +124,17 @@ def load_spec(path: Path) -> tuple[LoadedSpec | None, list[Diagnostic]]:
     except tomllib.TOMLDecodeError as exc:
         line = int(m.group(1)) if (m := re.search(r"line (\d+)", str(exc))) else 0
         return None, [error("CMP002", f"not valid TOML: {exc}", Location(where, line), "fix the TOML syntax")]
-    lines = _KeyLines(text)
-    found = _check_names(data, path.resolve().parent, where, lines)
+    lines = TomlLines(text)
+    found = _check_names(data, real_path(path).parent, where, lines)
     try:
         spec = CampaignSpec.model_validate(data)
     except ValidationError as exc:
         found += [_diagnostic(e, where, lines) for e in exc.errors()]
         return None, sorted(found, key=lambda d: d.loc.line)
-    return LoadedSpec(spec=spec, path=path.resolve(), text=text), found
+    return LoadedSpec(spec=spec, path=real_path(path), text=text), found
 
 
-def _diagnostic(e: dict, where: str, lines: _KeyLines) -> Diagnostic:
+def _diagnostic(e: dict, where: str, lines: TomlLines) -> Diagnostic:
     loc = tuple(p for p in e["loc"] if p not in ("str", "TaskEntry", "RobotEntry"))
     dotted = ".".join(str(p) for p in loc)
     message = e["msg"]
@@ -164,7 +170,7 @@ def _hint(loc: tuple) -> str | None:
     return None
 
 
-def _check_names(data: dict, folder: Path, where: str, lines: _KeyLines) -> list[Diagnostic]:
+def _check_names(data: dict, folder: Path, where: str, lines: TomlLines) -> list[Diagnostic]:
     """What the schema cannot know: task files exist, robots and arms are installed,
     objects are in the library. Read from the raw TOML, so these are found together
     with the schema's own errors; entries of the wrong type are the schema's to report."""
@@ -174,7 +180,7 @@ def _check_names(data: dict, folder: Path, where: str, lines: _KeyLines) -> list
     for i, entry in _entries(data, "tasks"):
         file = entry.get("file") if isinstance(entry, dict) else entry
         if isinstance(file, str) and not (folder / file).is_file():
-            found.append(error("CMP020", f"no task file {(folder / file).resolve()}", lines.find(("tasks", i), where),
+            found.append(error("CMP020", f"no task file {real_path(folder / file)}", lines.find(("tasks", i), where),
                                "task files are relative to the spec"))
     robots = installed()
     for i, entry in _entries(data, "robots"):
@@ -205,40 +211,6 @@ def _check_names(data: dict, folder: Path, where: str, lines: _KeyLines) -> list
 def _entries(data: dict, key: str) -> list[tuple[int, object]]:
     value = data.get(key)
     return list(enumerate(value)) if isinstance(value, list) else []
-
-
-class _KeyLines:
-    """Where each key of a TOML text stands: enough of TOML's grammar to point a
-    diagnostic at the line of a key, a table or an array-of-tables entry."""
-
-    _HEADER = re.compile(r"^\s*(\[\[?)\s*([^\]]+?)\s*\]\]?")
-    _KEY = re.compile(r"^\s*([A-Za-z0-9_\-\"'.]+)\s*=")
-
-    def __init__(self, text: str) -> None:
-        self.lines: dict[tuple, int] = {}
-        counts: dict[tuple, int] = {}
-        table: tuple = ()
-        for number, line in enumerate(text.splitlines(), start=1):
-            if m := self._HEADER.match(line):
-                path = tuple(p.strip().strip("\"'") for p in m.group(2).split("."))
-                if m.group(1) == "[[":
-                    index = counts.get(path, 0)
-                    counts[path] = index + 1
-                    path = path + (index,)
-                table = path
-                self.lines.setdefault(table, number)
-            elif m := self._KEY.match(line):
-                key = tuple(p.strip().strip("\"'") for p in m.group(1).split("."))
-                self.lines.setdefault(table + key, number)
-
-    def find(self, loc: tuple, where: str) -> Location:
-        """The line of `loc`, or of its nearest enclosing key or table."""
-        path = tuple(loc)
-        while path:
-            if path in self.lines:
-                return Location(where, self.lines[path])
-            path = path[:-1]
-        return Location(where, 1)
 
 
 __all__ = ["DIMENSIONS", "GRASP_MODES", "JUDGES", "TASK_OBJECT", "CampaignSpec", "LoadedSpec", "Perturbation",

@@ -163,7 +163,7 @@ class Store:
         try:
             row = db.execute("SELECT value FROM meta WHERE key = 'format_version'").fetchone()
             db.execute("SELECT count(*) FROM trials").fetchone()
-        except sqlite3.DatabaseError:
+        except (sqlite3.DatabaseError, ValueError):  # ValueError: text a damaged file does not decode
             raise StoreError(not_a_store) from None
         if row is None or not str(row[0]).isdigit():
             raise StoreError(not_a_store)
@@ -189,9 +189,13 @@ class Store:
         return {(Cell(*row[:-1]).key, row[-1]) for row in rows}
 
     def records(self) -> list[TrialRecord]:
-        """Every stored trial, ordered by cell key then trial index."""
-        found = [TrialRecord.from_dict(self._decode(row)) for row in self._db.execute(
-            f"SELECT {_NAMES} FROM trials")]
+        """Every stored trial, ordered by cell key then trial index; StoreError when a row of a
+        damaged file cannot be read back."""
+        try:
+            found = [TrialRecord.from_dict(self._decode(row)) for row in self._db.execute(
+                f"SELECT {_NAMES} FROM trials")]
+        except Exception as exc:  # noqa: BLE001 - SQLite, UTF-8, JSON or a field: the file is damaged either way
+            raise StoreError(f"{self.path}: a stored trial cannot be read ({exc}); the store is damaged") from None
         return sorted(found, key=lambda r: (r.cell.key, r.index))
 
     @staticmethod

@@ -15,9 +15,10 @@ from atd.campaign.progress import Progress
 from atd.campaign.runner import WorkerError, run_local, run_ray
 from atd.campaign.spec import load_spec
 from atd.campaign.store import Store, StoreError
-from atd.cli.app import EXIT_INVALID, EXIT_USAGE, OutputFile, Ranged, campaign
+from atd.cli.app import EXIT_INVALID, EXIT_USAGE, OutputFile, Ranged, campaign, guard_outputs
 from atd.model import has_errors, ranges
 from atd.model.diagnostics import render_all
+from atd.model.files import real_path
 
 EXIT_INTERRUPTED = 130  # the shell's code for a command stopped by Ctrl-C
 
@@ -32,7 +33,7 @@ def _stop(signum: int, frame: object) -> None:
 
 
 @campaign.command("run")
-@click.argument("spec_file", metavar="SPEC.toml", type=click.Path(path_type=Path, exists=True, dir_okay=False))
+@click.argument("spec_file", metavar="SPEC.toml", type=click.Path(path_type=Path))  # read by the input guard
 @click.option("--workers", "-j", type=Ranged(ranges.WORKERS, integer=True), default=None,
               help="worker processes (default: every core)")
 @click.option("--ray", "ray_address", is_flag=False, flag_value="", default=None, metavar="[ADDRESS]",
@@ -62,7 +63,7 @@ def run_campaign(spec_file: Path, workers: int | None, ray_address: str | None, 
     if loaded is None or has_errors(found):
         _fail(render_all(found), EXIT_INVALID)
     try:
-        chosen = plans(loaded, parse_only(only), trials, record_failed and record_failed.resolve())
+        chosen = plans(loaded, parse_only(only), trials, record_failed and real_path(record_failed))
     except ValueError as exc:
         _fail(f"error: {exc}", EXIT_USAGE)
     if not chosen:
@@ -70,6 +71,7 @@ def run_campaign(spec_file: Path, workers: int | None, ray_address: str | None, 
     if record_failed is not None and not record_failed.is_dir():
         _fail(f"error: --record-failed {record_failed}: no such folder; create it first", EXIT_USAGE)
     store_path = store_path or Path.cwd() / f"{loaded.spec.name}.sqlite"
+    guard_outputs({"--store": store_path}, [loaded.task_path(entry) for entry in loaded.spec.task_entries])
     try:
         store = Store.create_or_resume(store_path, loaded.text, loaded.digest, resume)
     except StoreError as exc:

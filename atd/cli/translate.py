@@ -68,7 +68,7 @@ def _report(diagnostics: list[Diagnostic]) -> None:
 @click.argument("task", type=click.Path(path_type=Path))
 @click.option("--robot", "-r", required=True, help="the robot to translate for (see `atd robots`)")
 @click.option("--arm", default=None, help="which arm, for robots with more than one (default: the robot's first)")
-@click.option("--config", type=click.Path(path_type=Path, exists=True, dir_okay=False), default=None,
+@click.option("--config", type=click.Path(path_type=Path), default=None,  # read by the input guard
               help="TOML file with parameter overrides (see docs/estd.md)")
 @click.option("-o", "--output", type=OutputFile(), default=None,
               help="where to write the ESTD (default: TASK.<robot>.estd.xml beside the task)")

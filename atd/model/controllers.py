@@ -46,6 +46,10 @@ class ParamType(StrEnum):
     VECTOR = "vector"  # fixed-length tuple of floats, written space-separated
     POINTS = "points"  # tuple of 3-vectors, written "x y z; x y z"
 
+    @property
+    def with_article(self) -> str:
+        return f"{'an' if self.value[0] in 'aeiou' else 'a'} {self.value}"
+
 
 @dataclass(frozen=True)
 class ParamSpec:
@@ -478,7 +482,7 @@ def parse_value(spec: ParamSpec, text: str) -> ParamValue:
     try:
         value = ranges.integer(text) if spec.type is ParamType.INTEGER else ranges.numbers([text])[0]
     except ValueError:
-        raise ValueError(f"'{text}' is not a {spec.type.value}") from None
+        raise ValueError(f"'{text}' is not {spec.type.with_article}") from None
     return coerce_value(spec, value)
 
 
@@ -490,26 +494,20 @@ def coerce_value(spec: ParamSpec, value: object) -> ParamValue:
     if kind is ParamType.INTEGER and isinstance(value, int) and not isinstance(value, bool):
         return _in_range(spec, value)
     if kind is ParamType.NUMBER and isinstance(value, (int, float)) and not isinstance(value, bool):
-        return _in_range(spec, float(value))
+        return float(_in_range(spec, value))
     if kind is ParamType.WORD and isinstance(value, str):
         if spec.choices and value not in spec.choices:
             raise ValueError(f"'{value}' is not one of {', '.join(spec.choices)}")
         return value
     if kind is ParamType.VECTOR and isinstance(value, (tuple, list)):
-        vector = tuple(float(v) for v in value)
-        if spec.length is not None and len(vector) != spec.length:
-            raise ValueError(f"needs {spec.length} numbers, got {len(vector)}")
-        for v in vector:
-            _in_range(spec, v)
-        return vector
+        if spec.length is not None and len(value) != spec.length:
+            raise ValueError(f"needs {spec.length} numbers, got {len(value)}")
+        return tuple(_number_in_range(spec, v) for v in value)
     if kind is ParamType.POINTS and isinstance(value, (tuple, list)):
-        points = tuple(tuple(float(v) for v in p) for p in value)
-        if any(len(p) != 3 for p in points):
+        if any(not isinstance(p, (tuple, list)) or len(p) != 3 for p in value):
             raise ValueError("every point needs 3 numbers (x y z)")
-        for v in (v for p in points for v in p):
-            _in_range(spec, v)
-        return points
-    raise ValueError(f"{value!r} is not a {kind.value}")
+        return tuple(tuple(_number_in_range(spec, v) for v in p) for p in value)
+    raise ValueError(f"{value!r} is not {kind.with_article}")
 
 
 def _in_range(spec: ParamSpec, value: float) -> float:
@@ -517,6 +515,14 @@ def _in_range(spec: ParamSpec, value: float) -> float:
     if problem:
         raise ValueError(problem)
     return value
+
+
+def _number_in_range(spec: ParamSpec, value: object) -> float:
+    """One number of a vector or of points, checked before it becomes a float (which a
+    400-digit integer from a TOML file would overflow)."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ValueError(f"{value!r} is not a number")
+    return float(_in_range(spec, value))
 
 
 def check_params(where: str, specs: Mapping[str, ParamSpec], params: Mapping[str, object]) -> list[str]:

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import difflib
 import json
+import re
 from collections import defaultdict
 from dataclasses import asdict, dataclass
 from enum import StrEnum
@@ -21,6 +22,20 @@ class Severity(StrEnum):
     WARNING = "warning"
 
 
+LONGEST_TEXT = 2_000  # characters of a message or hint; only one repeating a huge input is longer
+_LONG_WORD = re.compile(r"[^\s'\"]{101,}")
+
+
+def _shortened(text: str | None) -> str | None:
+    """`text`, or when it repeats a huge piece of the input (a state name of ten million
+    characters) its long words cut to their start and length, and the whole to LONGEST_TEXT:
+    a diagnostic stays a line to read, not megabytes."""
+    if text is None or len(text) <= LONGEST_TEXT:
+        return text
+    text = _LONG_WORD.sub(lambda m: f"{m.group()[:40]}... ({len(m.group()):,} characters)", text)
+    return text if len(text) <= LONGEST_TEXT else f"{text[:LONGEST_TEXT]}... ({len(text):,} characters in all)"
+
+
 @dataclass(frozen=True)
 class Diagnostic:
     code: str
@@ -28,6 +43,10 @@ class Diagnostic:
     message: str
     loc: Location | None = None
     hint: str | None = None
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "message", _shortened(self.message))
+        object.__setattr__(self, "hint", _shortened(self.hint))
 
     def render(self) -> str:
         where = f"{self.loc}: " if self.loc else ""

@@ -9,6 +9,7 @@ vocabulary, and reports problems as diagnostics with file:line.
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 from functools import cache
 from pathlib import Path
 
@@ -196,14 +197,22 @@ def _from_doc(doc: ParsedXml) -> tuple[Estd | None, list[Diagnostic]]:
 
 
 def parse_estd_json(data: bytes, file: str) -> tuple[Estd | None, list[Diagnostic]]:
+    """An ESTD from JSON bytes, its values checked as those of its XML form are (ranges, rigid
+    poses, the vocabulary): JSON's types let through a NaN weight or an infinite pose."""
     try:
-        estd = Estd.model_validate_json(data)
+        estd = Estd.model_validate_json(data, strict=True)  # JSON true is no number, nor "0.1"
+        as_xml = estd_to_xml(estd)
     except ValidationError as exc:
         first = exc.errors()[0]
         where = ".".join(str(p) for p in first["loc"])
         return None, [error("ESTD102", f"invalid ESTD JSON at {where}: {first['msg']}", Location(file, 0, 0),
                             "see docs/estd.md")]
-    return _checked(estd, file)
+    except ValueError as exc:  # text XML cannot hold, e.g. a control character in a name
+        return None, [error("ESTD102", f"invalid ESTD JSON: {exc}", Location(file, 0, 0), "see docs/estd.md")]
+    checked, found = parse_estd(as_xml, file)
+    if checked is None:  # located in the XML form, which the user never saw: the file alone
+        return None, [replace(d, loc=Location(file, 0, 0)) for d in found]
+    return estd, []
 
 
 def _checked(estd: Estd, file: str) -> tuple[Estd | None, list[Diagnostic]]:

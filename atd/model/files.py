@@ -41,12 +41,31 @@ def name_too_long(path: Path) -> str | None:
     return None
 
 
-def is_regular_file(path: Path) -> bool:
-    """Whether `path` is a regular file; False, never an exception, for names no file can have."""
+def unreadable(path: Path) -> str | None:
+    """Why `path` is not a file to read, in the words `read_capped` uses; None when it is a
+    regular file. Never an exception, also for names no file can have."""
     try:
-        return stat.S_ISREG(os.stat(path).st_mode)
-    except (OSError, ValueError):
-        return False
+        return _not_regular(os.stat(path).st_mode)
+    except FileNotFoundError:
+        return "no such file"
+    except OSError as exc:
+        return f"cannot read file: {exc.strerror}"
+    except ValueError:  # a NUL in the name
+        return "no such file"
+
+
+def _not_regular(mode: int) -> str | None:
+    if stat.S_ISDIR(mode):
+        return "is a directory, not a file"
+    if not stat.S_ISREG(mode):
+        return "is not a regular file (a device, FIFO or socket)"
+    return None
+
+
+def real_path(path: Path) -> Path:
+    """`path` made absolute, its symbolic links followed as far as they lead. `Path.resolve`
+    raises RuntimeError on a symlink loop (Python 3.11), and a user can name one anywhere."""
+    return Path(os.path.realpath(path))
 
 
 def read_capped(path: Path, cap: int) -> bytes:
@@ -68,11 +87,9 @@ def read_capped(path: Path, cap: int) -> bytes:
     except OSError as exc:
         raise InputError(f"cannot read file: {exc.strerror}") from None
     try:
-        mode = os.fstat(fd).st_mode
-        if stat.S_ISDIR(mode):
-            raise InputError("is a directory, not a file")
-        if not stat.S_ISREG(mode):
-            raise InputError("is not a regular file (a device, FIFO or socket)")
+        kind = _not_regular(os.fstat(fd).st_mode)
+        if kind:
+            raise InputError(kind)
         chunks, total = [], 0
         while total <= cap:
             chunk = os.read(fd, min(1 << 20, cap + 1 - total))
@@ -103,6 +120,8 @@ def output_problem(path: Path) -> str | None:
         return long
     folder = path.parent
     if not folder.is_dir():
+        if folder.exists():
+            return f"{folder} is not a folder; write elsewhere"
         return f"the folder {folder} does not exist; create it or write elsewhere"
     if not os.access(folder, os.W_OK):
         return f"the folder {folder} is not writable; write elsewhere"
@@ -130,10 +149,9 @@ def output_problems(outputs: Mapping[str, Path | None], inputs: Iterable[Path] =
         problem = output_problem(path)
         if problem:
             problems.append(f"{option} {path}: {problem}")
-        for source in sources:
-            if _same(path, source):
-                problems.append(f"{option} {path}: that is an input of this command and would be overwritten; "
-                                "write elsewhere")
+        if any(_same(path, source) for source in sources):
+            problems.append(f"{option} {path}: that is an input of this command and would be overwritten; "
+                            "write elsewhere")
         for other_option, other in given[:i]:
             if _same(path, other):
                 problems.append(f"{option} {path}: {other_option} names the same file; give each output its own name")

@@ -9,7 +9,7 @@ from lxml import etree
 
 from atd.model.bulk import cyclic_gc_paused
 from atd.model.diagnostics import Diagnostic, error, has_errors, warning
-from atd.model.files import is_regular_file
+from atd.model.files import unreadable
 from atd.model.reader import read_task
 from atd.model.task import Location, State, Task
 from atd.model.validate import check_task, subtask_path
@@ -70,8 +70,9 @@ def _check_subtasks(task: Task, including: tuple[Path, ...], seen: Loaded) -> li
         if state.type is not StateType.TASK or not state.file:
             continue
         sub = subtask_path(task, state)
-        if not is_regular_file(sub):
-            found.append(error("ATD211", f"sub-task file '{state.file}' of state '{state.name}' not found",
+        problem = unreadable(sub)
+        if problem:
+            found.append(error("ATD211", f"sub-task file '{state.file}' of state '{state.name}': {problem}",
                                state.loc, f"looked for {sub}; paths are relative to the including file"))
         elif sub.resolve() in including:
             what = "itself" if sub.resolve() == including[-1] else "a task that includes it"

@@ -77,18 +77,24 @@ def mesh_points(path: Path, scale: tuple[float, float, float] = (1.0, 1.0, 1.0))
         raise MeshError(f"{path}: {exc}") from None
 
 
-def _number(word: bytes) -> float:
-    try:
-        return float(word)
-    except ValueError:
-        raise MeshError(f"'{_shown(word)}' is not a number") from None
+def _numbers(words: list[bytes]) -> list[float]:
+    """Coordinates as an engine's mesh loader reads them: float() alone would take '1_0' for 10."""
+    numbers = []
+    for word in words:
+        try:
+            if b"_" in word:
+                raise ValueError
+            numbers.append(float(word))
+        except ValueError:
+            raise MeshError(f"'{_shown(word)}' is not a number") from None
+    return numbers
 
 
 def _index(word: bytes) -> int:
-    try:
+    """A vertex number in ASCII digits, with a sign for counting from the end."""
+    if word.isdigit() or (word[:1] in (b"-", b"+") and word[1:].isdigit()):
         return int(word)
-    except ValueError:
-        raise MeshError(f"'{_shown(word)}' is not a vertex number") from None
+    raise MeshError(f"'{_shown(word)}' is not a vertex number")
 
 
 def _shown(word: bytes) -> str:
@@ -113,7 +119,13 @@ def _stl_triangles(data: bytes) -> np.ndarray:
     if not data.lstrip().startswith(b"solid"):
         raise MeshError("not an STL file: neither binary STL (its size does not match its triangle count) "
                         "nor ASCII STL (it does not start with 'solid')")
-    vertices = [[_number(w) for w in m.groups()] for m in _ASCII_VERTEX.finditer(data)]
+    vertices = []
+    for m in _ASCII_VERTEX.finditer(data):
+        try:
+            vertices.append(_numbers(list(m.groups())))
+        except MeshError as exc:
+            line = data.count(b"\n", 0, m.start()) + 1  # counted only for the report
+            raise MeshError(f"line {line}: {exc}") from None
     if not vertices or len(vertices) % 3:
         raise MeshError(f"the ASCII STL has {len(vertices)} vertices, not whole triangles of 3")
     return np.asarray(vertices, dtype=float).reshape(-1, 3, 3)
@@ -123,31 +135,38 @@ def _obj_mesh(data: bytes) -> tuple[np.ndarray, np.ndarray]:
     vertices: list[list[float]] = []
     corners: list[int] = []  # three vertex indices per triangle, each face split into a fan
     for number, line in enumerate(data.splitlines(), 1):
-        words = line.split()
-        if not words:
-            continue
-        if words[0] == b"v":
-            if len(words) < 4:
-                raise MeshError(f"line {number}: a vertex needs x y z")
-            vertices.append([_number(w) for w in words[1:4]])
-        elif words[0] == b"f":
-            if len(words) < 4:
-                raise MeshError(f"line {number}: a face needs at least 3 vertices")
-            face = []
-            for word in words[1:]:
-                index = _index(word.split(b"/")[0])
-                if index == 0 or abs(index) > len(vertices):
-                    raise MeshError(f"line {number}: face vertex {index} does not exist "
-                                    f"({len(vertices)} vertices so far)")
-                face.append(index - 1 if index > 0 else len(vertices) + index)
-            for i in range(1, len(face) - 1):
-                corners += (face[0], face[i], face[i + 1])
-        elif words[0] not in (b"#", b"vn", b"vt", b"vp", b"o", b"g", b"s", b"usemtl", b"mtllib", b"l") \
-                and not words[0].startswith(b"#"):
-            raise MeshError(f"line {number}: '{_shown(words[0])}' is not an OBJ statement")
+        try:
+            _obj_statement(line.split(), vertices, corners)
+        except MeshError as exc:
+            raise MeshError(f"line {number}: {exc}") from None
     if not corners:
         raise MeshError("the OBJ file has no faces")
     return np.asarray(vertices, dtype=float), np.asarray(corners, dtype=np.intp).reshape(-1, 3)
+
+
+def _obj_statement(words: list[bytes], vertices: list[list[float]], corners: list[int]) -> None:
+    """One line of an OBJ file: a vertex or a face (split into a fan of triangles) is added,
+    what draws nothing is passed over, anything else is refused."""
+    if not words:
+        return
+    if words[0] == b"v":
+        if len(words) < 4:
+            raise MeshError("a vertex needs x y z")
+        vertices.append(_numbers(words[1:4]))
+    elif words[0] == b"f":
+        if len(words) < 4:
+            raise MeshError("a face needs at least 3 vertices")
+        face = []
+        for word in words[1:]:
+            index = _index(word.split(b"/")[0])
+            if index == 0 or abs(index) > len(vertices):
+                raise MeshError(f"face vertex {index} does not exist ({len(vertices)} vertices so far)")
+            face.append(index - 1 if index > 0 else len(vertices) + index)
+        for i in range(1, len(face) - 1):
+            corners += (face[0], face[i], face[i + 1])
+    elif words[0] not in (b"#", b"vn", b"vt", b"vp", b"o", b"g", b"s", b"usemtl", b"mtllib", b"l") \
+            and not words[0].startswith(b"#"):
+        raise MeshError(f"'{_shown(words[0])}' is not an OBJ statement")
 
 
 def _check_solid(triangles: np.ndarray) -> None:

@@ -28,11 +28,12 @@ class Range:
         return f"{text} {self.unit}" if self.unit else text
 
     def problem(self, value: float) -> str | None:
-        """Why `value` is refused, in words naming the allowed range; None when it is allowed."""
-        if not math.isfinite(value):
+        """Why `value` is refused, in words naming the allowed range; None when it is allowed.
+        An integer is compared as it is: one of 400 digits overflows a float."""
+        if not isinstance(value, int) and not math.isfinite(value):
             return f"{value} is not a finite number; give one in {self}"
         if value < self.low or value > self.high or (self.low_open and value == self.low):
-            return f"{value:g} is outside {self}"
+            return f"{_number(value)} is outside {self}"
         return None
 
     def first_problem(self, values: tuple[float, ...]) -> str | None:
@@ -70,12 +71,19 @@ def integer(word: str) -> int:
 
 
 def _number(value: float) -> str:
-    return str(int(value)) if float(value).is_integer() else f"{value:g}"
+    """A number as a message shows it: a whole one in digits (a seed of 4294967296, not 4.29497e+09),
+    up to 20 of them; any other as %g."""
+    if isinstance(value, int):
+        digits = str(value)
+        return digits if len(digits) <= 20 else f"{digits[:10]}... ({len(digits)} digits)"
+    return str(int(value)) if value.is_integer() and abs(value) < 1e15 else f"{value:g}"
 
 
 # ATD values: the object, the world, the task's timing.
 COORDINATE = Range(-10.0, 10.0, "m")  # positions, targets, waypoints: a robot's workspace and then some
-SIZE = Range(0.0, 10.0, "m", low_open=True)  # object and obstacle dimensions (a wall is an obstacle too)
+# Object and obstacle dimensions (a wall is an obstacle too). A millimetre at least: MuJoCo refuses
+# the model of a smaller object (its inertia falls below mjMINVAL), 1e-9 m crashed `atd run`.
+SIZE = Range(0.001, 10.0, "m")
 OBSTACLE_EXTENT = Range(0.0, 10.0, "m")  # in an ESTD: 0 0 0 is an obstacle of no given size
 WEIGHT = Range(0.001, 50.0, "kg")  # what both engines simulate stably next to a robot hand
 INERTIA = Range(-10.0, 10.0, "kg m^2")
@@ -108,4 +116,4 @@ RECORD_RATE = Range(0.0, 10_000.0, "Hz", low_open=True)  # of simulated time; a 
 WORKERS = Range(1, 512)  # campaign worker processes, each holding an engine: more only exhausts memory
 TRIALS = Range(1, 100_000)  # per cell, in a campaign spec or --trials
 SCALE = Range(0.0, 100.0)  # a campaign's perturbation factors (friction, sensor noise and bias)
-MASS_SCALE = Range(0.0, 100.0, low_open=True)  # an object of no mass is one no engine can simulate
+MASS_SCALE = Range(0.01, 100.0)  # of no mass, or a 1 g object scaled far below a gram, no engine can simulate

@@ -56,8 +56,9 @@ RIGID_TOLERANCE = 1e-3
 
 
 def _elements(node: etree._Element) -> list[etree._Element]:
-    """Child elements, skipping comments."""
-    return list(node.iterchildren(etree.Element))
+    """Child elements: the parser keeps neither comments nor processing instructions, and a
+    slice is three times cheaper than filtering them out (a 40,000-state task has 160,000 elements)."""
+    return node[:]
 
 
 def _words(node: etree._Element) -> list[str]:

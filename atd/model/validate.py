@@ -9,7 +9,6 @@ from collections import defaultdict
 from pathlib import Path
 
 from atd.model.diagnostics import Diagnostic, Suggester, did_you_mean, error, has_errors, warning
-from atd.model.files import is_regular_file
 from atd.model.task import State, Task
 from atd.model.vocabulary import StateType
 
@@ -127,7 +126,7 @@ def _shape(task: Task) -> list[Diagnostic]:
     if obj is None or obj.shape is None or task.source is None:
         return []
     mesh = Path(task.source).parent / obj.shape
-    if is_regular_file(mesh):
+    if mesh.exists():  # a directory or a FIFO too: check_mesh says what it is
         from atd.model.meshcheck import MeshError, check_mesh  # numpy: only for a task that names a mesh
 
         try:

@@ -26,6 +26,9 @@ MAX_DEPTH = 256  # libxml2 refuses deeper documents unless huge_tree is set; an 
 # (group 1 is set for start tags only): one scan finds every element's opening in document order.
 _OPENING_OR_SKIPPED = re.compile(rb"<([A-Za-z_])|<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>", re.S)
 _DOCTYPE = re.compile(rb"<!DOCTYPE|<!ENTITY", re.I)
+_DOCUMENT_STARTS = b"< \t\r\n"  # a declaration or the root element, or white space before the root
+_UTF16_LE_STARTS = {bytes([c, 0]) for c in _DOCUMENT_STARTS}
+_UTF16_BE_STARTS = {bytes([0, c]) for c in _DOCUMENT_STARTS}
 _DECLARED_ENCODING = re.compile(r"""^(<\?xml[^>]*?encoding\s*=\s*)(["'])[^"']*\2""")
 # libxml2's fixed limits (without huge_tree): the words its messages use, and ours.
 _PARSER_LIMITS = (
@@ -58,6 +61,7 @@ def _parser() -> etree.XMLParser:
         dtd_validation=False,
         huge_tree=False,
         remove_pis=True,
+        remove_comments=True,  # no reader needs them, and an element's children are then elements only
     )
 
 
@@ -97,11 +101,16 @@ def _too_big(size: int, file: str) -> Diagnostic:
 
 def _utf16_as_utf8(data: bytes) -> bytes:
     """UTF-16 text (which every XML reader must accept) as UTF-8, so one byte-based reader
-    serves both; other bytes unchanged. UnicodeDecodeError when it does not decode."""
+    serves both; other bytes unchanged. UnicodeDecodeError when it does not decode. Without
+    a byte-order mark, UTF-16 is known by its first character: one a document may begin with."""
+    if data[:4] in (codecs.BOM_UTF32_LE, codecs.BOM_UTF32_BE):
+        raise UnicodeDecodeError("utf-32", data, 0, 4, "UTF-32 is not read, only UTF-8 and UTF-16")
     if data[:2] in (codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE):
         encoding = "utf-16"
-    elif data[:2] in (b"<\x00", b"\x00<"):
-        encoding = "utf-16-le" if data[0] == ord("<") else "utf-16-be"
+    elif data[:2] in _UTF16_LE_STARTS:
+        encoding = "utf-16-le"
+    elif data[:2] in _UTF16_BE_STARTS:
+        encoding = "utf-16-be"
     else:
         return data
     text = _DECLARED_ENCODING.sub(r"\1\2UTF-8\2", data.decode(encoding), count=1)
@@ -123,7 +132,7 @@ def parse_bytes(data: bytes, file: str) -> tuple[ParsedXml | None, list[Diagnost
     try:
         data = _utf16_as_utf8(data)
     except UnicodeDecodeError as exc:
-        return None, [error("ATD006", f"cannot decode file as UTF-16: {exc.reason}", Location(file, 1, 1),
+        return None, [error("ATD006", f"cannot decode file as {exc.encoding.upper()}: {exc.reason}", Location(file, 1, 1),
                             "save the file as UTF-8")]
     if b"\x00" in data[:65536] or not data.strip():
         what = "is empty" if not data.strip() else "is binary, not XML text"

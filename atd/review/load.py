@@ -10,7 +10,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from mcap.exceptions import McapError
 from mcap.reader import make_reader
 
 from atd.model.estd import Estd
@@ -82,7 +81,7 @@ def load(path: Path) -> Recording:
         messages: dict[str, list[tuple[float, dict[str, Any]]]] = {}
         for _, channel, message in reader.iter_messages(log_time_order=True):
             messages.setdefault(channel.topic, []).append((message.log_time / 1e9, json.loads(message.data)))
-    except (McapError, ValueError, KeyError, EOFError) as exc:
+    except Exception as exc:  # noqa: BLE001 - bytes from anywhere through mcap, zstd, lz4, JSON: any failure says the same
         raise RecordingError(f"{path}: not an MCAP recording ({exc}); make one with atd run --record") from None
     if "atd.run" not in meta:
         raise RecordingError(f"{path}: an MCAP file, but not a recording of `atd run --record`")

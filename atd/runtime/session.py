@@ -142,7 +142,10 @@ class Run:
             scene = belief_scene(estd)
         if viewer:
             _Viewer.check_display()
-        self.robot = make_robot(robot or factory.robot, scene, engine, seed, window=viewer)
+        try:
+            self.robot = make_robot(robot or factory.robot, scene, engine, seed, window=viewer)
+        except SceneError as exc:
+            raise InvalidScene(str(exc)) from None
         self.has_object = scene.object is not None
         context = Context(info=self.robot.info, params={}, object=estd.object, environment=estd.environment,
                           rng=np.random.default_rng(seed))

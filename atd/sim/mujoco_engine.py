@@ -12,7 +12,7 @@ import numpy as np
 
 from atd.model.meshcheck import read_mesh
 from atd.sim.models import mjcf, visual_meshes
-from atd.sim.scene import CAMERA_AZIMUTH, CAMERA_DISTANCE, CAMERA_ELEVATION, CAMERA_TARGET, Scene
+from atd.sim.scene import CAMERA_AZIMUTH, CAMERA_DISTANCE, CAMERA_ELEVATION, CAMERA_TARGET, Scene, SceneError
 from atd.sim.simrobot import SimRobot
 from factories.description import RobotDescription
 
@@ -40,7 +40,10 @@ class MujocoRobot(SimRobot):
         super().__init__(description, scene, seed)
         d = description
         self.xml = mjcf(d, scene)
-        self.model = m = compile_mjcf(self.xml, d)
+        try:
+            self.model = m = compile_mjcf(self.xml, d)
+        except ValueError as exc:  # its compiler refuses what it cannot simulate, e.g. a body of almost no inertia
+            raise SceneError(f"MuJoCo cannot simulate this world: {' '.join(str(exc).split())}") from None
         self.data = mujoco.MjData(m)
         mujoco.mj_resetDataKeyframe(m, self.data, 0)
         mujoco.mj_forward(m, self.data)

@@ -13,7 +13,7 @@ from typing import Literal
 import numpy as np
 
 from atd.model import ObjectClass, Task
-from atd.model.files import is_regular_file
+from atd.model.files import real_path
 from atd.model.meshcheck import MeshError, check_mesh
 
 DEFAULT_WEIGHT = 0.2  # kg, when the ATD gives none
@@ -106,9 +106,9 @@ def scene_from_task(task: Task, atd_file: Path) -> Scene:
         size = info.effective_size
         mesh = None
         if info.shape is not None:
-            mesh = (atd_file.parent / info.shape).resolve()
+            mesh = real_path(atd_file.parent / info.shape)
             where = f"{atd_file}: <object> shape '{info.shape}'"
-            if not is_regular_file(mesh):
+            if not mesh.exists():  # a directory or a FIFO too: check_mesh says what it is
                 raise SceneError(f"{where}: no such file {mesh}; put the mesh next to the ATD or fix the path")
             try:
                 check_mesh(mesh)

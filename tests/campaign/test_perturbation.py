@@ -113,7 +113,7 @@ def test_the_perturbed_tasks_are_the_ones_in_the_spec(tmp_path: Path) -> None:
     assert {p.cell.perturbation for p in chosen} == {"shift"}
 
 
-@pytest.mark.parametrize("scales", ["[0.0, 0.0]", "[nan, 2.0]", "[1.0, inf]", "[2.0, 1.0]"])
+@pytest.mark.parametrize("scales", ["[0.0, 0.0]", "[nan, 2.0]", "[1.0, inf]", "[2.0, 1.0]", "[1e-300, 1.0]"])
 def test_a_mass_scale_no_engine_can_simulate_is_refused_in_the_spec(tmp_path: Path, scales: str) -> None:
     """A mass scaled to 0 made every trial a MuJoCo error; NaN and infinities slipped through too."""
     from atd.campaign.spec import load_spec
@@ -123,4 +123,17 @@ def test_a_mass_scale_no_engine_can_simulate_is_refused_in_the_spec(tmp_path: Pa
                     f'[perturbations.heavy]\nmodel = "object_physics"\nmass = {scales}\n')
     loaded, found = load_spec(spec)
     assert loaded is None and [d.code for d in found] == ["CMP012"]
-    assert "(0, 100]" in found[0].message
+    assert "[0.01, 100]" in found[0].message
+
+
+@pytest.mark.parametrize("line", ["budget = true", "trials = true", "base_seed = false", "trials = 2.0",
+                                  "[perturbations.heavy]\nmodel = \"object_physics\"\nmass = [true, 2]"])
+def test_a_flag_where_a_spec_number_belongs_is_not_taken_for_one(tmp_path: Path, line: str) -> None:
+    """pydantic read `budget = true` as a budget of 1 s and ran the campaign."""
+    from atd.campaign.spec import load_spec
+
+    spec = tmp_path / "s.toml"
+    spec.write_text(f'name = "s"\ntasks = ["{TASK}"]\nrobots = ["melfa"]\n{line}\n')
+    loaded, found = load_spec(spec)
+    assert loaded is None and [(d.code, d.loc.line) for d in found] == [("CMP012", line.count("\n") + 4)]
+    assert "should be a valid" in found[0].message

@@ -138,6 +138,23 @@ def test_reading_a_missing_file_or_a_file_that_is_no_store_says_so(tmp_path: Pat
         Store.open_read(other)
 
 
+@pytest.mark.parametrize("damage", [
+    "UPDATE meta SET value = CAST(x'ff' AS TEXT) WHERE key = 'format_version'",  # not UTF-8: a traceback before
+    "UPDATE trials SET events = '[{' WHERE \"index\" = 0",
+    "UPDATE trials SET sampled = CAST(x'fe' AS TEXT) WHERE \"index\" = 0",
+])
+def test_a_damaged_store_is_a_store_error_not_a_traceback(tmp_path: Path, damage: str) -> None:
+    path = tmp_path / "c.sqlite"
+    with Store.create_or_resume(path, SPEC, "d1", resume=False) as store:
+        for record in preset_records():
+            store.add(record)
+    with sqlite3.connect(path) as db:
+        db.execute(damage)
+    with pytest.raises(StoreError, match="is not a campaign store|the store is damaged"):
+        with Store.open_read(path) as store:
+            store.records()
+
+
 def test_a_store_from_a_newer_atd_is_refused_not_misread(tmp_path: Path) -> None:
     path = tmp_path / "c.sqlite"
     Store.create_or_resume(path, SPEC, "d1", resume=False).close()

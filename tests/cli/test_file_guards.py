@@ -279,3 +279,66 @@ def test_campaign_counts_outside_their_range_are_refused_before_any_work(tmp_pat
     result = atd("campaign", "run", CAMPAIGN_SPEC, "--store", tmp_path / "c.sqlite", *option)
     assert result.exit_code == 2 and "[1, " in result.output
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_symlink_loop_named_anywhere_is_one_line_not_a_traceback(task: Path) -> None:
+    """A loop named as a campaign's task, a task's mesh or a folder to record into."""
+    loop = task.parent / "loop"
+    loop.symlink_to(loop)
+    spec = task.parent / "spec.toml"
+    spec.write_text(CAMPAIGN_SPEC.read_text().replace("../../../examples/grasp_and_lift.xml", "loop"))
+    meshed = task.parent / "meshed.xml"
+    meshed.write_text(task.read_text().replace("<class>", "<shape>loop</shape><class>"))
+    for command, code, said in [(["campaign", "run", spec, "--store", task.parent / "c.sqlite"], 1, "CMP020"),
+                                (["run", meshed, "--robot", "melfa"], 1, "shape 'loop'"),
+                                (["campaign", "run", CAMPAIGN_SPEC, "--record-failed", loop], 2, "--record-failed")]:
+        result = atd(*command)
+        assert (result.exit_code, type(result.exception)) == (code, SystemExit), result.output
+        assert said in result.output
+    assert sorted(p.name for p in task.parent.iterdir()) == ["loop", "meshed.xml", "move.xml", "spec.toml"]
+
+
+@pytest.mark.parametrize("resume", [[], ["--resume"]])
+def test_a_campaign_store_is_never_one_of_the_spec_s_tasks(task: Path, resume: list[str]) -> None:
+    spec = task.parent / "spec.toml"
+    spec.write_text(CAMPAIGN_SPEC.read_text().replace("../../../examples/grasp_and_lift.xml", task.name))
+    before = task.read_bytes()
+    result = atd("campaign", "run", spec, "--store", task, *resume)
+    assert result.exit_code == 2 and "input of this command" in result.output, result.output
+    assert task.read_bytes() == before and sorted(p.name for p in task.parent.iterdir()) == ["move.xml", "spec.toml"]
+
+
+def test_each_output_problem_is_said_once_and_in_its_own_words(task: Path) -> None:
+    result = atd("compare", task, task, "--plot", task)
+    assert result.exit_code == 2 and result.output.count("input of this command") == 1, result.output
+    result = atd("translate", task, "--robot", "melfa", "-o", task / "out.xml")
+    assert result.exit_code == 2 and f"{task} is not a folder" in result.output
+
+
+def test_a_sub_task_or_mesh_that_is_no_file_is_named_for_what_it_is(tmp_path: Path) -> None:
+    for name in ("empty_the_box.xml", "simple_move.xml"):
+        shutil.copy(EXAMPLES / name, tmp_path)
+    (tmp_path / "folder.xml").mkdir()
+    os.mkfifo(tmp_path / "pipe.obj")
+    task = tmp_path / "empty_the_box.xml"
+    task.write_text(task.read_text().replace('file="pick_one.xml"', 'file="folder.xml"'))
+    meshed = tmp_path / "simple_move.xml"
+    meshed.write_text(meshed.read_text().replace("<class>", "<shape>pipe.obj</shape><class>"))
+    result = atd("validate", task, meshed)
+    assert result.exit_code == 1
+    assert "error[ATD211]: sub-task file 'folder.xml' of state 'pick_one': is a directory" in result.output
+    assert "error[ATD216]: object shape 'pipe.obj': is not a regular file" in result.output
+
+
+@pytest.mark.parametrize("kind", ["missing", "folder", "fifo"])
+def test_an_unreadable_config_or_campaign_spec_is_invalid_input_exit_1(task: Path, kind: str) -> None:
+    """click refused a missing or folder --config and SPEC with exit 2, a FIFO got exit 1."""
+    path = task.parent / "given.toml"
+    if kind == "folder":
+        path.mkdir()
+    elif kind == "fifo":
+        os.mkfifo(path)
+    said = {"missing": "no such file", "folder": "is a directory", "fifo": "not a regular file"}[kind]
+    for command in (["translate", task, "--robot", "melfa", "--config", path], ["campaign", "run", path]):
+        result = atd(*command)
+        assert result.exit_code == 1 and said in result.output, (command, result.output)

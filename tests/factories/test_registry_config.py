@@ -30,8 +30,12 @@ def test_shipped_configs_load_and_user_config_wins(tmp_path):
     ("[melfa.conditions.timeout.timeout]\nseconds = 1\n", "'seconds' comes from the task"),
     ("[melfa.robot]\nx = 1\n", "[melfa.robot] is not a section"),
     ("[melfa\n", "not valid TOML"),
+    ("[melfa]\ncontrollers = 3\n", ":2:1: [melfa.controllers] must be a table, not 3"),
+    ("melfa = 3\n", ":1:1: [melfa] must be a table"),
+    ("[melfa.conditions]\ngrasp_stable = 3\n", ":2:1: [melfa.conditions.grasp_stable] must be a table"),
+    ("[melfa.controllers.place]\n\nvelocity = -1\n", ":3:1: [melfa.controllers.place] velocity: -1 is outside"),
 ])
-def test_bad_config_files_name_the_file_the_table_and_the_fix(tmp_path, text, message):
+def test_bad_config_files_name_the_file_the_line_the_table_and_the_fix(tmp_path, text, message):
     path = tmp_path / "bad.toml"
     path.write_text(text)
     with pytest.raises(ConfigError, match=None) as info:

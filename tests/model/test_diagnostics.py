@@ -178,3 +178,27 @@ def test_initial_attribute_chooses_the_first_state(atd_file):
                          root='<statemachine initial="first">'))
     loaded, found = load_task(path)
     assert loaded.initial_state == "first" and found == []
+
+
+def test_comments_anywhere_are_ignored(atd_file):
+    """A comment inside a list of numbers or between a transition's events is not part of the task."""
+    from atd.model import load_task
+    path = atd_file(task('  <state name="go" type="move"><!-- reach --><path><position>0.1 <!-- x --> 0 0.2</position>'
+                         '</path></state>\n',
+                         '  <transition origin="go" destination="done"><!-- a --><success/><!-- b --></transition>\n'))
+    loaded, found = load_task(path)
+    assert found == [] and loaded.states_by_name["go"].target.values == (0.1, 0.0, 0.2)
+    assert [e.type.value for e in loaded.transitions[0].events] == ["success"]
+
+
+def test_a_huge_name_or_text_is_repeated_shortened(diagnose):
+    """Ten megabytes of input in a diagnostic would be ten megabytes on the terminal."""
+    name = "x" * 3_000_000
+    found = diagnose(task(MOVE, GO_DONE + f'  <transition origin="go" destination="{name}"><error/></transition>\n'
+                                          f'  <transition origin="{name}y" destination="done"><error/></transition>\n'))
+    assert [d.code for d in found] == ["ATD202", "ATD202"]
+    assert all(len(d.render()) < 300 and "(3,000,00" in d.message for d in found), found[0].render()[:300]
+    found = diagnose(task('  <state name="go" type="move"><hand_shape>' + "ab " * 1_000_000 + "</hand_shape>"
+                          "<path><position>0.1 0 0.2</position></path></state>\n", GO_DONE))
+    assert [d.code for d in found] == ["ATD104"] and len(found[0].render()) < 2_500
+    assert found[0].message.endswith("characters in all)")

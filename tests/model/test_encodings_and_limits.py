@@ -22,6 +22,23 @@ def test_utf16_task_reads_as_the_same_task(tmp_path: Path, codec: str) -> None:
     assert found == [] and task == original
 
 
+@pytest.mark.parametrize("codec", ["utf-16-le", "utf-16-be"])
+@pytest.mark.parametrize("start", ["\n", "  ", "\r\n"])
+def test_utf16_without_mark_or_declaration_may_begin_with_white_space(tmp_path: Path, codec: str, start: str) -> None:
+    body = EXAMPLE.read_text(encoding="utf-8").split("?>", 1)[1].lstrip()
+    copy = tmp_path / EXAMPLE.name
+    copy.write_bytes((start + body).encode(codec))
+    task, found = load_task(copy)
+    assert found == [] and task == load_task(EXAMPLE)[0]
+
+
+@pytest.mark.parametrize("codec", ["utf-32", "utf-32-be"])
+def test_utf32_is_named_not_called_binary(codec: str) -> None:
+    data = EXAMPLE.read_bytes().decode("utf-8").encode(codec)
+    _, found = parse_bytes(data if codec == "utf-32" else b"\x00\x00\xfe\xff" + data, "t.xml")
+    assert [(d.code, "UTF-32" in d.message, d.hint) for d in found] == [("ATD006", True, "save the file as UTF-8")]
+
+
 def test_broken_utf16_is_an_undecodable_file() -> None:
     _, found = parse_bytes(b"\xff\xfe<\x00s\x00\x00\xd8", "t.xml")
     assert [d.code for d in found] == ["ATD006"]

@@ -3,6 +3,8 @@ infinities never pass, and the refusal names the place and the allowed range."""
 
 from __future__ import annotations
 
+import json
+import re
 from pathlib import Path
 
 import pytest
@@ -44,7 +46,8 @@ MINIMAL = """<statemachine>
     ("<weight>1e-12</weight>", "[0.001, 50] kg"),
     ("<weight>NaN</weight>", "[0.001, 50] kg"),
     ("<friction>-0.5</friction>", "[0, 10]"),
-    ("<size>0.05 0.05 inf</size>", "(0, 10] m"),
+    ("<size>0.05 0.05 inf</size>", "[0.001, 10] m"),
+    ("<size>0.05 1e-9 0.05</size>", "[0.001, 10] m"),  # MuJoCo refused the model: a traceback from atd run
 ])
 def test_object_values_outside_what_the_engines_simulate_are_refused(tmp_path: Path, element: str,
                                                                        allowed: str) -> None:
@@ -65,10 +68,10 @@ def test_timeouts_are_finite_and_positive(tmp_path: Path, seconds: str) -> None:
     assert "timeout" in timeout.message and "(0, 86400] s" in timeout.message
 
 
-def test_a_config_file_nan_names_the_file_table_and_range(tmp_path: Path) -> None:
+def test_a_config_file_nan_names_the_file_line_table_and_range(tmp_path: Path) -> None:
     config = tmp_path / "c.toml"
-    config.write_text("[melfa.conditions.grasp_stable.tactile_force_above]\nforce_threshold = nan\n")
-    with pytest.raises(ConfigError, match=r"c\.toml: \[melfa\.conditions\.grasp_stable\.tactile_force_above\] "
+    config.write_text("# a user's tuning\n[melfa.conditions.grasp_stable.tactile_force_above]\nforce_threshold = nan\n")
+    with pytest.raises(ConfigError, match=r"c\.toml:3:1: \[melfa\.conditions\.grasp_stable\.tactile_force_above\] "
                                           r"force_threshold: nan is not a finite number; give one in \(0, 1000\] N"):
         load_config(config, "melfa")
 
@@ -76,10 +79,26 @@ def test_a_config_file_nan_names_the_file_table_and_range(tmp_path: Path) -> Non
 @pytest.mark.parametrize("option, value, said", [("--budget", "nan", "not a finite number"),
                                                   ("--budget", "0", "outside (0, 86400] s"),
                                                   ("--seed", "-1", "outside [0, 4294967295]"),
-                                                  ("--seed", "2.5", "not an integer")])
+                                                  ("--seed", "2.5", "not an integer"),
+                                                  ("--seed", "4294967296", "4294967296 is outside"),
+                                                  ("--seed", "9" * 400, "9999999999... (400 digits) is outside")])
 def test_command_line_numbers_are_checked_before_anything_runs(option: str, value: str, said: str) -> None:
     result = CliRunner().invoke(main, ["run", str(EXAMPLE), "--robot", "melfa", option, value])
     assert result.exit_code == 2 and said in result.output and "Traceback" not in result.output
+
+
+@pytest.mark.parametrize("table, line, said", [
+    ("conditions.grasp_stable.tactile_force_above", "min_pads = " + "9" * 400, "(400 digits) is outside [1, 64]"),
+    ("controllers.close_until_force", "grasp_force = " + "9" * 400, "(400 digits) is outside (0, 1000] N"),
+    ("conditions.grasp_stable.tactile_force_above", "min_pads = 2.5", "2.5 is not an integer"),
+    ("controllers.cartesian_move", "velocity_limits = [true, 0, 0, 0, 0, 0]", "True is not a number"),
+])
+def test_config_values_no_float_can_hold_or_that_are_no_numbers_are_refused(tmp_path: Path, table: str, line: str,
+                                                                            said: str) -> None:
+    config = tmp_path / "c.toml"
+    config.write_text(f"[melfa.{table}]\n{line}\n")
+    with pytest.raises(ConfigError, match=re.escape(said)):
+        load_config(config, "melfa")
 
 
 def test_vectors_and_points_are_checked_number_by_number() -> None:
@@ -131,3 +150,27 @@ def test_numbers_only_python_reads_are_refused_everywhere_a_number_is_read(tmp_p
 def test_the_plain_forms_of_a_number_are_read() -> None:
     spec = CONTROLLERS["cartesian_move"].params["max_speed"]
     assert [parse_value(spec, text) for text in ("1", "+.5", "2.", "1E-1", " 0.25 ")] == [1.0, 0.5, 2.0, 0.1, 0.25]
+
+
+@pytest.mark.parametrize("field, value, said", [
+    ('"weight": 0.1', '"weight": NaN', "'nan' is not a valid value"),
+    ('"weight": 0.1', '"weight": ' + "9" * 400, "'inf' is not a valid value"),
+    ('"matrix": [1.0', '"matrix": [Infinity', "'inf' is not a valid value"),
+    ('"size": [0.05', '"size": [-0.05', "-0.05 is outside [0.001, 10] m"),
+    ('"initial": "reach"', '"initial": "re\\u0000ach"', "no NULL bytes"),
+    ('"weight": 0.1', '"weight": true', "should be a valid number"),
+    ('"weight": 0.1', '"weight": "0.1"', "should be a valid number"),
+])
+def test_an_estd_in_json_is_checked_as_its_xml_form_is(field: str, value: str, said: str) -> None:
+    """A NaN weight in a JSON ESTD crashed MuJoCo's model compiler; an infinite pose ran to the watchdog."""
+    from atd.model.estd_xml import estd_to_json, parse_estd_json
+    from factories.registry import create
+    from translator import translate
+
+    task, _ = load_task(EXAMPLE.parent / "pick_one.xml")
+    text = json.dumps(json.loads(estd_to_json(translate(task, create("melfa")).estd)))
+    assert parse_estd_json(text.encode(), "e.json")[1] == []
+    assert field in text
+    estd, found = parse_estd_json(text.replace(field, value, 1).encode(), "e.json")
+    assert estd is None and found and said in found[0].message, found
+    assert str(found[0].loc) == "e.json"

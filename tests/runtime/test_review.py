@@ -11,7 +11,7 @@ from typing import NamedTuple
 import pytest
 from lxml import etree, html
 
-from atd.review.load import load
+from atd.review.load import RecordingError, load
 from tests.conftest import REPO
 
 
@@ -112,3 +112,16 @@ def test_report_and_compare_refuse_what_is_not_a_recording(tmp_path) -> None:
     for args in (("report", str(bogus)), ("compare", str(bogus), str(bogus))):
         result = _atd(*args, cwd=tmp_path)
         assert result.returncode == 1 and "not an MCAP recording" in result.stderr and "Traceback" not in result.stderr
+
+
+def test_a_corrupted_recording_is_refused_in_one_line(recordings, tmp_path) -> None:
+    """Bytes flipped inside a compressed chunk raised zstandard's ZstdError as a traceback."""
+    data = bytearray(recordings["melfa_mj"].read_bytes())
+    for i in range(len(data) // 4, len(data) // 2, 97):
+        data[i] ^= 0xFF
+    broken = tmp_path / "broken.mcap"
+    broken.write_bytes(bytes(data))
+    with pytest.raises(RecordingError, match="not an MCAP recording"):
+        load(broken)
+    result = _atd("report", str(broken), cwd=tmp_path)
+    assert result.returncode == 1 and "Traceback" not in result.stderr and result.stderr.count("\n") == 1

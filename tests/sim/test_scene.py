@@ -90,3 +90,14 @@ def test_an_unsupported_mesh_format_says_which_to_use(tmp_path: Path) -> None:
     (tmp_path / "mug.dae").write_text("<COLLADA/>")
     with pytest.raises(SceneError, match="use an STL or OBJ file"):
         scene_from_task(_task(shape="mug.dae"), tmp_path / "task.xml")
+
+
+def test_a_world_mujoco_refuses_is_a_scene_error_not_its_traceback() -> None:
+    """Nothing the validator accepts reaches here (sizes are 1 mm at least); built by hand, a
+    body of almost no inertia is refused by MuJoCo's compiler in our words."""
+    from atd.sim import make_robot
+    from atd.sim.scene import SceneError, box_scene
+    from factories.registry import create
+
+    with pytest.raises(SceneError, match="MuJoCo cannot simulate this world: .*mjMINVAL"):
+        make_robot(create("melfa").robot, box_scene(size=1e-9, mass=0.001), "mujoco")
