@@ -78,8 +78,8 @@ def test_a_urdf_it_cannot_start_from_is_one_line_naming_it(tmp_path, monkeypatch
     path = PANDA
     if urdf != "panda":
         (tmp_path / "meshes").mkdir()
-        (tmp_path / "meshes" / "arm.obj").write_text(  # a tetrahedron: the URDF draws the arm as it
-            "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+        (tmp_path / "meshes" / "arm.obj").write_text(  # a 10 cm tetrahedron (in mm: the URDF scales it by 0.001)
+            "v 0 0 0\nv 100 0 0\nv 0 100 0\nv 0 0 100\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
         path = tmp_path / "robot.urdf"
         path.write_text(URDF.format(kind="revolute" if urdf == "arm" else "planar"))
     result = CliRunner().invoke(main, ["robots", "new", "gizmo", "--from-urdf", str(path), *options])
