@@ -235,15 +235,20 @@ class Factory(ABC):
 
     def carried(self, held: ConditionNode, origin: State, context: MappingContext) -> ConditionNode:
         """grasp_stable means the object is held, not that the fingers touch something: once
-        a transport has taken it off its support, a wrist force-torque sensor must also feel
-        at least half its weight (the task's, or `load_held`'s default) beyond the empty hand."""
-        wrist = self.arm.sensors_of(SensorKind.FORCE_TORQUE)
-        if origin.type is not StateType.TRANSPORT or not wrist:
+        a transport has taken it off its support, the fingers must have stopped closing (a
+        grip that keeps closing is squeezing the object out) and a wrist force-torque sensor
+        must feel at least half its weight (the task's, or `load_held`'s default) beyond the
+        empty hand."""
+        if origin.type is not StateType.TRANSPORT:
             return held
+        still = self.condition(EventType.GRASP_STABLE, "fingers_still")
+        wrist = self.arm.sensors_of(SensorKind.FORCE_TORQUE)
+        if not wrist:
+            return all_of(held, still)
         weight = context.object.weight if context.object is not None else None
         load = self.condition(EventType.GRASP_STABLE, "load_held", wrist,
                               weight=None if weight is None else round(weight / 2, 6))
-        return all_of(held, load)
+        return all_of(held, still, load)
 
     def success(self, origin: State) -> ConditionNode:
         """Thesis 7.2.2: one abstract success may need the arm AND the hand controller done."""

@@ -238,6 +238,36 @@ class LoadHeld(Debounced):
         return carried >= self.weight
 
 
+class FingersStill(Debounced):
+    """Every closing joint of the hand moves slower than `drift` of its travel per second:
+    a grip that keeps closing is squeezing the object out of the hand (a duck or a tape
+    roll crept 3-4 mm/s between the jaws while the grip force held steady). The speed is
+    that of the low-passed joint positions, (q - q_filtered) / filter_time, not the
+    velocity reading: a force-controlled grip chatters about a still mean, and in PyBullet
+    the SDH2's fingers vibrate at +-2.6 rad/s, aliased by the control rate into what reads
+    as a steady speed, while their positions stay within 2 mrad."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...]) -> None:
+        super().__init__(ctx, sensors)
+        hand = ctx.info.hand
+        self.joints = np.flatnonzero(hand.closing)
+        self.travel = (hand.upper - hand.lower)[self.joints]
+        self.drift = float(self.params["drift"])
+        self.tau = float(self.params["filter_time"])
+        self.mean = LowPass(self.tau)
+
+    def start(self, readings: Readings) -> None:
+        super().start(readings)
+        self.mean.reset(readings.hand_q[self.joints])
+
+    def test(self, readings: Readings, dt: float) -> bool:
+        q = readings.hand_q[self.joints]
+        speed = np.abs(q - self.mean(q, dt)) / max(self.tau, dt)
+        rate = float(np.max(speed / self.travel, initial=0.0))
+        self.evidence = {"drift": round(rate, 4), "still_below": self.drift}
+        return rate < self.drift
+
+
 class Gripper(Debounced):
     """A parallel gripper's own sensing: motor force (N, along closing) or jaw opening
     (m between the pads, beyond the closed gap), compared with a threshold."""

@@ -22,6 +22,7 @@ from primitives.arm.surface import Place, ReleaseRetreat, Slide
 from primitives.base import Condition, Context, Controller, Status
 from primitives.conditions import (
     Fault,
+    FingersStill,
     Gripper,
     LoadHeld,
     Range,
@@ -89,6 +90,7 @@ CONDITION_KINDS: Mapping[str, ConditionMaker] = {
     "tactile_force_below": lambda ctx, sensors: TactileForce(ctx, sensors, above=False),
     "tactile_load_change": TactileLoadChange,
     "load_held": LoadHeld,
+    "fingers_still": FingersStill,
     "wrist_force_above": WristForceAbove,
     "gripper_force_above": lambda ctx, sensors: Gripper(ctx, sensors, "force", above=True),
     "gripper_force_below": lambda ctx, sensors: Gripper(ctx, sensors, "force", above=False),

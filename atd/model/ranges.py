@@ -98,6 +98,7 @@ TORQUE = Range(0.0, 100.0, "N m", low_open=True)
 DISTANCE = Range(0.0, 5.0, "m", low_open=True)
 DURATION = Range(0.0, 60.0, "s")  # filters and dwell times; 0 means none
 SPEED_FRACTION = Range(0.0, 1.0, low_open=True)  # of a joint's speed limit; 0 would never move
+TRAVEL_RATE = Range(0.0, 10.0, "1/s", low_open=True)  # a fraction of a joint's travel per second
 LIMITS = Range(0.0, 100.0)  # velocity and acceleration limits; 0 means none
 DIRECTION = Range(-1.0, 1.0)  # components of a direction or normal
 PADS = Range(1, 64)
@@ -107,7 +108,7 @@ TILT = Range(-90.0, 90.0, "deg")  # the hand turned away from top-down, about ea
 
 CONTACT_MARGIN = Range(-1.0, 5.0, "m")  # negative: any contact ends a guarded move
 
-BY_UNIT = {"m/s": SPEED, "N": FORCE, "N m": TORQUE, "m": DISTANCE, "s": DURATION, "": FRACTION, "kg": WEIGHT}
+BY_UNIT = {"m/s": SPEED, "N": FORCE, "N m": TORQUE, "m": DISTANCE, "s": DURATION, "": FRACTION, "kg": WEIGHT, "1/s": TRAVEL_RATE}
 
 # Command line.
 BUDGET = Range(0.0, 86_400.0, "s", low_open=True)

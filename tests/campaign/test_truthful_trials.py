@@ -1,0 +1,32 @@
+"""Issue 10, zero false successes: trials of the Table 3.3 preset that once ended in
+`succeeded` while the object, squeezed out between the jaws, crept and turned in the hand
+during the judge's 2 s hold (the jaws kept closing at 3-4 mm/s under a steady grip force),
+or, caged below the Baxter's paddles, dropped out of the hand and off the table.
+`grasp_stable` after a transport now also needs the fingers to have stopped closing, so
+each of these trials says success only when the judge, reading the simulator's ground
+truth, agrees."""
+
+from __future__ import annotations
+
+import pytest
+
+from atd.campaign.cells import parse_only, plans
+from atd.campaign.spec import load_spec
+from atd.campaign.trial import run_trial
+from tests.conftest import REPO
+
+PRESET = REPO / "examples" / "campaigns" / "table_3_3.toml"
+
+
+@pytest.mark.parametrize(("robot", "obj", "index"), [("melfa", "duck", 5), ("melfa", "duck", 7),
+                                                       ("baxter", "duck", 5), ("baxter", "tape", 0),
+                                                       ("baxter", "ball", 8)])
+def test_a_grip_that_keeps_closing_does_not_claim_the_object_held(robot: str, obj: str, index: int) -> None:
+    spec, problems = load_spec(PRESET)
+    assert spec is not None, problems
+    only = parse_only((f"robot={robot}", "engine=mujoco", "grasp=robust", f"object={obj}", "perturbation=approach"))
+    (plan,) = [p for p in plans(spec, only, None) if p.index == index]
+    record = run_trial(plan)
+    assert record.status == "ok", record.error
+    assert record.task_succeeded == record.judged_succeeded, (
+        f"the task said {record.summary!r}; the judge: {record.judge_reason}")
