@@ -349,6 +349,8 @@ _HAND_CONTROLLERS = (
             "grasp_shape": _p(WORD, "the grasp to close into (multi-finger hands; a gripper just closes)"),
             "contact_threshold": _p(NUM, "pad force counted as finger contact (ours)", 0.3, unit="N"),
             "squeeze": _p(NUM, "effort added at the end, fraction of each finger's effort limit (ours)", 0.1),
+            "grasp_force": _p(NUM, "a gripper's grip force once both jaws touch, in place of the squeeze: the "
+                              "robust grasp's, so that the baseline lacks only the corrections (ours)", unit="N"),
         },
     ),
     ControllerSpec(

@@ -194,13 +194,16 @@ class Squeeze(Controller):
 
 class NaiveJawGrasp(Controller):
     """The naive grasp of thesis 3.4.1 on a gripper: once the arm has stopped (CONTACT),
-    close until the jaw motor meets the object, then press with `squeeze` of its effort
-    limit. No tactile sensing, no re-centring, no force check: the baseline."""
+    close until the jaw motor meets the object, then press with `grasp_force` (the robust
+    grasp's), or `squeeze` of its effort limit without one. No tactile sensing, no
+    re-centring, no force check: the baseline."""
 
     def __init__(self, ctx: Context) -> None:
         super().__init__(ctx)
         self.jaws = Jaws(ctx, "motor")
-        self.force = float(self.params["squeeze"]) * float(ctx.info.hand.effort_limit[0])
+        force = self.params.get("grasp_force")
+        self.force = float(force) if force is not None else float(self.params["squeeze"]) * float(
+            ctx.info.hand.effort_limit[0])
         self.speed = NAIVE_SPEED * float(ctx.info.hand.velocity_limit[0])
 
     def start(self, readings: Readings) -> None:
