@@ -9,9 +9,10 @@ from __future__ import annotations
 
 import codecs
 import re
+from bisect import bisect_right
 from dataclasses import dataclass
+from itertools import repeat
 from pathlib import Path
-from typing import Iterable, Iterator
 
 from lxml import etree
 
@@ -26,6 +27,7 @@ MAX_DEPTH = 256  # libxml2 refuses deeper documents unless huge_tree is set; an 
 # (group 1 is set for start tags only): one scan finds every element's opening in document order.
 _OPENING_OR_SKIPPED = re.compile(rb"<([A-Za-z_])|<!--.*?-->|<!\[CDATA\[.*?\]\]>|<\?.*?\?>", re.S)
 _DOCTYPE = re.compile(rb"<!DOCTYPE|<!ENTITY", re.I)
+_NEWLINE = re.compile(rb"\n")
 _DOCUMENT_STARTS = b"< \t\r\n"  # a declaration or the root element, or white space before the root
 _UTF16_LE_STARTS = {bytes([c, 0]) for c in _DOCUMENT_STARTS}
 _UTF16_BE_STARTS = {bytes([0, c]) for c in _DOCUMENT_STARTS}
@@ -65,29 +67,29 @@ def _parser() -> etree.XMLParser:
     )
 
 
-def _line_cols(data: bytes, offsets: Iterable[int]) -> Iterator[tuple[int, int]]:
-    """(line, column) of each of the increasing byte `offsets`, counting lines as it goes."""
-    line, line_start, done = 1, 0, 0
-    for offset in offsets:
-        newlines = data.count(b"\n", done, offset)
-        if newlines:
-            line += newlines
-            line_start = data.rindex(b"\n", done, offset) + 1
-        done = offset
-        yield line, offset - line_start + 1
+def _line_col(data: bytes, offset: int) -> tuple[int, int]:
+    """(line, column) of one byte offset."""
+    return data.count(b"\n", 0, offset) + 1, offset - (data.rfind(b"\n", 0, offset) + 1) + 1
 
 
 def _tag_starts(data: bytes, root: etree._Element, file: str) -> dict[etree._Element, Location]:
     """Pair elements in document order with the `<tag` openings in the text.
 
     lxml reports the line where a start tag *ends*; authors expect the line where it
-    begins, and a column too, so we find the openings ourselves.
+    begins, and a column too, so we find the openings ourselves. Lines by bisection of
+    the line starts, and Locations made without NamedTuple's Python-level constructor: a
+    40,000-state task has 160,000 elements (issue 12).
     """
     openings = [m.start() for m in _OPENING_OR_SKIPPED.finditer(data) if m.start(1) >= 0]
     elements = list(root.iter(etree.Element))
     if len(elements) != len(openings):
         return {}
-    return {e: Location(file, line, col) for e, (line, col) in zip(elements, _line_cols(data, openings))}
+    line_starts = [0]
+    line_starts += [m.end() for m in _NEWLINE.finditer(data)]
+    lines = map(bisect_right, repeat(line_starts), openings)
+    make = tuple.__new__
+    return dict(zip(elements, [make(Location, (file, line, offset - line_starts[line - 1] + 1))
+                               for line, offset in zip(lines, openings)]))
 
 
 def _too_big(size: int, file: str) -> Diagnostic:
@@ -139,7 +141,7 @@ def parse_bytes(data: bytes, file: str) -> tuple[ParsedXml | None, list[Diagnost
         return None, [error("ATD006", f"file {what}", Location(file, 1, 1), "an ATD is an XML text file")]
     doctype = _DOCTYPE.search(data)
     if doctype:
-        [(line, col)] = _line_cols(data, [doctype.start()])
+        line, col = _line_col(data, doctype.start())
         return None, [
             error(
                 "ATD004",
