@@ -207,7 +207,8 @@ class Factory(ABC):
         if self.grasp != "naive" or state.type is not StateType.GRASP:
             return mapping
         hand = mapping.hand.params
-        grip = hand.get("grasp_force") if mapping.hand.name == "close_until_force" else None  # a gripper's
+        # A gripper's grasp names its grip force; a multi-finger naive grasp keeps its squeeze.
+        grip = hand.get("grasp_force") if mapping.hand.name == "close_until_force" else None
         return NodeMapping("naive grasp", self.controller("naive_grasp_approach"),
                            self.controller("naive_grasp_hand", preshape=hand.get("preshape"),
                                            grasp_shape=hand.get("grasp_shape"), grasp_force=grip),

@@ -108,7 +108,8 @@ TILT = Range(-90.0, 90.0, "deg")  # the hand turned away from top-down, about ea
 
 CONTACT_MARGIN = Range(-1.0, 5.0, "m")  # negative: any contact ends a guarded move
 
-BY_UNIT = {"m/s": SPEED, "N": FORCE, "N m": TORQUE, "m": DISTANCE, "s": DURATION, "": FRACTION, "kg": WEIGHT, "1/s": TRAVEL_RATE}
+BY_UNIT = {"m/s": SPEED, "N": FORCE, "N m": TORQUE, "m": DISTANCE, "s": DURATION, "": FRACTION, "kg": WEIGHT,
+           "1/s": TRAVEL_RATE}
 
 # Command line.
 BUDGET = Range(0.0, 86_400.0, "s", low_open=True)

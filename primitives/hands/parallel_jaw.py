@@ -202,8 +202,9 @@ class NaiveJawGrasp(Controller):
         super().__init__(ctx)
         self.jaws = Jaws(ctx, "motor")
         force = self.params.get("grasp_force")
-        self.force = float(force) if force is not None else float(self.params["squeeze"]) * float(
-            ctx.info.hand.effort_limit[0])
+        if force is None:
+            force = float(self.params["squeeze"]) * float(ctx.info.hand.effort_limit[0])
+        self.force = float(force)
         self.speed = NAIVE_SPEED * float(ctx.info.hand.velocity_limit[0])
 
     def start(self, readings: Readings) -> None:
