@@ -230,6 +230,10 @@ class Factory(ABC):
                           self.condition(event_type, "simulation_unstable"))
         if event_type is EventType.ERROR:
             return any_of(self.condition(event_type, "arm_error"), self.condition(event_type, "hand_error"))
+        if (event_type is EventType.SUCCESS and origin.type is StateType.TRANSPORT
+                and EventType.GRASP_STABLE not in self.undetectable_events):
+            # A transport that arrived without its object has not transported it.
+            return all_of(self.success(origin), self.map_event(EventType.GRASP_STABLE, None, transition, context))
         if event_type is EventType.SUCCESS:
             return self.success(origin)
         if event_type in self.undetectable_events:
@@ -242,10 +246,13 @@ class Factory(ABC):
         a transport has taken it off its support, the fingers must have stopped closing (a
         grip that keeps closing is squeezing the object out) and a wrist force-torque sensor
         must feel at least half its weight (the task's, or `load_held`'s default) beyond the
-        empty hand."""
+        empty hand. The hand's own reading must last as long as the stillness: a PyBullet
+        SDH2 finger chattering on a turning object touched it every other tick, and one
+        such tick passed a pad count that needed no time."""
         if origin.type is not StateType.TRANSPORT:
             return held
         still = self.condition(EventType.GRASP_STABLE, "fingers_still")
+        held = lasting(held, float(still.params["for_time"]))
         wrist = self.arm.sensors_of(SensorKind.FORCE_TORQUE)
         if not wrist:
             return all_of(held, still)
@@ -485,6 +492,15 @@ def all_of(*children: ConditionNode) -> ConditionGroup:
 def any_of(*children: ConditionNode) -> ConditionGroup:
     """A condition that holds when any child holds (D5 Fig. 2.3: arm OR hand failure)."""
     return ConditionGroup(op="any", children=children)
+
+
+def lasting(node: ConditionNode, seconds: float) -> ConditionNode:
+    """`node` with every leaf required to hold for at least `seconds` (its `for_time`)."""
+    if isinstance(node, ConditionGroup):
+        return node.model_copy(update={"children": tuple(lasting(c, seconds) for c in node.children)})
+    if "for_time" not in node.params or float(node.params["for_time"]) >= seconds:
+        return node
+    return node.model_copy(update={"params": {**node.params, "for_time": seconds}})
 
 
 def target_turn(state: State) -> np.ndarray | None:
