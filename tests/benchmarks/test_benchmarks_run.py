@@ -15,7 +15,7 @@ from tests.conftest import REPO
     ("bench_tick.py", ("--repeat", "1", "--robot", "melfa"), "melfa/main"),
     ("bench_run.py", ("--repeat", "1", "--engine", "mujoco"), "tombatossals/left"),
     ("bench_robot_interface.py", ("--seconds", "0.05", "--repeat", "1"), "worst overhead ratio"),
-    ("bench_campaign.py", ("--trials", "2", "--workers", "2"), "speed-up, 2 workers over 1"),
+    ("bench_campaign.py", ("--trials", "2", "--workers", "2", "--repeat", "1"), "speed-up, 2 workers over 1"),
     ("bench_record.py", ("--repeat", "1",), "recording at 100 Hz"),
 ])
 def test_a_simulation_benchmark_prints_its_table(script: str, args: tuple[str, ...], row: str) -> None:
