@@ -25,7 +25,7 @@ import numpy as np
 from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamValue, SensorKind, defaults
 from atd.model.estd import Condition, ConditionGroup, Controller
 from atd.model.frames import rpy_of
-from atd.model.ranges import TILT
+from atd.model.ranges import TILT, WEIGHT
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
 from atd.model.vocabulary import EventType, HandShape, Movement, StateType
 from factories.beside import description_module, shipped_config
@@ -257,8 +257,9 @@ class Factory(ABC):
         if not wrist:
             return all_of(held, still)
         weight = context.object.weight if context.object is not None else None
+        # Half the weight, but no less than the least a load_held accepts (an object under 2 g).
         load = self.condition(EventType.GRASP_STABLE, "load_held", wrist,
-                              weight=None if weight is None else round(weight / 2, 6))
+                              weight=None if weight is None else round(max(weight / 2, WEIGHT.low), 6))
         return all_of(held, still, load)
 
     def success(self, origin: State) -> ConditionNode:

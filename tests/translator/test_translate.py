@@ -11,7 +11,7 @@ from factories.registry import create
 from factories.melfa.factory import MelfaFactory
 from schemas import schema_path
 from tests.conftest import EXAMPLES
-from tests.translator.helpers import at, every_factory, one_state_task
+from tests.translator.helpers import BOX, at, every_factory, one_state_task
 from translator import translate
 
 
@@ -110,3 +110,14 @@ def test_timeout_keeps_the_atd_seconds():
     for factory in every_factory():
         leaf = translate(task, factory).estd.transitions[0].events[0].condition
         assert (leaf.kind, leaf.params) == ("timeout", {"seconds": 12.5})
+
+
+def test_a_transport_of_a_two_gram_object_translates_on_every_robot():
+    """A transport's success and grasp_stable ask the wrist for half the object's weight; for
+    an object under 2 g that half is below what load_held accepts, and every robot with a
+    wrist sensor refused to emit its ESTD (found by test_rules_property)."""
+    light = BOX.model_copy(update={"weight": 0.0015})
+    task = one_state_task(State(name="carry", type=StateType.TRANSPORT, path=at(0.1, 0.0, 0.2)), obj=light)
+    for factory in every_factory():
+        result = translate(task, factory)
+        assert result.ok, (factory.name, factory.arm.name, [d.render() for d in result.diagnostics])
