@@ -11,6 +11,7 @@ from __future__ import annotations
 import pytest
 
 from atd.campaign.cells import parse_only, plans
+from atd.campaign.record import TrialRecord
 from atd.campaign.spec import load_spec
 from atd.campaign.trial import run_trial
 from tests.conftest import REPO
@@ -18,16 +19,22 @@ from tests.conftest import REPO
 PRESET = REPO / "examples" / "campaigns" / "table_3_3.toml"
 
 
+def preset_trial(index: int, *only: str) -> TrialRecord:
+    """Trial `index` of the robust grasp with the approach error, in the cell `only` names."""
+    spec, problems = load_spec(PRESET)
+    assert spec is not None, problems
+    cell = parse_only((*only, "grasp=robust", "perturbation=approach"))
+    (plan,) = [p for p in plans(spec, cell, None) if p.index == index]
+    record = run_trial(plan)
+    assert record.status == "ok", record.error
+    return record
+
+
 @pytest.mark.parametrize(("robot", "obj", "index"), [("melfa", "duck", 5), ("melfa", "duck", 7),
                                                        ("baxter", "duck", 5), ("baxter", "tape", 0),
                                                        ("baxter", "ball", 8)])
 def test_a_grip_that_keeps_closing_does_not_claim_the_object_held(robot: str, obj: str, index: int) -> None:
-    spec, problems = load_spec(PRESET)
-    assert spec is not None, problems
-    only = parse_only((f"robot={robot}", "engine=mujoco", "grasp=robust", f"object={obj}", "perturbation=approach"))
-    (plan,) = [p for p in plans(spec, only, None) if p.index == index]
-    record = run_trial(plan)
-    assert record.status == "ok", record.error
+    record = preset_trial(index, f"robot={robot}", "engine=mujoco", f"object={obj}")
     assert record.task_succeeded == record.judged_succeeded, (
         f"the task said {record.summary!r}; the judge: {record.judge_reason}")
 
@@ -37,13 +44,7 @@ def test_an_object_the_sdh2_holds_in_pybullet_stays_put_once_the_arm_stops(obj: 
     """Preset trials whose two-finger grip, off centre after the approach error, let the
     object turn 29 and 11 degrees in the judge's hold while the task said success: the
     PyBullet finger servo's force limit, set once per control tick, lagged the finger."""
-    spec, problems = load_spec(PRESET)
-    assert spec is not None, problems
-    only = parse_only(("robot=tombatossals", "arm=left", "engine=pybullet", "grasp=robust", f"object={obj}",
-                       "perturbation=approach"))
-    (plan,) = [p for p in plans(spec, only, None) if p.index == index]
-    record = run_trial(plan)
-    assert record.status == "ok", record.error
+    record = preset_trial(index, "robot=tombatossals", "arm=left", "engine=pybullet", f"object={obj}")
     assert record.task_succeeded, record.summary
     assert record.judged_succeeded, record.judge_reason
     assert record.measurements["turn"] < 5.0 and record.measurements["slip"] < 0.01
