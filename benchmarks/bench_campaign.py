@@ -3,7 +3,9 @@ share of a trial spent building and resetting the robot and scene, measured in o
 
 The campaign is tests/data/campaign/small.toml (the Melfa lifting the example cylinder in
 MuJoCo under a small approach error) with --trials N. One worker runs in this process;
-the pool starts its worker processes inside the timed part, as `atd campaign run` does.
+the pool starts its worker processes inside the timed part, as `atd campaign run` does
+(forked from a server that imports the trial code once per process: the first pool run
+pays for that server, as one `atd campaign run` does).
 Each is run --repeat times, alternately, and the fastest of each counts, as in the other
 benchmarks: on this shared VM one run's ratio ranged from 1.70x to 2.36x within four
 minutes, the host's noise and not the pool's. Targets (issue 9): every core at least

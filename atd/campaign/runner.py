@@ -83,11 +83,21 @@ def _work(todo: mp.Queue, done: mp.Queue) -> None:
         done.put(("done", os.getpid(), run_trial(plan)))
 
 
+def _worker_context() -> mp.context.BaseContext:
+    """Workers forked from a server that has imported the trial code once, and no engine:
+    a plain fork would copy whatever engines and threads the caller holds."""
+    if "forkserver" not in mp.get_all_start_methods():
+        return mp.get_context("spawn")
+    context = mp.get_context("forkserver")
+    context.set_forkserver_preload(["atd.campaign.trial"])
+    return context
+
+
 class _Pool:
     def __init__(self, workers: int, sink: Sink) -> None:
         self.size = workers
         self.sink = sink
-        self.context = mp.get_context("spawn")  # engines hold OpenGL and threads: no fork
+        self.context = _worker_context()
         self.todo = self.context.Queue()
         self.done = self.context.Queue()
         self.workers: dict[int, mp.Process] = {}

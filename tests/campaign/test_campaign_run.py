@@ -208,7 +208,7 @@ def test_ctrl_c_or_sigterm_stops_cleanly_keeping_every_finished_trial(tmp_path: 
 
 
 def test_workers_that_cannot_start_stop_the_campaign_with_a_message(tmp_path: Path) -> None:
-    # A script fed on standard input cannot be re-imported by a spawned worker: every
+    # A script fed on standard input cannot be re-imported by a worker process: every
     # worker dies before taking a trial, and the campaign must say so, not wait forever.
     script = ("from pathlib import Path\nfrom atd.campaign.cells import plans\nfrom atd.campaign.runner import "
               "WorkerError, run_local\nfrom atd.campaign.spec import load_spec\n"
