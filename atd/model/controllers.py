@@ -361,6 +361,10 @@ _HAND_CONTROLLERS = (
             "grasp_force": _p(NUM, "grip force to reach", 15.0, unit="N"),
             "closing_speed": _p(NUM, "jaw closing speed (ours)", 0.02, unit="m/s"),
             "force_source": _FORCE_SOURCE,
+            "max_recentre": _p(NUM, "how far the arm follows a contact off the pads' middle along the jaws' "
+                               "width before the jaws close anyway: a contact on the pad lies within this of "
+                               "its middle, so one that stays off-centre moves with the pad (ours: about a "
+                               "pad's half width)", 0.01, unit="m"),
         },
     ),
     ControllerSpec(

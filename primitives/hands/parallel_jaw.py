@@ -79,19 +79,23 @@ class CloseUntilForce(Controller):
     the jaws wait for CONTACT; closing on nothing is then no error: they say JAWS_EMPTY,
     reopen, and close again on the arm's next CONTACT. They also stop closing while the
     pads feel the object off their middle along the jaws' width, and ask the arm to move
-    that way first: a pad's rim closing on a round object pushes it aside.
+    that way first: a pad's rim closing on a round object pushes it aside. That move stops
+    after `max_recentre`: a contact still off-centre by then moves with the pad (a slanted
+    face pushed along), and following it would drag the object across the table.
     """
 
     def __init__(self, ctx: Context) -> None:
         super().__init__(ctx)
         self.grasp_force = float(self.params["grasp_force"])
         self.speed = float(self.params["closing_speed"])
+        self.max_recentre = float(self.params["max_recentre"])
         self.jaws = Jaws(ctx, str(self.params["force_source"]))
         self.squeeze = Squeeze(ctx)  # presses on until the pads feel the force (a tilted grip loses some)
 
     def start(self, readings: Readings) -> None:
         self.reference = self.opened = float(readings.hand_q[0])
         self.pressing = False
+        self.recentred = 0.0  # m the arm has followed a contact along the jaws' width in this close
         self.ctx.memory[EMPTY_HAND] = world_load(readings)  # a grasp begins empty-handed
         self.guided = CONTACT in self.ctx.blackboard  # the arm says when to close
 
@@ -120,9 +124,11 @@ class CloseUntilForce(Controller):
         if self.status is Status.ERROR:
             board[ARM_NUDGE] = None
             return position_command(np.array([self.reference]))
-        off_centre = self._across_pads(readings) if self.guided else 0.0
-        board[ARM_NUDGE] = self._nudge(readings, off_centre)
-        if abs(off_centre) <= ALIGNED:  # closing on a pad's rim pushes the object along the jaws' width
+        off_centre = self._across_pads(readings) if self.guided and self.recentred < self.max_recentre else 0.0
+        self.recentred += abs(off_centre) * self.speed * dt
+        closing = abs(off_centre) <= ALIGNED  # closing on a pad's rim pushes the object along the jaws' width
+        board[ARM_NUDGE] = self._nudge(readings, off_centre, closing)
+        if closing:
             self.reference += self.jaws.closing * self.speed * dt
         return position_command(np.array([self.reference]))
 
@@ -135,18 +141,20 @@ class CloseUntilForce(Controller):
             self.reference -= self.jaws.closing * float(self.ctx.info.hand.velocity_limit[0]) * dt
             if self.jaws.closing * (self.reference - self.opened) <= 0.0:
                 self.reference = self.opened
+                self.recentred = 0.0
                 board[JAWS_EMPTY] = False
         return position_command(np.array([self.reference]))
 
-    def _nudge(self, readings: Readings, off_centre: float = 0.0) -> np.ndarray | None:
-        """Towards the one touching pad, and along the jaws' width towards the contact."""
+    def _nudge(self, readings: Readings, off_centre: float, closing: bool) -> np.ndarray | None:
+        """Along the jaws' width towards the contact, and towards the one touching pad while
+        the jaws close: with the jaws paused, that move would push the object across the table."""
         if self.jaws.source != "tactile":
             return None
         touching = readings.pad_force > TOUCH
         if touching.sum() != 1 and off_centre == 0.0:
             return None
         nudge = readings.tcp[:3, 0] * (off_centre * self.speed)
-        if touching.sum() == 1:
+        if touching.sum() == 1 and closing:
             nudge = nudge + readings.tcp[:3, 1] * (float(self.jaws.sides[touching][0]) * self.speed)
         return nudge
 
