@@ -426,10 +426,12 @@ _CONDITIONS = (
         "holds is squeezing the object out or letting it slip, so the object is not yet held still.",
         params={
             "drift": _p(NUM, "largest filtered speed of a closing joint that counts as still, as a fraction of "
-                        "the joint's travel per second (ours: 1%, 0.34 mm/s on the Melfa's 34 mm jaws)", 0.01,
+                        "the joint's travel per second (ours: 1%; the Melfa's config asks 3%, 1 mm/s on its 34 mm "
+                        "jaws)", 0.01,
                         unit="1/s"),
             "filter_time": _p(NUM, "time constant of the low-pass on the joint positions whose lag gives the "
-                              "speed: a force-controlled grip chatters by a few mm/s about a still mean (ours)", 0.5,
+                              "speed, and the window over which their spread gives it too: a force-controlled grip "
+                              "chatters by a few mm/s about a still mean (ours)", 0.5,
                               unit="s"),
             "for_time": _p(NUM, "how long the fingers must stay still (ours)", 0.2, unit="s"),
         },

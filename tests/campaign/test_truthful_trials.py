@@ -32,7 +32,7 @@ def preset_trial(index: int, *only: str) -> TrialRecord:
 
 @pytest.mark.parametrize(("robot", "obj", "index"), [("melfa", "duck", 5), ("melfa", "duck", 7),
                                                        ("baxter", "duck", 5), ("baxter", "tape", 0),
-                                                       ("baxter", "ball", 8)])
+                                                       ("baxter", "ball", 8), ("baxter", "duck", 6)])
 def test_a_grip_that_keeps_closing_does_not_claim_the_object_held(robot: str, obj: str, index: int) -> None:
     record = preset_trial(index, f"robot={robot}", "engine=mujoco", f"object={obj}")
     assert record.task_succeeded == record.judged_succeeded, (
