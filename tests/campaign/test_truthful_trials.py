@@ -10,22 +10,13 @@ from __future__ import annotations
 
 import pytest
 
-from atd.campaign.cells import parse_only, plans
 from atd.campaign.record import TrialRecord
-from atd.campaign.spec import load_spec
-from atd.campaign.trial import run_trial
-from tests.conftest import REPO
-
-PRESET = REPO / "examples" / "campaigns" / "table_3_3.toml"
+from tests.primitives.conftest import preset_trials
 
 
-def preset_trial(index: int, *only: str) -> TrialRecord:
-    """Trial `index` of the robust grasp with the approach error, in the cell `only` names."""
-    spec, problems = load_spec(PRESET)
-    assert spec is not None, problems
-    cell = parse_only((*only, "grasp=robust", "perturbation=approach"))
-    (plan,) = [p for p in plans(spec, cell, None) if p.index == index]
-    record = run_trial(plan)
+def preset_trial(index: int, **cell: str) -> TrialRecord:
+    """Trial `index` of the robust grasp with the approach error, in the cell `cell` names."""
+    [record] = preset_trials((index,), grasp="robust", perturbation="approach", **cell)
     assert record.status == "ok", record.error
     return record
 
@@ -34,7 +25,7 @@ def preset_trial(index: int, *only: str) -> TrialRecord:
                                                        ("baxter", "duck", 5), ("baxter", "tape", 0),
                                                        ("baxter", "ball", 8), ("baxter", "duck", 6)])
 def test_a_grip_that_keeps_closing_does_not_claim_the_object_held(robot: str, obj: str, index: int) -> None:
-    record = preset_trial(index, f"robot={robot}", "engine=mujoco", f"object={obj}")
+    record = preset_trial(index, robot=robot, engine="mujoco", object=obj)
     assert record.task_succeeded == record.judged_succeeded, (
         f"the task said {record.summary!r}; the judge: {record.judge_reason}")
 
@@ -44,7 +35,7 @@ def test_an_object_the_sdh2_holds_in_pybullet_stays_put_once_the_arm_stops(obj: 
     """Preset trials whose two-finger grip, off centre after the approach error, let the
     object turn 29 and 11 degrees in the judge's hold while the task said success: the
     PyBullet finger servo's force limit, set once per control tick, lagged the finger."""
-    record = preset_trial(index, "robot=tombatossals", "arm=left", "engine=pybullet", f"object={obj}")
+    record = preset_trial(index, robot="tombatossals", arm="left", engine="pybullet", object=obj)
     assert record.task_succeeded, record.summary
     assert record.judged_succeeded, record.judge_reason
     assert record.measurements["turn"] < 5.0 and record.measurements["slip"] < 0.01
@@ -53,5 +44,5 @@ def test_an_object_the_sdh2_holds_in_pybullet_stays_put_once_the_arm_stops(obj: 
 def test_an_object_the_melfa_holds_while_its_grip_creeps_slowly_is_reported_held() -> None:
     """MuJoCo's PG70 grip on the steel weight creeps 0.8 mm/s: the judge sees it held still
     (1.5 mm in 2 s), and the lift must end in success, not time out waiting for stillness."""
-    record = preset_trial(1, "robot=melfa", "engine=mujoco", "object=weight")
+    record = preset_trial(1, robot="melfa", engine="mujoco", object="weight")
     assert record.judged_succeeded and record.task_succeeded, (record.summary, record.judge_reason)

@@ -14,8 +14,7 @@ from atd.model import load_task
 from atd.runtime.session import Run, belief_scene
 from factories.registry import create
 from primitives.arm.jaw_grasp import bisected
-from tests.campaign.test_truthful_trials import preset_trial
-from tests.primitives.conftest import EXAMPLES
+from tests.primitives.conftest import EXAMPLES, preset_trials
 from translator import translate
 
 TASK = EXAMPLES / "grasp_and_lift.xml"
@@ -108,5 +107,6 @@ def test_a_pad_meeting_the_object_on_its_rim_re_centres_without_pushing_it_away(
     arm also went on moving towards the touching pad as if the jaws were closing, and
     pushed the roll across the table: both were lost before, and are lifted now. (In
     PyBullet trial 2 still fails: its grasp times out.)"""
-    record = preset_trial(index, "robot=melfa", "engine=mujoco", "object=tape")
+    [record] = preset_trials((index,), robot="melfa", engine="mujoco", grasp="robust", object="tape",
+                             perturbation="approach")
     assert record.task_succeeded and record.judged_succeeded, (record.summary, record.judge_reason)
