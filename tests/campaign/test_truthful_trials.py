@@ -46,3 +46,11 @@ def test_an_object_the_melfa_holds_while_its_grip_creeps_slowly_is_reported_held
     (1.5 mm in 2 s), and the lift must end in success, not time out waiting for stillness."""
     record = preset_trial(1, robot="melfa", engine="mujoco", object="weight")
     assert record.judged_succeeded and record.task_succeeded, (record.summary, record.judge_reason)
+
+
+def test_a_lift_whose_pads_no_longer_press_enough_to_carry_the_weight_does_not_claim_it_held() -> None:
+    """The Barrett lifted the 340 g steel weight (friction 0.5) with its pads' force falling
+    to 3.2 N, under the 3.3 N friction needs to carry it, and said success; in the judge's
+    hold it turned 16 degrees and slid out (PyBullet)."""
+    record = preset_trial(4, robot="tombatossals", arm="right", engine="pybullet", object="weight")
+    assert record.task_succeeded == record.judged_succeeded, (record.summary, record.judge_reason)
