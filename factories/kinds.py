@@ -142,7 +142,12 @@ class MultiFingerFactory(Factory):
                                preshape=preshape_made.value if preshape_made else None,
                                pregrasp_size=self.pregrasp_size(state, context),
                                grasp_force=round(needed, 3) if needed > configured else None)
-        return NodeMapping("robust_grasp", self.controller("robust_grasp_approach"), hand, notes + pre_notes)
+        placed = preshape_made.value if preshape_made else grasp.value
+        arm = self.controller("robust_grasp_approach", wrist_to_tcp=round(self._wrist_to_tcp, 6),
+                              fingertip_reach=round(max(self.robot.hand_reach(placed), 0.001), 6),
+                              grasp_centre=tuple(round(float(c), 6) for c in
+                                                 self.robot.hand.grasp_centres.get(grasp.value, (0.0, 0.0, 0.0))))
+        return NodeMapping("robust_grasp", arm, hand, notes + pre_notes)
 
     def pregrasp_size(self, state: State, context: MappingContext) -> float | None:
         """Table 7.3's extra parameter: how far to open, from the object's size (0..1)."""

@@ -76,6 +76,19 @@ class ContactWrench:
         return math.sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
 
 
+def contact_across(wrench: np.ndarray, depth: float) -> np.ndarray | None:
+    """(x, y, 0) in the sensor's axes: where a contact's force, acting along its line of
+    action (from the force and the torque about the sensor), crosses the plane `depth`
+    beyond the sensor along its z axis; None for a force with nothing along z."""
+    force, torque = wrench[:3], wrench[3:]
+    f2 = float(force.dot(force))
+    if f2 < 1e-12 or abs(float(force[2])) < 1e-6:
+        return None
+    closest = np.cross(force, torque) / f2  # the line's point nearest the sensor
+    point = closest + (depth - float(closest[2])) / float(force[2]) * force
+    return np.array([point[0], point[1], 0.0])
+
+
 class Debounce:
     """True once its input has been true for `for_time` without a break (0 = at once)."""
 

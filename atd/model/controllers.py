@@ -203,6 +203,24 @@ _ARM_CONTROLLERS = (
             "approach_velocity": _p(NUM, "speed along the grasp direction before the first contact (ours: at the "
                                     "correction velocity a 4 cm descent took 8 of the grasp's 20 s)", 0.03,
                                     unit="m/s"),
+            "backoff_velocity": _p(NUM, "speed of the sliding grasp's back-off from a surface the fingertips press "
+                                   "on (ours: at the correction velocity, closing fingers waited 4-5 s per close "
+                                   "for the hand to rise)", 0.02, unit="m/s"),
+            "centre_band": _p(NUM, "an approach's first contact above the support and more than this far off the "
+                              "grasp centre, across the hand, is a finger on the object's top: the hand moves "
+                              "over it (ours)", 0.02, unit="m"),
+            "max_shift": _p(NUM, "largest such move across (ours: the seeds' error is up to 5 cm per axis)",
+                            0.05, unit="m"),
+            "max_shifts": _p(INT, "how many times to move across (ours)", 2),
+            "clearance": _p(NUM, "how far to rise off the contact before moving across (ours)", 0.02, unit="m"),
+            "wrist_to_tcp": _p(NUM, "how far the TCP lies beyond the wrist sensor along the hand's z axis, to "
+                               "place a contact from the wrist's torque (the robot's own geometry)", 0.1, unit="m"),
+            "fingertip_reach": _p(NUM, "how far the preshaped fingertips reach beyond the TCP along the hand's z "
+                                  "axis: a contact is placed at their depth (the robot's own geometry)", 0.02,
+                                  unit="m"),
+            "grasp_centre": _p(VEC, "where the grasp closes, from the TCP in the hand frame (the robot's own "
+                               "geometry: the SDH2 pinches 19 mm off its TCP)", (0.0, 0.0, 0.0), length=3,
+                               limits=ranges.COORDINATE),
             "filter_time": _FILTER,
         },
     ),

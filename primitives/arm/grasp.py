@@ -11,11 +11,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from primitives.arm.motion import GAIN, ORIENTATION_TOLERANCE, WORLD_DOWN, orientation_twist, top_down, unit
+from primitives.arm.motion import (GAIN, ORIENTATION_TOLERANCE, SUPPORT_BAND, WORLD_DOWN, clamp_norm, norm,
+                                   orientation_twist, top_down, unit)
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import CONTACT, FINGERS_STOPPED, PRESHAPED, PRESSING, SHIFT
-from primitives.filters import ContactWrench
+from primitives.filters import ContactWrench, contact_across
 from primitives.robot import Readings
 
 SHIFT_TOLERANCE = 0.002  # m: a requested shift counts as made
@@ -53,12 +54,17 @@ class RobustGraspApproach(Controller):
     A hand that has to turn level starts its approach once it is level and has been still
     for LEVEL_SETTLE, its wrist reading taken afresh: the turn changes how the hand's weight
     loads the sensor.
+    A first contact above the support and off the grasp centre (placed from the wrist's
+    force and torque at the fingertips' depth) is a finger on the object's top: the hand
+    rises off it, moves its grasp centre over it and approaches again (Eq. 3.1's idea,
+    across both of the hand's axes; its torque threshold is for the thesis' sensor, and
+    a fingertip's 2-15 N at 5-10 cm stays under it).
     Sliding grasp (Eq. 3.2): the surface pushes back on the hand with F_s (against the
     grasp direction, measured against the free hand of the state's start and filtered over
     SURFACE_FILTER); the approach ended on F_s = F_t, the contact the slide keeps: F_s
-    above it by F_t (fingers pushing on the surface) backs off until F_s is down to F_t
-    again, F_s down to zero (the contact lost) moves forward, otherwise the arm stays; it
-    ends when the fingers stop.
+    above it by F_t (fingers pushing on the surface) backs off, at the back-off velocity,
+    until F_s is down to F_t again, F_s down to zero (the contact lost) moves forward,
+    otherwise the arm stays; it ends when the fingers stop.
     While it backs off it tells the hand (PRESSING) to hold its fingers: closing
     fingertips swing down onto the surface faster than CORRECTION_VELOCITY lifts them, and
     jammed there they stall on the table short of the object (SDH2 pinch, PyBullet: 30-50 N
@@ -77,6 +83,14 @@ class RobustGraspApproach(Controller):
         self.level_within = np.radians(float(p["level_within"]))
         self.speed = float(p["correction_velocity"])
         self.approach_speed = float(p["approach_velocity"])
+        self.backoff_speed = float(p["backoff_velocity"])
+        self.centre_band = float(p["centre_band"])
+        self.max_shift = float(p["max_shift"])
+        self.max_shifts = int(p["max_shifts"])
+        self.clearance = float(p["clearance"])
+        self.reach = float(p["fingertip_reach"])
+        self.contact_depth = float(p["wrist_to_tcp"]) + self.reach  # from the wrist sensor to the fingertips
+        self.grasp_centre = np.array([*np.asarray(p["grasp_centre"], float)[:2], 0.0])
         self.contact = ContactWrench(float(p["filter_time"]))
         self.surface = ContactWrench(SURFACE_FILTER)
         self.side = np.array([1.0, 0.0, 0.0])  # v_x of Eq. 3.1
@@ -94,6 +108,8 @@ class RobustGraspApproach(Controller):
         self.still = 0.0  # s the hand has been level
         self.approach_now = 0.0  # m/s: the approach's speed, rising to the approach velocity
         self.goal: np.ndarray | None = None  # where to stay, or to shift to
+        self.route: list[np.ndarray] = []  # the moves over a finger's contact, world frame
+        self.moves = 0  # moves across made so far
         self.ctx.blackboard[CONTACT] = False
 
     def update(self, readings: Readings, dt: float) -> ControlData:
@@ -120,20 +136,19 @@ class RobustGraspApproach(Controller):
                 self.phase, self.goal = "hold", position.copy()
                 self.finish(Status.DONE, "the fingers closed")
             elif self.backing:
-                v = -self.speed * self.direction
+                v = -self.backoff_speed * self.direction
             elif pushed <= 0.0:
                 v = self.speed * self.direction
         if self.phase == "hold" and self.backing:  # squeezing presses the tips down
-            self.goal = self.goal - self.speed * dt * (rotation @ self.direction)
+            self.goal = self.goal - self.backoff_speed * dt * (rotation @ self.direction)
         w, angle = orientation_twist(self.rotation, rotation)
         if self.phase == "level":
             self.still = self.still + dt if angle < ORIENTATION_TOLERANCE else 0.0
             if self.still >= LEVEL_SETTLE:
-                self.contact.start(readings)
-                self.surface.start(readings)
-                self.origin = position.copy()
-                self.phase = "approach"
+                self._approach_from(readings)
         world = rotation @ v
+        if self.phase == "across":
+            world = self._across(readings)
         if self.phase in ("hold", "shift"):
             world = GAIN * (self.goal - position)
             if self.phase == "shift" and (np.linalg.norm(self.goal - position) < SHIFT_TOLERANCE
@@ -143,9 +158,48 @@ class RobustGraspApproach(Controller):
                 self._slide()
         return arm_output(np.concatenate([world, w]))
 
+    def _approach_from(self, readings: Readings) -> None:
+        """Start (again) an approach, the wrist's reading taken as the free hand's."""
+        self.contact.start(readings)
+        self.surface.start(readings)
+        self.origin = readings.tcp[:3, 3].copy()
+        self.approach_now = 0.0
+        self.phase = "approach"
+
+    def _over_contact(self, readings: Readings, wrench: np.ndarray) -> bool:
+        """A first contact off the grasp centre across the hand is a finger on the object's
+        top: rise off it, move the grasp centre over it, approach again (up to `max_shifts`
+        times). True if that is what happens. Left there, the finger pushed the object
+        over as the fingers closed (SDH2, MuJoCo, the preset's mug trial 0: the pinch 5.6 cm
+        off the mug along its line, the preshape's descent stopped on the mug at 17 N)."""
+        rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
+        on_support = float(position[2]) - self.reach < SUPPORT_BAND  # the fingertips on the table say nothing
+        if self.moves >= self.max_shifts or on_support:
+            return False
+        across = contact_across(wrench, self.contact_depth)
+        if across is None or norm(across - self.grasp_centre) <= self.centre_band:
+            return False
+        self.moves += 1
+        up = position - self.clearance * (rotation @ self.direction)
+        self.route = [up, up + rotation @ clamp_norm(across - self.grasp_centre, self.max_shift)]
+        self.phase = "across"
+        return True
+
+    def _across(self, readings: Readings) -> np.ndarray:
+        """One tick of the moves over a contact; the approach starts again once they are made."""
+        position = readings.tcp[:3, 3]
+        if norm(self.route[0] - position) < SHIFT_TOLERANCE:
+            self.route.pop(0)
+            if not self.route:
+                self._approach_from(readings)
+                return np.zeros(3)
+        return clamp_norm(GAIN * (self.route[0] - position), self.approach_speed)
+
     def _align(self, readings: Readings, wrench: np.ndarray, dt: float) -> np.ndarray:
         """Eq. 3.1; switches to the sliding grasp when the alignment is over."""
         if self.contact.force >= self.force_threshold:
+            if self._over_contact(readings, wrench):
+                return np.zeros(3)
             torque = float(wrench[4])
             if torque > self.torque_threshold:
                 return self.speed * (self.side - self.direction)

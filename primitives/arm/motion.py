@@ -25,6 +25,7 @@ LINEAR_ACCELERATION = 1.0  # m/s^2
 ANGULAR_ACCELERATION = 4.0  # rad/s^2
 
 WORLD_DOWN = np.array([0.0, 0.0, -1.0])
+SUPPORT_BAND = 0.01  # m: fingertips this close to the support's top (the world's z = 0) stand on it
 
 
 def top_down(rotation: np.ndarray) -> np.ndarray:
