@@ -87,7 +87,7 @@ class JawGraspCorrection(Controller):
         self.shifts = 0
         self.last_across = 0.0  # hand y of the last move across
         self.hint: np.ndarray | None = None  # where the last contact says the object is, world frame
-        self.hinted = False  # the jaws have closed on nothing where a contact said the object was
+        self.hinted = False  # a contact's hint has been followed: one is, once
         self.ctx.blackboard[CONTACT] = False
         self._rise(readings, np.zeros(3), self._above_object())
 
