@@ -167,11 +167,12 @@ class RobustGraspApproach(Controller):
         self.phase = "approach"
 
     def _over_contact(self, readings: Readings, wrench: np.ndarray) -> bool:
-        """A first contact off the grasp centre across the hand is a finger on the object's
-        top: rise off it, move the grasp centre over it, approach again (up to `max_shifts`
-        times). True if that is what happens. Left there, the finger pushed the object
-        over as the fingers closed (SDH2, MuJoCo, the preset's mug trial 0: the pinch 5.6 cm
-        off the mug along its line, the preshape's descent stopped on the mug at 17 N)."""
+        """A first contact above the support and off the grasp centre across the hand is a
+        finger on the object's top: rise off it, move the grasp centre over it, approach
+        again (up to `max_shifts` times). True if that is what happens. Left there, the
+        finger pushed the object over as the fingers closed (SDH2, MuJoCo, the preset's mug
+        trial 0: the pinch 5.6 cm off the mug along its line, the preshape's descent stopped
+        on the mug at 17 N)."""
         rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
         on_support = float(position[2]) - self.reach < SUPPORT_BAND  # the fingertips on the table say nothing
         if self.moves >= self.max_shifts or on_support:
