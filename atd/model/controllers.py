@@ -118,6 +118,8 @@ _SURFACE_NORMAL = _p(VEC, "normal of the supporting surface, world frame (thesis
                      length=3, limits=ranges.DIRECTION)
 _FILTER = _p(NUM, "time constant of the first-order low-pass applied to the wrench before thresholding "
                 "(ours; 0 = raw)", 0.0, unit="s")
+_WRIST_TO_TCP = _p(NUM, "how far the TCP lies beyond the wrist sensor along the hand's z axis, to place a "
+                   "contact from the wrist's torque (the robot's own geometry)", 0.1, unit="m")
 _FORCE_SOURCE = _p(WORD, "what measures the grip force: the tactile pads or the gripper motor", "tactile",
                    choices=("tactile", "motor"))
 _FOR = _p(NUM, "the condition must hold this long without a break before it fires (ours; 0 = at once)",
@@ -213,8 +215,7 @@ _ARM_CONTROLLERS = (
                             0.05, unit="m"),
             "max_shifts": _p(INT, "how many times to move across (ours)", 2),
             "clearance": _p(NUM, "how far to rise off the contact before moving across (ours)", 0.02, unit="m"),
-            "wrist_to_tcp": _p(NUM, "how far the TCP lies beyond the wrist sensor along the hand's z axis, to "
-                               "place a contact from the wrist's torque (the robot's own geometry)", 0.1, unit="m"),
+            "wrist_to_tcp": _WRIST_TO_TCP,
             "fingertip_reach": _p(NUM, "how far the preshaped fingertips reach beyond the TCP along the hand's z "
                                   "axis: a contact is placed at their depth (the robot's own geometry)", 0.02,
                                   unit="m"),
@@ -247,8 +248,7 @@ _ARM_CONTROLLERS = (
                             unit="m"),
             "centre_band": _p(NUM, "a contact this close to the hand's axis is under the palm or both jaws: "
                               "close (ours)", 0.012, unit="m"),
-            "wrist_to_tcp": _p(NUM, "how far the TCP lies beyond the wrist sensor along the hand's z axis, to "
-                               "place a contact from the wrist's torque (the robot's own geometry)", 0.1, unit="m"),
+            "wrist_to_tcp": _WRIST_TO_TCP,
             "fingertip_reach": _p(NUM, "how far the open fingertips reach beyond the TCP along the hand's z "
                                   "axis, to tell the support under them from the object (the robot's own "
                                   "geometry)", 0.02, unit="m"),

@@ -58,7 +58,7 @@ class RobustGraspApproach(Controller):
     force and torque at the fingertips' depth) is a finger on the object's top: the hand
     rises off it, moves its grasp centre over it and approaches again (Eq. 3.1's idea,
     across both of the hand's axes; its torque threshold is for the thesis' sensor, and
-    a fingertip's 2-15 N at 5-10 cm stays under it).
+    a fingertip's 2-17 N at 5-10 cm stays under it).
     Sliding grasp (Eq. 3.2): the surface pushes back on the hand with F_s (against the
     grasp direction, measured against the free hand of the state's start and filtered over
     SURFACE_FILTER); the approach ended on F_s = F_t, the contact the slide keeps: F_s
