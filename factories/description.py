@@ -16,18 +16,11 @@ from typing import Literal
 
 import numpy as np
 
-from atd.model.frames import rotation_rpy
+from atd.model.frames import axis_rotation, rotation_rpy
 from atd.model.meshcheck import mesh_points
 
 Vec3 = tuple[float, float, float]
 GRAVITY = 9.81
-
-
-def axis_rotation(axis: np.ndarray, angle: float) -> np.ndarray:
-    """Rodrigues' rotation about a unit axis."""
-    x, y, z = axis
-    k = np.array([[0, -z, y], [z, 0, -x], [-y, x, 0]])
-    return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * (k @ k)
 
 
 @dataclass(frozen=True)

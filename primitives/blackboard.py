@@ -28,8 +28,9 @@ FINGERS_STOPPED = "fingers_stopped"
 """Hand -> arm: True once the fingers can close no further (object held, or limits)."""
 
 SHIFT = "shift"
-"""Hand -> arm: (3,) hand-frame displacement, m, for the arm to make before the hand
-tries again (finger-lost correction); the arm sets it back to None when done."""
+"""Hand -> arm: (4,) hand-frame displacement (m) and turn about the approach axis (rad)
+for the arm to make before the hand tries again (finger-lost correction, D5's position
+and orientation corrections); the arm sets it back to None when done."""
 
 EMPTY_HAND = "empty_hand"
 """In `Context.memory`, not the blackboard: (3,) world-frame wrist force of the empty hand,

@@ -23,7 +23,7 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from enum import StrEnum
-from typing import Mapping, Sequence
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -45,12 +45,14 @@ class PadInfo:
     robot only measures one force for the finger; `dofs` are the hand DOFs that move it
     (none for a palm pad), which is how a hand controller knows which finger a pad is on;
     `base` is where that finger stands on the palm, (x, y) in the hand frame (m), which is
-    how it knows which way "towards this finger" is."""
+    how it knows which way "towards this finger" is; `half_size` is the (x, y) half extent
+    of its sensing surface (m), columns of the image along x, rows along y."""
 
     name: str
     taxels: tuple[int, int] | None
     dofs: tuple[int, ...] = ()
     base: tuple[float, float] = (0.0, 0.0)
+    half_size: tuple[float, float] = (0.0, 0.0)
 
 
 @dataclass(frozen=True)
@@ -67,6 +69,9 @@ class HandInfo:
     pads: tuple[PadInfo, ...]
     stiffness: np.ndarray  # per DOF: the position servo's effort per unit of position error
     self_locking: np.ndarray  # per DOF: a drive that keeps its torque when pushed back (a worm gear)
+    # hand DOF values -> (pads, 4, 4): each pad's sensing surface in the TCP frame (+z out of
+    # the finger), the hand's forward kinematics, as a real hand computes it from its encoders
+    pad_surfaces: Callable[[np.ndarray], np.ndarray]
 
 
 @dataclass(frozen=True)

@@ -340,8 +340,8 @@ _HAND_CONTROLLERS = (
     ControllerSpec(
         "robust_grasp_hand", Role.HAND,
         "Hand side of the robust grasp: preshape, close when the arm reports contact, redo the grasp "
-        "when a finger loses contact, then raise the finger force.",
-        "thesis 3.3.1 (finger-lost correction, force adaptation)",
+        "when a finger loses contact or the fingers stop unevenly, then raise the finger force.",
+        "thesis 3.3.1 (finger-lost correction, force adaptation); D5 3.3 (finger-extension criterion)",
         {
             "preshape": _p(WORD, "starting hand configuration (thesis PREGRASP_TYPE); unset = current"),
             "pregrasp_size": _p(NUM, "hand opening before closing, 0..1 (thesis PREGRASP_SIZE); unset = current"),
@@ -355,6 +355,13 @@ _HAND_CONTROLLERS = (
                                    "'a little bit down')", 0.01, unit="m"),
             "search_step": _p(NUM, "step across the pinch line when two pinching fingers touched nothing: one "
                               "side, then the other (ours)", 0.025, unit="m"),
+            "extension_correction": _p(FLAG, "D5 3.3.3: with every finger on the object, reopen and move the hand "
+                                       "(position correction Z, orientation correction alpha) while the grasp "
+                                       "is unstable by the finger-extension criterion", True),
+            "stable_quality": _p(NUM, "D5's bound on the finger-extension quality Q (Eq. 3.1) of a stable grasp, "
+                                 "extensions in units of the preshape's reach (D5: 0.01)", 0.01),
+            "alpha_threshold": _p(NUM, "the least orientation correction alpha (Eq. 3.2) made (D5: 0.01 rad)",
+                                  0.573, unit="deg", limits=ranges.ANGLE),
         },
     ),
     ControllerSpec(

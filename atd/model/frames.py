@@ -32,3 +32,10 @@ def rotation_angle(rotation: np.ndarray) -> float:
     """The angle of a rotation matrix, in degrees."""
     cos = (float(np.trace(rotation)) - 1.0) / 2.0
     return float(np.degrees(np.arccos(max(-1.0, min(1.0, cos)))))
+
+
+def axis_rotation(axis: np.ndarray, angle: float) -> np.ndarray:
+    """Rodrigues' rotation about a unit axis."""
+    x, y, z = axis
+    k = np.array([[0, -z, y], [z, 0, -x], [-y, x, 0]])
+    return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * (k @ k)

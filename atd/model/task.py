@@ -106,6 +106,18 @@ class ObjectInfo(AtdElement):
             return size[1] / 2
         return size[0]
 
+    @property
+    def least_width(self) -> float:
+        """The narrowest the object is, whichever way it is taken: fingers that close past
+        it have nothing between them."""
+        size = self.effective_size
+        kind = self.object_class or ObjectClass.BOX
+        if kind is ObjectClass.BOX:
+            return min(size)
+        if kind is ObjectClass.CYLINDER:
+            return min(2 * size[0], size[1])
+        return 2 * size[0]
+
 
 class Obstacle(AtdElement):
     """Something to keep clear of: a position, and as our extension a box size."""

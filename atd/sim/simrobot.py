@@ -51,6 +51,18 @@ def _finger_base(d: RobotDescription, link: str, poses: dict[str, np.ndarray]) -
     return (float(x), float(y))
 
 
+def _pad_surfaces(d: RobotDescription):
+    """The hand's forward kinematics for its pads: DOF values -> each sensing surface's
+    pose in the TCP frame (only the hand's joints move one against the other)."""
+
+    def surfaces(q: np.ndarray) -> np.ndarray:
+        poses = d.link_poses(d.hand_joint_targets(q))
+        to_hand = np.linalg.inv(poses[d.tcp.link] @ d.tcp.origin.matrix())
+        return np.array([to_hand @ poses[p.link] @ p.origin.matrix() for p in d.hand.pads])
+
+    return surfaces
+
+
 def robot_info(d: RobotDescription) -> RobotInfo:
     """The static facts a primitive needs, taken from the description."""
     arm = [d.joints[n] for n in d.arm_joints]
@@ -69,10 +81,11 @@ def robot_info(d: RobotDescription) -> RobotInfo:
         open=np.array([dof.open for dof in d.hand.dofs]),
         closed=np.array([dof.closed for dof in d.hand.dofs]),
         postures={name: np.array(v) for name, v in d.hand.postures.items()},
-        pads=tuple(PadInfo(p.name, p.taxels, _moving_dofs(d, p.link), _finger_base(d, p.link, open_hand))
+        pads=tuple(PadInfo(p.name, p.taxels, _moving_dofs(d, p.link), _finger_base(d, p.link, open_hand), p.half_size)
                    for p in d.hand.pads),
         stiffness=np.array([j.servo.kp for j in hand_limits]) * ratios**2,
         self_locking=np.array([j.friction > 0 for j in hand_limits]),
+        pad_surfaces=_pad_surfaces(d),
     )
     return RobotInfo(
         name=d.label,

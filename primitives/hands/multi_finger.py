@@ -5,13 +5,18 @@ The robust grasp: preshape, wait for the arm to find the object (blackboard CONT
 close every grasping finger until it can close no further, then judge the grasp by the
 pads:
 
+- every grasping finger touches, but unevenly by D5's finger-extension criterion (its
+  quality Q at or above `stable_quality`, or two fingers on one side at extensions that
+  turn the hand by `alpha_threshold` or more): reopen, move the hand by D5's position
+  and orientation corrections (`extension.ExtensionGauge`), close again;
 - every grasping finger touches: force adaptation raises each finger's effort until its
   pad feels GRASP_FORCE; the grasp succeeds only then, with the object held;
 - some fingers touch and others closed on nothing (finger lost): reopen and ask the arm
   to shift the hand towards the fingers that touched, then close again;
 - no finger touches, but some touched something on the way and others did not (the
   object pushed aside by the first finger to meet it): as for a finger lost, towards those;
-- no finger touches (object lost): where two fingers pinch, the object lies off the line
+- no finger touches (object lost; known as soon as the pads pass within PASSED of the
+  task's object's least width of each other): where two fingers pinch, the object lies off the line
   they close along, so search across it, one side then the other (`search_step`); other
   hands take D5's security reflex: reopen, move a little further along the approach,
   close again;
@@ -36,6 +41,7 @@ import numpy as np
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
 from primitives.blackboard import CONTACT, EMPTY_HAND, FINGERS_STOPPED, PRESHAPED, PRESSING, SHIFT
 from primitives.filters import LowPass, world_load
+from primitives.hands.extension import ExtensionGauge
 from primitives.hands.posture import Stillness
 from primitives.robot import HandMode, Readings
 from primitives.search import search_offsets
@@ -69,6 +75,13 @@ SEARCH_POINTS = 4  # points searched across the pinch line, about where the hand
 # boxes, 20 of the robust grasp's 79 failures with the approach error in the preset at c06cbab)
 LOST_TIME = 0.5
 PINCHED = 2.0  # times the grasp force on every grasping pad: the fingers have closed on the object
+# of the object's least width (the task's): pads that close this near each other without
+# touching anything have nothing between them; closing on to the fingers' limits took the
+# Barrett 1.1 and 2.9 s more in two empty closes (MuJoCo, the preset's duck trial 5 with the
+# approach error); searching across its pinch line, it timed out in 18 and 15 of the preset's
+# first 50 trials with the approach error (MuJoCo, PyBullet), 9 and 10 once it stopped here
+PASSED = 0.5
+GAP_CHECK = 0.05  # s between looks at the pads' gap (the hand's forward kinematics: 0.3-0.5 ms a look)
 
 
 class FingerGrasp(Controller):
@@ -221,19 +234,26 @@ class RobustGraspHand(FingerGrasp):
         self.finger_lost_shift = float(self.params["finger_lost_shift"])
         self.object_lost_step = float(self.params["object_lost_step"])
         self.search_step = float(self.params["search_step"])
+        self.extension_correction = bool(self.params["extension_correction"])
+        self.stable_quality = float(self.params["stable_quality"])
+        self.alpha_threshold = np.radians(float(self.params["alpha_threshold"]))
 
     def start(self, readings: Readings) -> None:
         super().start(readings)
         self.searches = 0  # search steps taken so far
+        self.quality = np.inf  # D5's Q at the latest uneven grasp
+        if self.fingers:
+            self.gauge = ExtensionGauge(self.ctx.info.hand, [self.pad_of[f] for f in self.fingers], self.pre)
 
     def _begin_closing(self, board: dict) -> None:
         super()._begin_closing(board)
         self.pinched = 0.0
         self.brushed: set[str] = set()  # the fingers whose pads touched something on the way
+        self.looked = -np.inf  # when the pads' gap was last looked at
 
     def _close(self, readings: Readings, dt: float, board: dict) -> None:
         self.brushed.update(self._touching(readings))
-        if self._closed(readings, dt) or self._pinching(readings, dt, board):
+        if self._closed(readings, dt) or self._pinching(readings, dt, board) or self._passed(readings):
             board[FINGERS_STOPPED] = True
             self.effort = self._starting_effort(readings)
             self.settled = 0.0
@@ -252,6 +272,14 @@ class RobustGraspHand(FingerGrasp):
         pressed = all(pads[self.pad_of[f]] >= PINCHED * self.grasp_force for f in self.fingers)
         self.pinched = self.pinched + dt if pressed and not board.get(PRESSING) else 0.0
         return self.pinched >= SETTLE_TIME
+
+    def _passed(self, readings: Readings) -> bool:
+        """The pads have closed past the object's least width (PASSED of it) and touch
+        nothing: there is nothing between the fingers, whatever is left of the close."""
+        if self._touching(readings) or self.ctx.object is None or readings.time - self.looked < GAP_CHECK:
+            return False
+        self.looked = readings.time
+        return self.gauge.gap(readings.hand_q) < PASSED * self.ctx.object.least_width
 
     def _starting_effort(self, readings: Readings) -> np.ndarray:
         """Where force adaptation starts: each finger stopped on the object pressing with
@@ -279,6 +307,8 @@ class RobustGraspHand(FingerGrasp):
         if not touching and set(self.fingers) - self.brushed:
             touching = [f for f in self.fingers if f in self.brushed]
         lost = [f for f in self.fingers if f not in touching]
+        if not lost and self._uneven(readings):
+            return
         if not lost:
             self.phase = "hold"
             self.holding = 0.0
@@ -294,6 +324,27 @@ class RobustGraspHand(FingerGrasp):
             self._try_again(np.array([*toward / np.linalg.norm(toward), 0.0]) * self.finger_lost_shift, what)
         else:
             self._try_again(self._search_step(), what)
+
+    def _uneven(self, readings: Readings) -> bool:
+        """D5 3.3.3: every finger is on the object, but unevenly: correct, true if a
+        correction is under way. D5 repeats the corrections until the grasp is stable;
+        here the position correction only while each makes the grasp more even (Q
+        falls): fingers that push the object as they close undo every move (a box in the
+        Barrett's cylindrical grasp, PyBullet: pushed 2 cm towards the thumb at each
+        close, Q 0.15 again and again). With no correction left to make, or the budget
+        spent, the grasp holds what it has and the lift's events judge it."""
+        if not self.extension_correction or self.retries >= RETRIES:
+            return False
+        check = self.gauge.check(readings)
+        turn = check.turn if abs(check.turn) >= self.alpha_threshold else 0.0
+        move = self.stable_quality <= check.quality < self.quality
+        self.quality = check.quality
+        if not move and turn == 0.0:
+            return False
+        shift = check.shift if move else np.zeros(3)
+        what = f"uneven grasp (Q {check.quality:.3f}, alpha {np.degrees(turn):.1f} deg)"
+        self._try_again(shift, what, turn)
+        return True
 
     def _search_step(self) -> np.ndarray:
         """Where to look next when the fingers closed on nothing (hand frame): across the
@@ -314,14 +365,15 @@ class RobustGraspHand(FingerGrasp):
         self.searches += 1
         return (offsets[self.searches] - offsets[self.searches - 1]) * across
 
-    def _try_again(self, shift: np.ndarray, what: str) -> None:
-        """A failed attempt: reopen, have the arm make `shift` (hand frame), close again.
+    def _try_again(self, shift: np.ndarray, what: str, turn: float = 0.0) -> None:
+        """A failed attempt: reopen, have the arm make `shift` (hand frame) and `turn`
+        (about the approach axis), close again.
         Every correction draws on one budget of RETRIES; once it is spent, the grasp
         fails saying `what` went wrong this last time."""
         if self.retries >= RETRIES:
             self._fail(what)
             return
-        self.shift = shift
+        self.shift = np.array([*shift, turn])
         self.effort[:] = 0.0
         self.stillness.seconds[:] = 0.0
         self.phase = "reopen"
