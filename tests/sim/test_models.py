@@ -40,7 +40,7 @@ def test_mujoco_model_follows_menagerie_conventions(melfa) -> None:
     key = model.key("home")
     arm = [model.joint(n).qposadr[0] for n in melfa.arm_joints]
     np.testing.assert_allclose(key.qpos[arm], melfa.home)
-    assert model.opt.cone == mujoco.mjtCone.mjCONE_ELLIPTIC and model.opt.impratio == 10
+    assert model.opt.cone == mujoco.mjtCone.mjCONE_ELLIPTIC and model.opt.impratio == 100
     assert model.opt.integrator == mujoco.mjtIntegrator.mjINT_IMPLICITFAST
     pads = [model.geom(p.name).id for p in melfa.hand.pads]
     assert all(model.geom_condim[g] == 4 for g in pads)
