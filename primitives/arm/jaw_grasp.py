@@ -24,10 +24,8 @@ from __future__ import annotations
 import numpy as np
 
 from primitives.arm.motion import (
-    APPROACH_ACCELERATION,
     GAIN,
     ORIENTATION_TOLERANCE,
-    SETTLE,
     SUPPORT_BAND,
     TwistShaper,
     clamp_norm,
@@ -153,29 +151,12 @@ class JawGraspCorrection(Controller):
         return clamp_norm(GAIN * (goal - position), self.speed)
 
     def _start_descent(self, readings: Readings) -> None:
+        self.contact.start(readings)
         self.phase = "descend"
         self.top = float(readings.tcp[2, 3])
         self.best, self.best_time = self.top, readings.time
-        self.speed_now = 0.0  # m/s: the descent's speed, rising to the descent velocity
-        self.cruising = 0.0  # s at the descent velocity; the wrist is tared after SETTLE of it
 
     def _descend(self, readings: Readings, dt: float) -> np.ndarray:
-        """Down at APPROACH_ACCELERATION; the wrist tared once the descent has gone at its
-        velocity for SETTLE, and contacts looked for from then on. The moving arm itself
-        loads the wrist: the Melfa's read 1.2 N less along the hand's x all through a
-        descent, its wrist joints turning at 0.3 rad/s against each other near the j5
-        singularity (MuJoCo). Tared at rest, every descent met that as a jaw on the
-        object's top and moved across, away from the object (the preset's stapler trial 0
-        with the approach error: three such moves, and the grasp timed out 8 cm from it).
-        The fingertips start at least `clearance` above anything, more than the 7 mm
-        covered before the tare."""
-        self.speed_now = min(self.descent, self.speed_now + APPROACH_ACCELERATION * dt)
-        if self.cruising < SETTLE:
-            self.cruising += dt if self.speed_now >= self.descent else 0.0
-            if self.cruising >= SETTLE:
-                self.contact.start(readings)
-                self.best, self.best_time = float(readings.tcp[2, 3]), readings.time
-            return -self.speed_now * UP
         wrench = self.contact.update(readings, dt)
         z = float(readings.tcp[2, 3])
         if z < self.best - STALL_PROGRESS:
@@ -185,7 +166,7 @@ class JawGraspCorrection(Controller):
             self._met(readings, wrench)
         elif self.top - z >= self.max_depth or z <= self._grasp_height():
             self._close_here(readings, 0.0)
-        return -self.speed_now * UP if self.phase == "descend" else np.zeros(3)
+        return -self.descent * UP if self.phase == "descend" else np.zeros(3)
 
     def _met(self, readings: Readings, wrench: np.ndarray) -> None:
         """The first contact of a descent: where it sits across the hand says what it is."""
