@@ -12,8 +12,8 @@ from __future__ import annotations
 import numpy as np
 
 from atd.model.frames import axis_rotation
-from primitives.arm.motion import (APPROACH_ACCELERATION, GAIN, ORIENTATION_TOLERANCE, SETTLE, SUPPORT_BAND, WORLD_DOWN,
-                                   clamp_norm, norm, orientation_twist, top_down, unit)
+from primitives.arm.motion import (GAIN, ORIENTATION_TOLERANCE, SUPPORT_BAND, WORLD_DOWN, clamp_norm, norm,
+                                   orientation_twist, top_down, unit)
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import CONTACT, FINGERS_STOPPED, PRESHAPED, PRESSING, SHIFT
@@ -27,6 +27,15 @@ SHIFT_TIME = 2.0  # s: a shift that has not arrived by then is blocked; the gras
 # 17 N and 0 N on alternate 5 ms ticks, and a bang-bang slide on each tick's reading drives
 # that chatter instead of riding the surface (SDH2 pinch, grasp_and_lift, seed 0).
 SURFACE_FILTER = 0.05
+# m/s^2 the approach speeds up at: a hand set moving at 3 cm/s within one 5 ms tick read 2.2 N on
+# the Barrett's wrist, over the 2 N contact threshold, and the approach ended where it began,
+# 2 cm above the object's top (MuJoCo, grasp_and_lift with the seeds' approach error)
+APPROACH_ACCELERATION = 0.3
+# s the hand stays still once level before the wrist's reading is taken as the free hand's: the
+# turn's own jolt read 5.9 N on the Barrett's wrist (MuJoCo), and the weight of a hand turned
+# by 3 degrees another 1.3 N, so the approach took that for a contact and the fingers closed
+# 2 cm above the table beside the object (the preset, approach error, cylinder trial 1)
+LEVEL_SETTLE = 0.1
 
 
 class RobustGraspApproach(Controller):
@@ -44,7 +53,7 @@ class RobustGraspApproach(Controller):
     there while the others close, and they push the object away (rotation-only approach
     error, MuJoCo, 30 trials per hand: Barrett 2 lifted, SDH2 7; levelled: 18 and 15).
     A hand that has to turn level starts its approach once it is level and has been still
-    for SETTLE, its wrist reading taken afresh: the turn changes how the hand's weight
+    for LEVEL_SETTLE, its wrist reading taken afresh: the turn changes how the hand's weight
     loads the sensor.
     A first contact above the support and off the grasp centre (placed from the wrist's
     force and torque at the fingertips' depth) is a finger on the object's top: the hand
@@ -137,7 +146,7 @@ class RobustGraspApproach(Controller):
         w, angle = orientation_twist(self.rotation, rotation)
         if self.phase == "level":
             self.still = self.still + dt if angle < ORIENTATION_TOLERANCE else 0.0
-            if self.still >= SETTLE:
+            if self.still >= LEVEL_SETTLE:
                 self._approach_from(readings)
         world = rotation @ v
         if self.phase == "across":

@@ -24,17 +24,6 @@ ORIENTATION_TOLERANCE = math.radians(2.0)
 LINEAR_ACCELERATION = 1.0  # m/s^2
 ANGULAR_ACCELERATION = 4.0  # rad/s^2
 
-# A guarded move towards a contact (the wrist's force against a threshold of about 2 N):
-# m/s^2 it speeds up at: a hand set moving at 3 cm/s within one 5 ms tick read 2.2 N on
-# the Barrett's wrist, over the 2 N contact threshold, and the approach ended where it began,
-# 2 cm above the object's top (MuJoCo, grasp_and_lift with the seeds' approach error)
-APPROACH_ACCELERATION = 0.3
-# s the hand stays still before the wrist's reading is taken as the free hand's: the jolt of
-# turning level read 5.9 N on the Barrett's wrist (MuJoCo), and the weight of a hand turned
-# by 3 degrees another 1.3 N, so the approach took that for a contact and the fingers closed
-# 2 cm above the table beside the object (the preset, approach error, cylinder trial 1)
-SETTLE = 0.1
-
 WORLD_DOWN = np.array([0.0, 0.0, -1.0])
 SUPPORT_BAND = 0.01  # m: fingertips this close to the support's top (the world's z = 0) stand on it
 
