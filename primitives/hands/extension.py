@@ -66,9 +66,13 @@ class ExtensionGauge:
         self.side = np.sign(facing @ self.line)
         opened = surfaces[:, :2, 3]
         along = opened @ self.line
-        middle = np.mean([along[self.side == s].mean() for s in (1.0, -1.0) if (self.side == s).any()])
+        middle = np.mean(self._side_means(along))
         self.centre = middle * self.line + float((opened @ self.across).mean()) * self.across
         self.reach = max(float(np.abs(along - middle).mean()), 1e-3)
+
+    def _side_means(self, along: np.ndarray) -> list[float]:
+        """The mean of `along` over each side's fingers, for the sides that have any."""
+        return [float(along[self.side == s].mean()) for s in (1.0, -1.0) if (self.side == s).any()]
 
     def gap(self, hand_q: np.ndarray) -> float:
         """How near the two sides' pads come to each other along the squeeze line (m),
@@ -92,7 +96,7 @@ class ExtensionGauge:
         along, across = offsets @ self.line, offsets @ self.across
         extension = np.abs(along) / self.reach
         quality = float(sum((a - b) ** 2 for i, a in enumerate(extension) for b in extension[i + 1:]))
-        sides = [along[self.side == s].mean() for s in (1.0, -1.0) if (self.side == s).any()]
+        sides = self._side_means(along)
         z = 0.5 * sum(sides) if len(sides) == 2 else 0.0  # Eq. 3.3: the two sides straddle the object
         turn = 0.0
         for s in (1.0, -1.0):  # Eq. 3.2, for a side with two fingers
