@@ -224,7 +224,8 @@ class HandDof:
 
     `geared`: the first joint carries the motor and the others follow it through a
     linkage (a Barrett finger's distal joint), so under a force command only the first
-    is pushed; otherwise every joint is pushed alike (the two jaws of a parallel gripper).
+    is pushed; otherwise every joint is pushed alike and they move as one (the two jaws of
+    a parallel gripper on one spindle; `Hand.couplings`).
     """
 
     name: str
@@ -261,6 +262,18 @@ class Hand:
     push_posture: str = "closed"
     """The posture a closed hand takes to move and push (not a D5 shape): a hand whose fist
     meets an object with sloping links names one that leads with a vertical face."""
+
+    @property
+    def couplings(self) -> tuple[tuple[str, str, float], ...]:
+        """(joint, other joint, ratio): joints one motor closes together through a rigid
+        transmission, `other` = ratio x `joint`: every closing DOF but a geared one (the
+        others, a spread, only ever hold a position, which keeps their joints together).
+        A gripper's jaws on one spindle cannot drift sideways together: pushed alike but
+        left independent in simulation, a Baxter's jaws and the cylinder between them slid
+        7 mm towards one side during a lift, and the jaw the opening is read from reached
+        its closed stop with the object still held (PyBullet, the preset's cylinder trial 9)."""
+        return tuple((dof.joints[0][0], joint, ratio / dof.joints[0][1])
+                     for dof in self.dofs if dof.closing and not dof.geared for joint, ratio in dof.joints[1:])
 
 
 @dataclass(frozen=True)

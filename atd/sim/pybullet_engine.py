@@ -31,6 +31,12 @@ from factories.description import RobotDescription
 SOLVER_ITERATIONS = 50
 ARM_POSITION_GAIN = 0.1
 HAND_POSITION_GAIN = 0.3
+# The most a coupling (Hand.couplings) resists with, in multiples of its joint's effort: a
+# transmission outlasts the motor that drives it.
+COUPLING_FORCE = 10.0
+# Of a coupling's position error corrected each step: without it (Bullet's default 0) a gear
+# only ties the joints' speeds, and an error once made stays.
+COUPLING_ERP = 0.2
 
 
 def _xyzw(m: np.ndarray) -> list[float]:
@@ -124,6 +130,11 @@ class PybulletRobot(SimRobot):
         for name, i in zip(joints, self._joints):
             pb.resetJointState(self.body, i, home.get(name, 0.0), physicsClientId=c)
 
+        for joint, other, ratio in d.hand.couplings:  # one motor's joints move as one; >0 reverses
+            gear = pb.createConstraint(self.body, index[joint], self.body, index[other], pb.JOINT_GEAR, (1, 0, 0),
+                                       (0, 0, 0), (0, 0, 0), physicsClientId=c)
+            pb.changeConstraint(gear, gearRatio=-ratio, erp=COUPLING_ERP,
+                                maxForce=COUPLING_FORCE * d.joints[joint].effort, physicsClientId=c)
         self._build_scene(scene)
         self._apply_arm(self._q_ref, self._dq_cmd)
         self._apply_hand(np.zeros(len(self._hand), bool), np.array([home[n] for n in self.hand_joints]))

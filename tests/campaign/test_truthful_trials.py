@@ -67,3 +67,12 @@ def test_an_object_the_barrett_holds_in_mujoco_does_not_creep_round_in_its_pads(
     record = preset_trial(index, robot="tombatossals", arm="right", engine="mujoco", object=obj)
     assert record.task_succeeded == record.judged_succeeded, (record.summary, record.judge_reason)
     assert record.measurements.get("turn", 0.0) < 2.0, record.judge_reason
+
+
+@pytest.mark.parametrize(("engine", "index"), [("pybullet", 9), ("mujoco", 1)])
+def test_the_baxters_jaws_move_as_one_so_a_held_object_is_not_reported_lost(engine: str, index: int) -> None:
+    """The Baxter's jaws are on one motor. Simulated as two jaws pushed alike, jaws and
+    cylinder slid together towards one side during the lift; the jaw the opening is read
+    from reached its closed stop, and the lift ended on `grasp_lost` with the cylinder held."""
+    record = preset_trial(index, robot="baxter", engine=engine, object="cylinder")
+    assert record.task_succeeded and record.judged_succeeded, (record.summary, record.judge_reason)

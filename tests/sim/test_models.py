@@ -11,6 +11,7 @@ from atd.sim import load_description, variants
 from atd.sim.models import mjcf, urdf
 from atd.sim.mujoco_engine import compile_mjcf
 from atd.sim.scene import box_scene
+from primitives.robot import HandMode
 
 
 @pytest.mark.parametrize(("robot", "arm"), variants())
@@ -86,3 +87,20 @@ def test_a_urdf_robots_collision_meshes_stand_where_its_description_puts_them_in
             assert (world @ axis).max() == pytest.approx(shape.support(poses[link.name], axis), abs=1e-6)
         (collision,) = tree.find(f"link[@name='{link.name}']").iter("collision")
         assert collision.find("geometry/mesh").get("filename") == str(shape.mesh)
+
+
+@pytest.mark.parametrize(("robot", "coupled"), [("melfa", ("pg70_left_jaw", "pg70_right_jaw")),
+                                               ("baxter", ("gripper_left_jaw", "gripper_right_jaw"))])
+def test_a_grippers_jaws_move_as_one_in_both_models(robot, coupled, engine, robot_of) -> None:
+    """A gripper's two jaws on one spindle: pushed aside by a held object, one jaw cannot
+    give way while the other follows it in (see `Hand.couplings`)."""
+    d = load_description(robot, "right" if robot == "baxter" else None)
+    assert [(a, b) for a, b, _ in d.hand.couplings] == [coupled]
+    sim = robot_of(d, engine, box_scene())
+    sim.command_hand(np.zeros(len(d.hand.dofs)), HandMode.FORCE)  # no motor holds them
+    first, second = coupled
+    sim._set_joints({first: 0.5 * d.joints[first].upper, second: 0.0})  # one joint alone, as a push would
+    for _ in range(100):
+        sim.step()
+    q = dict(zip([*d.arm_joints, *sim.hand_joints], sim._joint_state()[0]))
+    assert q[first] == pytest.approx(q[second], abs=1e-3)
