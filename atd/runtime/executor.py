@@ -22,7 +22,7 @@ from atd.runtime.arbitrator import RobotCommand, arbitrate
 from atd.runtime.trace import Trace
 from primitives.base import Condition, Context, ControlData, Status, StateView
 from primitives.registry import BuildError, build_condition, build_controller
-from primitives.robot import Readings, Robot, dls_joint_velocities
+from primitives.robot import Readings, Robot
 
 
 class ConditionTree:
@@ -239,7 +239,7 @@ class Executor:
         self.command = command = arbitrate(outputs, self._hand_dof)
         dq = self._still if command.joint_velocity is None else command.joint_velocity
         if command.twist is not None and command.twist.any():
-            dq = dq + dls_joint_velocities(self.robot.jacobian(), command.twist, self.robot.twist_damping)
+            dq = dq + self.robot.twist_velocities(command.twist)
         self.robot.command_arm_velocity(dq)
         if command.hand_values is not None:
             self.robot.command_hand(command.hand_values, command.hand_modes)

@@ -110,3 +110,13 @@ def test_a_pad_meeting_the_object_on_its_rim_re_centres_without_pushing_it_away(
     [record] = preset_trials((index,), robot="melfa", engine="mujoco", grasp="robust", object="tape",
                              perturbation="approach")
     assert record.task_succeeded and record.judged_succeeded, (record.summary, record.judge_reason)
+
+
+@pytest.mark.parametrize(("obj", "index"), [("wood", 5), ("weight", 5)])
+def test_the_melfas_forearm_roll_stays_off_its_limit_at_the_wrist_singularity(obj: str, index: int) -> None:
+    """Preset trials in PyBullet whose hand, tilted by the approach error, worked near the
+    wrist singularity (j5 near 0): j4 and j6 counter-rotated until j4 sat on its limit, a
+    hardware failure. Sparing a joint near its limit leaves the turn to j6, and both lift."""
+    [record] = preset_trials((index,), robot="melfa", engine="pybullet", grasp="robust", object=obj,
+                             perturbation="approach")
+    assert record.task_succeeded and record.judged_succeeded, (record.summary, record.judge_reason)

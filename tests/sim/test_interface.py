@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from atd.model import HandShape
 from atd.sim import load_description, variants
 from atd.sim.scene import Scene
-from primitives.robot import HandMode, dls_joint_velocities
+from primitives.robot import HandMode, dls_joint_velocities, limited_joint_velocities
 
 
 @given(st.integers(0, 10_000))
@@ -29,6 +29,27 @@ def test_dls_damping_bounds_joint_speed_at_a_singularity() -> None:
     twist = np.array([0, 0, 0, 0, 0, 0.1])
     assert np.abs(dls_joint_velocities(jacobian, twist, 0.0)).max() > 1e4
     assert np.abs(dls_joint_velocities(jacobian, twist, 0.02)).max() < 1e-2
+
+
+def test_a_joint_near_its_limit_leaves_a_turn_to_a_joint_that_makes_the_same_one() -> None:
+    """A wrist at its singularity: joints 4 and 6 turn the hand about one axis. Far from
+    their limits they share the turn; with joint 4 a hair from its upper limit and the turn
+    pushing it there, joint 6 makes nearly all of it, and the hand still turns as asked."""
+    jacobian = np.zeros((6, 6))
+    jacobian[:3, :3] = np.eye(3)
+    jacobian[3, 4] = 1.0
+    jacobian[5, 3] = jacobian[5, 5] = 1.0  # j4 and j6 about the same axis
+    twist = np.array([0, 0, 0, 0, 0, 0.2])
+    lower, upper = np.full(6, -2.8), np.full(6, 2.8)
+    free = limited_joint_velocities(jacobian, twist, 0.02, np.zeros(6), lower, upper)
+    np.testing.assert_allclose(free, dls_joint_velocities(jacobian, twist, 0.02))
+    assert free[3] == pytest.approx(free[5])
+    q = np.array([0, 0, 0, 2.78, 0, 0])
+    spared = limited_joint_velocities(jacobian, twist, 0.02, q, lower, upper)
+    assert spared[3] < 0.05 * spared[5]
+    np.testing.assert_allclose(jacobian @ spared, twist, atol=0.01)
+    back = limited_joint_velocities(jacobian, -twist, 0.02, q, lower, upper)  # away from the limit: no share taken
+    assert back[3] == pytest.approx(back[5])
 
 
 def test_engine_jacobian_matches_the_descriptions(robot_of, engine) -> None:
