@@ -102,6 +102,8 @@ class _Pool:
         self.done = self.context.Queue()
         self.workers: dict[int, mp.Process] = {}
         self.running: dict[int, tuple[int, float]] = {}  # pid -> (plan number, started)
+        self.reported: set[int] = set()  # workers that have sent anything
+        self.lost = ""  # why trials a worker took but never announced have no record
 
     def _start_worker(self) -> None:
         process = self.context.Process(target=_work, args=(self.todo, self.done), daemon=True)
@@ -120,6 +122,10 @@ class _Pool:
             while left:
                 self._take(left)
                 self._reap(plans, left)
+                if not self.workers:  # all gone, every plan taken: what is left, a dead worker took
+                    for number in sorted(left):
+                        self.sink(_crashed(plans[number], self.lost))
+                    left.clear()
         finally:
             for channel in (self.todo, self.done):  # plans nobody will take must not hold up the exit
                 channel.cancel_join_thread()
@@ -140,16 +146,20 @@ class _Pool:
             process.join()
             del self.workers[pid]
             self._drain(left)  # what it sent before it ended still counts
-            if pid not in self.running:
-                if process.exitcode != 0:
-                    raise WorkerError(f"a worker process could not start ({_exit_reason(process.exitcode)}); "
-                                      f"run with --workers 1 to see why")
+            died = f"the worker process died ({_exit_reason(process.exitcode)})"
+            if pid in self.running:
+                number, _ = self.running.pop(pid)
+                left.discard(number)
+                self.sink(_crashed(plans[number], f"the trial hung: no result after {hang_limit(plans[number]):g} s "
+                                                  f"of wall-clock time" if hung else died))
+            elif process.exitcode == 0:
                 continue  # it finished its share
-            number, _ = self.running.pop(pid)
-            why = (f"the trial hung: no result after {hang_limit(plans[number]):g} s of wall-clock time"
-                   if hung else f"the worker process died ({_exit_reason(process.exitcode)})")
-            left.discard(number)
-            self.sink(_crashed(plans[number], why))
+            elif pid not in self.reported:
+                raise WorkerError(f"a worker process could not start ({_exit_reason(process.exitcode)}); "
+                                  f"run with --workers 1 to see why")
+            # It may have taken a plan it never announced (killed between trials, or before what
+            # it last sent left it): no one else will take that one; `run` records it at the end.
+            self.lost = f"{died} before reporting the trial"
             self._start_worker()
             self.todo.put(None)
 
@@ -163,6 +173,7 @@ class _Pool:
             kind, pid, payload = self.done.get(timeout=0.5) if block else self.done.get_nowait()
         except queue.Empty:
             return False
+        self.reported.add(pid)
         if kind == "start":
             self.running[pid] = (payload, time.monotonic())
         else:

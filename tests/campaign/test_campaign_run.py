@@ -142,8 +142,10 @@ def test_a_worker_that_dies_mid_trial_is_an_error_trial_and_the_campaign_goes_on
     pool.run(chosen)
     assert sorted(r.index for r in records) == [0, 1, 2, 3]
     errors = [r for r in records if r.status == "error"]
-    assert len(errors) == 1 and "died (killed by SIGKILL)" in errors[0].error
-    assert sum(r.status == "ok" for r in records) == 3
+    # Killed just after its last report, the worker may also have taken the next plan and
+    # lost a result it was still sending: at most those two trials, never a hung campaign.
+    assert 1 <= len(errors) <= 2 and all("died (killed by SIGKILL)" in r.error for r in errors), errors
+    assert sum(r.status == "ok" for r in records) == 4 - len(errors)
 
 
 def test_the_judge_catches_a_task_that_claims_a_success_that_did_not_happen(tmp_path: Path) -> None:
