@@ -34,8 +34,8 @@ HAND_POSITION_GAIN = 0.3
 # The most a coupling (Hand.couplings) resists with, in multiples of its joint's effort: a
 # transmission outlasts the motor that drives it.
 COUPLING_FORCE = 10.0
-# Of a coupling's position error corrected each step: without it (Bullet's default 0) a gear
-# only ties the joints' speeds, and an error once made stays.
+# Of a coupling's position error corrected each step: left at Bullet's default, a gear tied
+# the joints' speeds only, and one jaw set 17 mm from the other stayed there for 2 s.
 COUPLING_ERP = 0.2
 
 
