@@ -180,6 +180,7 @@ class Robot(ABC):
                                         info.arm_lower, info.arm_upper)
 
     def command_arm_twist(self, twist: np.ndarray) -> None:
+        """A TCP twist in the world frame, as `twist_velocities` turns it into joint speeds."""
         self.command_arm_velocity(self.twist_velocities(np.asarray(twist, float)))
 
     @abstractmethod
