@@ -73,7 +73,6 @@ class MujocoRobot(SimRobot):
         force_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "wrist_force")]
         torque_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "wrist_torque")]
         self._wrench_idx = np.r_[force_adr : force_adr + 3, torque_adr : torque_adr + 3]
-        self._wrench_mean = self._sensordata[self._wrench_idx].copy()  # over the last control period
         # Each pad's contact sensor: slots of (force in the contact frame, world point), empty
         # ones all zero. Flat indices gather a tick's slots, pad centres and pad axes at once.
         contacts = [_id(m, mujoco.mjtObj.mjOBJ_SENSOR, f"{p.name}_contacts") for p in d.hand.pads]
@@ -114,23 +113,11 @@ class MujocoRobot(SimRobot):
             d.qpos[m.jnt_qposadr[j]] = q
             d.qvel[m.jnt_dofadr[j]] = 0.0
         mujoco.mj_forward(m, d)
-        self._wrench_mean[:] = self._sensordata[self._wrench_idx]
 
     def _advance(self) -> None:
         # Sensors and site poses come from the start of the last physics step (1 ms old),
         # as a real sensor's sample is; recomputing them would cost a third of a step.
-        # The wrist reads the mean over the control period's steps, as a force-torque sensor
-        # that oversamples and filters does: the arm's servo reference steps once a period,
-        # so the hand speeds up and slows within it, and a sample at the period's last step
-        # read the Melfa's empty hand 0.5 N heavy moving down at 4 cm/s and 0.5 N light
-        # moving up, over half the 30 g duck's weight (the mean over the steps: its weight).
-        m, d, index = self.model, self.data, self._wrench_idx
-        total = self._wrench_mean
-        total[:] = 0.0
-        for _ in range(self.substeps):
-            mujoco.mj_step(m, d)
-            total += self._sensordata[index]
-        total /= self.substeps
+        mujoco.mj_step(self.model, self.data, nstep=self.substeps)
 
     def jacobian(self) -> np.ndarray:
         mujoco.mj_jacSite(self.model, self.data, self._jacp, self._jacr, self._tcp_site)
@@ -147,7 +134,7 @@ class MujocoRobot(SimRobot):
 
     def _wrench(self) -> np.ndarray:
         # MuJoCo reports what the arm exerts on the hand; the interface wants the reverse.
-        return -self._wrench_mean
+        return -self._sensordata[self._wrench_idx]
 
     def _pad_contacts(self):
         offset = self._sensordata[self._slot_point] - self._geom_xpos[self._slot_centre]
