@@ -150,8 +150,8 @@ class _Pool:
             if pid in self.running:
                 number, _ = self.running.pop(pid)
                 left.discard(number)
-                self.sink(_crashed(plans[number], f"the trial hung: no result after {hang_limit(plans[number]):g} s "
-                                                  f"of wall-clock time" if hung else died))
+                why = f"the trial hung: no result after {hang_limit(plans[number]):g} s of wall-clock time"
+                self.sink(_crashed(plans[number], why if hung else died))
             elif process.exitcode == 0:
                 continue  # it finished its share
             elif pid not in self.reported:
