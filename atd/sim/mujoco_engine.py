@@ -88,12 +88,13 @@ class MujocoRobot(SimRobot):
         self._object_body = _id(m, mujoco.mjtObj.mjOBJ_BODY, "object")
         self._object_qadr = m.jnt_qposadr[m.body_jntadr[self._object_body]]  # meaningful only with an object
         self._renderer: mujoco.Renderer | None = None
+        self._arm_from: np.ndarray | None = None  # where the arm's reference ramps from; None: hold it
         self._window = self._open_window() if window else None
         self._apply_arm(self._q_ref, self._dq_cmd)
 
     # ---- engine part ------------------------------------------------------------------
     def _apply_arm(self, q_ref: np.ndarray, dq_ff: np.ndarray) -> None:
-        self._ctrl[self._arm_act] = q_ref + self._kv_over_kp * dq_ff
+        self._arm_to = q_ref + self._kv_over_kp * dq_ff
 
     def _apply_hand(self, force: np.ndarray, values: np.ndarray) -> None:
         if (force != self._hand_force).any():
@@ -113,11 +114,21 @@ class MujocoRobot(SimRobot):
             d.qpos[m.jnt_qposadr[j]] = q
             d.qvel[m.jnt_dofadr[j]] = 0.0
         mujoco.mj_forward(m, d)
+        self._arm_from = None  # a teleported arm holds its new reference, it does not ramp there
 
     def _advance(self) -> None:
         # Sensors and site poses come from the start of the last physics step (1 ms old),
         # as a real sensor's sample is; recomputing them would cost a third of a step.
-        mujoco.mj_step(self.model, self.data, nstep=self.substeps)
+        # The arm's reference moves in a ramp across the period's physics steps (a first-order
+        # hold), as a servo drive interpolates its setpoints: held as a step, it left the servo a
+        # growing error each period, and the wrist, sampled at the period's end, read a hand
+        # going down 0.5 N heavier than at rest.
+        start = self._arm_to if self._arm_from is None else self._arm_from
+        change = self._arm_to - start
+        for k in range(1, self.substeps + 1):
+            self._ctrl[self._arm_act] = start + change * (k / self.substeps)
+            mujoco.mj_step(self.model, self.data)
+        self._arm_from = self._arm_to
 
     def jacobian(self) -> np.ndarray:
         mujoco.mj_jacSite(self.model, self.data, self._jacp, self._jacr, self._tcp_site)

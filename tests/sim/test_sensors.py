@@ -141,3 +141,18 @@ def test_robots_without_a_range_sensor_read_none(melfa, robot_of, engine) -> Non
     robot = robot_of(melfa, engine)
     assert robot.read().range is None
     assert not robot.info.has_range
+
+
+def test_a_hand_moving_at_a_steady_speed_weighs_what_it_weighs_at_rest(melfa, robot_of, run, engine) -> None:
+    """The arm's reference ramps across each control period's physics steps. Stepped once a
+    period instead, the servo's error grew through each period, and the wrist, sampled at its
+    end, read the Melfa's hand 0.5 N heavier going down at 4 cm/s and 0.5 N lighter going up
+    (MuJoCo): as much as a 100 g object's weight, which a lift looks for."""
+    robot = robot_of(melfa, engine, Scene(None, table=False))
+    run(robot, 0.5)
+    rest = _wrenches(robot, 50)[:, 2].mean()
+    for vz in (-0.04, 0.04):
+        robot.command_arm_twist(np.array([0.0, 0.0, vz, 0.0, 0.0, 0.0]))
+        run(robot, 0.5)  # up to speed
+        moving = _wrenches(robot, 100)[:, 2].mean()
+        assert moving == pytest.approx(rest, abs=0.1), (engine, vz)
