@@ -54,7 +54,7 @@ PG70 = JawSpec(
 # The gripper on the flange, past the JR3: Ry(90 deg) turns the hand's z (approach) along link6's x.
 HAND_MOUNT = Origin((0.03, 0, 0), (0, np.pi / 2, 0))
 # Found with `inverse_kinematics`: TCP 15 cm above the middle of the work area (0.125, 0), top-down.
-HOME = (0.0, 0.2059, 0.9627, 0.0, 0.4021, 0.0)
+HOME = (0.0, -0.0187, 0.8227, 0.0, 0.7667, 0.0)
 
 
 def _arm() -> tuple[Link, ...]:
@@ -106,8 +106,12 @@ def description(arm: str | None = None) -> RobotDescription:
         hand=hand,
         tcp=Site("tcp", "pg70_base", Origin((0, 0, tcp_depth))),
         wrist_sensor=Site("wrist_ft", "pg70_base"),
-        # On its stand behind the table, base plate level with the table top.
-        base=Origin((-0.25, 0.0, 0.0)),
+        # On its stand behind the table, base plate 10 cm below the table top. Level with it, a
+        # top-down grasp at the work area's middle put the wrist in its singularity (j5 = 0
+        # at the object's centre height): the forearm and flange rolls swung against each
+        # other, j4 hit its limit, and descents drifted 8 mm sideways. Here j5 is 0.3 rad or
+        # more all over the work area's floor, and its corners stay reachable top-down.
+        base=Origin((-0.25, 0.0, -0.1)),
         home=HOME,
         sensors={
             "joints": SensorModel(resolution=1e-5),
