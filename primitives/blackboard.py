@@ -34,7 +34,14 @@ and orientation corrections); the arm sets it back to None when done."""
 
 EMPTY_HAND = "empty_hand"
 """In `Context.memory`, not the blackboard: (3,) world-frame wrist force of the empty hand,
-N, as the latest grasp began; the load a hand carries beyond it is what it holds."""
+N, as the latest grasp began, or as an arm that searches for the object last began a
+descent, in free air; the load a hand carries beyond it is what it holds."""
+
+ARM_TWIST = "arm_twist"
+"""In `Context.memory`: (6,) the TCP twist the arm was last commanded (world frame, m/s and
+rad/s), kept by the executor. A motion that takes the arm over ramps from it: one that
+started from rest stopped a lifting SDH2 within a tick, and its wrist read the 10-15 N of
+that stop as a contact."""
 
 JAWS_EMPTY = "jaws_empty"
 """Hand -> arm: True from the moment a gripper's jaws closed on nothing until they are

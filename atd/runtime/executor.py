@@ -21,6 +21,7 @@ from atd.model.vocabulary import StateType
 from atd.runtime.arbitrator import RobotCommand, arbitrate
 from atd.runtime.trace import Trace
 from primitives.base import Condition, Context, ControlData, Status, StateView
+from primitives.blackboard import ARM_TWIST
 from primitives.registry import BuildError, build_condition, build_controller
 from primitives.robot import Readings, Robot
 
@@ -233,6 +234,7 @@ class Executor:
         self.wall_budget = wall_budget
         self._hand_dof = len(robot.info.hand.dofs)
         self._still = np.zeros(robot.info.arm_dof)  # the arm's command when no controller moves it
+        self._memory = base.memory
         self.command: RobotCommand | None = None  # the arbitrator's latest, for recordings
 
     def _apply(self, outputs: list[ControlData]) -> None:
@@ -240,6 +242,7 @@ class Executor:
         dq = self._still if command.joint_velocity is None else command.joint_velocity
         if command.twist is not None and command.twist.any():
             dq = dq + self.robot.twist_velocities(command.twist)
+        self._memory[ARM_TWIST] = command.twist
         self.robot.command_arm_velocity(dq)
         if command.hand_values is not None:
             self.robot.command_hand(command.hand_values, command.hand_modes)

@@ -82,6 +82,10 @@ class TwistShaper:
         self._acc = np.where(acc > 0.0, acc, np.inf) if (acc > 0.0).any() else None
         self.last = np.zeros(6)
 
+    def start(self, twist: np.ndarray | None) -> None:
+        """Take over an arm moving at `twist` (None: at rest)."""
+        self.last = np.zeros(6) if twist is None else np.array(twist, float)
+
     def stop(self) -> np.ndarray:
         """An immediate stop (a contact does not wait for a ramp)."""
         self.last = np.zeros(6)

@@ -22,7 +22,7 @@ from primitives.arm.motion import (
     top_down,
 )
 from primitives.base import ArmCommand, Context, ControlData, Controller, Status
-from primitives.blackboard import ARM_NUDGE
+from primitives.blackboard import ARM_NUDGE, ARM_TWIST
 from primitives.filters import ContactWrench, LowPass
 from primitives.robot import Readings
 
@@ -102,6 +102,7 @@ class CartesianMove(Controller):
 
     def start(self, readings: Readings) -> None:
         self.contact.start(readings)
+        self.shaper.start(self.ctx.memory.get(ARM_TWIST))
         start = readings.tcp[:3, :3]
         self.rotation = self.tilt @ (top_down(start) if self.level else start)
         self.leg = 0

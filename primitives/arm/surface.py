@@ -21,6 +21,7 @@ from primitives.arm.motion import (
 )
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
+from primitives.blackboard import ARM_TWIST
 from primitives.filters import ContactWrench
 from primitives.robot import Readings
 
@@ -61,6 +62,7 @@ class Place(Controller):
 
     def start(self, readings: Readings) -> None:
         self.contact.start(readings)
+        self.shaper.start(self.ctx.memory.get(ARM_TWIST))
         self.rotation = top_down(readings.tcp[:3, :3])
         self.descending = False
 
