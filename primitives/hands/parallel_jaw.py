@@ -24,6 +24,7 @@ CONFIRM = 0.95  # of the grasp force: the grip is there
 NAIVE_SPEED = 0.5  # of the jaws' speed limit, for the naive grasp
 EMPTY = 0.001  # m from fully closed: the jaws closed on nothing
 STILL = 0.005  # m/s: jaws slower than this stand on the object (a motor's force alone is felt in motion too)
+BLOCKED = 0.003  # m: still jaws this far short of their closing reference are held by the object
 SQUEEZE_GAIN = 5.0  # 1/s: how fast the squeeze corrects the motor force towards the pad force wanted
 SQUEEZE_TRIM = 0.5  # the correction stays within +-50 % of the grasp force
 ALIGNED = 0.3  # of a pad's half width: a contact this near the pad's middle needs no move along the jaws
@@ -58,6 +59,11 @@ class Jaws:
 
     def empty(self, readings: Readings) -> bool:
         return abs(float(readings.hand_q[0]) - self.closed) < EMPTY
+
+    def held(self, readings: Readings, reference: float) -> bool:
+        """The jaws stand still short of the closing `reference`: something holds them."""
+        lag = self.closing * (reference - float(readings.hand_q[0]))
+        return lag > BLOCKED and abs(float(readings.hand_dq[0])) < STILL
 
     def command(self, force: float) -> ControlData:
         """Press the jaws together with `force` N."""
@@ -114,7 +120,7 @@ class CloseUntilForce(Controller):
             elif self.pressing and force >= CONFIRM * self.grasp_force and abs(float(readings.hand_dq[0])) < STILL:
                 board[FINGERS_STOPPED] = True
                 self.finish(Status.DONE, f"grip force {force:.1f} N (asked {self.grasp_force:g} N)")
-            elif not self.pressing and self.jaws.both_touch(readings, self.grasp_force):
+            elif not self.pressing and (self.jaws.both_touch(readings, self.grasp_force) or self._blocked(readings)):
                 self.pressing = True
         if board.get(JAWS_EMPTY):
             return self._reopen(dt)
@@ -131,6 +137,13 @@ class CloseUntilForce(Controller):
         if closing:
             self.reference += self.jaws.closing * self.speed * dt
         return position_command(np.array([self.reference]))
+
+    def _blocked(self, readings: Readings) -> bool:
+        """Held short of where they are driven: near their closed stop a position servo has
+        too little travel left to push as hard as a touch needs (a Baxter's paddles held a
+        cylinder at 3.4 N of the 5 N, and waited out the grasp's timeout). Pressing by force
+        then either grips or closes on nothing."""
+        return self.jaws.held(readings, self.reference)
 
     def _reopen(self, dt: float) -> ControlData:
         """Back to the opening the grasp began with, at full speed (nothing is in the way);
@@ -223,7 +236,9 @@ class NaiveJawGrasp(Controller):
         if self.status is Status.DONE:
             return self.jaws.command(self.force)
         if self.status is Status.RUNNING and self.ctx.blackboard.get(CONTACT):
-            if self.jaws.both_touch(readings, self.force):
+            # Held back too: the Melfa's arm stopping on the box shook its open jaws' servo
+            # past the touch force, and the grasp said it had closed with the jaws wide open.
+            if self.jaws.both_touch(readings, self.force) and self.jaws.held(readings, self.reference):
                 self.finish(Status.DONE, "closed on the object")
                 return self.jaws.command(self.force)
             if self.jaws.empty(readings):

@@ -79,7 +79,7 @@ def test_table_7_4_melfa(kind, primitive, arm, hand):
 
 def test_table_7_4_grasp_closes_until_the_tactile_grasp_force():
     hand = _map("melfa", _state(StateType.GRASP)).hand
-    assert hand.params == {"grasp_force": 15.0, "closing_speed": 0.02, "force_source": "tactile", "max_recentre": 0.01}
+    assert hand.params == {"grasp_force": 15.0, "closing_speed": 0.04, "force_source": "tactile", "max_recentre": 0.01}
 
 
 def test_table_7_4_transport_keeps_squeezing_with_the_grasp_force():
