@@ -161,7 +161,9 @@ def messages(layout: Layout, block: np.ndarray, samples: list[Sample],
               for name in (*JOINTS, "wrench", "pad_force", *COMMANDED, "tcp", "true_tcp", "object")}
     taxels = {name: rounded[:, f[f"taxels {name}"]].reshape(len(block), *shape).tolist()
               for name, shape in layout.taxel_pads}
-    poses = {name: block[:, f[name]].reshape(len(block), -1, 4) for name in ("tcp", "true_tcp", "object")}
+    # Shapes spelt out: a block may have no rows (a run's trace records after its last tick).
+    poses = {name: block[:, f[name]].reshape(len(block), block[:, f[name]].shape[1] // 4, 4)
+             for name in ("tcp", "true_tcp", "object")}
     pad_names = [name for name, _ in layout.pads]
     pending = iter(traces)
     trace = next(pending, None)
