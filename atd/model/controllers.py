@@ -380,7 +380,8 @@ _HAND_CONTROLLERS = (
     ),
     ControllerSpec(
         "close_until_force", Role.HAND,
-        "Close the jaws until the grip force reaches grasp_force, then keep it.",
+        "Close the jaws until the grip force reaches grasp_force (or, the squeeze at its +50 % limit, 70 % of it on "
+        "the weaker pad: a tilted grip loads one pad more), then keep it.",
         "thesis 7.3 (Melfa grasp)",
         {
             "grasp_force": _p(NUM, "grip force to reach", 15.0, unit="N"),

@@ -123,3 +123,17 @@ def test_the_melfas_forearm_roll_stays_off_its_limit_at_the_wrist_singularity(ob
     [record] = preset_trials((index,), robot="melfa", engine="pybullet", grasp="robust", object=obj,
                              perturbation="approach")
     assert record.task_succeeded and record.judged_succeeded, (record.summary, record.judge_reason)
+
+
+@pytest.mark.parametrize(("obj", "index"), [("tape", 0), ("duck", 0)])
+def test_a_tilted_grip_that_loads_one_pad_more_holds_once_the_squeeze_is_at_its_limit(obj: str, index: int) -> None:
+    """Preset trials in MuJoCo whose hand, pitched 14 degrees by the approach error, closed
+    on the object with one pad at 17 N and the other at 13 N (the grasp force is 15 N):
+    the squeeze raised the motor to its +50 % limit and waited there for the weaker pad
+    until the grasp's timeout. A still grip with the squeeze at its limit and both pads
+    pressing 70 % of the force is taken as the grasp, and the lift says whether it holds."""
+    [record] = preset_trials((index,), robot="melfa", engine="mujoco", grasp="robust", object=obj,
+                             perturbation="approach")
+    assert record.task_succeeded and record.judged_succeeded, (record.summary, record.judge_reason)
+    grasped = [why for e in record.events if e["transition"] == "grasp_object->lift_object" for why in e["why"]]
+    assert any("the squeeze at its limit" in why for why in grasped), grasped
