@@ -149,7 +149,11 @@ class PybulletRobot(SimRobot):
         if scene.table:
             table = pb.createCollisionShape(pb.GEOM_BOX, halfExtents=TABLE_HALF, physicsClientId=c)
             self.table = pb.createMultiBody(0, table, basePosition=TABLE_CENTRE, physicsClientId=c)
-            pb.changeDynamics(self.table, -1, lateralFriction=1.0, frictionAnchor=1, physicsClientId=c)
+            # A friction anchor pins a contact point, which a rolling ball's is not: anchored
+            # (on either body), a ball rolling at 5 cm/s sped up to 17 cm/s in 2 s on a level
+            # table, and balls the grasp had nudged rolled off it.
+            rolls = scene.object is not None and scene.object.kind == "sphere"
+            pb.changeDynamics(self.table, -1, lateralFriction=1.0, frictionAnchor=int(not rolls), physicsClientId=c)
         for obstacle in scene.obstacles:
             self._make(obstacle, fixed=True)
         self.object = self._make(scene.object, fixed=False) if scene.object else -1
@@ -169,7 +173,8 @@ class PybulletRobot(SimRobot):
             0 if fixed else body.mass, shape, basePosition=body.pose[:3, 3].tolist(),
             baseOrientation=_xyzw(body.pose), physicsClientId=c,
         )
-        pb.changeDynamics(uid, -1, lateralFriction=body.friction, frictionAnchor=1, physicsClientId=c)
+        pb.changeDynamics(uid, -1, lateralFriction=body.friction, frictionAnchor=int(body.kind != "sphere"),
+                          physicsClientId=c)
         if not fixed:
             pb.changeDynamics(
                 uid, -1, spinningFriction=0.01 * body.friction, rollingFriction=0.0001,

@@ -1,0 +1,48 @@
+"""A ball set rolling on the table slows down and stops, in both engines, as a real one does.
+
+A grasp that nudges a ball must find it near where it was nudged: a ball that rolls on for
+ever (MuJoCo without rolling friction) or speeds up (PyBullet's friction anchors, which pin
+a contact point that a rolling ball does not have) leaves the search nothing to find.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pybullet as pb
+
+from atd.sim import load_description
+from atd.sim.mujoco_engine import MujocoRobot
+from atd.sim.scene import DEFAULT_FRICTION, Body, Scene
+
+RADIUS = 0.025  # m: the campaign library's rubber ball
+SPEED = 0.05  # m/s along x, rolling without slipping
+
+
+def _ball_scene() -> Scene:
+    pose = np.eye(4)
+    pose[:3, 3] = (0.10, 0.0, RADIUS)
+    return Scene(Body("object", "sphere", (RADIUS,), pose, 0.07, DEFAULT_FRICTION))
+
+
+def _roll(sim) -> None:
+    """Start the ball rolling at SPEED along x, as a nudge would."""
+    spin = SPEED / RADIUS  # about y, so the contact point stands still
+    if isinstance(sim, MujocoRobot):
+        dof = sim.model.jnt_dofadr[sim.model.body_jntadr[sim._object_body]]
+        sim.data.qvel[dof: dof + 6] = (SPEED, 0.0, 0.0, 0.0, spin, 0.0)
+    else:
+        pb.resetBaseVelocity(sim.object, [SPEED, 0.0, 0.0], [0.0, spin, 0.0], physicsClientId=sim.client)
+
+
+def test_a_rolling_ball_comes_to_rest_on_the_table(engine, robot_of) -> None:
+    sim = robot_of(load_description("melfa"), engine, _ball_scene())
+    sim.hold_still(0.2)
+    start = sim.object_pose()[:3, 3]
+    _roll(sim)
+    sim.hold_still(4.0)
+    middle = sim.object_pose()[:3, 3]
+    sim.hold_still(1.0)
+    end = sim.object_pose()[:3, 3]
+    rolled = float(np.linalg.norm(end[:2] - start[:2]))
+    assert 0.001 < rolled < 0.08, rolled  # it rolled, a few centimetres (5 cm/s against 0.1 mm of rolling friction)
+    assert float(np.linalg.norm(end[:2] - middle[:2])) < 0.001  # and it has stopped
