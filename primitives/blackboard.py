@@ -46,3 +46,8 @@ that stop as a contact."""
 JAWS_EMPTY = "jaws_empty"
 """Hand -> arm: True from the moment a gripper's jaws closed on nothing until they are
 open again, for an arm that looks for the object elsewhere."""
+
+JAWS_BRUSHED = "jaws_brushed"
+"""Hand -> arm: with JAWS_EMPTY, where along the jaws' width (the hand's x, from -1 to 1 of
+a pad's half width) the pads last felt something while they closed on nothing, or None:
+the object lies beyond that edge of the pads (pushed there by it)."""

@@ -13,7 +13,8 @@ or under the middle or below the top (the support under both jaws, or the palm o
 object: the jaws straddle its place, so close). The descent stops with the fingertips
 clear of the support. The jaws closing on nothing (JAWS_EMPTY) means the object lies
 beyond the jaws' width, where closing does not sweep: the arm rises and goes where the
-palm's contact placed the object, or else to the next point of a bounded search along
+palm's contact placed the object, or a step beyond the pads' edge that brushed it on the
+way (JAWS_BRUSHED), or else to the next point of a bounded search along
 the jaws' width, alternating sides, around where the approach left it and the moves
 across have since taken it. While the jaws close it follows the hand's ARM_NUDGE
 (re-centring on the pads' contact) and ends once FINGERS_STOPPED.
@@ -36,7 +37,15 @@ from primitives.arm.motion import (
 )
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
-from primitives.blackboard import ARM_NUDGE, ARM_TWIST, CONTACT, EMPTY_HAND, FINGERS_STOPPED, JAWS_EMPTY
+from primitives.blackboard import (
+    ARM_NUDGE,
+    ARM_TWIST,
+    CONTACT,
+    EMPTY_HAND,
+    FINGERS_STOPPED,
+    JAWS_BRUSHED,
+    JAWS_EMPTY,
+)
 from primitives.filters import ContactWrench, contact_across, world_load
 from primitives.robot import Readings
 from primitives.search import search_offsets
@@ -83,7 +92,8 @@ class JawGraspCorrection(Controller):
         self.max_shift = float(p["max_shift"])
         self.max_shifts = int(p["max_shifts"])
         self.jaw_half_width = float(p["jaw_half_width"])
-        self.offsets = search_offsets(float(p["search_step"]), int(p["search_points"]))
+        self.step = float(p["search_step"])
+        self.offsets = search_offsets(self.step, int(p["search_points"]))
         self.contact = ContactWrench(float(p["filter_time"]))
         self.shaper = TwistShaper()  # a sudden reversal shakes the wrist like a contact
         # One sample of the Baxter's virtual wrist sensor is off by 0.2 N or more: a 20 g object.
@@ -100,6 +110,7 @@ class JawGraspCorrection(Controller):
         self.last_across = 0.0  # hand y of the last move across
         self.hint: np.ndarray | None = None  # where the last contact says the object is, world frame
         self.hinted = False  # a contact's hint has been followed: one is, once
+        self.brushed = False  # a hint from the pads' brushing the object has been taken: one is, once
         self.ctx.blackboard[CONTACT] = False
         self._rise(readings, np.zeros(3), self._above_object())
 
@@ -262,6 +273,13 @@ class JawGraspCorrection(Controller):
         board = self.ctx.blackboard
         if board.get(JAWS_EMPTY):
             board[CONTACT] = False
+            brushed = board.get(JAWS_BRUSHED)
+            if self.hint is None and brushed is not None and not self.brushed:
+                # The pads felt the object at their edge and closed past it: it lies a
+                # search step beyond that edge (once: where that leads to nothing, the
+                # search goes on as planned).
+                self.hint = readings.tcp[:3, 3] + readings.tcp[:3, 0] * np.sign(brushed) * self.step
+                self.brushed = True
             if self.hint is not None:
                 point, self.hint, self.hinted = self.hint, None, True
             elif self.searched < len(self.offsets):

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
-from primitives.blackboard import ARM_NUDGE, CONTACT, EMPTY_HAND, FINGERS_STOPPED, JAWS_EMPTY
+from primitives.blackboard import ARM_NUDGE, CONTACT, EMPTY_HAND, FINGERS_STOPPED, JAWS_BRUSHED, JAWS_EMPTY
 from primitives.filters import world_load
 from primitives.hands.posture import position_command
 from primitives.robot import HandMode, Readings
@@ -103,6 +103,7 @@ class CloseUntilForce(Controller):
         self.reference = self.opened = float(readings.hand_q[0])
         self.pressing = False
         self.recentred = 0.0  # m the arm has followed a contact along the jaws' width in this close
+        self.brushed: float | None = None  # where along the jaws' width the pads last felt something in this close
         self.ctx.memory[EMPTY_HAND] = world_load(readings)  # a grasp begins empty-handed
         self.guided = CONTACT in self.ctx.blackboard  # the arm says when to close
 
@@ -116,6 +117,7 @@ class CloseUntilForce(Controller):
                 self.pressing = False
                 if self.guided:
                     board[JAWS_EMPTY] = True
+                    board[JAWS_BRUSHED] = self.brushed
                 else:
                     self.finish(Status.ERROR, "the jaws closed on nothing")
             elif self.pressing and abs(float(readings.hand_dq[0])) < STILL and self._gripped(force):
@@ -133,7 +135,10 @@ class CloseUntilForce(Controller):
         if self.status is Status.ERROR:
             board[ARM_NUDGE] = None
             return position_command(np.array([self.reference]))
-        off_centre = self._across_pads(readings) if self.guided and self.recentred < self.max_recentre else 0.0
+        across = self._across_pads(readings)
+        if across != 0.0:
+            self.brushed = across
+        off_centre = across if self.guided and self.recentred < self.max_recentre else 0.0
         self.recentred += abs(off_centre) * self.speed * dt
         closing = abs(off_centre) <= ALIGNED  # closing on a pad's rim pushes the object along the jaws' width
         board[ARM_NUDGE] = self._nudge(readings, off_centre, closing)
@@ -167,6 +172,7 @@ class CloseUntilForce(Controller):
             if self.jaws.closing * (self.reference - self.opened) <= 0.0:
                 self.reference = self.opened
                 self.recentred = 0.0
+                self.brushed = None
                 board[JAWS_EMPTY] = False
         return position_command(np.array([self.reference]))
 

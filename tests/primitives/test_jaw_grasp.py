@@ -148,3 +148,13 @@ def test_a_search_rises_and_moves_across_in_one_motion_so_it_ends_within_the_gra
     [record] = preset_trials((index,), robot="melfa", engine="mujoco", grasp="robust", object=obj,
                              perturbation="approach")
     assert record.task_succeeded and record.judged_succeeded, (record.summary, record.judge_reason)
+
+
+def test_jaws_that_brush_the_object_with_a_pads_edge_look_beyond_that_edge_next() -> None:
+    """The preset's speaker trial 2 in PyBullet: the approach error left the jaws over the
+    speaker's end, and closing, a pad's edge brushed it and pushed it away along the jaws'
+    width; the jaws closed on nothing. The planned search went the other way first and ran
+    out of time. The pads felt where the object was: the next point is a step beyond that edge."""
+    [record] = preset_trials((2,), robot="melfa", engine="pybullet", grasp="robust", object="speaker",
+                             perturbation="approach")
+    assert record.task_succeeded and record.judged_succeeded, (record.summary, record.judge_reason)
