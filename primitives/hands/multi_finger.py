@@ -241,6 +241,7 @@ class RobustGraspHand(FingerGrasp):
     def start(self, readings: Readings) -> None:
         super().start(readings)
         self.searches = 0  # search steps taken so far
+        self.lost_shift = np.zeros(3)  # the latest finger-lost correction's shift (hand frame)
         self.quality = np.inf  # D5's Q at the latest uneven grasp
         if self.fingers:
             self.gauge = ExtensionGauge(self.ctx.info.hand, [self.pad_of[f] for f in self.fingers], self.pre)
@@ -321,7 +322,15 @@ class RobustGraspHand(FingerGrasp):
             self._fail(what)
         elif touching:  # finger lost: shift towards the fingers that touched
             toward = np.mean([self.base[f] for f in touching], axis=0) - np.mean([self.base[f] for f in lost], axis=0)
-            self._try_again(np.array([*toward / np.linalg.norm(toward), 0.0]) * self.finger_lost_shift, what)
+            shift = np.array([*toward / np.linalg.norm(toward), 0.0]) * self.finger_lost_shift
+            if float(shift @ self.lost_shift) < 0.0:
+                # Back the way the last one came: each finger in turn touches the object's
+                # edge and the other misses, so the object lies off the line between them
+                # (the SDH2 on a mug's side, 5.7 cm across its pinch line, flip-flopped
+                # until its corrections ran out): look across that line instead.
+                shift = self._search_step()
+            self.lost_shift = shift
+            self._try_again(shift, what)
         else:
             self._try_again(self._search_step(), what)
 

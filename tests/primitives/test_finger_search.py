@@ -24,3 +24,14 @@ def test_fingers_that_closed_on_nothing_find_the_object_beside_the_pinch_line(
         arm: str, engine: str, obj: str, index: int) -> None:
     [record] = preset_trials((index,), **APPROACH_ERROR, arm=arm, engine=engine, object=obj)
     assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
+
+
+@pytest.mark.parametrize("index", [1, 8])
+def test_finger_lost_corrections_that_flip_flop_look_across_the_pinch_line(index: int) -> None:
+    """The SDH2 on the preset's mug in MuJoCo, the approach error leaving the hand 5-6 cm off
+    across its pinch line: each close, one finger touched the mug's side and the other
+    missed, and the finger-lost shifts went back and forth (1.5 cm one way, then the other)
+    until the corrections ran out. A shift back the way the last one came is a search step
+    across the line instead."""
+    [record] = preset_trials((index,), **APPROACH_ERROR, arm="left", engine="mujoco", object="mug")
+    assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
