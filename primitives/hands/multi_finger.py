@@ -12,7 +12,9 @@ pads:
 - every grasping finger touches: force adaptation raises each finger's effort until its
   pad feels GRASP_FORCE; the grasp succeeds only then, with the object held;
 - some fingers touch and others closed on nothing (finger lost): reopen and ask the arm
-  to shift the hand towards the fingers that touched, then close again;
+  to shift the hand towards the fingers that touched, then close again (a shift back the
+  way the last one came is a step of the search across the pinch line instead: the
+  fingers take turns on the object's edge, so it lies off the line between them);
 - no finger touches, but some touched something on the way and others did not (the
   object pushed aside by the first finger to meet it): as for a finger lost, towards those;
 - no finger touches (object lost; known as soon as the pads pass within PASSED of the
