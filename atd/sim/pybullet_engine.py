@@ -152,7 +152,7 @@ class PybulletRobot(SimRobot):
             # A friction anchor pins a contact point, which a rolling ball's is not: anchored
             # (on either body), a ball rolling at 5 cm/s sped up to 17 cm/s in 2 s on a level
             # table, and balls the grasp had nudged rolled off it.
-            rolls = scene.object is not None and scene.object.kind == "sphere"
+            rolls = scene.object is not None and scene.object.rolls
             pb.changeDynamics(self.table, -1, lateralFriction=1.0, frictionAnchor=int(not rolls), physicsClientId=c)
         for obstacle in scene.obstacles:
             self._make(obstacle, fixed=True)
@@ -173,7 +173,7 @@ class PybulletRobot(SimRobot):
             0 if fixed else body.mass, shape, basePosition=body.pose[:3, 3].tolist(),
             baseOrientation=_xyzw(body.pose), physicsClientId=c,
         )
-        pb.changeDynamics(uid, -1, lateralFriction=body.friction, frictionAnchor=int(body.kind != "sphere"),
+        pb.changeDynamics(uid, -1, lateralFriction=body.friction, frictionAnchor=int(not body.rolls),
                           physicsClientId=c)
         if not fixed:
             pb.changeDynamics(

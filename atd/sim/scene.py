@@ -62,6 +62,12 @@ class Body:
         return self.mesh_parts or ((self.mesh,) if self.mesh is not None else ())
 
     @property
+    def rolls(self) -> bool:
+        """It rests on the table at one point, so only rolling friction stops it rolling: the
+        engines model that contact apart (MuJoCo's condim 6, no PyBullet friction anchor)."""
+        return self.kind == "sphere"
+
+    @property
     def half_extents(self) -> tuple[float, ...]:
         """MJCF-style size: box half extents, (radius, half height), (radius,)."""
         if self.kind in ("box", "mesh"):

@@ -269,17 +269,21 @@ class JawGraspCorrection(Controller):
         self.risen += rise
         return False
 
+    def _brushed_hint(self, readings: Readings, brushed: float | None) -> np.ndarray | None:
+        """Where to look after jaws whose pads felt the object at their edge (`brushed`, from
+        JAWS_BRUSHED) closed past it: a search step beyond that edge. Once: where that leads
+        to nothing, the search goes on as planned."""
+        if brushed is None or self.brushed:
+            return None
+        self.brushed = True
+        return readings.tcp[:3, 3] + readings.tcp[:3, 0] * np.sign(brushed) * self.step
+
     def _close(self, readings: Readings, dt: float) -> np.ndarray:
         board = self.ctx.blackboard
         if board.get(JAWS_EMPTY):
             board[CONTACT] = False
-            brushed = board.get(JAWS_BRUSHED)
-            if self.hint is None and brushed is not None and not self.brushed:
-                # The pads felt the object at their edge and closed past it: it lies a
-                # search step beyond that edge (once: where that leads to nothing, the
-                # search goes on as planned).
-                self.hint = readings.tcp[:3, 3] + readings.tcp[:3, 0] * np.sign(brushed) * self.step
-                self.brushed = True
+            if self.hint is None:
+                self.hint = self._brushed_hint(readings, board.get(JAWS_BRUSHED))
             if self.hint is not None:
                 point, self.hint, self.hinted = self.hint, None, True
             elif self.searched < len(self.offsets):

@@ -126,7 +126,7 @@ class CloseUntilForce(Controller):
                 self.finish(Status.DONE, f"grip force {force:.1f} N (asked {self.grasp_force:g} N{limit})")
             elif not self.pressing and (self.jaws.both_touch(readings, self.grasp_force) or self._blocked(readings)):
                 self.pressing = True
-                self.squeeze.trim = 0.0  # each press starts from the grasp force
+                self.squeeze.reset()  # each press starts from the grasp force
         if board.get(JAWS_EMPTY):
             return self._reopen(dt)
         if self.pressing:
@@ -218,21 +218,25 @@ class Squeeze(Controller):
         super().__init__(ctx)
         self.grasp_force = float(self.params["grasp_force"])
         self.jaws = Jaws(ctx, str(self.params["force_source"]))
+        self.limit = SQUEEZE_TRIM * self.grasp_force  # N the trim may add or take away
         self.trim = 0.0
 
     def start(self, readings: Readings) -> None:
         self.finish(Status.DONE, f"squeezing with {self.grasp_force:g} N")
 
+    def reset(self) -> None:
+        """Press with the grasp force alone again (a new press begins)."""
+        self.trim = 0.0
+
     @property
     def saturated(self) -> bool:
         """The motor already presses as hard as the trim allows."""
-        return self.trim >= SQUEEZE_TRIM * self.grasp_force - 1e-9
+        return self.trim >= self.limit
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         if self.jaws.source == "tactile":
-            limit = SQUEEZE_TRIM * self.grasp_force
             error = self.grasp_force - self.jaws.force(readings)
-            self.trim = min(limit, max(-limit, self.trim + SQUEEZE_GAIN * error * dt))
+            self.trim = min(self.limit, max(-self.limit, self.trim + SQUEEZE_GAIN * error * dt))
         return self.jaws.command(self.grasp_force + self.trim)
 
 
