@@ -19,7 +19,8 @@ pads:
   object pushed aside by the first finger to meet it): as for a finger lost, towards those;
 - no finger touches (object lost; known as soon as the pads pass within PASSED of the
   task's object's least width of each other): where two fingers pinch, the object lies off the line
-  they close along, so search across it, one side then the other (`search_step`); other
+  they close along, so search across it, one side then the other (`search_step`), and
+  on the side a search step went as long as its close meets the object's edge; other
   hands take D5's security reflex: reopen, move a little further along the approach,
   close again;
 - while holding, a grasping pad feels nothing for LOST_TIME while another presses (one
@@ -242,7 +243,9 @@ class RobustGraspHand(FingerGrasp):
 
     def start(self, readings: Readings) -> None:
         super().start(readings)
-        self.searches = 0  # search steps taken so far
+        self.plan = search_offsets(self.search_step, SEARCH_POINTS)  # search points not yet visited
+        self.across = 0.0  # m: where the hand closes across the pinch line, from where it first closed
+        self.heading = 0.0  # the side (+1, -1) of a search step whose close is being judged, else 0
         self.lost_shift = np.zeros(3)  # the latest finger-lost correction's shift (hand frame)
         self.quality = np.inf  # D5's Q at the latest uneven grasp
         if self.fingers:
@@ -306,6 +309,7 @@ class RobustGraspHand(FingerGrasp):
         fingers that touch it; when none does, towards those that touched something on the
         way and lost it (the object pushed aside by the finger that met it first), as long
         as some did not: that side is where the object went."""
+        heading, self.heading = self.heading, 0.0
         touching = self._touching(readings)
         if not touching and set(self.fingers) - self.brushed:
             touching = [f for f in self.fingers if f in self.brushed]
@@ -322,6 +326,9 @@ class RobustGraspHand(FingerGrasp):
         what = f"finger {', '.join(lost)} missed the object" if touching else "nothing between the fingers"
         if touching and not self.correct:
             self._fail(what)
+        elif touching and heading and len(self.fingers) == 2:
+            # A search step's close met the object's edge: it lies further that way.
+            self._try_again(self._search_step(beyond=heading), what)
         elif touching:  # finger lost: shift towards the fingers that touched
             toward = np.mean([self.base[f] for f in touching], axis=0) - np.mean([self.base[f] for f in lost], axis=0)
             shift = np.array([*toward / np.linalg.norm(toward), 0.0]) * self.finger_lost_shift
@@ -357,7 +364,7 @@ class RobustGraspHand(FingerGrasp):
         self._try_again(shift, what, turn)
         return True
 
-    def _search_step(self) -> np.ndarray:
+    def _search_step(self, beyond: float = 0.0) -> np.ndarray:
         """Where to look next when the fingers closed on nothing (hand frame): across the
         pinch line, `search_step` to one side of where the hand first closed, then as far to
         the other, then twice as far each way (SEARCH_POINTS), then D5's step along the
@@ -367,14 +374,20 @@ class RobustGraspHand(FingerGrasp):
         0-2 of each object: 21 of 24 failures closed on nothing again and again). The steps
         are made at the surface: rising clear of the object and approaching again from above
         took so long that the grasp timed out after one step (6 of those 30 lifted, against
-        10 this way)."""
-        if len(self.fingers) != 2 or self.searches >= SEARCH_POINTS:
+        10 this way).
+        `beyond` (+1 or -1): the last step's close touched the object's edge on that side,
+        so the next point is one step further that way, not the plan's next (the Barrett
+        on a cylinder 5.3 cm off its line, MuJoCo, the preset's trial 1: a finger met it
+        2.8 cm off, the plan went back the other way, and the grasp timed out)."""
+        if len(self.fingers) != 2 or not (self.plan or beyond):
             return np.array([0.0, 0.0, self.object_lost_step])
         line = self.base[self.fingers[1]] - self.base[self.fingers[0]]
-        across = np.array([-line[1], line[0], 0.0]) / np.linalg.norm(line)
-        offsets = [0.0, *search_offsets(self.search_step, SEARCH_POINTS)]
-        self.searches += 1
-        return (offsets[self.searches] - offsets[self.searches - 1]) * across
+        direction = np.array([-line[1], line[0], 0.0]) / np.linalg.norm(line)
+        point = self.across + beyond * self.search_step if beyond else self.plan[0]
+        self.plan = [p for p in self.plan if not np.isclose(p, point)]
+        step, self.across = point - self.across, point
+        self.heading = float(np.sign(step))
+        return step * direction
 
     def _try_again(self, shift: np.ndarray, what: str, turn: float = 0.0) -> None:
         """A failed attempt: reopen, have the arm make `shift` (hand frame) and `turn`

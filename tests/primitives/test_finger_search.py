@@ -35,3 +35,18 @@ def test_finger_lost_corrections_that_flip_flop_look_across_the_pinch_line(index
     across the line instead."""
     [record] = preset_trials((index,), **APPROACH_ERROR, arm="left", engine="mujoco", object="mug")
     assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
+
+
+@pytest.mark.parametrize(("arm", "engine", "obj", "index"), [
+    ("right", "mujoco", "cylinder", 1),  # the Barrett: a finger met the cylinder 2.8 cm off
+    ("left", "mujoco", "weight", 4),  # the SDH2, on the plan's second point
+    ("left", "pybullet", "mug", 7),  # twice in a row: each close met the mug's edge
+])
+def test_a_search_step_that_meets_the_objects_edge_goes_on_that_way(
+        arm: str, engine: str, obj: str, index: int) -> None:
+    """One finger touched the object on the close after a search step and the other missed:
+    the object lies beyond, on the side the step went. The plan's next point, back on the
+    other side, led each of these to a timeout or to the corrections running out (at
+    5c8dcc3)."""
+    [record] = preset_trials((index,), **APPROACH_ERROR, arm=arm, engine=engine, object=obj)
+    assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
