@@ -31,11 +31,13 @@ SURFACE_FILTER = 0.05
 # the Barrett's wrist, over the 2 N contact threshold, and the approach ended where it began,
 # 2 cm above the object's top (MuJoCo, grasp_and_lift with the seeds' approach error)
 APPROACH_ACCELERATION = 0.3
-# s the hand stays still once level before the wrist's reading is taken as the free hand's: the
-# turn's own jolt read 5.9 N on the Barrett's wrist (MuJoCo), and the weight of a hand turned
-# by 3 degrees another 1.3 N, so the approach took that for a contact and the fingers closed
-# 2 cm above the table beside the object (the preset, approach error, cylinder trial 1)
-LEVEL_SETTLE = 0.1
+# s the hand stays still once level, or once over a contact, before the wrist's reading is taken
+# as the free hand's: the turn's own jolt read 5.9 N on the Barrett's wrist (MuJoCo), and the
+# weight of a hand turned by 3 degrees another 1.3 N, so the approach took that for a contact and
+# the fingers closed 2 cm above the table beside the object (the preset, approach error, cylinder
+# trial 1); stopping at the end of the moves over a contact read 2.2-2.4 N on the SDH2's, and
+# the fingers closed 5-9 cm above the object (MuJoCo, the preset's cylinder 4, wood 9, speaker 7)
+SETTLE = 0.1
 
 
 class RobustGraspApproach(Controller):
@@ -53,13 +55,14 @@ class RobustGraspApproach(Controller):
     there while the others close, and they push the object away (rotation-only approach
     error, MuJoCo, 30 trials per hand: Barrett 2 lifted, SDH2 7; levelled: 18 and 15).
     A hand that has to turn level starts its approach once it is level and has been still
-    for LEVEL_SETTLE, its wrist reading taken afresh: the turn changes how the hand's weight
+    for SETTLE, its wrist reading taken afresh: the turn changes how the hand's weight
     loads the sensor.
     A first contact above the support and off the grasp centre (placed from the wrist's
     force and torque at the fingertips' depth) is a finger on the object's top: the hand
     rises off it, moves its grasp centre over it and approaches again (Eq. 3.1's idea,
     across both of the hand's axes; its torque threshold is for the thesis' sensor, and
-    a fingertip's 2-17 N at 5-10 cm stays under it).
+    a fingertip's 2-17 N at 5-10 cm stays under it); it stays still for SETTLE before it
+    approaches again, as after turning level.
     Sliding grasp (Eq. 3.2): the surface pushes back on the hand with F_s (against the
     grasp direction, measured against the free hand of the state's start and filtered over
     SURFACE_FILTER); the approach ended on F_s = F_t, the contact the slide keeps: F_s
@@ -105,8 +108,8 @@ class RobustGraspApproach(Controller):
         from_above = float((rotation @ self.direction) @ WORLD_DOWN) >= np.cos(self.level_within)
         self.rotation = top_down(rotation) if from_above and self.level_within > 0.0 else rotation.copy()
         _, tilt = orientation_twist(self.rotation, rotation)
-        self.phase = "level" if tilt >= ORIENTATION_TOLERANCE else "approach"  # a level hand starts at once
-        self.still = 0.0  # s the hand has been level
+        self.phase = "settle" if tilt >= ORIENTATION_TOLERANCE else "approach"  # a level hand starts at once
+        self.still = 0.0  # s the hand has been level and still
         self.approach_now = 0.0  # m/s: the approach's speed, rising to the approach velocity
         self.goal: np.ndarray | None = None  # where to stay, or to shift to
         self.route: list[np.ndarray] = []  # the moves over a finger's contact, world frame
@@ -144,9 +147,9 @@ class RobustGraspApproach(Controller):
         if self.phase == "hold" and self.backing:  # squeezing presses the tips down
             self.goal = self.goal - self.backoff_speed * dt * (rotation @ self.direction)
         w, angle = orientation_twist(self.rotation, rotation)
-        if self.phase == "level":
+        if self.phase == "settle":  # turning level, or stopped after the moves over a contact
             self.still = self.still + dt if angle < ORIENTATION_TOLERANCE else 0.0
-            if self.still >= LEVEL_SETTLE:
+            if self.still >= SETTLE:
                 self._approach_from(readings)
         world = rotation @ v
         if self.phase == "across":
@@ -193,8 +196,8 @@ class RobustGraspApproach(Controller):
         position = readings.tcp[:3, 3]
         if norm(self.route[0] - position) < SHIFT_TOLERANCE:
             self.route.pop(0)
-            if not self.route:
-                self._approach_from(readings)
+            if not self.route:  # settle first: stopping read up to 2.4 N on the wrist
+                self.phase, self.still = "settle", 0.0
                 return np.zeros(3)
         return clamp_norm(GAIN * (self.route[0] - position), self.approach_speed)
 
