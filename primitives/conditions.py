@@ -40,18 +40,23 @@ def pad_indices(hand: HandInfo, sensors: tuple[str, ...]) -> list[int]:
 
 
 class StatusIs(Condition):
-    """A controller (or sub-task) has reached a status: the `*_done`, `*_error`,
-    `subtask_*` kinds."""
+    """A controller (or sub-task) has reached a status, and kept it for `for_time` where
+    the kind takes one: the `*_done`, `*_error`, `subtask_*` kinds."""
 
     def __init__(self, ctx: Context, sensors: tuple[str, ...], which: str, status: Status) -> None:
         super().__init__(ctx, sensors)
         self.which, self.status = which, status
+        self.debounce = Debounce(float(self.params.get("for_time", 0.0)))
+
+    def start(self, readings: Readings) -> None:
+        self.debounce.reset()
 
     def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
         actual = getattr(state, self.which)
-        if actual is not self.status:
+        if not self.debounce(actual is self.status, dt):
             return False
-        self.evidence = {self.which: actual.value, "reason": state.reasons.get(self.which, "")}
+        self.evidence = {self.which: actual.value, "reason": state.reasons.get(self.which, ""),
+                         "held_for": self.debounce.held}
         return True
 
 

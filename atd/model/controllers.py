@@ -414,7 +414,9 @@ _TACTILE_PARAMS = {
 }
 
 _CONDITIONS = (
-    ConditionSpec("arm_done", "The state's arm controller reports it has finished."),
+    ConditionSpec("arm_done", "The state's arm controller reports it has finished.",
+                  params={"for_time": _p(NUM, "the arm must have been finished this long (ours; 0 = at once)",
+                                         0.0, unit="s")}),
     ConditionSpec("hand_done", "The state's hand controller reports it has finished."),
     ConditionSpec("arm_error", "The arm controller gave up (target unreachable, no contact within reach)."),
     ConditionSpec("hand_error", "The hand controller gave up (nothing between the fingers, shape unreachable)."),

@@ -60,6 +60,20 @@ def test_table_7_3_grasp_uses_wrist_force_torque_and_tactile():
     assert stable.sensors == ("tactile_f1", "tactile_f2", "tactile_f3") and stable.params["min_pads"] == 2
 
 
+def _leaves(node):
+    children = getattr(node, "children", None)
+    return [node] if children is None else [leaf for child in children for leaf in _leaves(child)]
+
+
+def test_a_transport_succeeds_only_after_holding_its_object_still_at_the_target():
+    """The arm must have been done for 2 s, the object held all along (grasp_stable)."""
+    task = one_state_task(_state(StateType.TRANSPORT))
+    for robot in ("melfa", "tombatossals", "baxter"):
+        success = create(robot).map_event("success", None, task.transitions[0], MappingContext(task))
+        arm_done = [leaf for leaf in _leaves(success) if leaf.kind == "arm_done"]
+        assert [leaf.params["for_time"] for leaf in arm_done] == [2.0], (robot, describe(success))
+
+
 # Table 7.4: abstract -> Melfa primitive and controllers.
 TABLE_7_4 = [
     (StateType.GRASP, "grasp", "jaw_grasp_correction", "close_until_force"),
