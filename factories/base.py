@@ -240,9 +240,8 @@ class Factory(ABC):
                 and EventType.GRASP_STABLE not in self.undetectable_events):
             # A transport that arrived without its object has not transported it; one whose
             # object drops out as soon as the arm stops has not either.
-            arrived = all_of(self.condition(EventType.SUCCESS, "arm_done", for_time=HELD_FOR),
-                             self.condition(EventType.SUCCESS, "hand_done"))
-            return all_of(arrived, self.map_event(EventType.GRASP_STABLE, None, transition, context))
+            return all_of(lasting(self.success(origin), HELD_FOR),
+                          self.map_event(EventType.GRASP_STABLE, None, transition, context))
         if event_type is EventType.SUCCESS:
             return self.success(origin)
         if event_type in self.undetectable_events:
