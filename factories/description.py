@@ -259,6 +259,9 @@ class Hand:
     grasp_centres: dict[str, Vec3] = field(default_factory=dict)
     """Hand shapes that close elsewhere than on the TCP -> where they close, hand frame, from
     the TCP (a pinch between two fingers that stand off the palm centre)."""
+    rising_grasps: frozenset[str] = frozenset()
+    """Hand shapes whose fingertips are left to rise off the support as they close: the
+    sliding grasp only backs off the surface, never follows it down (`follow_surface`)."""
     push_posture: str = "closed"
     """The posture a closed hand takes to move and push (not a D5 shape): a hand whose fist
     meets an object with sloping links names one that leads with a vertical face."""

@@ -208,6 +208,10 @@ _ARM_CONTROLLERS = (
             "backoff_velocity": _p(NUM, "speed of the sliding grasp's back-off from a surface the fingertips press "
                                    "on (ours: at the correction velocity, closing fingers waited 4-5 s per close "
                                    "for the hand to rise)", 0.02, unit="m/s"),
+            "follow_surface": _p(FLAG, "the sliding grasp moves the hand on along the grasp direction once the "
+                                 "surface's push is gone (Eq. 3.2); off, it only backs off the surface (ours: the "
+                                 "robot's hand description says which grasps lift their fingertips as they close)",
+                                 True),
             "centre_band": _p(NUM, "an approach's first contact above the support and more than this far off the "
                               "grasp centre, across the hand, is a finger on the object's top: the hand moves "
                               "over it (ours)", 0.02, unit="m"),

@@ -67,8 +67,8 @@ class RobustGraspApproach(Controller):
     grasp direction, measured against the free hand of the state's start and filtered over
     SURFACE_FILTER); the approach ended on F_s = F_t, the contact the slide keeps: F_s
     above it by F_t (fingers pushing on the surface) backs off, at the back-off velocity,
-    until F_s is down to F_t again, F_s down to zero (the contact lost) moves forward,
-    otherwise the arm stays; it ends when the fingers stop.
+    until F_s is down to F_t again, F_s down to zero (the contact lost) moves forward
+    (unless `follow_surface` is off), otherwise the arm stays; it ends when the fingers stop.
     While it backs off it tells the hand (PRESSING) to hold its fingers: closing
     fingertips swing down onto the surface faster than CORRECTION_VELOCITY lifts them, and
     jammed there they stall on the table short of the object (SDH2 pinch, PyBullet: 30-50 N
@@ -88,6 +88,7 @@ class RobustGraspApproach(Controller):
         self.speed = float(p["correction_velocity"])
         self.approach_speed = float(p["approach_velocity"])
         self.backoff_speed = float(p["backoff_velocity"])
+        self.follow_surface = bool(p["follow_surface"])
         self.centre_band = float(p["centre_band"])
         self.max_shift = float(p["max_shift"])
         self.max_shifts = int(p["max_shifts"])
@@ -142,7 +143,7 @@ class RobustGraspApproach(Controller):
                 self.finish(Status.DONE, "the fingers closed")
             elif self.backing:
                 v = -self.backoff_speed * self.direction
-            elif pushed <= 0.0:
+            elif pushed <= 0.0 and self.follow_surface:
                 v = self.speed * self.direction
         if self.phase == "hold" and self.backing:  # squeezing presses the tips down
             self.goal = self.goal - self.backoff_speed * dt * (rotation @ self.direction)
