@@ -427,13 +427,17 @@ class RobustGraspHand(FingerGrasp):
         if self.lost_for >= LOST_TIME and self.status is Status.RUNNING:
             self._judge(readings)
             return
-        felt = []
-        for i in np.flatnonzero(self.moving):
-            force = pads[self.pad_of[self.finger_of_dof[i]]] if self.finger_of_dof[i] else self.grasp_force
-            limit = hand.effort_limit[i]
-            self.effort[i] = min(limit, max(0.0, self.effort[i] + ADAPT_GAIN * limit * (self.grasp_force - force) * dt))
-            felt.append(force)
-        weakest = min(self.felt(np.array(felt), dt))
+        grasping = np.flatnonzero(self.moving)
+        felt = np.array([pads[self.pad_of[f]] if (f := self.finger_of_dof[i]) else self.grasp_force for i in grasping])
+        # Two opposed fingers share one squeeze, set by the weaker pad: each finger's own loop
+        # pushed the object along the pinch line, the finger whose pad read less (its contact
+        # partly off the pad) closing on and on while the other gave way (SDH2, MuJoCo, the
+        # preset's approach error, wood 8: pads 1 and 8 N, the wood carried 8 cm off).
+        pressed = np.full_like(felt, felt.min()) if len(self.fingers) == 2 else felt
+        limit = hand.effort_limit[grasping]
+        self.effort[grasping] = np.clip(self.effort[grasping] + ADAPT_GAIN * limit * (self.grasp_force - pressed) * dt,
+                                        0.0, limit)
+        weakest = min(self.felt(felt, dt))
         band = (1.0 - HELD) * self.grasp_force
         if abs(weakest - self.grasp_force) > band or abs(weakest - self.entered) > band:
             self.entered, self.settled = weakest, 0.0  # out of the band, or only passing through it

@@ -11,6 +11,7 @@ import pytest
 
 from atd.campaign.perturbation import approach_taken
 from atd.model import load_task
+from atd.model.vocabulary import HandShape
 from atd.runtime.session import Run
 from factories.registry import create
 from tests.primitives.conftest import EXAMPLES
@@ -118,3 +119,26 @@ def test_fingers_that_close_past_the_object_without_touching_it_search_at_once(
     _, outcome = _lift_with_error(arm, engine, dx=dx, dy=dy)
     grasp = next(v for v in outcome.visits if v.path == "grasp_object")
     assert grasp.left - grasp.entered < within, grasp.left - grasp.entered
+
+
+def _follows_surface(arm: str, shape: str = "pinch_grasp", config=None) -> bool:
+    """Whether the grasp state's sliding grasp follows the table down, as translated."""
+    task, _ = load_task(TASK)
+    grasps = {"preshape_hand": f"{shape}_preshape", "grasp_object": shape, "lift_object": shape}
+    states = [s.model_copy(update={"hand_shape": HandShape(grasps[s.name])}) if s.name in grasps else s
+              for s in task.states]
+    estd = translate(task.model_copy(update={"states": states}), create("tombatossals", arm=arm, config=config)).estd
+    [state] = [s for s in estd.states if s.name == "grasp_object"]
+    return state.arm.params["follow_surface"]
+
+
+def test_only_the_barretts_pinch_leaves_its_fingertips_to_rise_off_the_table(tmp_path) -> None:
+    """The Barrett's pinching fingertips, kept on the table, slid under an object's bottom
+    edge and lifted one side of it; its cylindrical grasp keeps following the table (D5's
+    orientation correction squares a box in it), as does the SDH2's pinch. A config says
+    otherwise where a user wants it."""
+    assert not _follows_surface("right")
+    assert _follows_surface("right", "cylindrical_grasp") and _follows_surface("left")
+    config = tmp_path / "follow.toml"
+    config.write_text("[tombatossals.controllers.robust_grasp_approach]\nfollow_surface = true\n")
+    assert _follows_surface("right", config=config)
