@@ -149,7 +149,7 @@ class RobustGraspApproach(Controller):
             self.goal = self.goal - self.backoff_speed * dt * (rotation @ self.direction)
         w, angle = orientation_twist(self.rotation, rotation)
         if self.phase == "settle":  # turning level, or stopped after the moves over a contact
-            self.still = self.still + dt if angle < ORIENTATION_TOLERANCE else 0.0
+            self.still = self.still + dt if angle < ORIENTATION_TOLERANCE and board.get(PRESHAPED, True) else 0.0
             if self.still >= SETTLE:
                 self._approach_from(readings)
         world = rotation @ v
@@ -161,7 +161,10 @@ class RobustGraspApproach(Controller):
             if self.phase == "shift" and (made or (self.probing and self.contact.force >= self.force_threshold)
                                           or readings.time - self.shift_started > SHIFT_TIME):
                 board[SHIFT] = None  # made, or as far as the surface or the object allows
-                self._slide()
+                if board.get(PRESHAPED, True):
+                    self._slide()
+                else:  # risen to free the preshape: approach again once it is made and the hand still
+                    self.phase, self.still = "settle", 0.0
         return arm_output(np.concatenate([world, w]))
 
     def _approach_from(self, readings: Readings) -> None:

@@ -84,6 +84,7 @@ PINCHED = 2.0  # times the grasp force on every grasping pad: the fingers have c
 # approach error); searching across its pinch line, it timed out in 18 and 15 of the preset's
 # first 50 trials with the approach error (MuJoCo, PyBullet), 9 and 10 once it stopped here
 PASSED = 0.5
+FREE_RISE = 0.02  # m the arm rises to free a preshape blocked short of its posture
 GAP_CHECK = 0.05  # s between looks at the pads' gap (the hand's forward kinematics: 0.3-0.5 ms a look)
 
 
@@ -145,9 +146,14 @@ class FingerGrasp(Controller):
         board = self.ctx.blackboard
         q = readings.hand_q
         if self.phase == "preshape":
-            if self._ramp(self.pre, dt, q) or self._blocked(readings, dt):
+            reached = self._ramp(self.pre, dt, q)
+            if reached or (self._blocked(readings, dt) and not self._free_fingers(board)):
                 self.phase = "wait"
                 board[PRESHAPED] = True
+        elif self.phase == "free" and board.get(SHIFT) is None:  # risen: preshape again, in free air
+            self.phase = "preshape"
+            self.stillness.seconds[:] = 0.0
+            self.ctx.memory[EMPTY_HAND] = world_load(readings)
         elif self.phase == "wait" and board.get(CONTACT):
             self._begin_closing(board)
         elif self.phase == "close":
@@ -162,6 +168,11 @@ class FingerGrasp(Controller):
         elif self.phase == "hold":
             self._hold(readings, dt)
         return self._command()
+
+    def _free_fingers(self, board: dict) -> bool:
+        """The preshape is blocked short of its posture: true if the arm is asked to rise
+        so that the hand can make it in free air (phase "free"). The baseline grasp does not."""
+        return False
 
     @abstractmethod
     def _close(self, readings: Readings, dt: float, board: dict) -> None:
@@ -248,8 +259,21 @@ class RobustGraspHand(FingerGrasp):
         self.heading = 0.0  # the side (+1, -1) of a search step whose close is being judged, else 0
         self.lost_shift = np.zeros(3)  # the latest finger-lost correction's shift (hand frame)
         self.quality = np.inf  # D5's Q at the latest uneven grasp
+        self.freed = False  # the arm has risen to free a blocked preshape
         if self.fingers:
             self.gauge = ExtensionGauge(self.ctx.info.hand, [self.pad_of[f] for f in self.fingers], self.pre)
+
+    def _free_fingers(self, board: dict) -> bool:
+        """Once per grasp: a preshape blocked short (fingertips pressed on the table as the
+        spread turns) is made again FREE_RISE higher. Grasped from there, the Barrett's
+        pinch closed with its fingers not facing each other and held the table (PyBullet,
+        the preset's approach error, stapler 4: spread 0.72 rad of pi/2, pads 56 N)."""
+        if self.freed:
+            return False
+        self.freed = True
+        board[SHIFT] = np.array([0.0, 0.0, -FREE_RISE, 0.0])
+        self.phase = "free"
+        return True
 
     def _begin_closing(self, board: dict) -> None:
         super()._begin_closing(board)

@@ -121,6 +121,19 @@ def test_fingers_that_close_past_the_object_without_touching_it_search_at_once(
     assert grasp.left - grasp.entered < within, grasp.left - grasp.entered
 
 
+@pytest.mark.parametrize("index", [4, 14])
+def test_a_preshape_blocked_on_the_table_is_made_again_higher_up(index: int) -> None:
+    """The Barrett in PyBullet with the preset's approach error: the preshape's descent met
+    the table at 48 N, the spread could not turn its fingers to face each other (0.72 rad
+    of pi/2), and the pinch closed on the table, not across the stapler (each failed at
+    398f6d7). The hand rises 2 cm and makes its preshape in free air first."""
+    from tests.primitives.conftest import preset_trials
+
+    [record] = preset_trials((index,), robot="tombatossals", arm="right", engine="pybullet", grasp="robust",
+                             object="stapler", perturbation="approach")
+    assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
+
+
 def _follows_surface(arm: str, shape: str = "pinch_grasp", config=None) -> bool:
     """Whether the grasp state's sliding grasp follows the table down, as translated."""
     task, _ = load_task(TASK)
