@@ -10,7 +10,8 @@ pads:
   turn the hand by `alpha_threshold` or more): reopen, move the hand by D5's position
   and orientation corrections (`extension.ExtensionGauge`), close again;
 - every grasping finger touches: force adaptation raises each finger's effort until its
-  pad feels GRASP_FORCE; the grasp succeeds only then, with the object held;
+  pad feels GRASP_FORCE (a pinch's two fingers: one effort, until their pads' mean does);
+  the grasp succeeds only then, with the object held;
 - some fingers touch and others closed on nothing (finger lost): reopen and ask the arm
   to shift the hand towards the fingers that touched, then close again (a shift back the
   way the last one came is a step of the search across the pinch line instead: the
@@ -24,7 +25,8 @@ pads:
   hands take D5's security reflex: reopen, move a little further along the approach,
   close again;
 - while holding, a grasping pad feels nothing for LOST_TIME while another presses (one
-  finger has come off the object): as for a finger lost;
+  finger has come off the object): as for a finger lost; every pad feels nothing (the
+  object knocked away): as for an object lost;
 - the pads never settle at GRASP_FORCE within SETTLE_LIMIT: an error naming the pads
   (D5's check of the grasped faces backs off 5 mm and closes again; that second hold
   would take the grasp past the 20 s a task gives it).
@@ -434,7 +436,14 @@ class RobustGraspHand(FingerGrasp):
         """Force adaptation: from a light touch, each grasping finger's effort rises until
         its pad feels the grasp force, and keeps it there. The object is held once the
         weakest grasping pad has felt the grasp force (within 1 - HELD, averaged over
-        FELT_TIME, and not drifting by more than that) for SETTLE_TIME; a pad force only
+        FELT_TIME, and not drifting by more than that) for SETTLE_TIME; two opposed fingers
+        of a pinch share one squeeze instead, driven and judged by their pads' mean (each
+        pad touching: see LOST_TIME): each finger's own loop pushed
+        the object along the pinch line, the finger whose pad read less (its contact partly
+        off the pad) closing on and on while the other gave way (SDH2, MuJoCo, the preset's
+        approach error, wood 8: pads 1 and 8 N, the wood carried 8 cm off), and a squeeze
+        set by the weaker pad left pads at 4 and 9 N still short of the band when
+        SETTLE_LIMIT ran out (10 of the SDH2's 42 failures, MuJoCo, trials 0-19). A pad force only
         falling through the band, as the squeeze left from closing bleeds off, is not
         held (MuJoCo, 8 N/s: 0.1 s in the band). A hold that has not settled within SETTLE_LIMIT is a
         failed grasp (the object tilted and wedged against the table, say): an error
@@ -443,28 +452,28 @@ class RobustGraspHand(FingerGrasp):
         it, or the fingers touch at different points, their pads read different forces, and
         a self-locking drive keeps its pad's force even at no effort, so all pads at the
         grasp force at once may never come. Not the strongest either: the squeeze left over
-        from closing is above the grasp force on every pad until adaptation has let it go."""
+        from closing is above the grasp force on every pad until adaptation has let it go.
+        Every grasping pad feeling nothing for LOST_TIME is the object gone (knocked over as
+        the fingers closed): judged again at once, not after SETTLE_LIMIT."""
         hand = self.ctx.info.hand
         pads = readings.pad_force
         touching = self._touching(readings)
-        self.lost_for = self.lost_for + dt if self.correct and 0 < len(touching) < len(self.fingers) else 0.0
+        self.lost_for = self.lost_for + dt if self.correct and len(touching) < len(self.fingers) else 0.0
         if self.lost_for >= LOST_TIME and self.status is Status.RUNNING:
             self._judge(readings)
             return
         grasping = np.flatnonzero(self.moving)
         felt = np.array([pads[self.pad_of[f]] if (f := self.finger_of_dof[i]) else self.grasp_force for i in grasping])
-        # Two opposed fingers share one squeeze, set by the weaker pad: each finger's own loop
-        # pushed the object along the pinch line, the finger whose pad read less (its contact
-        # partly off the pad) closing on and on while the other gave way (SDH2, MuJoCo, the
-        # preset's approach error, wood 8: pads 1 and 8 N, the wood carried 8 cm off).
-        pressed = np.full_like(felt, felt.min()) if len(self.fingers) == 2 else felt
+        pinch = len(self.fingers) == 2
+        pressed = np.full_like(felt, felt.mean()) if pinch else felt
         limit = hand.effort_limit[grasping]
         self.effort[grasping] = np.clip(self.effort[grasping] + ADAPT_GAIN * limit * (self.grasp_force - pressed) * dt,
                                         0.0, limit)
-        weakest = min(self.felt(felt, dt))
+        averaged = self.felt(felt, dt)
+        squeeze = float(averaged.mean() if pinch else averaged.min())
         band = (1.0 - HELD) * self.grasp_force
-        if abs(weakest - self.grasp_force) > band or abs(weakest - self.entered) > band:
-            self.entered, self.settled = weakest, 0.0  # out of the band, or only passing through it
+        if abs(squeeze - self.grasp_force) > band or abs(squeeze - self.entered) > band:
+            self.entered, self.settled = squeeze, 0.0  # out of the band, or only passing through it
         else:
             self.settled += dt
         self.holding += dt
