@@ -154,7 +154,7 @@ def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
     # slid under an object's bottom edge as they curled and lifted one side of it (speaker,
     # mug, stapler: up 3-9 mm, PyBullet, the preset's approach error); the pads read 2-4 N
     # with a gap between them and the grasp searched on. Left to rise, the preset's trials
-    # 0-19 with the error lifted 160 of 200 against 156 (MuJoCo), 148 against 137 (PyBullet).
+    # 0-19 with the error lifted 159 of 200 against 155 (MuJoCo), 148 against 136 (PyBullet).
     hand = Hand("barrett_bh8_280", dofs, tuple(pads), postures, test_grasp="pinch_grasp",
                 grasp_centres={"push": pointing}, push_posture="push", rising_grasps=frozenset({"pinch_grasp"}))
     return tuple(links), hand, 0.155
