@@ -75,6 +75,8 @@ class RobustGraspApproach(Controller):
     per tip). Once the fingers have closed the arm holds its place, still backing off while
     the squeeze presses the fingertips on the surface: left pressing there, they would spring
     off it as the lift starts, and a guarded lift would read that as meeting resistance.
+    A shift the hand asks for before it has preshaped (rising to free a preshape blocked
+    on the table) ends in settling and approaching again, not in the slide.
     """
 
     def __init__(self, ctx: Context) -> None:

@@ -436,18 +436,18 @@ class RobustGraspHand(FingerGrasp):
         """Force adaptation: from a light touch, each grasping finger's effort rises until
         its pad feels the grasp force, and keeps it there. The object is held once the
         weakest grasping pad has felt the grasp force (within 1 - HELD, averaged over
-        FELT_TIME, and not drifting by more than that) for SETTLE_TIME; two opposed fingers
-        of a pinch share one squeeze instead, driven and judged by their pads' mean (each
-        pad touching: see LOST_TIME): each finger's own loop pushed
-        the object along the pinch line, the finger whose pad read less (its contact partly
-        off the pad) closing on and on while the other gave way (SDH2, MuJoCo, the preset's
-        approach error, wood 8: pads 1 and 8 N, the wood carried 8 cm off), and a squeeze
-        set by the weaker pad left pads at 4 and 9 N still short of the band when
-        SETTLE_LIMIT ran out (10 of the SDH2's 42 failures, MuJoCo, trials 0-19). A pad force only
-        falling through the band, as the squeeze left from closing bleeds off, is not
-        held (MuJoCo, 8 N/s: 0.1 s in the band). A hold that has not settled within SETTLE_LIMIT is a
-        failed grasp (the object tilted and wedged against the table, say): an error
+        FELT_TIME, and not drifting by more than that) for SETTLE_TIME. A pad force only
+        falling through the band, as the squeeze left from closing bleeds off, is not held
+        (MuJoCo, 8 N/s: 0.1 s in the band). A hold that has not settled within SETTLE_LIMIT
+        is a failed grasp (the object tilted and wedged against the table, say): an error
         naming the pads.
+        The two opposed fingers of a pinch share one squeeze instead, one effort driven and
+        judged by their pads' mean (each pad touching: see LOST_TIME). Each finger's own
+        loop pushed the object along the pinch line, the finger whose pad read less (its
+        contact partly off the pad) closing on and on while the other gave way (SDH2,
+        MuJoCo, the preset's approach error, wood 8: pads 1 and 8 N, the wood carried 8 cm
+        off); a squeeze set by the weaker pad left pads at 4 and 9 N, still short of the
+        band when SETTLE_LIMIT ran out (10 of the SDH2's 42 failures, MuJoCo, trials 0-19).
         Not every pad: opposed fingers share one squeeze, yet where the table takes part of
         it, or the fingers touch at different points, their pads read different forces, and
         a self-locking drive keeps its pad's force even at no effort, so all pads at the

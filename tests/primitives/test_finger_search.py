@@ -50,3 +50,12 @@ def test_a_search_step_that_meets_the_objects_edge_goes_on_that_way(
     5c8dcc3)."""
     [record] = preset_trials((index,), **APPROACH_ERROR, arm=arm, engine=engine, object=obj)
     assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
+
+
+def test_a_hold_whose_pads_all_lose_the_object_searches_again_at_once() -> None:
+    """The Barrett in MuJoCo on the preset's duck, trial 13: squeezed at 9-11 N as the hold
+    began, the duck slipped 2.5 cm out from between the fingers, both pads read 0 N, and
+    the hold waited out its 4 s before it failed (at be8de63). With nothing on any pad for 0.5 s the grasp judges
+    again, as for fingers that closed on nothing."""
+    [record] = preset_trials((13,), **APPROACH_ERROR, arm="right", engine="mujoco", object="duck")
+    assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
