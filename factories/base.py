@@ -290,9 +290,11 @@ class Factory(ABC):
         return NodeMapping("release", self.controller(arm), self.controller("open_to", hand_position=state.hand_opening))
 
     # -- building blocks ------------------------------------------------------------------
-    def controller(self, name: str, **params: ParamValue) -> Controller:
-        """A controller with thesis defaults, then this robot's config, then `params`."""
+    def controller(self, name: str, described: dict[str, ParamValue] | None = None, **params: ParamValue) -> Controller:
+        """A controller with thesis defaults, then what the robot's description says of it
+        (`described`), then this robot's config, then `params`."""
         merged = defaults(CONTROLLERS[name].params)
+        merged.update(described or {})
         merged.update(self.config.controllers.get(name, {}))
         merged.update({k: v for k, v in params.items() if v is not None})
         return Controller(name=name, params=merged)

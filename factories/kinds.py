@@ -143,10 +143,9 @@ class MultiFingerFactory(Factory):
                                pregrasp_size=self.pregrasp_size(state, context),
                                grasp_force=round(needed, 3) if needed > configured else None)
         placed = preshape_made.value if preshape_made else grasp.value
-        configured_follow = "follow_surface" in self.config.controllers.get("robust_grasp_approach", {})
-        rising = grasp.value in self.robot.hand.rising_grasps and not configured_follow
-        arm = self.controller("robust_grasp_approach", wrist_to_tcp=round(self._wrist_to_tcp, 6),
-                              follow_surface=False if rising else None,
+        rising = grasp.value in self.robot.hand.rising_grasps
+        arm = self.controller("robust_grasp_approach", {"follow_surface": False} if rising else None,
+                              wrist_to_tcp=round(self._wrist_to_tcp, 6),
                               fingertip_reach=round(max(self.robot.hand_reach(placed), 0.001), 6),
                               grasp_centre=tuple(round(float(c), 6) for c in
                                                  self.robot.hand.grasp_centres.get(grasp.value, (0.0, 0.0, 0.0))))

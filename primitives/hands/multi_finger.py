@@ -131,6 +131,7 @@ class FingerGrasp(Controller):
             pre[moving & wider] = sized[moving & wider]
         self.pre, self.moving = pre, moving
         self.fingers = sorted({self.finger_of_dof[i] for i in np.flatnonzero(moving)} - {None})
+        self.pinch = len(self.fingers) == 2  # two opposed fingers close on the object along one line
         self.reference = readings.hand_q.copy()
         self.effort = np.zeros_like(self.reference)
         self.pressing = moving  # the DOFs pressed by force once holding
@@ -352,7 +353,7 @@ class RobustGraspHand(FingerGrasp):
         what = f"finger {', '.join(lost)} missed the object" if touching else "nothing between the fingers"
         if touching and not self.correct:
             self._fail(what)
-        elif touching and heading and len(self.fingers) == 2:
+        elif touching and heading and self.pinch:
             # A search step's close met the object's edge: it lies further that way.
             self._try_again(self._search_step(beyond=heading), what)
         elif touching:  # finger lost: shift towards the fingers that touched
@@ -405,7 +406,7 @@ class RobustGraspHand(FingerGrasp):
         so the next point is one step further that way, not the plan's next (the Barrett
         on a cylinder 5.3 cm off its line, MuJoCo, the preset's trial 1: a finger met it
         2.8 cm off, the plan went back the other way, and the grasp timed out)."""
-        if len(self.fingers) != 2 or not (self.plan or beyond):
+        if not self.pinch or not (self.plan or beyond):
             return np.array([0.0, 0.0, self.object_lost_step])
         line = self.base[self.fingers[1]] - self.base[self.fingers[0]]
         direction = np.array([-line[1], line[0], 0.0]) / np.linalg.norm(line)
@@ -464,13 +465,12 @@ class RobustGraspHand(FingerGrasp):
             return
         grasping = np.flatnonzero(self.moving)
         felt = np.array([pads[self.pad_of[f]] if (f := self.finger_of_dof[i]) else self.grasp_force for i in grasping])
-        pinch = len(self.fingers) == 2
-        pressed = np.full_like(felt, felt.mean()) if pinch else felt
+        pressed = np.full_like(felt, felt.mean()) if self.pinch else felt
         limit = hand.effort_limit[grasping]
         self.effort[grasping] = np.clip(self.effort[grasping] + ADAPT_GAIN * limit * (self.grasp_force - pressed) * dt,
                                         0.0, limit)
         averaged = self.felt(felt, dt)
-        squeeze = float(averaged.mean() if pinch else averaged.min())
+        squeeze = float(averaged.mean() if self.pinch else averaged.min())
         band = (1.0 - HELD) * self.grasp_force
         if abs(squeeze - self.grasp_force) > band or abs(squeeze - self.entered) > band:
             self.entered, self.settled = squeeze, 0.0  # out of the band, or only passing through it
