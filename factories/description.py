@@ -397,17 +397,27 @@ class RobotDescription:
     def site_pose(self, site: Site, joints: dict[str, float]) -> np.ndarray:
         return self.link_poses(joints)[site.link] @ site.origin.matrix()
 
-    def hand_reach(self, posture: str) -> float:
+    def hand_reach(self, posture: str | np.ndarray) -> float:
         """How far the hand's links reach past the TCP along the approach axis (hand z) in a
-        posture: about 0 when the fingertips end at the TCP, negative when the hand ends
-        short of it (a closed fist), so a hand pointing down has its lowest point that far
-        below the TCP. The thin tactile pads lie on the links and are left out."""
-        poses = self.link_poses(self.hand_joint_targets(np.asarray(self.hand.postures[posture], float)))
+        posture (its name, or its DOF values): about 0 when the fingertips end at the TCP,
+        negative when the hand ends short of it (a closed fist), so a hand pointing down has
+        its lowest point that far below the TCP. The thin tactile pads lie on the links and
+        are left out."""
+        dofs = self.hand.postures[posture] if isinstance(posture, str) else posture
+        poses = self.link_poses(self.hand_joint_targets(np.asarray(dofs, float)))
         tcp = poses[self.tcp.link] @ self.tcp.origin.matrix()
         approach = tcp[:3, 2]
         farthest = max(shape.support(poses[name], approach)
                        for name in self.hand_links for shape in self.links_by_name[name].shapes)
         return farthest - float(tcp[:3, 3] @ approach)
+
+    def closing_swing(self, start: str, end: str, steps: int = 20) -> float:
+        """How much further than in posture `start` the hand reaches along the approach axis
+        on its way to posture `end` (m, at least 0): closing fingertips that swing down on
+        the way press on the table a hand lowered onto it in `start`."""
+        a, b = (np.asarray(self.hand.postures[p], float) for p in (start, end))
+        reach = self.hand_reach(a)
+        return max(0.0, max(self.hand_reach(a + t * (b - a)) for t in np.linspace(0.0, 1.0, steps + 1)) - reach)
 
     def hand_in_boxes(self, posture: str, tcp: np.ndarray, boxes: list[tuple[Vec3, Vec3]]) -> dict[int, list[str]]:
         """Which of the world-aligned `boxes` (centre, size) the hand's links would cut into

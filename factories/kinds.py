@@ -35,6 +35,7 @@ PRESHAPE_OF = {
 }
 GRASP_OF = {pre: grasp for grasp, pre in PRESHAPE_OF.items()}
 PREGRASP_MARGIN = 0.04  # m of clearance around the object when the hand preshapes (ours)
+SWING_MARGIN = 0.005  # m the sliding grasp may back off beyond the fingertips' swing (ours)
 
 
 class ParallelJawFactory(Factory):
@@ -147,6 +148,7 @@ class MultiFingerFactory(Factory):
         arm = self.controller("robust_grasp_approach", {"follow_surface": False} if rising else None,
                               wrist_to_tcp=round(self._wrist_to_tcp, 6),
                               fingertip_reach=round(max(self.robot.hand_reach(placed), 0.001), 6),
+                              max_back_off=round(self.robot.closing_swing(placed, grasp.value) + SWING_MARGIN, 6),
                               grasp_centre=tuple(round(float(c), 6) for c in
                                                  self.robot.hand.grasp_centres.get(grasp.value, (0.0, 0.0, 0.0))))
         return NodeMapping("robust_grasp", arm, hand, notes + pre_notes)

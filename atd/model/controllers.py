@@ -226,6 +226,9 @@ _ARM_CONTROLLERS = (
             "grasp_centre": _p(VEC, "where the grasp closes, from the TCP in the hand frame (the robot's own "
                                "geometry: the SDH2 pinches 19 mm off its TCP)", (0.0, 0.0, 0.0), length=3,
                                limits=ranges.COORDINATE),
+            "max_back_off": _p(NUM, "how far the sliding grasp may back off above where it began (the robot's "
+                               "own geometry: how far its fingertips swing down as they close, and 5 mm; the "
+                               "default covers the Barrett pinch's 18 mm)", 0.025, unit="m"),
             "filter_time": _FILTER,
         },
     ),

@@ -67,8 +67,10 @@ class RobustGraspApproach(Controller):
     grasp direction, measured against the free hand of the state's start and filtered over
     SURFACE_FILTER); the approach ended on F_s = F_t, the contact the slide keeps: F_s
     above it by F_t (fingers pushing on the surface) backs off, at the back-off velocity,
-    until F_s is down to F_t again, F_s down to zero (the contact lost) moves forward
-    (unless `follow_surface` is off), otherwise the arm stays; it ends when the fingers stop.
+    until F_s is down to F_t again (and no further than `max_back_off` above where the slide
+    began: unbounded, it rode the SDH2 up 4 cm in 5 s while its fingers stood jammed on a
+    steel weight, until they closed over its top), F_s down to zero (the contact lost) moves forward (unless `follow_surface` is
+    off), otherwise the arm stays; it ends when the fingers stop.
     While it backs off it tells the hand (PRESSING) to hold its fingers: closing
     fingertips swing down onto the surface faster than CORRECTION_VELOCITY lifts them, and
     jammed there they stall on the table short of the object (SDH2 pinch, PyBullet: 30-50 N
@@ -98,6 +100,7 @@ class RobustGraspApproach(Controller):
         self.reach = float(p["fingertip_reach"])
         self.contact_depth = float(p["wrist_to_tcp"]) + self.reach  # from the wrist sensor to the fingertips
         self.grasp_centre = np.array([*np.asarray(p["grasp_centre"], float)[:2], 0.0])
+        self.max_back_off = float(p["max_back_off"])
         self.contact = ContactWrench(float(p["filter_time"]))
         self.surface = ContactWrench(SURFACE_FILTER)
         self.side = np.array([1.0, 0.0, 0.0])  # v_x of Eq. 3.1
@@ -138,6 +141,8 @@ class RobustGraspApproach(Controller):
         pushed = -float(self.surface.update(readings, dt)[:3] @ self.direction)  # F_s
         # Backing off starts at F_t over the contact the slide keeps and goes on down to it.
         self.backing = pushed >= 2.0 * self.force_threshold or (self.backing and pushed > self.force_threshold)
+        if self.phase == "slide" and float((self.slid_from - position) @ (rotation @ self.direction)) >= self.max_back_off:
+            self.backing = False
         board[PRESSING] = self.backing and self.phase == "slide"
         if self.phase == "slide":
             if board.get(FINGERS_STOPPED):
@@ -164,7 +169,7 @@ class RobustGraspApproach(Controller):
                                           or readings.time - self.shift_started > SHIFT_TIME):
                 board[SHIFT] = None  # made, or as far as the surface or the object allows
                 if board.get(PRESHAPED, True):
-                    self._slide()
+                    self._slide(readings)
                 else:  # risen to free the preshape: approach again once it is made and the hand still
                     self.phase, self.still = "settle", 0.0
         return arm_output(np.concatenate([world, w]))
@@ -217,17 +222,18 @@ class RobustGraspApproach(Controller):
                 return self.speed * (self.side - self.direction)
             if torque < -self.torque_threshold:
                 return self.speed * (-self.side - self.direction)
-            self._slide()
+            self._slide(readings)
             return np.zeros(3)
         travelled = float((readings.tcp[:3, 3] - self.origin) @ (readings.tcp[:3, :3] @ self.direction))
         if travelled >= self.max_distance:
-            self._slide()
+            self._slide(readings)
             return np.zeros(3)
         self.approach_now = min(self.approach_speed, self.approach_now + APPROACH_ACCELERATION * dt)
         return self.approach_now * self.direction
 
-    def _slide(self) -> None:
+    def _slide(self, readings: Readings) -> None:
         self.phase = "slide"
+        self.slid_from = readings.tcp[:3, 3].copy()
         self.ctx.blackboard[CONTACT] = True
 
 

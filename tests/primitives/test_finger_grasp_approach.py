@@ -134,15 +134,20 @@ def test_a_preshape_blocked_on_the_table_is_made_again_higher_up(index: int) -> 
     assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
 
 
-def _follows_surface(arm: str, shape: str = "pinch_grasp", config=None) -> bool:
-    """Whether the grasp state's sliding grasp follows the table down, as translated."""
+def _approach_param(arm: str, name: str, shape: str = "pinch_grasp", config=None):
+    """A parameter of the grasp state's arm controller (the robust approach), as translated."""
     task, _ = load_task(TASK)
     grasps = {"preshape_hand": f"{shape}_preshape", "grasp_object": shape, "lift_object": shape}
     states = [s.model_copy(update={"hand_shape": HandShape(grasps[s.name])}) if s.name in grasps else s
               for s in task.states]
     estd = translate(task.model_copy(update={"states": states}), create("tombatossals", arm=arm, config=config)).estd
     [state] = [s for s in estd.states if s.name == "grasp_object"]
-    return state.arm.params["follow_surface"]
+    return state.arm.params[name]
+
+
+def _follows_surface(arm: str, shape: str = "pinch_grasp", config=None) -> bool:
+    """Whether the grasp state's sliding grasp follows the table down, as translated."""
+    return _approach_param(arm, "follow_surface", shape, config)
 
 
 def test_only_the_barretts_pinch_leaves_its_fingertips_to_rise_off_the_table(tmp_path) -> None:
@@ -155,3 +160,24 @@ def test_only_the_barretts_pinch_leaves_its_fingertips_to_rise_off_the_table(tmp
     config = tmp_path / "follow.toml"
     config.write_text("[tombatossals.controllers.robust_grasp_approach]\nfollow_surface = true\n")
     assert _follows_surface("right", config=config)
+
+
+@pytest.mark.parametrize(("obj", "index"), [("speaker", 17), ("wood", 7)])
+def test_the_sliding_grasp_backs_off_no_further_than_closing_fingertips_swing_down(obj: str, index: int) -> None:
+    """The SDH2 in PyBullet with the preset's approach error: a close whose fingers pushed
+    the hand up (jammed on the object's edge) had the sliding grasp back off 4 to 5 cm over
+    5 s, and every later close and search step was made above the object (each failed at
+    deaccd7). The slide backs off no further than the closing fingertips swing down (the
+    SDH2's pinch: 4 mm) and 5 mm: the Barrett's, whose fingertips swing 18 mm, further."""
+    from tests.primitives.conftest import preset_trials
+
+    [record] = preset_trials((index,), robot="tombatossals", arm="left", engine="pybullet", grasp="robust",
+                             object=obj, perturbation="approach")
+    assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
+
+
+def test_how_far_a_sliding_grasp_may_back_off_comes_from_the_hands_geometry() -> None:
+    """The pinch's fingertips swing down 4 mm (SDH2) and 18 mm (Barrett) on their way from
+    the preshape to the grasp; each slide may back off that far and 5 mm more."""
+    assert _approach_param("left", "max_back_off") == pytest.approx(0.0089, abs=5e-4)
+    assert _approach_param("right", "max_back_off") == pytest.approx(0.0227, abs=5e-4)
