@@ -7,6 +7,7 @@ and reports what is wrong with the file, `atd.model.validate` checks the graph.
 
 from __future__ import annotations
 
+import math
 from functools import cached_property
 from typing import TYPE_CHECKING, Literal, NamedTuple
 
@@ -116,6 +117,15 @@ class ObjectInfo(AtdElement):
             return min(size)
         if kind is ObjectClass.CYLINDER:
             return min(2 * size[0], size[1])
+        return 2 * size[0]
+
+    @property
+    def widest(self) -> float:
+        """The widest the object is across, whichever way it stands on its resting face:
+        fingers that stop further apart than this are not stopped by it."""
+        size = self.effective_size
+        if (self.object_class or ObjectClass.BOX) is ObjectClass.BOX:
+            return math.hypot(size[0], size[1])
         return 2 * size[0]
 
 

@@ -16,6 +16,9 @@ pads:
   to shift the hand towards the fingers that touched, then close again (a shift back the
   way the last one came is a step of the search across the pinch line instead: the
   fingers take turns on the object's edge, so it lies off the line between them);
+- no finger touches, the fingers stopped as far apart as the object is wide (jammed on
+  it beside their pads): where two fingers pinch, look a little to one side of the pinch
+  line, then to the other (`NUDGE`);
 - no finger touches, but some touched something on the way and others did not (the
   object pushed aside by the first finger to meet it): as for a finger lost, towards those;
 - no finger touches (object lost; known as soon as the pads pass within PASSED of the
@@ -87,6 +90,10 @@ PINCHED = 2.0  # times the grasp force on every grasping pad: the fingers have c
 # first 50 trials with the approach error (MuJoCo, PyBullet), 9 and 10 once it stopped here
 PASSED = 0.5
 FREE_RISE = 0.02  # m the arm rises to free a preshape blocked short of its posture
+# of a pad's half width across its finger: the step across the pinch line when the fingers
+# stopped on something beside their pads (`_jammed`)
+NUDGE = 1.5
+JAM_MARGIN = 0.005  # m beyond the object's widest that stopped fingers may stand apart on it
 GAP_CHECK = 0.05  # s between looks at the pads' gap (the hand's forward kinematics: 0.3-0.5 ms a look)
 
 
@@ -263,6 +270,8 @@ class RobustGraspHand(FingerGrasp):
         self.lost_shift = np.zeros(3)  # the latest finger-lost correction's shift (hand frame)
         self.quality = np.inf  # D5's Q at the latest uneven grasp
         self.freed = False  # the arm has risen to free a blocked preshape
+        self.nudged = 0  # nudges made across the pinch line after a jam: 0, then 1 (one side), -1 (both)
+        self.jammed = False  # the latest close stopped on something beside the pads
         if self.fingers:
             self.gauge = ExtensionGauge(self.ctx.info.hand, [self.pad_of[f] for f in self.fingers], self.pre)
 
@@ -287,6 +296,7 @@ class RobustGraspHand(FingerGrasp):
     def _close(self, readings: Readings, dt: float, board: dict) -> None:
         self.brushed.update(self._touching(readings))
         if self._closed(readings, dt) or self._pinching(readings, dt, board) or self._passed(readings):
+            self.jammed = self._jammed(readings)
             board[FINGERS_STOPPED] = True
             self.effort = self._starting_effort(readings)
             self.settled = 0.0
@@ -313,6 +323,18 @@ class RobustGraspHand(FingerGrasp):
             return False
         self.looked = readings.time
         return self.gauge.gap(readings.hand_q) < PASSED * self.ctx.object.least_width
+
+    def _jammed(self, readings: Readings) -> bool:
+        """The fingers stopped short of their limits as far apart as the object is wide, and
+        no pad feels anything: they stand on it beside their pads. A flat finger touches a
+        cylinder at the foot of its axis, so a steel weight 11 mm off the SDH2's pinch line
+        jammed both fingers on the 2 mm of each finger's face its 18 mm pad leaves bare
+        (PyBullet, the preset's approach error, weight trials 9, 12, 14, 16)."""
+        hand, q = self.ctx.info.hand, readings.hand_q
+        short = np.abs(q - hand.closed) >= REACHED * self.range
+        if self._touching(readings) or self.ctx.object is None or not short[self.moving].all():
+            return False
+        return PASSED * self.ctx.object.least_width <= self.gauge.gap(q) <= self.ctx.object.widest + JAM_MARGIN
 
     def _starting_effort(self, readings: Readings) -> np.ndarray:
         """Where force adaptation starts: each finger stopped on the object pressing with
@@ -351,7 +373,9 @@ class RobustGraspHand(FingerGrasp):
             self.lost_for = 0.0
             return
         what = f"finger {', '.join(lost)} missed the object" if touching else "nothing between the fingers"
-        if touching and not self.correct:
+        if self._nudging(readings):
+            self._try_again(self._nudge(), "the fingers stopped on something their pads do not feel")
+        elif touching and not self.correct:
             self._fail(what)
         elif touching and heading and self.pinch:
             # A search step's close met the object's edge: it lies further that way.
@@ -408,13 +432,34 @@ class RobustGraspHand(FingerGrasp):
         2.8 cm off, the plan went back the other way, and the grasp timed out)."""
         if not self.pinch or not (self.plan or beyond):
             return np.array([0.0, 0.0, self.object_lost_step])
-        line = self.base[self.fingers[1]] - self.base[self.fingers[0]]
-        direction = np.array([-line[1], line[0], 0.0]) / np.linalg.norm(line)
+        self.nudged = 0
         point = self.across + beyond * self.search_step if beyond else self.plan[0]
         self.plan = [p for p in self.plan if not np.isclose(p, point)]
         step, self.across = point - self.across, point
         self.heading = float(np.sign(step))
-        return step * direction
+        return step * self._across_line()
+
+    def _across_line(self) -> np.ndarray:
+        """The unit vector across the pinch line (hand frame)."""
+        line = self.base[self.fingers[1]] - self.base[self.fingers[0]]
+        return np.array([-line[1], line[0], 0.0]) / np.linalg.norm(line)
+
+    def _nudging(self, readings: Readings) -> bool:
+        """No pad touches, and the pinch jammed (with neither side of it looked at yet) or
+        its first nudge found nothing: look on (the other side)."""
+        pending = (self.jammed and self.nudged == 0) or self.nudged == 1
+        return self.pinch and self.correct and pending and not self._touching(readings)
+
+    def _nudge(self) -> np.ndarray:
+        """Where to look when the fingers jammed on the object beside their pads (hand
+        frame): NUDGE pad half widths across the pinch line, then as far the other side of
+        where they jammed; which side it lies is unknown."""
+        width = max(self.ctx.info.hand.pads[self.pad_of[f]].half_size[1] for f in self.fingers)  # y: across the finger
+        step = NUDGE * width * (1.0 if self.nudged == 0 else -2.0)
+        self.nudged = 1 if self.nudged == 0 else -1
+        self.across += step
+        self.heading = 0.0
+        return step * self._across_line()
 
     def _try_again(self, shift: np.ndarray, what: str, turn: float = 0.0) -> None:
         """A failed attempt: reopen, have the arm make `shift` (hand frame) and `turn`
