@@ -69,8 +69,9 @@ class RobustGraspApproach(Controller):
     above it by F_t (fingers pushing on the surface) backs off, at the back-off velocity,
     until F_s is down to F_t again (and no further than `max_back_off` above where the slide
     began: unbounded, it rode the SDH2 up 4 cm in 5 s while its fingers stood jammed on a
-    steel weight, until they closed over its top), F_s down to zero (the contact lost) moves forward (unless `follow_surface` is
-    off), otherwise the arm stays; it ends when the fingers stop.
+    steel weight, until they closed over its top), F_s down to zero (the contact lost)
+    moves forward (unless `follow_surface` is off), otherwise the arm stays; it ends when
+    the fingers stop.
     While it backs off it tells the hand (PRESSING) to hold its fingers: closing
     fingertips swing down onto the surface faster than CORRECTION_VELOCITY lifts them, and
     jammed there they stall on the table short of the object (SDH2 pinch, PyBullet: 30-50 N
@@ -141,8 +142,8 @@ class RobustGraspApproach(Controller):
         pushed = -float(self.surface.update(readings, dt)[:3] @ self.direction)  # F_s
         # Backing off starts at F_t over the contact the slide keeps and goes on down to it.
         self.backing = pushed >= 2.0 * self.force_threshold or (self.backing and pushed > self.force_threshold)
-        if self.phase == "slide" and float((self.slid_from - position) @ (rotation @ self.direction)) >= self.max_back_off:
-            self.backing = False
+        risen = float((self.slid_from - position) @ (rotation @ self.direction)) if self.phase == "slide" else 0.0
+        self.backing = self.backing and risen < self.max_back_off
         board[PRESSING] = self.backing and self.phase == "slide"
         if self.phase == "slide":
             if board.get(FINGERS_STOPPED):
