@@ -11,10 +11,9 @@ cannot reach) is ended the same way.
 from __future__ import annotations
 
 import multiprocessing as mp
-import os
-import queue
 import signal
 import time
+from multiprocessing.connection import Connection, wait
 from typing import Callable
 
 from atd.campaign.cells import TrialPlan
@@ -74,13 +73,13 @@ def _crashed(plan: TrialPlan, why: str) -> TrialRecord:
     return TrialRecord(cell=plan.cell, index=plan.index, seed=plan.seed, status="error", error=why)
 
 
-def _work(todo: mp.Queue, done: mp.Queue) -> None:
-    """A worker: take plans until told to stop, say which one it starts, send each record."""
+def _work(conn: Connection) -> None:
+    """A worker: say it is ready, then run each plan it is sent and send back its record,
+    until told to stop."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle
-    while (item := todo.get()) is not None:
-        number, plan = item
-        done.put(("start", os.getpid(), number))
-        done.put(("done", os.getpid(), run_trial(plan)))
+    conn.send("ready")
+    while (plan := conn.recv()) is not None:
+        conn.send(run_trial(plan))
 
 
 def _worker_context() -> mp.context.BaseContext:
@@ -94,93 +93,96 @@ def _worker_context() -> mp.context.BaseContext:
 
 
 class _Pool:
+    """Each worker has its own pipe: the parent hands a plan to an idle worker and reads its
+    record on that worker's connection. With one queue shared by all, a worker killed while
+    it waited for a plan kept the queue's lock, and every other worker waited for it forever."""
+
     def __init__(self, workers: int, sink: Sink) -> None:
         self.size = workers
         self.sink = sink
         self.context = _worker_context()
-        self.todo = self.context.Queue()
-        self.done = self.context.Queue()
+        self.conns: dict[int, Connection] = {}  # pid -> the parent's end of its pipe
         self.workers: dict[int, mp.Process] = {}
         self.running: dict[int, tuple[int, float]] = {}  # pid -> (plan number, started)
-        self.reported: set[int] = set()  # workers that have sent anything
-        self.lost = ""  # why trials a worker took but never announced have no record
+        self.ready: set[int] = set()  # workers that have said they started
 
     def _start_worker(self) -> None:
-        process = self.context.Process(target=_work, args=(self.todo, self.done), daemon=True)
+        parent, child = self.context.Pipe()
+        process = self.context.Process(target=_work, args=(child,), daemon=True)
         process.start()
+        child.close()
         self.workers[process.pid] = process
+        self.conns[process.pid] = parent
 
     def run(self, plans: list[TrialPlan]) -> None:
-        for number, plan in enumerate(plans):
-            self.todo.put((number, plan))
+        self.plans = plans
+        self.todo = list(range(len(plans)))[::-1]  # popped from the end: plan 0 first
         for _ in range(min(self.size, len(plans))):
             self._start_worker()
-        for _ in self.workers:
-            self.todo.put(None)
-        left = set(range(len(plans)))
         try:
-            while left:
-                self._take(left)
-                self._reap(plans, left)
-                if not self.workers:  # all gone, every plan taken: what is left, a dead worker took
-                    for number in sorted(left):
-                        self.sink(_crashed(plans[number], self.lost))
-                    left.clear()
+            while self.workers:
+                by_conn = {conn: pid for pid, conn in self.conns.items()}
+                for conn in wait(list(by_conn), timeout=0.5):
+                    self._receive(by_conn[conn])
+                self._reap_hung()
         finally:
-            for channel in (self.todo, self.done):  # plans nobody will take must not hold up the exit
-                channel.cancel_join_thread()
-            for process in self.workers.values():
+            for pid, process in self.workers.items():
                 if process.is_alive():
                     process.kill()
                 process.join()
+                self.conns[pid].close()
 
-    def _reap(self, plans: list[TrialPlan], left: set[int]) -> None:
-        """Dead or hung workers: their trial is an error trial, and a new worker takes over."""
-        for pid, process in list(self.workers.items()):
-            number, since = self.running.get(pid, (None, 0.0))
-            hung = number is not None and time.monotonic() - since > hang_limit(plans[number])
-            if process.is_alive() and not hung:
-                continue
-            if hung:
-                process.kill()
-            process.join()
-            del self.workers[pid]
-            self._drain(left)  # what it sent before it ended still counts
-            died = f"the worker process died ({_exit_reason(process.exitcode)})"
-            if pid in self.running:
-                number, _ = self.running.pop(pid)
-                left.discard(number)
-                why = f"the trial hung: no result after {hang_limit(plans[number]):g} s of wall-clock time"
-                self.sink(_crashed(plans[number], why if hung else died))
-            elif process.exitcode == 0:
-                continue  # it finished its share
-            elif pid not in self.reported:
-                raise WorkerError(f"a worker process could not start ({_exit_reason(process.exitcode)}); "
-                                  f"run with --workers 1 to see why")
-            # It may have taken a plan it never announced (killed between trials, or before what
-            # it last sent left it): no one else will take that one; `run` records it at the end.
-            self.lost = f"{died} before reporting the trial"
-            self._start_worker()
-            self.todo.put(None)
+    def _receive(self, pid: int) -> None:
+        """A message from a worker: ready, a record, or its end (EOF)."""
+        try:
+            message = self.conns[pid].recv()
+        except (EOFError, OSError):
+            self._ended(pid)
+            return
+        if message == "ready":
+            self.ready.add(pid)
+        else:
+            self.running.pop(pid)
+            self.sink(message)
+        self._next(pid)
 
-    def _drain(self, left: set[int]) -> None:
-        while self._take(left, block=False):
+    def _next(self, pid: int) -> None:
+        """Give an idle worker the next plan, or tell it to stop."""
+        if not self.todo:
+            try:
+                self.conns[pid].send(None)
+            except OSError:
+                pass
+            return
+        number = self.todo.pop()
+        self.running[pid] = (number, time.monotonic())
+        try:
+            self.conns[pid].send(self.plans[number])
+        except OSError:  # it has just died: its end of the pipe reads EOF, and `_ended` records the plan
             pass
 
-    def _take(self, left: set[int], block: bool = True) -> bool:
-        """Handle one message from the workers; False when none came."""
-        try:
-            kind, pid, payload = self.done.get(timeout=0.5) if block else self.done.get_nowait()
-        except queue.Empty:
-            return False
-        self.reported.add(pid)
-        if kind == "start":
-            self.running[pid] = (payload, time.monotonic())
-        else:
+    def _ended(self, pid: int, why: str | None = None) -> None:
+        """A worker is gone: its trial, if it had one, is an error trial; a new worker takes
+        over while plans are left."""
+        process = self.workers.pop(pid)
+        process.join()
+        self.conns.pop(pid).close()
+        if pid in self.running:
             number, _ = self.running.pop(pid)
-            left.discard(number)
-            self.sink(payload)
-        return True
+            self.sink(_crashed(self.plans[number], why or f"the worker process died ({_exit_reason(process.exitcode)})"))
+        elif process.exitcode != 0 and pid not in self.ready:
+            raise WorkerError(f"a worker process could not start ({_exit_reason(process.exitcode)}); "
+                              f"run with --workers 1 to see why")
+        if self.todo:
+            self._start_worker()
+
+    def _reap_hung(self) -> None:
+        """A trial past its wall-clock limit (a hang inside an engine) ends its worker."""
+        for pid, (number, since) in list(self.running.items()):
+            limit = hang_limit(self.plans[number])
+            if time.monotonic() - since > limit:
+                self.workers[pid].kill()
+                self._ended(pid, f"the trial hung: no result after {limit:g} s of wall-clock time")
 
 
 def _exit_reason(code: int | None) -> str:

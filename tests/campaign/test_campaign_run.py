@@ -148,6 +148,26 @@ def test_a_worker_that_dies_mid_trial_is_an_error_trial_and_the_campaign_goes_on
     assert sum(r.status == "ok" for r in records) == 4 - len(errors)
 
 
+def test_a_worker_killed_while_it_waits_for_its_next_plan_holds_up_no_other() -> None:
+    """Each worker waits for its plans on its own pipe. With one queue shared by all, a
+    worker killed while it waited for a plan could keep the queue's lock, and the others
+    waited for it forever (seen once, the test above in a suite run beside a 36-minute
+    campaign: pytest idle for 35 minutes; the race did not come back on demand)."""
+    chosen = plans(_spec("small.toml"))
+    records: list[TrialRecord] = []
+
+    def sink(record: TrialRecord) -> None:
+        records.append(record)
+        if len(records) == 1:  # the worker that sent it now waits for its next plan
+            [idle] = set(pool.workers) - set(pool.running)
+            os.kill(idle, signal.SIGKILL)
+
+    pool = _Pool(2, sink)
+    pool.run(chosen)
+    assert sorted(r.index for r in records) == [0, 1, 2, 3]
+    assert sum(r.status == "error" for r in records) <= 1
+
+
 def test_the_judge_catches_a_task_that_claims_a_success_that_did_not_happen(tmp_path: Path) -> None:
     store = tmp_path / "claims.sqlite"
     result = _atd("campaign", "run", str(DATA / "claims_success.toml"), "--store", str(store), "-j", "1",
