@@ -25,7 +25,7 @@ import numpy as np
 from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamValue, SensorKind, defaults
 from atd.model.estd import Condition, ConditionGroup, Controller
 from atd.model.frames import rpy_of
-from atd.model.ranges import TILT, WEIGHT
+from atd.model.ranges import FORCE, TILT, WEIGHT
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
 from atd.model.vocabulary import EventType, HandShape, Movement, StateType
 from factories.beside import description_module, shipped_config
@@ -259,6 +259,7 @@ class Factory(ABC):
         such tick passed a pad count that needed no time."""
         if origin.type is not StateType.TRANSPORT:
             return held
+        refuse_uncarriable(context.object, f"transport state '{origin.name}'")
         still = self.condition(EventType.GRASP_STABLE, "fingers_still")
         held = pressing(lasting(held, float(still.params["for_time"])), carrying_force(context.object))
         wrist = self.arm.sensors_of(SensorKind.FORCE_TORQUE)
@@ -580,6 +581,16 @@ def carrying_force(obj: ObjectInfo | None) -> float:
     hand in the judge's hold (PyBullet, the Table 3.3 preset's weight trial 4, approach
     error). 0 when the task does not say the object's weight and friction."""
     return holding_force(obj) / GRIP_SAFETY
+
+
+def refuse_uncarriable(obj: ObjectInfo | None, where: str) -> None:
+    """Refuse a task whose object no pad force any grasp may ask could carry (its weight
+    against its friction), naming the state `where` it would be grasped or carried."""
+    needed = holding_force(obj)
+    if obj is not None and needed > FORCE.high:
+        raise Unmappable(f"{where}: friction {obj.friction:g} carries a {obj.weight:g} kg object only if each pad "
+                         f"presses {needed:.0f} N, over the {FORCE.high:g} N any grasp force may be",
+                         "check the object's <weight> and <friction>")
 
 
 def holding_force(obj: ObjectInfo | None) -> float:

@@ -18,11 +18,10 @@ from __future__ import annotations
 from typing import ClassVar
 
 from atd.model.controllers import SensorKind
-from atd.model.ranges import FORCE
 from atd.model.task import State
 from atd.model.vocabulary import EventType, HandShape, StateType
 from factories.base import (ConditionNode, Factory, MappingContext, MappingRow, NodeMapping, Unmappable,
-                            grasp_width, holding_force, obstacle_params)
+                            grasp_width, holding_force, obstacle_params, refuse_uncarriable)
 
 # The grasp a hand closes into when the task names none, and the preshape that precedes each grasp.
 DEFAULT_GRASP = HandShape.POWER_GRASP
@@ -134,11 +133,8 @@ class MultiFingerFactory(Factory):
         preshape_made, pre_notes = self.shape(preshape) if preshape else (None, ())
         self.check_object_reach(context, grasp.value, *((preshape_made.value,) if preshape_made else ()))
         configured = float(self.controller("robust_grasp_hand").params["grasp_force"])
+        refuse_uncarriable(context.object, f"grasp state '{state.name}'")
         needed = holding_force(context.object)
-        if needed > FORCE.high:
-            raise Unmappable(f"grasp state '{state.name}': friction {context.object.friction:g} carries a "
-                             f"{context.object.weight:g} kg object only if each pad presses {needed:.0f} N, over the "
-                             f"{FORCE.high:g} N any grasp force may be", "check the object's <weight> and <friction>")
         hand = self.controller("robust_grasp_hand", grasp_shape=grasp.value,
                                preshape=preshape_made.value if preshape_made else None,
                                pregrasp_size=self.pregrasp_size(state, context),

@@ -88,3 +88,17 @@ def test_property_generator_also_covers_every_primitive():
     collect()
     assert {StateType.MOVE, StateType.TRANSPORT, StateType.PLACE, StateType.PUSH, StateType.GRASP,
             StateType.RELEASE} <= kinds
+
+
+def test_a_transport_whose_object_no_grasp_force_could_carry_is_refused_with_the_fix() -> None:
+    """Found by the property above: a lone transport of 4 kg at friction 1/64 would ask each
+    pad for 1,256 N, and the Melfa's translation ended in the translator's own refusal of a
+    defective ESTD (TRN100), not in the factory's reasons."""
+    states = (State(name="carry", type=StateType.TRANSPORT, path=(Waypoint(kind="position", values=(0.1, 0.0, 0.2)),)),
+              State(name="done", type=StateType.SUCCESS))
+    task = Task(object={"weight": 4.0, "friction": 0.015625}, states=states,
+                transitions=({"origin": "carry", "destination": "done", "events": ({"type": "success"},)},))
+    for factory in FACTORIES:
+        result = translate(task, factory)
+        codes = {d.code for d in result.diagnostics if d.severity is Severity.ERROR}
+        assert not result.ok and "TRN100" not in codes, (factory.name, codes)
