@@ -147,18 +147,15 @@ class _Pool:
         self._next(pid)
 
     def _next(self, pid: int) -> None:
-        """Give an idle worker the next plan, or tell it to stop."""
-        if not self.todo:
-            try:
-                self.conns[pid].send(None)
-            except OSError:
-                pass
-            return
-        number = self.todo.pop()
-        self.running[pid] = (number, time.monotonic())
+        """Give an idle worker the next plan, or tell it to stop (None)."""
+        plan = None
+        if self.todo:
+            number = self.todo.pop()
+            self.running[pid] = (number, time.monotonic())
+            plan = self.plans[number]
         try:
-            self.conns[pid].send(self.plans[number])
-        except OSError:  # it has just died: its end of the pipe reads EOF, and `_ended` records the plan
+            self.conns[pid].send(plan)
+        except OSError:  # it has just died: its pipe reads EOF next, and `_ended` records its plan
             pass
 
     def _ended(self, pid: int, why: str | None = None) -> None:

@@ -435,14 +435,15 @@ class RobustGraspHand(FingerGrasp):
         self.nudged = 0
         point = self.across + beyond * self.search_step if beyond else self.plan[0]
         self.plan = [p for p in self.plan if not np.isclose(p, point)]
-        step, self.across = point - self.across, point
-        self.heading = float(np.sign(step))
-        return step * self._across_line()
+        self.heading = float(np.sign(point - self.across))
+        return self._move_across(point)
 
-    def _across_line(self) -> np.ndarray:
-        """The unit vector across the pinch line (hand frame)."""
+    def _move_across(self, point: float) -> np.ndarray:
+        """The shift (hand frame) that closes next at `point` across the pinch line, from
+        where the hand first closed: the one place the search keeps track of where it is."""
         line = self.base[self.fingers[1]] - self.base[self.fingers[0]]
-        return np.array([-line[1], line[0], 0.0]) / np.linalg.norm(line)
+        step, self.across = point - self.across, point
+        return step * np.array([-line[1], line[0], 0.0]) / np.linalg.norm(line)
 
     def _nudging(self, readings: Readings) -> bool:
         """No pad touches, and the pinch jammed (with neither side of it looked at yet) or
@@ -457,9 +458,8 @@ class RobustGraspHand(FingerGrasp):
         width = max(self.ctx.info.hand.pads[self.pad_of[f]].half_size[1] for f in self.fingers)  # y: across the finger
         step = NUDGE * width * (1.0 if self.nudged == 0 else -2.0)
         self.nudged = 1 if self.nudged == 0 else -1
-        self.across += step
         self.heading = 0.0
-        return step * self._across_line()
+        return self._move_across(self.across + step)
 
     def _try_again(self, shift: np.ndarray, what: str, turn: float = 0.0) -> None:
         """A failed attempt: reopen, have the arm make `shift` (hand frame) and `turn`
