@@ -120,6 +120,15 @@ class ObjectInfo(AtdElement):
         return 2 * size[0]
 
     @property
+    def footprint_length(self) -> float:
+        """The longer side of the object's footprint on its resting face (a box), or its
+        diameter: how far it reaches across a pinch planned across its narrow side."""
+        size = self.effective_size
+        if (self.object_class or ObjectClass.BOX) is ObjectClass.BOX:
+            return max(size[0], size[1])
+        return 2 * size[0]
+
+    @property
     def widest(self) -> float:
         """The widest the object is across, whichever way it stands on its resting face:
         fingers that stop further apart than this are not stopped by it."""

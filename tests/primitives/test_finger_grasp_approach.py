@@ -181,3 +181,21 @@ def test_how_far_a_sliding_grasp_may_back_off_comes_from_the_hands_geometry() ->
     the preshape to the grasp; each slide may back off that far and 5 mm more."""
     assert _approach_param("left", "max_back_off") == pytest.approx(0.0089, abs=5e-4)
     assert _approach_param("right", "max_back_off") == pytest.approx(0.0227, abs=5e-4)
+
+
+@pytest.mark.parametrize(("engine", "obj", "index"), [
+    ("mujoco", "stapler", 0), ("mujoco", "speaker", 10),
+    ("pybullet", "stapler", 1), ("pybullet", "speaker", 5),
+])
+def test_an_object_the_closing_fingers_push_off_their_line_is_grasped_where_it_went(
+        engine: str, obj: str, index: int) -> None:
+    """The Barrett with the preset's approach error: its closing fingertips met the box's
+    end on a slope and pushed it out across their line, 4.5 cm, until it cleared them; the
+    search, which looks 2.3 cm either side of where the hand first closed, pushed it out
+    again at every close and the grasp timed out (each failed at 79fa868). Where the pads
+    last felt it, above the table, says which side it went: the next close is made there."""
+    from tests.primitives.conftest import preset_trials
+
+    [record] = preset_trials((index,), robot="tombatossals", arm="right", engine=engine, grasp="robust",
+                             object=obj, perturbation="approach")
+    assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
