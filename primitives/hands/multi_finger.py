@@ -444,11 +444,9 @@ class RobustGraspHand(FingerGrasp):
         2.8 cm off, the plan went back the other way, and the grasp timed out)."""
         if not self.pinch or not (self.plan or beyond):
             return np.array([0.0, 0.0, self.object_lost_step])
-        self.nudged = 0
         point = self.across + beyond * self.search_step if beyond else self.plan[0]
         self.plan = [p for p in self.plan if not np.isclose(p, point)]
-        self.heading = float(np.sign(point - self.across))
-        return self._move_across(point)
+        return self._look_across(point)
 
     def _feel_across(self, readings: Readings, touching: list[str]) -> None:
         """Where the touching pads feel something above the table, across the pinch line
@@ -483,14 +481,19 @@ class RobustGraspHand(FingerGrasp):
         object: beyond where the pads last felt it by half its footprint's length (pushed
         until it cleared the fingers, it reaches back to where they last touched it)."""
         side = float(np.sign(self.felt_at))
-        self.nudged = 0
-        self.heading = side
-        return self._move_across(self.across + self.felt_at + side * self.ctx.object.footprint_length / 2.0)
+        return self._look_across(self.across + self.felt_at + side * self.ctx.object.footprint_length / 2.0)
 
     def _normal(self) -> np.ndarray:
         """The unit vector across the pinch line (hand frame x, y), the way a search step moves."""
         line = self.base[self.fingers[1]] - self.base[self.fingers[0]]
         return np.array([-line[1], line[0]]) / np.linalg.norm(line)
+
+    def _look_across(self, point: float) -> np.ndarray:
+        """The shift to a new place to look, `point` across the pinch line: its close is
+        judged heading the way the step went, and no nudge has been made there yet."""
+        self.nudged = 0
+        self.heading = float(np.sign(point - self.across))
+        return self._move_across(point)
 
     def _move_across(self, point: float) -> np.ndarray:
         """The shift (hand frame) that closes next at `point` across the pinch line, from
