@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from primitives.robot import Readings
+from primitives.robot import HandInfo, Readings
 
 
 class LowPass:
@@ -37,6 +37,19 @@ def world_load(readings: Readings) -> np.ndarray:
     """The force on the wrist in the world frame: a load's weight reads the same there
     however the hand is turned."""
     return readings.tcp[:3, :3] @ readings.wrench[:3]
+
+
+GRAVITY = 9.81  # m/s^2
+
+
+def held_wrench(hand: HandInfo, readings: Readings) -> np.ndarray:
+    """The wrist reading less the empty hand's own weight at its present posture (from the
+    hand's model): what it holds or touches, in the hand frame about the sensor. Unlike
+    `ContactWrench` it needs no reading of the empty hand, so it serves once the hand
+    holds something whose weight nobody tared."""
+    weight = readings.tcp[:3, :3].T @ np.array([0.0, 0.0, -GRAVITY * hand.mass])
+    own = np.concatenate((weight, np.cross(hand.centre_of_mass(readings.hand_q) - hand.wrist, weight)))
+    return readings.wrench - own
 
 
 class ContactWrench:

@@ -72,6 +72,10 @@ class HandInfo:
     # hand DOF values -> (pads, 4, 4): each pad's sensing surface in the TCP frame (+z out of
     # the finger), the hand's forward kinematics, as a real hand computes it from its encoders
     pad_surfaces: Callable[[np.ndarray], np.ndarray]
+    # the hand's model behind the wrist sensor, as a real sensor's gravity compensation has it:
+    mass: float  # kg the sensor carries when the hand is empty
+    centre_of_mass: Callable[[np.ndarray], np.ndarray]  # hand DOF values -> (3,) its centre, TCP frame
+    wrist: np.ndarray  # (3,) the sensor's origin in the TCP frame, about which `wrench` reads torques
 
 
 @dataclass(frozen=True)

@@ -63,6 +63,25 @@ def _pad_surfaces(d: RobotDescription):
     return surfaces
 
 
+def _centre_of_mass(d: RobotDescription):
+    """The hand's model behind the wrist sensor: DOF values -> its centre of mass, TCP frame."""
+    links = [d.links_by_name[n] for n in d.hand_links]
+    masses = np.array([link.mass for link in links])
+
+    def centre(q: np.ndarray) -> np.ndarray:
+        poses = d.link_poses(d.hand_joint_targets(q))
+        points = np.array([poses[link.name] @ np.array([*link.centre_of_mass, 1.0]) for link in links])
+        return (np.linalg.inv(poses[d.tcp.link] @ d.tcp.origin.matrix()) @ (masses @ points / masses.sum()))[:3]
+
+    return centre
+
+
+def _wrist(d: RobotDescription, poses: dict[str, np.ndarray]) -> np.ndarray:
+    """The wrist sensor's origin in the TCP frame (both ride on the palm)."""
+    tcp = poses[d.tcp.link] @ d.tcp.origin.matrix()
+    return (np.linalg.inv(tcp) @ poses[d.wrist_sensor.link] @ d.wrist_sensor.origin.matrix())[:3, 3]
+
+
 def robot_info(d: RobotDescription) -> RobotInfo:
     """The static facts a primitive needs, taken from the description."""
     arm = [d.joints[n] for n in d.arm_joints]
@@ -86,6 +105,9 @@ def robot_info(d: RobotDescription) -> RobotInfo:
         stiffness=np.array([j.servo.kp for j in hand_limits]) * ratios**2,
         self_locking=np.array([j.friction > 0 for j in hand_limits]),
         pad_surfaces=_pad_surfaces(d),
+        mass=d.hand_mass,
+        centre_of_mass=_centre_of_mass(d),
+        wrist=_wrist(d, open_hand),
     )
     return RobotInfo(
         name=d.label,

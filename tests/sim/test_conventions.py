@@ -8,6 +8,7 @@ import pytest
 from atd.sim import ENGINES, load_description, variants
 from atd.sim.scene import Scene, box_scene
 from factories.description import GRAVITY
+from primitives.filters import held_wrench
 from primitives.robot import HandMode
 
 
@@ -138,6 +139,32 @@ def test_a_tilted_hand_reads_the_same_wrench_on_both_engines(melfa, robot_of, ru
     assert abs(mj[0]) > 3 and abs(mj[1]) > 2 and abs(mj[3]) > 0.1  # really tilted: weight on every axis
     np.testing.assert_allclose(mj[:3], pb[:3], atol=0.05)
     np.testing.assert_allclose(mj[3:], pb[3:], atol=0.005)
+
+
+@pytest.mark.parametrize(("robot", "arm"), variants())
+def test_the_hands_model_explains_its_own_wrist_reading_at_any_posture(robot, arm, robot_of, run) -> None:
+    """Gravity compensation: the wrist reading less the hand's own weight, from its model
+    (mass and centre of mass from its encoders), is what it holds, nothing in free air."""
+    d = load_description(robot, arm)
+    for engine in ENGINES:
+        r = robot_of(d, engine, Scene(None, table=False))
+        hand = r.info.hand
+        dq = np.zeros(r.info.arm_dof)
+        dq[-2:] = 0.5  # tilt the wrist and turn the flange
+        r.command_arm_velocity(dq)
+        run(r, 1.0)
+        r.command_arm_velocity(np.zeros(r.info.arm_dof))
+        for posture in (hand.open, hand.closed):
+            r.command_hand(posture, HandMode.POSITION)
+            run(r, 1.0)
+            raw, left = [], []
+            for _ in range(100):
+                r.step()
+                raw.append(r.read().wrench)
+                left.append(held_wrench(hand, r.read()))
+            raw, left = np.mean(raw, axis=0), np.mean(left, axis=0)
+            assert np.linalg.norm(raw[:3]) > 10 * np.linalg.norm(left[:3])  # the hand's weight was there
+            assert np.linalg.norm(left[:3]) < 0.3 and np.linalg.norm(left[3:]) < 0.02, (engine, posture, left)
 
 
 def test_an_arm_meeting_the_table_pushes_like_a_servo_not_a_rigid_motor(melfa, robot_of) -> None:
