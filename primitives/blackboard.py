@@ -32,6 +32,11 @@ SHIFT = "shift"
 for the arm to make before the hand tries again (finger-lost correction, D5's position
 and orientation corrections); the arm sets it back to None when done."""
 
+WEIGH = "weigh"
+"""Hand -> arm: m for the arm to raise (+) or lower (-) the hand, holding, and then hold
+still there; the arm sets it back to None once it has, still for a moment. The robust
+grasp lifts what it holds off the table this way to feel where its weight hangs."""
+
 EMPTY_HAND = "empty_hand"
 """In `Context.memory`, not the blackboard: (3,) world-frame wrist force of the empty hand,
 N, as the latest grasp began, or as an arm that searches for the object last began a

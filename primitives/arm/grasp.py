@@ -16,7 +16,7 @@ from primitives.arm.motion import (GAIN, ORIENTATION_TOLERANCE, SUPPORT_BAND, WO
                                    orientation_twist, top_down, unit)
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
-from primitives.blackboard import CONTACT, FINGERS_STOPPED, PRESHAPED, PRESSING, SHIFT
+from primitives.blackboard import CONTACT, FINGERS_STOPPED, PRESHAPED, PRESSING, SHIFT, WEIGH
 from primitives.filters import ContactWrench, contact_across
 from primitives.robot import Readings
 
@@ -121,6 +121,7 @@ class RobustGraspApproach(Controller):
         self.goal: np.ndarray | None = None  # where to stay, or to shift to
         self.route: list[np.ndarray] = []  # the moves over a finger's contact, world frame
         self.moves = 0  # moves across made so far
+        self.weighing: float | None = None  # the hand's raise or lower being made
         self.ctx.blackboard[CONTACT] = False
 
     def update(self, readings: Readings, dt: float) -> ControlData:
@@ -155,6 +156,8 @@ class RobustGraspApproach(Controller):
                 v = self.speed * self.direction
         if self.phase == "hold" and self.backing:  # squeezing presses the tips down
             self.goal = self.goal - self.backoff_speed * dt * (rotation @ self.direction)
+        if self.phase == "hold" and board.get(WEIGH) is not None:
+            self._weigh(readings, float(board[WEIGH]), dt)
         w, angle = orientation_twist(self.rotation, rotation)
         if self.phase == "settle":  # turning level, or stopped after the moves over a contact
             self.still = self.still + dt if angle < ORIENTATION_TOLERANCE and board.get(PRESHAPED, True) else 0.0
@@ -174,6 +177,18 @@ class RobustGraspApproach(Controller):
                 else:  # risen to free the preshape: approach again once it is made and the hand still
                     self.phase, self.still = "settle", 0.0
         return arm_output(np.concatenate([world, w]))
+
+    def _weigh(self, readings: Readings, height: float, dt: float) -> None:
+        """The hand's request to raise (or lower) what it holds by `height`: the goal moves
+        once, then the arm holds still there for SETTLE before it says it is done."""
+        if self.weighing != height:
+            self.weighing, self.still = height, 0.0
+            self.goal = self.goal + height * np.array([0.0, 0.0, 1.0])
+        arrived = np.linalg.norm(self.goal - readings.tcp[:3, 3]) < SHIFT_TOLERANCE
+        self.still = self.still + dt if arrived else 0.0
+        if self.still >= SETTLE:
+            self.ctx.blackboard[WEIGH] = None
+            self.weighing = None
 
     def _approach_from(self, readings: Readings) -> None:
         """Start (again) an approach, the wrist's reading taken as the free hand's."""

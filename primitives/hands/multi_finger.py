@@ -11,7 +11,10 @@ pads:
   and orientation corrections (`extension.ExtensionGauge`), close again;
 - every grasping finger touches: force adaptation raises each finger's effort until its
   pad feels GRASP_FORCE (a pinch's two fingers: one effort, until their pads' mean does);
-  the grasp succeeds only then, with the object held;
+  the grasp succeeds only then, with the object held; a pinch first lifts the object
+  WEIGH_LIFT off the table and feels on the wrist (less the hand's own weight) where its
+  weight hangs: more than OFF_CENTRE off the pinch line, it sets it down, reopens and
+  closes again that far across;
 - some fingers touch and others closed on nothing (finger lost): reopen and ask the arm
   to shift the hand towards the fingers that touched, then close again (a shift back the
   way the last one came is a step of the search across the pinch line instead: the
@@ -51,8 +54,8 @@ import numpy as np
 
 from primitives.arm.motion import SUPPORT_BAND
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
-from primitives.blackboard import CONTACT, EMPTY_HAND, FINGERS_STOPPED, PRESHAPED, PRESSING, SHIFT
-from primitives.filters import LowPass, world_load
+from primitives.blackboard import CONTACT, EMPTY_HAND, FINGERS_STOPPED, PRESHAPED, PRESSING, SHIFT, WEIGH
+from primitives.filters import LowPass, held_wrench, world_load
 from primitives.hands.extension import ExtensionGauge, contact_points
 from primitives.hands.posture import Stillness
 from primitives.robot import HandMode, Readings
@@ -99,6 +102,16 @@ FREE_RISE = 0.02  # m the arm rises to free a preshape blocked short of its post
 NUDGE = 1.5
 JAM_MARGIN = 0.005  # m beyond the object's widest that stopped fingers may stand apart on it
 FELT_OFF_LINE = 0.003  # m off the pinch line the pads must last have felt an object to say which side it went
+# m the robust grasp lifts what it holds to feel where its weight hangs, and how long (s) it
+# feels it there: long enough for the swing of the lift's stop to die down
+WEIGH_LIFT = 0.015
+WEIGH_TIME = 0.3
+# m the held weight may hang off the pinch line before the grasp sets it down and grasps it
+# again across its centre of mass. The Barrett held the preset's mug by its rim, its weight
+# 2.0 cm off the line, and it turned out of the hand 4 s after the lift (MuJoCo, mug trial 9
+# with the approach error); the heaviest off-centre holds that lasted hung 1.2-1.4 cm off on
+# rim-like contacts (a tape roll, a ball, the mug's trial 1), 2.2-2.7 cm on a box's face
+OFF_CENTRE = 0.015
 GAP_CHECK = 0.05  # s between looks at the pads' gap (the hand's forward kinematics: 0.3-0.5 ms a look)
 
 
@@ -277,6 +290,7 @@ class RobustGraspHand(FingerGrasp):
         self.freed = False  # the arm has risen to free a blocked preshape
         self.nudged = 0  # nudges made across the pinch line after a jam: 0, then 1 (one side), -1 (both)
         self.jammed = False  # the latest close stopped on something beside the pads
+        self.weighing: str | None = None  # lifting what it holds to weigh it ("up"), or setting it down ("down")
         if self.fingers:
             self.gauge = ExtensionGauge(self.ctx.info.hand, [self.pad_of[f] for f in self.fingers], self.pre)
 
@@ -562,6 +576,7 @@ class RobustGraspHand(FingerGrasp):
         touching = self._touching(readings)
         self.lost_for = self.lost_for + dt if self.correct and len(touching) < len(self.fingers) else 0.0
         if self.lost_for >= LOST_TIME and self.status is Status.RUNNING:
+            self.ctx.blackboard[WEIGH], self.weighing = None, None  # dropped while weighed: no more weighing
             self._judge(readings)
             return
         grasping = np.flatnonzero(self.moving)
@@ -571,6 +586,9 @@ class RobustGraspHand(FingerGrasp):
         self.effort[grasping] = np.clip(self.effort[grasping] + ADAPT_GAIN * limit * (self.grasp_force - pressed) * dt,
                                         0.0, limit)
         averaged = self.felt(felt, dt)
+        if self.weighing is not None:
+            self._weigh(readings)
+            return
         squeeze = float(averaged.mean() if self.pinch else averaged.min())
         band = (1.0 - HELD) * self.grasp_force
         if abs(squeeze - self.grasp_force) > band or abs(squeeze - self.entered) > band:
@@ -580,11 +598,58 @@ class RobustGraspHand(FingerGrasp):
         self.holding += dt
         if self.status is not Status.RUNNING:
             return
-        if self.settled >= SETTLE_TIME:
+        if self.settled >= SETTLE_TIME and self.pinch and self.correct and self.ctx.object is not None:
+            self.weighing, self.weights = "up", []  # lift it, to feel where its weight hangs
+            self.ctx.blackboard[WEIGH] = WEIGH_LIFT
+        elif self.settled >= SETTLE_TIME:
             self.finish(Status.DONE, f"object held after {self.retries} corrections: {self._forces(pads)}")
         elif self.holding > SETTLE_LIMIT:
             what = f"pads never settled at {self.grasp_force:.1f} N within {SETTLE_LIMIT:.0f} s ({self._forces(pads)})"
             self._fail(what)
+
+    def _weigh(self, readings: Readings) -> None:
+        """One tick of weighing what the pinch holds (D5's corrections centre the object
+        between the fingers; this centres its weight under them): lifted WEIGH_LIFT off the
+        table, the wrist feels it for WEIGH_TIME. A weight hanging more than OFF_CENTRE off
+        the pinch line turns the object about it, which only friction over the pads' small
+        contacts resists: the hand sets it down and grasps it again that far across. Held
+        near the line, it is held, lifted."""
+        board = self.ctx.blackboard
+        if board.get(WEIGH) is not None:  # the arm is still raising or lowering the hand
+            return
+        if self.weighing == "down":  # set down again: grasp it across its centre of mass
+            self.weighing = None
+            self._try_again(self.regrasp, self.off_line)
+            return
+        self.weights.append(held_wrench(self.ctx.info.hand, readings))
+        if len(self.weights) * self.ctx.info.control_period < WEIGH_TIME:
+            return
+        offset = self._weight_off_line(readings, np.mean(self.weights, axis=0))
+        if abs(offset) <= OFF_CENTRE:
+            self.weighing = None
+            self.finish(Status.DONE, f"object held after {self.retries} corrections, its weight "
+                                     f"{abs(offset) * 100:.1f} cm off the pinch line: {self._forces(readings.pad_force)}")
+            return
+        self.off_line = f"its weight hung {abs(offset) * 100:.1f} cm off the pinch line"
+        self.regrasp = self._look_across(self.across + offset)
+        self.weighing = "down"
+        board[WEIGH] = -WEIGH_LIFT
+
+    def _weight_off_line(self, readings: Readings, load: np.ndarray) -> float:
+        """How far across the pinch line (m, along `_normal`) the held load's weight acts:
+        its torque about the line through the two pads' contacts over its weight. 0 when
+        the wrist feels no weight (the table still carries the object)."""
+        hand = self.ctx.info.hand
+        ends = contact_points(hand, readings, [self.pad_of[f] for f in self.fingers])
+        line = ends[1] - ends[0]
+        line /= max(float(np.linalg.norm(line)), 1e-9)
+        down = readings.tcp[2, :3] * -1.0  # the world's down, in the hand frame
+        weight = float(load[:3] @ down)
+        if weight <= 0.5 * 9.81 * (self.ctx.object.weight or 0.0) or weight <= 0.0:
+            return 0.0
+        torque = float(line @ (load[3:] + np.cross(hand.wrist - ends[0], load[:3])))
+        across = np.cross(down, line)  # a weight this way of the line turns it positively
+        return torque / weight * float(across[:2] @ self._normal())
 
     def _forces(self, pads: np.ndarray) -> str:
         """The grasping pads' forces, for a reason a user reads."""
