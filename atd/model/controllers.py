@@ -347,7 +347,9 @@ _HAND_CONTROLLERS = (
     ControllerSpec(
         "robust_grasp_hand", Role.HAND,
         "Hand side of the robust grasp: preshape, close when the arm reports contact, redo the grasp "
-        "when a finger loses contact or the fingers stop unevenly, then raise the finger force.",
+        "when a finger loses contact or the fingers stop unevenly, then raise the finger force; a pinch "
+        "then lifts the object a little and grasps it again across its centre of mass when the wrist feels "
+        "its weight hang off the pinch line.",
         "thesis 3.3.1 (finger-lost correction, force adaptation); D5 3.3 (finger-extension criterion)",
         {
             "preshape": _p(WORD, "starting hand configuration (thesis PREGRASP_TYPE); unset = current"),

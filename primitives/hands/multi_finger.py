@@ -13,8 +13,9 @@ pads:
   pad feels GRASP_FORCE (a pinch's two fingers: one effort, until their pads' mean does);
   the grasp succeeds only then, with the object held; a pinch first lifts the object
   WEIGH_LIFT off the table and feels on the wrist (less the hand's own weight) where its
-  weight hangs: more than OFF_CENTRE off the pinch line, it sets it down, reopens and
-  closes again that far across;
+  weight hangs: more than OFF_CENTRE off the pinch line, turning the object about it
+  harder than friction over a small contact carries (RIM_CONTACT), it sets it down,
+  reopens and closes again that far across;
 - some fingers touch and others closed on nothing (finger lost): reopen and ask the arm
   to shift the hand towards the fingers that touched, then close again (a shift back the
   way the last one came is a step of the search across the pinch line instead: the
@@ -55,7 +56,7 @@ import numpy as np
 from primitives.arm.motion import SUPPORT_BAND
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
 from primitives.blackboard import CONTACT, EMPTY_HAND, FINGERS_STOPPED, PRESHAPED, PRESSING, SHIFT, WEIGH
-from primitives.filters import LowPass, held_wrench, world_load
+from primitives.filters import GRAVITY, LowPass, held_wrench, world_load
 from primitives.hands.extension import ExtensionGauge, contact_points
 from primitives.hands.posture import Stillness
 from primitives.robot import HandMode, Readings
@@ -105,13 +106,20 @@ FELT_OFF_LINE = 0.003  # m off the pinch line the pads must last have felt an ob
 # m the robust grasp lifts what it holds to feel where its weight hangs, and how long (s) it
 # feels it there: long enough for the swing of the lift's stop to die down
 WEIGH_LIFT = 0.015
-WEIGH_TIME = 0.3
+WEIGH_TIME = 0.2
 # m the held weight may hang off the pinch line before the grasp sets it down and grasps it
 # again across its centre of mass. The Barrett held the preset's mug by its rim, its weight
 # 2.0 cm off the line, and it turned out of the hand 4 s after the lift (MuJoCo, mug trial 9
-# with the approach error); the heaviest off-centre holds that lasted hung 1.2-1.4 cm off on
-# rim-like contacts (a tape roll, a ball, the mug's trial 1), 2.2-2.7 cm on a box's face
+# with the approach error). Of the holds that lasted (trials 0-9), those furthest off the
+# line hung 1.3-1.4 cm off on a curved face (a ball, a tape roll, the mug's trial 1), 2.2-2.7
+# cm on a box's flat one: more of a flat face presses on the pads, to resist the turn
 OFF_CENTRE = 0.015
+# m: how far from its centre a pad's contact on a curved face carries friction against the
+# turn: a weight whose torque about the pinch line friction over so small a contact carries
+# at the pads' squeeze is held however far off the line it hangs (the 30 g duck, 2.6 cm off,
+# 0.008 N m on pads at 9.4 N: MuJoCo, the preset's trial 13); the mug's trial 9 turned out
+# of the hand with 0.018 N m on pads at 8.6 N, friction 0.6
+RIM_CONTACT = 0.0015
 GAP_CHECK = 0.05  # s between looks at the pads' gap (the hand's forward kinematics: 0.3-0.5 ms a look)
 
 
@@ -290,7 +298,7 @@ class RobustGraspHand(FingerGrasp):
         self.freed = False  # the arm has risen to free a blocked preshape
         self.nudged = 0  # nudges made across the pinch line after a jam: 0, then 1 (one side), -1 (both)
         self.jammed = False  # the latest close stopped on something beside the pads
-        self.weighing: str | None = None  # lifting what it holds to weigh it ("up"), or setting it down ("down")
+        self.weighing: str | None = None  # lifting what it holds and weighing it ("up"), or setting it down ("down")
         if self.fingers:
             self.gauge = ExtensionGauge(self.ctx.info.hand, [self.pad_of[f] for f in self.fingers], self.pre)
 
@@ -610,10 +618,10 @@ class RobustGraspHand(FingerGrasp):
     def _weigh(self, readings: Readings) -> None:
         """One tick of weighing what the pinch holds (D5's corrections centre the object
         between the fingers; this centres its weight under them): lifted WEIGH_LIFT off the
-        table, the wrist feels it for WEIGH_TIME. A weight hanging more than OFF_CENTRE off
-        the pinch line turns the object about it, which only friction over the pads' small
-        contacts resists: the hand sets it down and grasps it again that far across. Held
-        near the line, it is held, lifted."""
+        table, the wrist feels it for WEIGH_TIME. A weight hanging off the pinch line turns
+        the object about it, which only friction over the pads' contacts resists: more than
+        OFF_CENTRE off, and harder than friction over RIM_CONTACT carries, the hand sets it
+        down and grasps it again that far across. Otherwise it is held, lifted."""
         board = self.ctx.blackboard
         if board.get(WEIGH) is not None:  # the arm is still raising or lowering the hand
             return
@@ -624,8 +632,9 @@ class RobustGraspHand(FingerGrasp):
         self.weights.append(held_wrench(self.ctx.info.hand, readings))
         if len(self.weights) * self.ctx.info.control_period < WEIGH_TIME:
             return
-        offset = self._weight_off_line(readings, np.mean(self.weights, axis=0))
-        if abs(offset) <= OFF_CENTRE:
+        offset, torque = self._weight_off_line(readings, np.mean(self.weights, axis=0))
+        squeeze = float(sum(readings.pad_force[self.pad_of[f]] for f in self.fingers))
+        if abs(offset) <= OFF_CENTRE or abs(torque) <= (self.ctx.object.friction or 0.0) * squeeze * RIM_CONTACT:
             self.weighing = None
             self.finish(Status.DONE, f"object held after {self.retries} corrections, its weight "
                                      f"{abs(offset) * 100:.1f} cm off the pinch line: {self._forces(readings.pad_force)}")
@@ -635,21 +644,21 @@ class RobustGraspHand(FingerGrasp):
         self.weighing = "down"
         board[WEIGH] = -WEIGH_LIFT
 
-    def _weight_off_line(self, readings: Readings, load: np.ndarray) -> float:
-        """How far across the pinch line (m, along `_normal`) the held load's weight acts:
-        its torque about the line through the two pads' contacts over its weight. 0 when
-        the wrist feels no weight (the table still carries the object)."""
+    def _weight_off_line(self, readings: Readings, load: np.ndarray) -> tuple[float, float]:
+        """How far across the pinch line (m, along `_normal`) the held load's weight acts,
+        and its torque (N m) about the line through the two pads' contacts. 0, 0 when the
+        wrist feels less than half the object's weight (the table still carries it)."""
         hand = self.ctx.info.hand
         ends = contact_points(hand, readings, [self.pad_of[f] for f in self.fingers])
         line = ends[1] - ends[0]
         line /= max(float(np.linalg.norm(line)), 1e-9)
         down = readings.tcp[2, :3] * -1.0  # the world's down, in the hand frame
         weight = float(load[:3] @ down)
-        if weight <= 0.5 * 9.81 * (self.ctx.object.weight or 0.0) or weight <= 0.0:
-            return 0.0
+        if weight <= 0.5 * GRAVITY * (self.ctx.object.weight or 0.0):
+            return 0.0, 0.0
         torque = float(line @ (load[3:] + np.cross(hand.wrist - ends[0], load[:3])))
         across = np.cross(down, line)  # a weight this way of the line turns it positively
-        return torque / weight * float(across[:2] @ self._normal())
+        return torque / weight * float(across[:2] @ self._normal()), torque
 
     def _forces(self, pads: np.ndarray) -> str:
         """The grasping pads' forces, for a reason a user reads."""

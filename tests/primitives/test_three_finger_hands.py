@@ -32,7 +32,8 @@ def test_barrett_picks_and_places_the_box() -> None:
     assert np.linalg.norm(box - (0.10, 0.10, 0.025)) < 0.02, f"the box ended at {box}"
     grasped = [r for r in events(executor) if r["state"] == "grasp" and r["event"] == "success"][0]
     held = next(c["reason"] for c in grasped["conditions"] if c["kind"] == "hand_done")
-    assert held.startswith("object held after 0 corrections: tactile_f1 ") and "tactile_f3" not in held  # a pinch: F1 against F2
+    assert held.startswith("object held after 0 corrections, its weight ")  # weighed, and near the pinch line
+    assert "tactile_f1 " in held and "tactile_f2 " in held and "tactile_f3" not in held  # a pinch: F1 against F2
 
 
 def test_barrett_grasps_and_lifts_the_cylinder() -> None:
