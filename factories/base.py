@@ -24,7 +24,7 @@ import numpy as np
 
 from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamValue, SensorKind, defaults
 from atd.model.estd import Condition, ConditionGroup, Controller
-from atd.model.frames import rpy_of
+from atd.model.frames import GRAVITY, rpy_of
 from atd.model.ranges import FORCE, TILT, WEIGHT
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
 from atd.model.vocabulary import EventType, HandShape, Movement, StateType
@@ -566,7 +566,6 @@ def obstacle_params(context: MappingContext) -> dict[str, tuple[tuple[float, ...
             "obstacle_sizes": tuple(o.size or (0.0, 0.0, 0.0) for o in obstacles)}
 
 
-GRAVITY = 9.81  # m/s^2
 # times the weight friction must carry: a 340 g steel weight (friction 0.5) pinched by two
 # Barrett pads at 5 N turned 12-24 degrees in the hand as it was lifted and slid out within
 # 2 s of the lift's end in PyBullet (Table 3.3 preset, 1df1356); 3.3 N carries it at rest
@@ -603,9 +602,9 @@ def holding_force(obj: ObjectInfo | None) -> float:
 
 
 def grasp_width(obj: ObjectInfo) -> float:
-    """Width the fingers close across, top-down: a box's narrower side, a round object's diameter."""
-    size = obj.effective_size
-    return min(size[0], size[1]) if len(size) == 3 else 2 * size[0]
+    """Width the fingers close across, top-down (the robot API's name for
+    `ObjectInfo.footprint_width`): a box's narrower side, a round object's diameter."""
+    return obj.footprint_width
 
 
 def parallel_jaw_closest() -> dict[HandShape, HandShape]:

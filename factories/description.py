@@ -20,7 +20,6 @@ from atd.model.frames import axis_rotation, rotation_rpy
 from atd.model.meshcheck import mesh_points
 
 Vec3 = tuple[float, float, float]
-GRAVITY = 9.81
 
 
 @dataclass(frozen=True)

@@ -15,6 +15,7 @@ from collections import deque
 
 import numpy as np
 
+from atd.model.frames import GRAVITY
 from primitives.base import Condition, Context, StateView, Status
 from primitives.blackboard import EMPTY_HAND
 from primitives.filters import ContactWrench, Debounce, LowPass, world_load
@@ -239,7 +240,7 @@ class LoadHeld(Debounced):
         if empty is None:
             self.evidence = {"empty_hand": "never measured"}
             return False
-        carried = float(empty[2] - load[2]) / 9.81  # kg: a weight pulls the wrist down, along world -z
+        carried = float(empty[2] - load[2]) / GRAVITY  # kg: a weight pulls the wrist down, along world -z
         self.evidence = {"carried": round(carried, 3), "weight": self.weight}
         return carried >= self.weight
 

@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 
+from atd.model.frames import GRAVITY
 from primitives.robot import HandInfo, Readings
 
 
@@ -37,9 +38,6 @@ def world_load(readings: Readings) -> np.ndarray:
     """The force on the wrist in the world frame: a load's weight reads the same there
     however the hand is turned."""
     return readings.tcp[:3, :3] @ readings.wrench[:3]
-
-
-GRAVITY = 9.81  # m/s^2
 
 
 def held_wrench(hand: HandInfo, readings: Readings) -> np.ndarray:

@@ -1,10 +1,13 @@
-"""Rotations in the convention every layer shares (URDF's fixed-axis roll, pitch, yaw)."""
+"""Rotations in the convention every layer shares (URDF's fixed-axis roll, pitch, yaw), and
+the gravity of the world frame they turn in (z up)."""
 
 from __future__ import annotations
 
 from typing import Sequence
 
 import numpy as np
+
+GRAVITY = 9.81  # m/s^2, along the world's -z
 
 
 def rotation_rpy(rpy: Sequence[float]) -> np.ndarray:

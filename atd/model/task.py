@@ -120,6 +120,15 @@ class ObjectInfo(AtdElement):
         return 2 * size[0]
 
     @property
+    def footprint_width(self) -> float:
+        """The shorter side of the object's footprint on its resting face (a box), or its
+        diameter: the width fingers closing top-down close across."""
+        size = self.effective_size
+        if (self.object_class or ObjectClass.BOX) is ObjectClass.BOX:
+            return min(size[0], size[1])
+        return 2 * size[0]
+
+    @property
     def footprint_length(self) -> float:
         """The longer side of the object's footprint on its resting face (a box), or its
         diameter: how far it reaches across a pinch planned across its narrow side."""

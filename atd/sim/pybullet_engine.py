@@ -14,6 +14,7 @@ import tempfile
 import numpy as np
 import pybullet as pb
 
+from atd.model.frames import GRAVITY
 from atd.sim.models import matrix_to_quat, urdf
 from atd.sim.scene import (
     CAMERA_AZIMUTH,
@@ -63,7 +64,7 @@ class PybulletRobot(SimRobot):
             pb.resetDebugVisualizerCamera(CAMERA_DISTANCE, CAMERA_AZIMUTH - 90, CAMERA_ELEVATION, CAMERA_TARGET,
                                           physicsClientId=c)
         pb.setTimeStep(d.timestep, physicsClientId=c)
-        pb.setGravity(0, 0, -9.81, physicsClientId=c)
+        pb.setGravity(0, 0, -GRAVITY, physicsClientId=c)
         pb.setPhysicsEngineParameter(numSolverIterations=SOLVER_ITERATIONS, physicsClientId=c)
 
         self.urdf = urdf(d)
@@ -101,7 +102,7 @@ class PybulletRobot(SimRobot):
         self._pad_of_link = {link: k for k, link in enumerate(self._pad_links)}
         self._untouched = (np.zeros(0, int), np.zeros((0, 2)), np.zeros(0))
         self._hand_weights = np.array(  # z of each hand link's weight, root first
-            [-9.81 * pb.getDynamicsInfo(self.body, i, physicsClientId=c)[0] for i in [self._hand_link, *self._hand_links]]
+            [-GRAVITY * pb.getDynamicsInfo(self.body, i, physicsClientId=c)[0] for i in [self._hand_link, *self._hand_links]]
         )
         self._contact_cache: tuple | None = None
         self._root_cache: np.ndarray | None = None

@@ -11,10 +11,11 @@ from typing import Callable
 
 import numpy as np
 
+from atd.model.frames import GRAVITY
 from atd.sim import ENGINES, make_robot
 from atd.sim.scene import Scene, box_scene
 from atd.sim.simrobot import SimRobot
-from factories.description import GRAVITY, RobotDescription
+from factories.description import RobotDescription
 from primitives.robot import HandMode, Robot
 
 FK_TOLERANCE = 1e-3  # m

@@ -41,12 +41,17 @@ def _moving_dofs(d: RobotDescription, link: str) -> tuple[int, ...]:
     return tuple(k for k, dof in enumerate(d.hand.dofs) if any(j in joints for j, _ in dof.joints))
 
 
+def _tcp_pose(d: RobotDescription, poses: dict[str, np.ndarray]) -> np.ndarray:
+    """The TCP's pose among link `poses` from the description's forward kinematics."""
+    return poses[d.tcp.link] @ d.tcp.origin.matrix()
+
+
 def _finger_base(d: RobotDescription, link: str, poses: dict[str, np.ndarray]) -> tuple[float, float]:
     """Where the finger carrying `link` stands on the palm: its first link's origin, (x, y)
     in the hand (TCP) frame; the palm's own pads stand where they are."""
     while link != d.hand_root and d.links_by_name[link].parent != d.hand_root:
         link = d.links_by_name[link].parent
-    tcp = poses[d.tcp.link] @ d.tcp.origin.matrix()
+    tcp = _tcp_pose(d, poses)
     x, y, _ = tcp[:3, :3].T @ (poses[link][:3, 3] - tcp[:3, 3])
     return (float(x), float(y))
 
@@ -57,7 +62,7 @@ def _pad_surfaces(d: RobotDescription):
 
     def surfaces(q: np.ndarray) -> np.ndarray:
         poses = d.link_poses(d.hand_joint_targets(q))
-        to_hand = np.linalg.inv(poses[d.tcp.link] @ d.tcp.origin.matrix())
+        to_hand = np.linalg.inv(_tcp_pose(d, poses))
         return np.array([to_hand @ poses[p.link] @ p.origin.matrix() for p in d.hand.pads])
 
     return surfaces
@@ -71,15 +76,14 @@ def _centre_of_mass(d: RobotDescription):
     def centre(q: np.ndarray) -> np.ndarray:
         poses = d.link_poses(d.hand_joint_targets(q))
         points = np.array([poses[link.name] @ np.array([*link.centre_of_mass, 1.0]) for link in links])
-        return (np.linalg.inv(poses[d.tcp.link] @ d.tcp.origin.matrix()) @ (masses @ points / masses.sum()))[:3]
+        return (np.linalg.inv(_tcp_pose(d, poses)) @ (masses @ points / masses.sum()))[:3]
 
     return centre
 
 
 def _wrist(d: RobotDescription, poses: dict[str, np.ndarray]) -> np.ndarray:
     """The wrist sensor's origin in the TCP frame (both ride on the palm)."""
-    tcp = poses[d.tcp.link] @ d.tcp.origin.matrix()
-    return (np.linalg.inv(tcp) @ poses[d.wrist_sensor.link] @ d.wrist_sensor.origin.matrix())[:3, 3]
+    return (np.linalg.inv(_tcp_pose(d, poses)) @ poses[d.wrist_sensor.link] @ d.wrist_sensor.origin.matrix())[:3, 3]
 
 
 def robot_info(d: RobotDescription) -> RobotInfo:

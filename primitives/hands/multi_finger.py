@@ -53,10 +53,11 @@ from __future__ import annotations
 from abc import abstractmethod
 import numpy as np
 
+from atd.model.frames import GRAVITY
 from primitives.arm.motion import SUPPORT_BAND
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
 from primitives.blackboard import CONTACT, EMPTY_HAND, FINGERS_STOPPED, PRESHAPED, PRESSING, SHIFT, WEIGH
-from primitives.filters import GRAVITY, LowPass, held_wrench, world_load
+from primitives.filters import LowPass, held_wrench, world_load
 from primitives.hands.extension import ExtensionGauge, contact_points
 from primitives.hands.posture import Stillness
 from primitives.robot import HandMode, Readings
@@ -495,8 +496,7 @@ class RobustGraspHand(FingerGrasp):
         which looks about where the hand first closed, 2.3 cm each side, pushed it out
         again at every close, and the grasp timed out (the preset's approach error, trials
         0-19: with this correction 151 -> 170 of 200 in PyBullet, 162 -> 178 in MuJoCo)."""
-        return (self.pinch and self.correct and self.ctx.object is not None
-                and set(self.fingers) <= self.felt_by and abs(self.felt_at) >= FELT_OFF_LINE)
+        return self._corrects_pinch() and set(self.fingers) <= self.felt_by and abs(self.felt_at) >= FELT_OFF_LINE
 
     def _after_pushed(self) -> np.ndarray:
         """The shift (hand frame) that closes next with the pinch line through the pushed
@@ -504,6 +504,11 @@ class RobustGraspHand(FingerGrasp):
         until it cleared the fingers, it reaches back to where they last touched it)."""
         side = float(np.sign(self.felt_at))
         return self._look_across(self.across + self.felt_at + side * self.ctx.object.footprint_length / 2.0)
+
+    def _corrects_pinch(self) -> bool:
+        """Two fingers pinch, corrections are on, and the task describes the object: what
+        the corrections that reason from the object's size and weight need."""
+        return self.pinch and self.correct and self.ctx.object is not None
 
     def _normal(self) -> np.ndarray:
         """The unit vector across the pinch line (hand frame x, y), the way a search step moves."""
@@ -606,7 +611,7 @@ class RobustGraspHand(FingerGrasp):
         self.holding += dt
         if self.status is not Status.RUNNING:
             return
-        if self.settled >= SETTLE_TIME and self.pinch and self.correct and self.ctx.object is not None:
+        if self.settled >= SETTLE_TIME and self._corrects_pinch():
             self.weighing, self.weights = "up", []  # lift it, to feel where its weight hangs
             self.ctx.blackboard[WEIGH] = WEIGH_LIFT
         elif self.settled >= SETTLE_TIME:

@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from atd.model.frames import GRAVITY
 from atd.sim import ENGINES, load_description, variants
 from atd.sim.scene import Scene, box_scene
-from factories.description import GRAVITY
 from primitives.filters import held_wrench
 from primitives.robot import HandMode
 
@@ -123,11 +123,7 @@ def test_a_tilted_hand_reads_the_same_wrench_on_both_engines(melfa, robot_of, ru
     mean = {}
     for engine in ENGINES:
         robot = robot_of(melfa, engine, box_scene(xy=(0.3, 0.3)))
-        dq = np.zeros(6)
-        dq[4:] = 0.5  # tilt the wrist and turn the flange
-        robot.command_arm_velocity(dq)
-        run(robot, 1.0)
-        robot.command_arm_velocity(np.zeros(6))
+        _tilt_wrist(robot, run)
         run(robot, 0.5)
         samples = []
         for _ in range(100):
@@ -141,6 +137,15 @@ def test_a_tilted_hand_reads_the_same_wrench_on_both_engines(melfa, robot_of, ru
     np.testing.assert_allclose(mj[3:], pb[3:], atol=0.005)
 
 
+def _tilt_wrist(robot, run) -> None:
+    """Turn the last two arm joints for 1 s, then stop: the hand's weight on every axis."""
+    dq = np.zeros(robot.info.arm_dof)
+    dq[-2:] = 0.5
+    robot.command_arm_velocity(dq)
+    run(robot, 1.0)
+    robot.command_arm_velocity(np.zeros(robot.info.arm_dof))
+
+
 @pytest.mark.parametrize(("robot", "arm"), variants())
 def test_the_hands_model_explains_its_own_wrist_reading_at_any_posture(robot, arm, robot_of, run) -> None:
     """Gravity compensation: the wrist reading less the hand's own weight, from its model
@@ -149,11 +154,7 @@ def test_the_hands_model_explains_its_own_wrist_reading_at_any_posture(robot, ar
     for engine in ENGINES:
         r = robot_of(d, engine, Scene(None, table=False))
         hand = r.info.hand
-        dq = np.zeros(r.info.arm_dof)
-        dq[-2:] = 0.5  # tilt the wrist and turn the flange
-        r.command_arm_velocity(dq)
-        run(r, 1.0)
-        r.command_arm_velocity(np.zeros(r.info.arm_dof))
+        _tilt_wrist(r, run)
         for posture in (hand.open, hand.closed):
             r.command_hand(posture, HandMode.POSITION)
             run(r, 1.0)
