@@ -34,14 +34,17 @@ def _outcomes(records: list[TrialRecord]) -> dict:
     return {(r.cell.key, r.index): {k: v for k, v in r.as_dict().items() if k not in TIMES} for r in records}
 
 
+def _stored(store: Path) -> int:
+    with Store.open_read(store) as s:
+        return len(s.records())
+
+
 def _wait_for_a_stored_trial(store: Path, process: subprocess.Popen) -> None:
     """Until the campaign `process` has committed its first trial to `store`."""
     deadline = time.monotonic() + 300
     while time.monotonic() < deadline and process.poll() is None:
-        if store.exists():
-            with Store.open_read(store) as s:
-                if s.done():
-                    return
+        if store.exists() and _stored(store):
+            return
         time.sleep(0.2)
 
 
@@ -86,19 +89,19 @@ def test_an_existing_store_is_not_overwritten_without_resume(tmp_path: Path) -> 
         assert len(s.records()) == 1
 
 
-def test_a_campaign_killed_midway_and_resumed_equals_one_run_straight_through(tmp_path: Path, straight) -> None:
+@pytest.mark.parametrize("stop", [signal.SIGKILL, signal.SIGTERM])
+def test_a_campaign_killed_midway_and_resumed_equals_one_run_straight_through(tmp_path: Path, straight,
+                                                                              stop: int) -> None:
     store = tmp_path / "small.sqlite"
     command = [sys.executable, "-m", "atd", "campaign", "run", str(DATA / "small.toml"), "--store", str(store),
                "-j", "1", "-q"]
     process = subprocess.Popen(command, cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
         _wait_for_a_stored_trial(store, process)
-        process.send_signal(signal.SIGKILL)
+        process.send_signal(stop)
     finally:
         process.wait()
-    with Store.open_read(store) as s:
-        kept = len(s.done())
-    assert 1 <= kept < 4, "the kill should land mid-campaign"
+    assert 1 <= _stored(store) < 4, "the kill should land mid-campaign"
     resumed = _atd("campaign", "run", str(DATA / "small.toml"), "--store", str(store), "--resume", "-j", "1",
                    cwd=tmp_path)
     assert resumed.returncode == 0, resumed.stderr
@@ -223,8 +226,7 @@ def test_ctrl_c_or_sigterm_stops_cleanly_keeping_every_finished_trial(tmp_path: 
     assert process.poll() is None, "the campaign ended before the test could stop it"
     process.send_signal(stop)
     _, err = process.communicate(timeout=60)
-    with Store.open_read(store) as s:
-        kept = len(s.done())
+    kept = _stored(store)
     assert process.returncode == 130, err
     assert 1 <= kept < 400 and f"{kept} of 400 trials were stored" in err and "--resume" in err
 
@@ -248,7 +250,9 @@ def test_the_trials_the_judge_fails_are_recorded_for_atd_report(tmp_path: Path) 
                   "-j", "1", "--record-failed", str(folder), cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     (recording,) = folder.iterdir()
-    assert recording.name == "claims_success__melfa__main__mujoco__robust__task__none__0.mcap"
+    with Store.open_read(tmp_path / "c.sqlite") as s:
+        campaign = s.campaign
+    assert recording.name == f"claims_success-{campaign}__claims_success__melfa__main__mujoco__robust__task__none__0.mcap"
     page = _atd("report", str(recording), "-o", str(tmp_path / "r.html"), cwd=tmp_path)
     assert page.returncode == 0, page.stderr
     assert "grasp_object" in (tmp_path / "r.html").read_text()

@@ -34,14 +34,15 @@ def test_records_come_back_as_they_went_in_ordered_by_cell_then_index(tmp_path: 
     assert back[0].perturbation == approach(0.01, 3.0)  # the sampled values survive, not only the cell's name
 
 
-def test_done_names_each_finished_trial_by_cell_and_index(tmp_path: Path) -> None:
+def test_counts_and_indices_name_the_finished_trials_of_each_cell(tmp_path: Path) -> None:
     with Store.create_or_resume(tmp_path / "c.sqlite", SPEC, "d1", resume=False) as store:
-        assert store.done() == set()
-        store.add(trial(0))
-        store.add(trial(1, status="error"))
-        store.add(trial(0, grasp="robust"))
-        key = trial().cell.key
-        assert store.done() == {(key, 0), (key, 1), (trial(grasp="robust").cell.key, 0)}
+        assert store.counts(10) == {}
+        for record in (trial(0), trial(1, status="error"), trial(5), trial(0, grasp="robust")):
+            store.add(record)
+        cell, robust = trial().cell, trial(grasp="robust").cell
+        assert store.counts(10) == {cell.key: 3, robust.key: 1}
+        assert store.counts(2) == {cell.key: 2, robust.key: 1}, "only the trials numbered below the count asked for"
+        assert store.indices(cell, 10) == {0, 1, 5} and store.indices(cell, 5) == {0, 1}
 
 
 def test_resume_continues_the_same_store(tmp_path: Path) -> None:
