@@ -49,6 +49,11 @@ class _Column:
     expected: str
 
 
+def _quoted(column: str) -> str:
+    """A column's name in SQL: `index` is a keyword, and a name in single quotes is a string."""
+    return f'"{column}"'
+
+
 _NAME = ("typeof({c}) = 'text' AND {c} != '' AND instr({c}, '/') = 0", "where a campaign writes a name (text, no '/')")
 _TEXT = ("typeof({c}) = 'text'", "where a campaign writes text")  # JSON too: its JSON is checked as it is read
 _FLAG = ("typeof({c}) = 'integer' AND {c} IN (0, 1)", "where a campaign writes 0 or 1")
@@ -80,7 +85,7 @@ _COLUMNS: tuple[_Column, ...] = (
 )
 #: What a whole row must be: (the column to show, the check in SQL, what is wrong in words).
 _ROW_CHECKS: tuple[tuple[str, str, str], ...] = (
-    *((c.name, c.valid.format(c=f'"{c.name}"'), c.expected) for c in _COLUMNS),
+    *((c.name, c.valid.format(c=_quoted(c.name)), c.expected) for c in _COLUMNS),
     ("error", "status = 'ok' OR error != ''", "but its status is 'error', which always says what went wrong"),
     ("error", "status = 'error' OR error = ''", "but its status is 'ok': a trial that ran has no error"),
 )
@@ -88,14 +93,14 @@ _ROW_CHECKS: tuple[tuple[str, str, str], ...] = (
 _JSON_COLUMNS = {"sampled": "an object of numbers", "measurements": "an object of numbers",
                  "events": "a list of objects"}
 _BOOL_COLUMNS = frozenset({"task_succeeded", "judged_succeeded"})
-_NAMES = ", ".join(f'"{c.name}"' for c in _COLUMNS)
-_CELL_NAMES = ", ".join(f'"{d}"' for d in DIMENSIONS)
-_OF_CELL = " AND ".join(f'"{d}" = ?' for d in DIMENSIONS)
+_NAMES = ", ".join(_quoted(c.name) for c in _COLUMNS)
+_CELL_NAMES = ", ".join(map(_quoted, DIMENSIONS))
+_OF_CELL = " AND ".join(f"{_quoted(d)} = ?" for d in DIMENSIONS)
 
 _SCHEMA = f"""
 CREATE TABLE meta (key TEXT PRIMARY KEY, value TEXT NOT NULL);
 CREATE TABLE trials (
-  {", ".join(f'"{c.name}" {c.kind}' for c in _COLUMNS)},
+  {", ".join(f"{_quoted(c.name)} {c.kind}" for c in _COLUMNS)},
   PRIMARY KEY ({_CELL_NAMES}, "index")
 );
 """
@@ -414,16 +419,21 @@ def _meta(db: sqlite3.Connection, path: Path) -> dict[str, str]:
 
 
 def _check_rows(db: sqlite3.Connection, path: Path) -> None:
-    """StoreError naming the first row with a value no campaign writes."""
-    which = " ".join(f"WHEN ({sql}) IS NOT 1 THEN {i}" for i, (_, sql, _) in enumerate(_ROW_CHECKS))
-    found = db.execute(f"SELECT rowid, CASE {which} END AS problem FROM trials "
-                       f"WHERE problem IS NOT NULL LIMIT 1").fetchone()
+    """DamagedStore naming the first row with a value no campaign writes, and the value
+    (in one query: a damaged file may not find the row again by its rowid)."""
+    def by_problem(value: str) -> str:
+        whens = (f"WHEN {i} THEN {value.format(c=_quoted(column))}" for i, (column, _, _) in enumerate(_ROW_CHECKS))
+        return f"CASE problem {' '.join(whens)} END"
+
+    problem = " ".join(f"WHEN ({sql}) IS NOT 1 THEN {i}" for i, (_, sql, _) in enumerate(_ROW_CHECKS))
+    found = db.execute(f"SELECT rowid, problem, {by_problem('typeof({c})')}, "
+                       f"{by_problem('CAST(substr(quote({c}), 1, 60) AS BLOB)')} "
+                       f"FROM (SELECT rowid, *, CASE {problem} END AS problem FROM trials) "
+                       "WHERE problem IS NOT NULL LIMIT 1").fetchone()
     if found is None:
         return
-    rowid, problem = found
-    column, _, expected = _ROW_CHECKS[problem]
-    kind, shown = db.execute(f'SELECT typeof("{column}"), CAST(substr(quote("{column}"), 1, 60) AS BLOB) '
-                             "FROM trials WHERE rowid = ?", (rowid,)).fetchone()
+    rowid, number, kind, shown = found
+    column, _, expected = _ROW_CHECKS[number]
     raise DamagedStore(f"{path}: trial row {rowid}: {column} holds {shown.decode('utf-8', 'replace')} ({kind}) "
                        f"{expected}; the store is damaged")
 

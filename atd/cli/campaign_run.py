@@ -134,11 +134,11 @@ def _run(chosen: Plans, store: Store, name: str, workers: int, ray_address: str 
     def keep(record: TrialRecord) -> None:
         nonlocal lost
         store.add(record)
-        progress(record)
         if record.recording_error:
             lost += 1
             progress.note(f"warning: trial {record.index} of {record.cell.key} is stored, its recording is not: "
                           f"{record.recording_error}")
+        progress(record)
 
     signal.signal(signal.SIGTERM, _stop)  # `kill`, a batch scheduler: stop as Ctrl-C does
     try:
