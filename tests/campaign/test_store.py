@@ -14,7 +14,7 @@ from typing import Iterator
 
 import pytest
 
-from atd.campaign.store import Store, StoreError
+from atd.campaign.store import CAMPAIGN_ID, Store, StoreError
 from tests.campaign.conftest import approach, preset_records, trial
 
 SPEC = "[campaign]\ntrials = 4\n"
@@ -82,6 +82,34 @@ def test_resume_refuses_a_store_made_from_another_spec(tmp_path: Path) -> None:
         Store.create_or_resume(path, SPEC + "# changed\n", "d2", resume=True)
     with Store.open_read(path) as store:
         assert len(store.records()) == 1
+
+
+def test_resume_keeps_the_campaign_id_and_refuses_other_task_content(tmp_path: Path) -> None:
+    path = tmp_path / "c.sqlite"
+    with Store.create_or_resume(path, SPEC, "d1", False, {"t.xml": "aa", "sub.xml": "bb"}) as store:
+        assert CAMPAIGN_ID.fullmatch(store.campaign)
+        campaign = store.campaign
+    with Store.create_or_resume(path, SPEC, "d1", True, {"t.xml": "aa", "sub.xml": "bb"}) as store:
+        assert store.campaign == campaign and not store.keyed_now, "a resumed campaign's recordings keep their names"
+    for tasks in ({"t.xml": "aa", "sub.xml": "cc"}, {"t.xml": "aa"}):
+        with pytest.raises(StoreError, match=r"sub.xml \(relative to the spec\) has changed since; --resume would mix"):
+            Store.create_or_resume(path, SPEC, "d1", True, tasks)
+
+
+def test_a_store_made_before_stores_were_keyed_to_their_tasks_is_keyed_at_its_next_resume(tmp_path: Path) -> None:
+    path = tmp_path / "c.sqlite"
+    with Store.create_or_resume(path, SPEC, "d1", resume=False) as store:
+        store.add(trial(0))
+    db = sqlite3.connect(path)
+    with db:
+        db.execute("DELETE FROM meta WHERE key IN ('task_digests', 'campaign')")
+    db.close()
+    with Store.open_read(path) as store:
+        assert store.task_digests is None and store.campaign is None and len(store.records()) == 1
+    with Store.create_or_resume(path, SPEC, "d1", True, {"t.xml": "aa"}) as store:
+        assert store.keyed_now and store.task_digests == {"t.xml": "aa"} and CAMPAIGN_ID.fullmatch(store.campaign)
+    with pytest.raises(StoreError, match="t.xml"):
+        Store.create_or_resume(path, SPEC, "d1", True, {"t.xml": "changed"})
 
 
 def test_a_trial_stored_twice_is_refused(tmp_path: Path) -> None:
