@@ -6,13 +6,16 @@ from __future__ import annotations
 
 import hashlib
 import itertools
+from collections import Counter
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Callable, Collection, Iterator
 
 import numpy as np
 
 from atd.campaign.record import DIMENSIONS, Cell
 from atd.campaign.spec import LoadedSpec, Perturbation, TaskEntry
+from atd.model.files import output_problem
 from factories.registry import factory_class
 
 
@@ -27,11 +30,13 @@ class TrialPlan:
     judge: str | None  # "lift", "place", or None: chosen from the task's states
     perturbation: Perturbation
     budget: float  # simulated seconds before the watchdog
-    record_failed: str | None = None  # a folder: a trial the judge fails is recorded there (MCAP)
+    recording: str | None = None  # where to record the trial (MCAP) if the judge fails it
 
-    @property
-    def recording_name(self) -> str:
-        return f"{self.cell.key.replace('/', '__')}__{self.index}.mcap"
+
+def recording_name(campaign: str, cell: Cell, index: int) -> str:
+    """The file a failed trial is recorded to: named by its campaign (`atd campaign run` gives
+    the spec's name and the store's id), so two campaigns never write the same file."""
+    return f"{campaign}__{cell.key.replace('/', '__')}__{index}.mcap"
 
 
 def trial_seed(base_seed: int, cell: Cell, index: int) -> int:
@@ -69,18 +74,53 @@ def parse_only(items: tuple[str, ...]) -> dict[str, set[str]]:
     return only
 
 
-def plans(loaded: LoadedSpec, only: dict[str, set[str]] | None = None, trials: int | None = None,
-          record_failed: Path | None = None) -> list[TrialPlan]:
-    """The trials of the spec's cells, narrowed to `only` and to the first `trials` of each;
-    with `record_failed`, each trial the judge fails is recorded into that folder."""
-    spec = loaded.spec
-    count = spec.trials if trials is None else trials
-    chosen = []
-    for cell, task in cells(loaded):
-        if only and any(getattr(cell, d) not in values for d, values in only.items()):
-            continue
-        for index in range(count):
-            chosen.append(TrialPlan(cell, index, trial_seed(spec.base_seed, cell, index), str(loaded.task_path(task)),
-                                    task.judge, spec.perturbations[cell.perturbation], spec.budget,
-                                    str(record_failed) if record_failed else None))
-    return chosen
+@dataclass(frozen=True)
+class Plans:
+    """The trials of some cells, numbered from 0 to `count` - 1 in each. Each plan is made
+    when it is taken, so a spec of millions of trials costs nothing before its first runs."""
+
+    loaded: LoadedSpec
+    cells: tuple[tuple[Cell, TaskEntry], ...]
+    count: int  # trials per cell
+    recordings: Path | None = None  # a folder: each trial the judge fails is recorded there
+    campaign: str = ""  # what the recordings' names start with (`recording_name`)
+
+    def __len__(self) -> int:
+        return len(self.cells) * self.count
+
+    def __iter__(self) -> Iterator[TrialPlan]:
+        return self.skipping(lambda cell: ())
+
+    def skipping(self, stored: Callable[[Cell], Collection[int]]) -> Iterator[TrialPlan]:
+        """The plans but those whose index `stored` gives for their cell; it is asked once per
+        cell, when that cell's first plan is about to be made."""
+        spec = self.loaded.spec
+        for cell, task in self.cells:
+            task_file, done = str(self.loaded.task_path(task)), stored(cell)
+            for index in range(self.count):
+                if index in done:
+                    continue
+                recording = self.recordings / recording_name(self.campaign, cell, index) if self.recordings else None
+                yield TrialPlan(cell, index, trial_seed(spec.base_seed, cell, index), task_file, task.judge,
+                                spec.perturbations[cell.perturbation], spec.budget,
+                                str(recording) if recording else None)
+
+    def recording_problem(self) -> str | None:
+        """Why some trial's recording could not be written into `recordings` (checked before
+        the first trial runs, with each cell's longest name); None when all can, or none is asked for."""
+        if self.recordings is None:
+            return None
+        names = [recording_name(self.campaign, cell, self.count - 1) for cell, _ in self.cells]
+        for name in names:
+            problem = output_problem(self.recordings / name)
+            if problem:
+                return f"--record-failed {self.recordings / name}: {problem}"
+        clash = next((n for n, k in Counter(names).items() if k > 1), None)
+        return f"--record-failed: two cells would be recorded as {clash}; rename a task" if clash else None
+
+
+def plans(loaded: LoadedSpec, only: dict[str, set[str]] | None = None, trials: int | None = None) -> Plans:
+    """The trials of the spec's cells, narrowed to `only` and to the first `trials` of each."""
+    chosen = tuple((cell, task) for cell, task in cells(loaded)
+                   if not only or all(getattr(cell, d) in values for d, values in only.items()))
+    return Plans(loaded, chosen, loaded.spec.trials if trials is None else trials)

@@ -43,6 +43,13 @@ class Progress:
             print(f"{key}: {tally['ok']}/{tally['n']} succeeded, {tally['false']} false successes{errors}",
                   file=self.stream, flush=True)
 
+    def note(self, line: str) -> None:
+        """A line about one trial, above the bar when there is one."""
+        if self.bar is not None:
+            self.bar.write(line, file=self.stream)
+        else:
+            print(line, file=self.stream, flush=True)
+
     def close(self) -> None:
         if self.bar is not None:
             self.bar.close()

@@ -8,6 +8,7 @@ from typing import Any, Literal
 
 #: The dimensions a campaign varies; a cell is one value of each.
 DIMENSIONS = ("task", "robot", "arm", "engine", "grasp", "object", "perturbation")
+TASK_OBJECT = "task"  # the object dimension's value for the ATD's own object
 
 
 @dataclass(frozen=True)
@@ -50,6 +51,8 @@ class TrialRecord:
     sim_time: float = 0.0  # s simulated
     wall_time: float = 0.0  # s the whole trial took, set-up included
     setup_time: float = 0.0  # s building and resetting the robot and scene
+    #: Not part of the record, not stored: why the trial's recording (--record-failed) was not written.
+    recording_error: str = field(default="", compare=False)
 
     @property
     def false_success(self) -> bool:
@@ -67,6 +70,7 @@ class TrialRecord:
         """Flat, JSON-ready: the cell's dimensions as top-level fields. The sampled values
         are under `sampled`, since `perturbation` is the cell's dimension there."""
         data = asdict(self)
+        del data["recording_error"]
         data["sampled"] = data.pop("perturbation")
         data.update(data.pop("cell"))
         return data

@@ -10,11 +10,13 @@ cannot reach) is ended the same way.
 
 from __future__ import annotations
 
+import itertools
 import multiprocessing as mp
 import signal
 import time
+from collections import deque
 from multiprocessing.connection import Connection, wait
-from typing import Callable
+from typing import Callable, Iterable, Iterator
 
 from atd.campaign.cells import TrialPlan
 from atd.campaign.record import TrialRecord
@@ -26,9 +28,12 @@ Sink = Callable[[TrialRecord], None]  # takes each finished trial (the store, th
 #: slower than any engine runs here (PyBullet's slowest run is about 3x real time).
 HANG_FACTOR = 4.0
 HANG_FLOOR = 120.0  # s
+#: Ray tasks submitted ahead of those finished: enough to fill a cluster, few enough that a
+#: campaign of millions of trials is not all submitted (and held in memory) at once.
+RAY_AHEAD = 10_000
 
 
-def run_local(plans: list[TrialPlan], workers: int, sink: Sink) -> None:
+def run_local(plans: Iterable[TrialPlan], workers: int, sink: Sink) -> None:
     """Run the plans on `workers` processes (1: in this process); each record goes to `sink`."""
     if workers <= 1:
         for plan in plans:
@@ -37,7 +42,7 @@ def run_local(plans: list[TrialPlan], workers: int, sink: Sink) -> None:
     _Pool(workers, sink).run(plans)
 
 
-def run_ray(plans: list[TrialPlan], address: str | None, workers: int, sink: Sink) -> None:
+def run_ray(plans: Iterable[TrialPlan], address: str | None, workers: int, sink: Sink) -> None:
     """Run the plans as Ray tasks, on a local Ray instance or the cluster at `address`."""
     import ray
 
@@ -46,11 +51,13 @@ def run_ray(plans: list[TrialPlan], address: str | None, workers: int, sink: Sin
         options = {"address": address} if address else {"num_cpus": workers, "include_dashboard": False}
         ray.init(log_to_driver=False, configure_logging=False, **options)
     remote = ray.remote(max_retries=0)(run_trial)
+    todo = iter(plans)
     try:
-        pending = {remote.remote(plan): plan for plan in plans}
+        pending = {remote.remote(plan): plan for plan in itertools.islice(todo, RAY_AHEAD)}
         while pending:
             done, _ = ray.wait(list(pending), num_returns=1)
             plan = pending.pop(done[0])
+            pending.update((remote.remote(p), p) for p in itertools.islice(todo, 1))
             try:
                 record = ray.get(done[0])
             except Exception as exc:  # noqa: BLE001 - a worker that died is that trial's result
@@ -103,7 +110,9 @@ class _Pool:
         self.context = _worker_context()
         self.conns: dict[int, Connection] = {}  # pid -> the parent's end of its pipe
         self.workers: dict[int, mp.Process] = {}
-        self.running: dict[int, tuple[int, float]] = {}  # pid -> (plan number, started)
+        self.running: dict[int, tuple[TrialPlan, float]] = {}  # pid -> (its plan, started)
+        self.todo: Iterator[TrialPlan] = iter(())
+        self.ahead: deque[TrialPlan] = deque()  # plans taken from `todo`, not yet handed out
         self.ready: set[int] = set()  # workers that have said they started
 
     def _start_worker(self) -> None:
@@ -114,10 +123,10 @@ class _Pool:
         self.workers[process.pid] = process
         self.conns[process.pid] = parent
 
-    def run(self, plans: list[TrialPlan]) -> None:
-        self.plans = plans
-        self.todo = list(range(len(plans)))[::-1]  # popped from the end: plan 0 first
-        for _ in range(min(self.size, len(plans))):
+    def run(self, plans: Iterable[TrialPlan]) -> None:
+        self.todo = iter(plans)
+        self.ahead.extend(itertools.islice(self.todo, self.size))  # a worker each, no more than there are plans
+        for _ in range(len(self.ahead)):
             self._start_worker()
         try:
             while self.workers:
@@ -146,13 +155,18 @@ class _Pool:
             self.sink(message)
         self._next(pid)
 
+    def _left(self) -> bool:
+        """Whether a plan is left to hand out, taking the next one from `todo` to know."""
+        if not self.ahead:
+            self.ahead.extend(itertools.islice(self.todo, 1))
+        return bool(self.ahead)
+
     def _next(self, pid: int) -> None:
         """Give an idle worker the next plan, or tell it to stop (None)."""
         plan = None
-        if self.todo:
-            number = self.todo.pop()
-            self.running[pid] = (number, time.monotonic())
-            plan = self.plans[number]
+        if self._left():
+            plan = self.ahead.popleft()
+            self.running[pid] = (plan, time.monotonic())
         try:
             self.conns[pid].send(plan)
         except OSError:  # it has just died: its pipe reads EOF next, and `_ended` records its plan
@@ -165,18 +179,18 @@ class _Pool:
         process.join()
         self.conns.pop(pid).close()
         if pid in self.running:
-            number, _ = self.running.pop(pid)
-            self.sink(_crashed(self.plans[number], why or f"the worker process died ({_exit_reason(process.exitcode)})"))
+            plan, _ = self.running.pop(pid)
+            self.sink(_crashed(plan, why or f"the worker process died ({_exit_reason(process.exitcode)})"))
         elif process.exitcode != 0 and pid not in self.ready:
             raise WorkerError(f"a worker process could not start ({_exit_reason(process.exitcode)}); "
                               f"run with --workers 1 to see why")
-        if self.todo:
+        if self._left():
             self._start_worker()
 
     def _reap_hung(self) -> None:
         """A trial past its wall-clock limit (a hang inside an engine) ends its worker."""
-        for pid, (number, since) in list(self.running.items()):
-            limit = hang_limit(self.plans[number])
+        for pid, (plan, since) in list(self.running.items()):
+            limit = hang_limit(plan)
             if time.monotonic() - since > limit:
                 self.workers[pid].kill()
                 self._ended(pid, f"the trial hung: no result after {limit:g} s of wall-clock time")

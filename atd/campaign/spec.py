@@ -8,15 +8,19 @@ code and a hint, so a typo in a 3,000-trial campaign is found before the first t
 from __future__ import annotations
 
 import hashlib
+import math
 import re
 import tomllib
 from pathlib import Path
 from typing import Annotated, Literal, Union
 
-from pydantic import BaseModel, ConfigDict, Field, Strict, ValidationError, ValidationInfo, field_validator
+from pydantic import (AfterValidator, BaseModel, ConfigDict, Field, Strict, ValidationError, ValidationInfo,
+                      field_validator)
 
+from atd.campaign.checks import PLAIN_NAME, check_entries
 from atd.campaign.perturbation import PERTURBATIONS
-from atd.campaign.record import DIMENSIONS
+from atd.campaign.record import DIMENSIONS, TASK_OBJECT
+from atd.campaign.sources import digests
 from atd.model import ranges
 from atd.model.diagnostics import Diagnostic, did_you_mean, error
 from atd.model.files import InputError, read_capped, real_path
@@ -25,8 +29,13 @@ from atd.model.toml_lines import TomlLines
 
 GRASP_MODES = ("naive", "robust")
 JUDGES = ("lift", "place")
-TASK_OBJECT = "task"  # the object dimension's value for the ATD's own object
 SPEC_CAP = 1 << 20  # bytes: a spec is a page of TOML
+
+# The ranges of the spec's own numbers (its scale ranges are in atd.model.ranges).
+SHIFT = ranges.Range(0.0, 0.2, "m")  # an approach or object-pose error per axis: a hand's width
+TILT = ranges.Range(0.0, 90.0, "deg")  # an approach error about each axis
+TURN = ranges.Range(0.0, 180.0, "deg")  # an object turned about z: either way round
+TRIAL_BUDGET = ranges.Range(0.0, 3600.0, "s", low_open=True)
 
 
 class _Strict(BaseModel):
@@ -36,6 +45,18 @@ class _Strict(BaseModel):
 # Numbers as TOML writes them: an integer may stand for a float, but `true` is not 1 and 2.0 is not a count.
 Number = Annotated[float, Strict()]
 Count = Annotated[int, Strict()]
+
+
+def _within(allowed: ranges.Range) -> AfterValidator:
+    """A number checked against its declared range, in its words: NaN (TOML's `nan`) is not a
+    number in any range, where pydantic's own bounds said "should be <= 0.2"."""
+    def check(value: float) -> float:
+        problem = allowed.problem(value)
+        if problem:
+            raise ValueError(problem)
+        return value
+
+    return AfterValidator(check)
 
 
 class TaskEntry(_Strict):
@@ -52,11 +73,11 @@ class Perturbation(_Strict):
     """One named perturbation model with its parameters; see `atd.campaign.perturbation`."""
 
     model: Literal["none", "approach", "object_pose", "object_physics", "sensors"]
-    translation: Number = Field(0.05, ge=0, le=0.2, description="approach: ± m per axis")
-    rotation: Number = Field(15.0, ge=0, le=90, description="approach: ± degrees about each axis")
-    x: Number = Field(0.03, ge=0, le=0.2, description="object_pose: ± m along x")
-    y: Number = Field(0.03, ge=0, le=0.2, description="object_pose: ± m along y")
-    yaw: Number = Field(20.0, ge=0, le=180, description="object_pose: ± degrees about z")
+    translation: Annotated[Number, _within(SHIFT)] = Field(0.05, description="approach: ± m per axis")
+    rotation: Annotated[Number, _within(TILT)] = Field(15.0, description="approach: ± degrees about each axis")
+    x: Annotated[Number, _within(SHIFT)] = Field(0.03, description="object_pose: ± m along x")
+    y: Annotated[Number, _within(SHIFT)] = Field(0.03, description="object_pose: ± m along y")
+    yaw: Annotated[Number, _within(TURN)] = Field(20.0, description="object_pose: ± degrees about z")
     mass: tuple[Number, Number] = Field((0.5, 2.0), description="object_physics: mass scale range")
     friction: tuple[Number, Number] = Field((0.5, 1.5), description="object_physics: friction scale range")
     noise: tuple[Number, Number] = Field((1.0, 3.0), description="sensors: noise scale range")
@@ -74,10 +95,11 @@ class Perturbation(_Strict):
 
 
 class CampaignSpec(_Strict):
-    name: str = Field(min_length=1, pattern=r"^[A-Za-z0-9_.-]+$")
+    name: str = Field(pattern=f"^{PLAIN_NAME.pattern}$")
     base_seed: Count = Field(0, ge=0, lt=2**63)
     trials: Count = Field(10, ge=ranges.TRIALS.low, le=ranges.TRIALS.high, description="trials per cell")
-    budget: Number = Field(120.0, gt=0, le=3600, description="simulated seconds before the watchdog stops a trial")
+    budget: Annotated[Number, _within(TRIAL_BUDGET)] = Field(
+        120.0, description="simulated seconds before the watchdog stops a trial")
     tasks: tuple[Union[str, TaskEntry], ...] = Field(min_length=1)
     robots: tuple[Union[str, RobotEntry], ...] = Field(min_length=1)
     engines: tuple[Literal["mujoco", "pybullet"], ...] = Field(("mujoco",), min_length=1)
@@ -110,6 +132,10 @@ class LoadedSpec(BaseModel):
     def task_path(self, entry: TaskEntry) -> Path:
         return real_path(self.path.parent / entry.file)
 
+    def task_digests(self) -> dict[str, str]:
+        """The digest of every file the spec's tasks are made of, as they are now."""
+        return digests((self.task_path(e) for e in self.spec.task_entries), self.path.parent)
+
 
 def load_spec(path: Path) -> tuple[LoadedSpec | None, list[Diagnostic]]:
     """The spec, or None with every problem found (CMP codes, located)."""
@@ -125,19 +151,20 @@ def load_spec(path: Path) -> tuple[LoadedSpec | None, list[Diagnostic]]:
         line = int(m.group(1)) if (m := re.search(r"line (\d+)", str(exc))) else 0
         return None, [error("CMP002", f"not valid TOML: {exc}", Location(where, line), "fix the TOML syntax")]
     lines = TomlLines(text)
-    found = _check_names(data, real_path(path).parent, where, lines)
+    found = check_entries(data, real_path(path).parent, where, lines)
     try:
         spec = CampaignSpec.model_validate(data)
     except ValidationError as exc:
         found += [_diagnostic(e, where, lines) for e in exc.errors()]
-        return None, sorted(found, key=lambda d: d.loc.line)
+        # The spec's own by line; a task's errors (located in the task) keep their order, after them.
+        return None, sorted(found, key=lambda d: d.loc.line if d.loc.file == where else math.inf)
     return LoadedSpec(spec=spec, path=real_path(path), text=text), found
 
 
 def _diagnostic(e: dict, where: str, lines: TomlLines) -> Diagnostic:
     loc = tuple(p for p in e["loc"] if p not in ("str", "TaskEntry", "RobotEntry"))
     dotted = ".".join(str(p) for p in loc)
-    message = e["msg"]
+    message = e["msg"].removeprefix("Value error, ")
     if e["type"] == "extra_forbidden":
         allowed = _allowed_keys(loc[:-1])
         return error("CMP010", f"unknown key '{dotted}'", lines.find(loc, where),
@@ -168,49 +195,6 @@ def _hint(loc: tuple) -> str | None:
     if field == "model":
         return f"perturbation models: {', '.join(PERTURBATIONS)}"
     return None
-
-
-def _check_names(data: dict, folder: Path, where: str, lines: TomlLines) -> list[Diagnostic]:
-    """What the schema cannot know: task files exist, robots and arms are installed,
-    objects are in the library. Read from the raw TOML, so these are found together
-    with the schema's own errors; entries of the wrong type are the schema's to report."""
-    from factories.registry import installed
-
-    found = []
-    for i, entry in _entries(data, "tasks"):
-        file = entry.get("file") if isinstance(entry, dict) else entry
-        if isinstance(file, str) and not (folder / file).is_file():
-            found.append(error("CMP020", f"no task file {real_path(folder / file)}", lines.find(("tasks", i), where),
-                               "task files are relative to the spec"))
-    robots = installed()
-    for i, entry in _entries(data, "robots"):
-        name = entry.get("name") if isinstance(entry, dict) else entry
-        if not isinstance(name, str):
-            continue
-        if name not in robots:
-            found.append(error("CMP021", f"no robot '{name}' is installed", lines.find(("robots", i), where),
-                               did_you_mean(name, robots) or f"installed: {', '.join(robots)}"))
-            continue
-        arms = [a.name for a in robots[name].load().arms]
-        for arm in entry.get("arms", ()) if isinstance(entry, dict) else ():
-            if isinstance(arm, str) and arm not in arms:
-                found.append(error("CMP022", f"robot '{name}' has no arm '{arm}'",
-                                   lines.find(("robots", i, "arms"), where), f"its arms: {', '.join(arms)}"))
-    named = [(i, o) for i, o in _entries(data, "objects") if isinstance(o, str) and o != TASK_OBJECT]
-    if named:
-        from atd.campaign.objects import library
-
-        known = library()
-        for i, name in named:
-            if name not in known:
-                found.append(error("CMP023", f"no object '{name}' in the library", lines.find(("objects", i), where),
-                                   did_you_mean(name, known) or f"'{TASK_OBJECT}' or one of: {', '.join(known)}"))
-    return found
-
-
-def _entries(data: dict, key: str) -> list[tuple[int, object]]:
-    value = data.get(key)
-    return list(enumerate(value)) if isinstance(value, list) else []
 
 
 __all__ = ["DIMENSIONS", "GRASP_MODES", "JUDGES", "TASK_OBJECT", "CampaignSpec", "LoadedSpec", "Perturbation",

@@ -19,11 +19,11 @@ import numpy as np
 from atd.campaign.cells import TrialPlan
 from atd.campaign.judge import LiftJudge, PlaceJudge
 from atd.campaign.perturbation import approach_taken, sample, true_robot, true_scene
-from atd.campaign.record import TrialRecord
-from atd.campaign.spec import TASK_OBJECT
+from atd.campaign.record import TASK_OBJECT, TrialRecord
 from atd.model import has_errors, load_task
 from atd.model.diagnostics import render_all
 from atd.model.estd import Estd
+from atd.model.files import OutputError
 from atd.model.vocabulary import StateType
 from atd.runtime.session import Run, belief_scene
 from factories.base import Factory
@@ -64,10 +64,12 @@ def run_trial(plan: TrialPlan) -> TrialRecord:
     except Exception as exc:  # noqa: BLE001 - any failure of one trial is that trial's result
         record.status, record.error = "error", _describe(exc)
     record.wall_time = time.perf_counter() - started
-    if plan.record_failed and record.status == "ok" and not record.judged_succeeded:
+    if plan.recording and record.status == "ok" and not record.judged_succeeded:
         # Trials are deterministic: running it again with the recorder on records the same run.
-        _run(plan, TrialRecord(cell=plan.cell, index=plan.index, seed=plan.seed), started,
-             Path(plan.record_failed) / plan.recording_name)
+        try:
+            _run(plan, TrialRecord(cell=plan.cell, index=plan.index, seed=plan.seed), started, Path(plan.recording))
+        except Exception as exc:  # noqa: BLE001 - a recording lost (a full disk, ...) never costs the trial's record
+            record.recording_error = _describe(exc)
     return record
 
 
@@ -114,7 +116,7 @@ def _judge(plan: TrialPlan, belief: Estd, run: Run) -> LiftJudge | PlaceJudge:
 
 
 def _describe(exc: BaseException) -> str:
-    if isinstance(exc, TrialError):
+    if isinstance(exc, (TrialError, OutputError)):
         return str(exc)
     frame = traceback.extract_tb(exc.__traceback__)[-1] if exc.__traceback__ else None
     where = f" ({Path(frame.filename).name}:{frame.lineno})" if frame else ""

@@ -5,16 +5,18 @@ from __future__ import annotations
 import os
 import signal
 from collections import Counter
+from dataclasses import replace
 from importlib.util import find_spec
 from pathlib import Path
 
 import click
 
-from atd.campaign.cells import parse_only, plans
+from atd.campaign.cells import Plans, parse_only, plans
 from atd.campaign.progress import Progress
+from atd.campaign.record import TrialRecord
 from atd.campaign.runner import WorkerError, run_local, run_ray
-from atd.campaign.spec import load_spec
-from atd.campaign.store import Store, StoreError
+from atd.campaign.spec import LoadedSpec, load_spec
+from atd.campaign.store import DamagedStore, Store, StoreError, new_campaign_id
 from atd.cli.app import EXIT_INVALID, EXIT_USAGE, OutputFile, Ranged, campaign, guard_outputs
 from atd.model import has_errors, ranges
 from atd.model.diagnostics import render_all
@@ -62,54 +64,107 @@ def run_campaign(spec_file: Path, workers: int | None, ray_address: str | None, 
     loaded, found = load_spec(spec_file)
     if loaded is None or has_errors(found):
         _fail(render_all(found), EXIT_INVALID)
-    try:
-        chosen = plans(loaded, parse_only(only), trials, record_failed and real_path(record_failed))
-    except ValueError as exc:
-        _fail(f"error: {exc}", EXIT_USAGE)
-    if not chosen:
-        _fail(f"error: no cell of {spec_file} matches {' '.join('--only ' + o for o in only)}", EXIT_USAGE)
-    if record_failed is not None and not record_failed.is_dir():
-        _fail(f"error: --record-failed {record_failed}: no such folder; create it first", EXIT_USAGE)
+    campaign_id = new_campaign_id()  # a resumed store keeps its own, as long
+    chosen = _chosen(loaded, spec_file, only, trials, record_failed, campaign_id)
     store_path = store_path or Path.cwd() / f"{loaded.spec.name}.sqlite"
     guard_outputs({"--store": store_path}, [loaded.task_path(entry) for entry in loaded.spec.task_entries])
+    tasks = loaded.task_digests()
+    with _open_store(store_path, loaded, resume, tasks, campaign_id) as store:
+        chosen = replace(chosen, campaign=f"{loaded.spec.name}-{store.campaign}")
+        lost = _run(chosen, store, spec_file.name, workers or os.cpu_count() or 1, ray_address, quiet)
+        tally = _tally(chosen, store)
+    click.echo(f"{tally['n']} trials in {store_path}: {tally['ok']} succeeded (judged by the simulator), "
+               f"{tally['false']} false successes, {tally['error']} errors")
+    click.echo(f"report: atd campaign report {store_path}")
+    if loaded.task_digests() != tasks:
+        _fail("error: a file of the campaign's tasks changed while it ran, so its trials may mix both versions; "
+              "run it again into a new --store", EXIT_INVALID)
+    if lost:
+        _fail(f"error: {lost} failed trials are stored but not recorded in {record_failed} (see the warnings "
+              f"above)", EXIT_USAGE)
+
+
+def _chosen(loaded: LoadedSpec, spec_file: Path, only: tuple[str, ...], trials: int | None,
+            record_failed: Path | None, campaign_id: str) -> Plans:
+    """The trials asked for; with --record-failed, every recording's name checked before
+    anything is written (named with a new campaign's id: a resumed one's is as long)."""
     try:
-        store = Store.create_or_resume(store_path, loaded.text, loaded.digest, resume)
+        chosen = plans(loaded, parse_only(only), trials)
+    except ValueError as exc:
+        _fail(f"error: {exc}", EXIT_USAGE)
+    if not chosen.cells:
+        _fail(f"error: no cell of {spec_file} matches {' '.join('--only ' + o for o in only)}", EXIT_USAGE)
+    if record_failed is None:
+        return chosen
+    if not record_failed.is_dir():
+        _fail(f"error: --record-failed {record_failed}: no such folder; create it first", EXIT_USAGE)
+    chosen = replace(chosen, recordings=real_path(record_failed), campaign=f"{loaded.spec.name}-{campaign_id}")
+    problem = chosen.recording_problem()
+    if problem:
+        _fail(f"error: {problem}", EXIT_USAGE)
+    return chosen
+
+
+def _open_store(path: Path, loaded: LoadedSpec, resume: bool, tasks: dict[str, str], campaign_id: str) -> Store:
+    try:
+        store = Store.create_or_resume(path, loaded.text, loaded.digest, resume, tasks, campaign_id)
+    except DamagedStore as exc:
+        _fail(f"error: {exc}", EXIT_INVALID)
     except StoreError as exc:
         _fail(f"error: {exc}", EXIT_USAGE)
-    with store:
-        finished = store.done()
-        todo = [p for p in chosen if (p.cell.key, p.index) not in finished]
-        workers = workers or os.cpu_count() or 1
-        where = f"Ray ({ray_address or 'local'})" if ray_address is not None else f"{workers} worker(s)"
-        if not quiet:
-            click.echo(f"{spec_file.name}: {len(todo)} trials to run on {where} "
-                       f"({len(chosen) - len(todo)} already in {store_path})", err=True)
-        progress = Progress(len(todo), Counter(p.cell.key for p in todo), len(chosen) - len(todo), quiet=quiet)
+    if store.keyed_now:
+        click.echo(f"note: {path} was made by an earlier atd, which did not record its tasks' content: an edit "
+                   f"before this resume cannot be told; from now on it can", err=True)
+    return store
 
-        def keep(record) -> None:
-            store.add(record)
-            progress(record)
 
-        signal.signal(signal.SIGTERM, _stop)  # `kill`, a batch scheduler: stop as Ctrl-C does
-        try:
-            if ray_address is not None:
-                run_ray(todo, ray_address or None, workers, keep)
-            else:
-                run_local(todo, workers, keep)
-        except (WorkerError, StoreError) as exc:
-            progress.close()
-            _fail(f"error: {exc}; {progress.done} finished trials are kept in {store_path}", EXIT_USAGE)
-        except KeyboardInterrupt:
-            progress.close()
-            _fail(f"stopped: {progress.done} of {len(todo)} trials were stored in {store_path}; "
-                  f"add --resume to the same command to continue", EXIT_INTERRUPTED)
+def _run(chosen: Plans, store: Store, name: str, workers: int, ray_address: str | None, quiet: bool) -> int:
+    """Run the trials the store lacks, each stored as it ends; how many recordings were lost."""
+    stored = store.counts(chosen.count)
+    left = Counter({cell.key: chosen.count - stored.get(cell.key, 0) for cell, _ in chosen.cells})
+    todo = chosen.skipping(lambda cell: store.indices(cell, chosen.count) if stored.get(cell.key) else ())
+    total = sum(left.values())
+    where = f"Ray ({ray_address or 'local'})" if ray_address is not None else f"{workers} worker(s)"
+    if not quiet:
+        click.echo(f"{name}: {total} trials to run on {where} ({len(chosen) - total} already in {store.path})",
+                   err=True)
+    progress = Progress(total, left, len(chosen) - total, quiet=quiet)
+    lost = 0
+
+    def keep(record: TrialRecord) -> None:
+        nonlocal lost
+        store.add(record)
+        if record.recording_error:
+            lost += 1
+            progress.note(f"warning: trial {record.index} of {record.cell.key} is stored, its recording is not: "
+                          f"{record.recording_error}")
+        progress(record)
+
+    signal.signal(signal.SIGTERM, _stop)  # `kill`, a batch scheduler: stop as Ctrl-C does
+    try:
+        if ray_address is not None:
+            run_ray(todo, ray_address or None, workers, keep)
+        else:
+            run_local(todo, workers, keep)
+    except (WorkerError, StoreError) as exc:
         progress.close()
-        records = store.records()
-    keys = {(p.cell.key, p.index) for p in chosen}
-    mine = [r for r in records if (r.cell.key, r.index) in keys]
-    successes = sum(r.judged_succeeded for r in mine)
-    false = sum(r.false_success for r in mine)
-    errors = sum(r.status == "error" for r in mine)
-    click.echo(f"{len(mine)} trials in {store_path}: {successes} succeeded (judged by the simulator), "
-               f"{false} false successes, {errors} errors")
-    click.echo(f"report: atd campaign report {store_path}")
+        _fail(f"error: {exc}; {progress.done} finished trials are kept in {store.path}", EXIT_USAGE)
+    except KeyboardInterrupt:
+        progress.close()
+        _fail(f"stopped: {progress.done} of {total} trials were stored in {store.path}; "
+              f"add --resume to the same command to continue", EXIT_INTERRUPTED)
+    progress.close()
+    return lost
+
+
+def _tally(chosen: Plans, store: Store) -> Counter[str]:
+    """The stored trials asked for, counted one at a time: a campaign of millions is never all in memory."""
+    keys = {cell.key for cell, _ in chosen.cells}
+    tally: Counter[str] = Counter()
+    try:
+        for r in store.each():
+            if r.index < chosen.count and r.cell.key in keys:
+                tally.update(n=1, ok=int(r.judged_succeeded), false=int(r.false_success), error=int(r.status == "error"))
+    except StoreError as exc:
+        _fail(f"error: {exc}", EXIT_INVALID)
+    return tally

@@ -4,12 +4,14 @@ MuJoCo, real worker processes, a real local Ray instance."""
 from __future__ import annotations
 
 import os
+import resource
 import shutil
 import signal
 import subprocess
 import sys
 import tempfile
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -34,14 +36,17 @@ def _outcomes(records: list[TrialRecord]) -> dict:
     return {(r.cell.key, r.index): {k: v for k, v in r.as_dict().items() if k not in TIMES} for r in records}
 
 
+def _stored(store: Path) -> int:
+    with Store.open_read(store) as s:
+        return len(s.records())
+
+
 def _wait_for_a_stored_trial(store: Path, process: subprocess.Popen) -> None:
     """Until the campaign `process` has committed its first trial to `store`."""
     deadline = time.monotonic() + 300
     while time.monotonic() < deadline and process.poll() is None:
-        if store.exists():
-            with Store.open_read(store) as s:
-                if s.done():
-                    return
+        if store.exists() and _stored(store):
+            return
         time.sleep(0.2)
 
 
@@ -86,19 +91,19 @@ def test_an_existing_store_is_not_overwritten_without_resume(tmp_path: Path) -> 
         assert len(s.records()) == 1
 
 
-def test_a_campaign_killed_midway_and_resumed_equals_one_run_straight_through(tmp_path: Path, straight) -> None:
+@pytest.mark.parametrize("stop", [signal.SIGKILL, signal.SIGTERM])
+def test_a_campaign_killed_midway_and_resumed_equals_one_run_straight_through(tmp_path: Path, straight,
+                                                                              stop: int) -> None:
     store = tmp_path / "small.sqlite"
     command = [sys.executable, "-m", "atd", "campaign", "run", str(DATA / "small.toml"), "--store", str(store),
                "-j", "1", "-q"]
     process = subprocess.Popen(command, cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
         _wait_for_a_stored_trial(store, process)
-        process.send_signal(signal.SIGKILL)
+        process.send_signal(stop)
     finally:
         process.wait()
-    with Store.open_read(store) as s:
-        kept = len(s.done())
-    assert 1 <= kept < 4, "the kill should land mid-campaign"
+    assert 1 <= _stored(store) < 4, "the kill should land mid-campaign"
     resumed = _atd("campaign", "run", str(DATA / "small.toml"), "--store", str(store), "--resume", "-j", "1",
                    cwd=tmp_path)
     assert resumed.returncode == 0, resumed.stderr
@@ -223,8 +228,7 @@ def test_ctrl_c_or_sigterm_stops_cleanly_keeping_every_finished_trial(tmp_path: 
     assert process.poll() is None, "the campaign ended before the test could stop it"
     process.send_signal(stop)
     _, err = process.communicate(timeout=60)
-    with Store.open_read(store) as s:
-        kept = len(s.done())
+    kept = _stored(store)
     assert process.returncode == 130, err
     assert 1 <= kept < 400 and f"{kept} of 400 trials were stored" in err and "--resume" in err
 
@@ -248,7 +252,60 @@ def test_the_trials_the_judge_fails_are_recorded_for_atd_report(tmp_path: Path) 
                   "-j", "1", "--record-failed", str(folder), cwd=tmp_path)
     assert result.returncode == 0, result.stderr
     (recording,) = folder.iterdir()
-    assert recording.name == "claims_success__melfa__main__mujoco__robust__task__none__0.mcap"
+    with Store.open_read(tmp_path / "c.sqlite") as s:
+        campaign = s.campaign
+    assert recording.name == f"claims_success-{campaign}__claims_success__melfa__main__mujoco__robust__task__none__0.mcap"
     page = _atd("report", str(recording), "-o", str(tmp_path / "r.html"), cwd=tmp_path)
     assert page.returncode == 0, page.stderr
     assert "grasp_object" in (tmp_path / "r.html").read_text()
+
+
+def _files_limited_to(size: int):
+    """A child's `ulimit -f`: a write past `size` bytes fails with EFBIG (Python ignores SIGXFSZ)."""
+    return lambda: resource.setrlimit(resource.RLIMIT_FSIZE, (size, resource.getrlimit(resource.RLIMIT_FSIZE)[1]))
+
+
+def test_a_campaign_stopped_by_the_file_size_limit_and_resumed_equals_one_run_straight_through(
+        tmp_path: Path, straight) -> None:
+    """32 KiB holds the new store and a few trials' write-ahead log, not the whole campaign."""
+    store = tmp_path / "small.sqlite"
+    command = ["campaign", "run", str(DATA / "small.toml"), "--store", str(store), "-j", "1", "-q"]
+    limited = subprocess.run([sys.executable, "-m", "atd", *command], cwd=tmp_path, capture_output=True, text=True,
+                             timeout=600, preexec_fn=_files_limited_to(32 * 1024))
+    assert limited.returncode == 2 and "file-size limit" in limited.stderr, limited.stderr
+    assert 1 <= _stored(store) < 4, "the limit should land mid-campaign"
+    resumed = _atd(*command, "--resume", cwd=tmp_path)
+    assert resumed.returncode == 0, resumed.stderr
+    with Store.open_read(store) as s:
+        assert _outcomes(s.records()) == straight
+
+
+def test_a_recording_that_cannot_be_written_costs_the_trial_nothing(tmp_path: Path) -> None:
+    """Under a 40 KiB file-size limit the store is written, each trial's 54 KB recording is not:
+    a warning each, the trial stored as it ran, exit 2 at the end (was a traceback, and with two
+    workers the trial stored as 'the worker process died')."""
+    folder = tmp_path / "failed"
+    folder.mkdir()
+    store = tmp_path / "c.sqlite"
+    result = subprocess.run([sys.executable, "-m", "atd", "campaign", "run", str(DATA / "claims_success.toml"),
+                             "--store", str(store), "--trials", "2", "-j", "1", "--record-failed", str(folder)],
+                            cwd=tmp_path, capture_output=True, text=True, timeout=600,
+                            preexec_fn=_files_limited_to(40 * 1024))
+    assert result.returncode == 2, result.stderr
+    warnings = [line for line in result.stderr.splitlines() if line.startswith("warning:")]
+    assert len(warnings) == 2 and all("is stored, its recording is not" in w and "ulimit -f" in w for w in warnings)
+    assert "2 failed trials are stored but not recorded" in result.stderr and "Traceback" not in result.stderr
+    with Store.open_read(store) as s:
+        records = s.records()
+    assert [(r.index, r.status, r.false_success) for r in records] == [(0, "ok", True), (1, "ok", True)]
+    assert list(folder.iterdir()) == []
+
+
+def test_with_two_workers_a_lost_recording_leaves_the_records_as_they_are_without_one(tmp_path: Path) -> None:
+    chosen = plans(_spec("claims_success.toml"), trials=2)
+    plain: list[TrialRecord] = []
+    run_local(chosen, 1, plain.append)
+    recorded: list[TrialRecord] = []
+    run_local(replace(chosen, recordings=tmp_path / "missing", campaign="c"), 2, recorded.append)
+    assert _outcomes(recorded) == _outcomes(plain)
+    assert all("cannot write" in r.recording_error and "missing" in r.recording_error for r in recorded)

@@ -60,7 +60,7 @@ def test_a_file_that_is_no_store_is_one_line_and_exit_1(tmp_path: Path) -> None:
     task.write_text("<statemachine/>\n")
     code, _, err = _atd("report", str(task))
     assert code == 1
-    assert err == f"error: {task} is not a campaign store; give the --store file a campaign wrote\n"
+    assert err == f"error: {task} is not a campaign store (file is not a database); give the --store file a campaign wrote\n"
 
 
 def test_usage_errors_name_the_fix(preset_store: Path, tmp_path: Path) -> None:

@@ -14,7 +14,7 @@ from typing import Iterator
 
 import pytest
 
-from atd.campaign.store import Store, StoreError
+from atd.campaign.store import CAMPAIGN_ID, Store, StoreError
 from tests.campaign.conftest import approach, preset_records, trial
 
 SPEC = "[campaign]\ntrials = 4\n"
@@ -34,14 +34,15 @@ def test_records_come_back_as_they_went_in_ordered_by_cell_then_index(tmp_path: 
     assert back[0].perturbation == approach(0.01, 3.0)  # the sampled values survive, not only the cell's name
 
 
-def test_done_names_each_finished_trial_by_cell_and_index(tmp_path: Path) -> None:
+def test_counts_and_indices_name_the_finished_trials_of_each_cell(tmp_path: Path) -> None:
     with Store.create_or_resume(tmp_path / "c.sqlite", SPEC, "d1", resume=False) as store:
-        assert store.done() == set()
-        store.add(trial(0))
-        store.add(trial(1, status="error"))
-        store.add(trial(0, grasp="robust"))
-        key = trial().cell.key
-        assert store.done() == {(key, 0), (key, 1), (trial(grasp="robust").cell.key, 0)}
+        assert store.counts(10) == {}
+        for record in (trial(0), trial(1, status="error"), trial(5), trial(0, grasp="robust")):
+            store.add(record)
+        cell, robust = trial().cell, trial(grasp="robust").cell
+        assert store.counts(10) == {cell.key: 3, robust.key: 1}
+        assert store.counts(2) == {cell.key: 2, robust.key: 1}, "only the trials numbered below the count asked for"
+        assert store.indices(cell, 10) == {0, 1, 5} and store.indices(cell, 5) == {0, 1}
 
 
 def test_resume_continues_the_same_store(tmp_path: Path) -> None:
@@ -81,6 +82,34 @@ def test_resume_refuses_a_store_made_from_another_spec(tmp_path: Path) -> None:
         Store.create_or_resume(path, SPEC + "# changed\n", "d2", resume=True)
     with Store.open_read(path) as store:
         assert len(store.records()) == 1
+
+
+def test_resume_keeps_the_campaign_id_and_refuses_other_task_content(tmp_path: Path) -> None:
+    path = tmp_path / "c.sqlite"
+    with Store.create_or_resume(path, SPEC, "d1", False, {"t.xml": "aa", "sub.xml": "bb"}) as store:
+        assert CAMPAIGN_ID.fullmatch(store.campaign)
+        campaign = store.campaign
+    with Store.create_or_resume(path, SPEC, "d1", True, {"t.xml": "aa", "sub.xml": "bb"}) as store:
+        assert store.campaign == campaign and not store.keyed_now, "a resumed campaign's recordings keep their names"
+    for tasks in ({"t.xml": "aa", "sub.xml": "cc"}, {"t.xml": "aa"}):
+        with pytest.raises(StoreError, match=r"sub.xml \(relative to the spec\) has changed since; --resume would mix"):
+            Store.create_or_resume(path, SPEC, "d1", True, tasks)
+
+
+def test_a_store_made_before_stores_were_keyed_to_their_tasks_is_keyed_at_its_next_resume(tmp_path: Path) -> None:
+    path = tmp_path / "c.sqlite"
+    with Store.create_or_resume(path, SPEC, "d1", resume=False) as store:
+        store.add(trial(0))
+    db = sqlite3.connect(path)
+    with db:
+        db.execute("DELETE FROM meta WHERE key IN ('task_digests', 'campaign')")
+    db.close()
+    with Store.open_read(path) as store:
+        assert store.task_digests is None and store.campaign is None and len(store.records()) == 1
+    with Store.create_or_resume(path, SPEC, "d1", True, {"t.xml": "aa"}) as store:
+        assert store.keyed_now and store.task_digests == {"t.xml": "aa"} and CAMPAIGN_ID.fullmatch(store.campaign)
+    with pytest.raises(StoreError, match="t.xml"):
+        Store.create_or_resume(path, SPEC, "d1", True, {"t.xml": "changed"})
 
 
 def test_a_trial_stored_twice_is_refused(tmp_path: Path) -> None:
