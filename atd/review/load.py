@@ -120,13 +120,13 @@ def _topic(channel: Channel, schemas: dict[int, Schema]) -> str | None:
     if channel.topic not in _READ:
         return None
     if channel.message_encoding != "json":
-        raise MessageProblem(f"its {channel.topic} channel holds messages encoded as {channel.message_encoding[:40]!r}; "
-                             f"`atd run --record` writes JSON")
+        raise MessageProblem(f"its {channel.topic} channel holds messages encoded as "
+                             f"{channel.message_encoding[:40]!r}; `atd run --record` writes JSON")
     if channel.schema_id != 0:
         schema = schemas.get(channel.schema_id)
         if schema is None:
-            raise MessageProblem(f"its {channel.topic} channel names schema {channel.schema_id}, which no schema record "
-                                 f"before it declares: the file is damaged")
+            raise MessageProblem(f"its {channel.topic} channel names schema {channel.schema_id}, which no schema "
+                                 f"record before it declares: the file is damaged")
         if schema.encoding != "jsonschema":
             raise MessageProblem(f"its {channel.topic} channel's schema is {schema.encoding[:40]!r}, not the JSON "
                                  f"Schema ('jsonschema') that JSON messages carry")

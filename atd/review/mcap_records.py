@@ -103,8 +103,9 @@ def _opened(chunk: Chunk, at: int, budget: int, size: int) -> Iterator[McapRecor
         raise Damaged(f"{where} declares {chunk.uncompressed_size / MiB:.0f} MiB of data, more than the "
                       f"{CHUNK_CAP // MiB} MiB a chunk may hold")
     if budget < 0:
-        raise Damaged(f"{where} takes what the file decompresses to past {max(INFLATION_FLOOR, INFLATION * size) // MiB}"
-                      f" MiB, {INFLATION} times its size: a compression bomb, or a damaged file")
+        most = max(INFLATION_FLOOR, INFLATION * size) // MiB
+        raise Damaged(f"{where} takes what the file decompresses to past {most} MiB, {INFLATION} times its size: "
+                      f"a compression bomb, or a damaged file")
     data = _decompressed(chunk, where)
     if chunk.uncompressed_crc and zlib.crc32(data) != chunk.uncompressed_crc:
         raise Damaged(f"{where} fails its checksum: the file is damaged")

@@ -10,7 +10,7 @@ then megabytes in memory, not the gigabyte its messages as dicts would be.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Generic, TypeVar
+from typing import Annotated, Any, Generic, TypeVar
 
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
@@ -33,6 +33,9 @@ class _Checked(BaseModel):
 
 _ONE_LINE = r"^[^\x00-\x1f\x7f]*$"  # a name printed in a line of text: no line break, no control character
 Reading = float | None  # null: a reading that was NaN (a sensor with nothing to say)
+MOST = 64  # joints, DOFs or pads a robot may have: the robots here have at most 7, 8 and 4
+Readings = Annotated[list[Reading], Field(max_length=MOST)]
+PadName = Annotated[str, Field(max_length=200, pattern=_ONE_LINE)]  # a legend's entry
 
 
 class _Xyz(_Checked):
@@ -56,11 +59,11 @@ class _Pad(_Checked):
 class SensorsMessage(_Checked):
     """Of /sensors: what the robot's sensors read."""
 
-    arm_dq: list[Reading]
-    hand_q: list[Reading]
+    arm_dq: Readings
+    hand_q: Readings
     tcp: _Pose
     wrench: _Wrench
-    pads: dict[str, _Pad]
+    pads: Annotated[dict[PadName, _Pad], Field(max_length=MOST)]
 
 
 class TruthMessage(_Checked):
@@ -98,7 +101,8 @@ def parsed(model: type[M], data: bytes, what: str) -> M:
     except ValidationError as exc:
         first = exc.errors(include_url=False, include_input=False)[0]
         where = ".".join(str(p) for p in first["loc"])
-        more = {1: "", 2: " (and 1 more problem)"}.get(exc.error_count(), f" (and {exc.error_count() - 1} more problems)")
+        others = exc.error_count() - 1
+        more = f" (and {others} more problem{'s' if others > 1 else ''})" if others else ""
         raise MessageProblem(f"{what} is not what `atd run --record` writes: "
                              f"{f'{where}: ' if where else ''}{first['msg']}{more}") from None
 

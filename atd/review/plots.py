@@ -26,6 +26,12 @@ DPI = 150  # of what is drawn as pixels: sharp at the page's width
 PIXELS = 10 * DPI  # across a plot, 10 inches wide
 SHADES = ("#eef3fb", "#fbf3e6")  # a state's stays, alternately
 EVENT = "#c0392b"
+LABEL = 60  # characters of a state's name in a label
+
+
+def _label(name: str) -> str:
+    """A state's name as a label: a long one cut, so that it cannot stretch a plot."""
+    return name if len(name) <= LABEL else name[:LABEL - 3] + "..."
 
 
 def _figure(rows: int):
@@ -102,7 +108,7 @@ def _mark_states(axes, recording: Recording) -> None:
                linewidth=0.8, linestyle="--", zorder=1)
     if not many:  # a name per stay; past that, the timeline names them
         for state, start, _ in stays:
-            axes[0].text(start, 1.02, state.rsplit("/", 1)[-1], transform=axes[0].get_xaxis_transform(),
+            axes[0].text(start, 1.02, _label(state.rsplit("/", 1)[-1]), transform=axes[0].get_xaxis_transform(),
                          fontsize=7, rotation=30, ha="left", va="bottom")
 
 
@@ -158,7 +164,7 @@ def timeline(recording: Recording) -> str:
     for row, name in enumerate(names):
         axis.broken_barh(_bars(spans[name], pixel), (row - 0.4, 0.8), color="#4a78b5",
                          rasterized=len(stays) > SECTION_LINES)
-    axis.set_yticks(range(len(names)), names, fontsize=8)
+    axis.set_yticks(range(len(names)), [_label(n) for n in names], fontsize=8)
     axis.invert_yaxis()
     axis.set_xlabel("simulated time (s)")
     if left_out:
@@ -179,7 +185,7 @@ def difference(a: Recording, b: Recording, rows: list[tuple[str, str, float, flo
         axis.bar(range(len(states)), [diff[state, signal] for state in states], color="#4a78b5")
         axis.axhline(0, color="black", linewidth=0.6)
         axis.set_ylabel(signal, fontsize=8)
-    axes[-1].set_xticks(range(len(states)), states, rotation=30, fontsize=8, ha="right")
+    axes[-1].set_xticks(range(len(states)), [_label(s) for s in states], rotation=30, fontsize=8, ha="right")
     between = f"; {left_out} states between the first and last {len(first)} not drawn" if left_out else ""
     figure.suptitle(f"mean difference per state: {b.path.name} - {a.path.name}{between}", fontsize=9)
     return _svg(figure)

@@ -80,8 +80,8 @@ def refused(path: Path, *words: str) -> str:
 
 
 def rewritten(genuine: Path, folder: Path, name: str, *, meta: Callable | None = None,
-              message: Callable | None = None, attachment: Callable | None = None, encoding: str = "json", schema_encoding: str = "jsonschema",
-              compression: CompressionType = CompressionType.ZSTD) -> Path:
+              message: Callable | None = None, attachment: Callable | None = None, encoding: str = "json",
+              schema_encoding: str = "jsonschema", compression: CompressionType = CompressionType.ZSTD) -> Path:
     """The genuine recording written again through `meta(name, values)`, `message(topic, i,
     data)` and `attachment(name, data)` (each returning the replacement, or None to leave
     the record out)."""
@@ -173,12 +173,14 @@ def looping(path: Path, visits: int, samples: int, states: tuple[str, ...] = ("a
                           "transition": f"{state}->{to}", "conditions": [{"kind": "timeout", "seconds": 0.004}]}),
                    (row, {"t": left, "type": "exit", "state": state, "atd": state, "transition": f"{state}->{to}",
                           "destination": to, "duration": 0.005})]
-    timeout = EstdEvent(type=EventType.TIMEOUT, atd="timeout", condition=Condition(kind="timeout", params={"seconds": 0.004}))
+    timeout = EstdEvent(type=EventType.TIMEOUT, atd="timeout",
+                        condition=Condition(kind="timeout", params={"seconds": 0.004}))
     estd = Estd(robot="melfa", arm="main", initial=states[0],
                 states=tuple(EstdState(name=n, type=StateType.MOVE, atd=n) for n in states),
                 transitions=tuple(EstdTransition(origin=a, destination=b, atd=f"{a}->{b}", events=(timeout,))
                                   for a, b in following.items()))
-    run = {"format": RECORDING_FORMAT, "robot": "melfa", "arm": "main", "engine": "mujoco", "seed": 0, "task": "loop.xml"}
+    run = {"format": RECORDING_FORMAT, "robot": "melfa", "arm": "main", "engine": "mujoco", "seed": 0,
+           "task": "loop.xml"}
     writer = RecordingWriter(path)
     writer.send(("start", layout, {"arm_joints": "j1 j2 j3 j4 j5 j6", "hand_dofs": "jaw", "wrench_frame": "hand"},
                  {"atd.run": json.dumps(run)}, {"task.estd.xml": estd_to_xml(estd)}))
@@ -197,7 +199,9 @@ def _on(topic: str, change: Callable[[bytes], bytes | None]) -> Callable:
 
 
 def _run_meta(change: Callable[[dict], object]) -> Callable:
-    return lambda name, values: {"value": json.dumps(change(json.loads(values["value"])))} if name == "atd.run" else values
+    def meta(name: str, values: dict) -> dict:
+        return {"value": json.dumps(change(json.loads(values["value"])))} if name == "atd.run" else values
+    return meta
 
 
 def _outcome(**values: str) -> Callable:
@@ -268,6 +272,8 @@ def test_bad_metadata_is_one_line_naming_it(genuine, tmp_path, name, meta, words
     ("string_z", "/sensors", _json(lambda m: {**m, "tcp": {"position": {"x": 0, "y": 0, "z": "0.1"}}}),
      ["tcp.position.z", "valid number"]),
     ("a_number", "/sensors", lambda data: b"5", ["/sensors", "should be an object"]),
+    ("pads", "/sensors", _json(lambda m: {**m, "pads": {f"pad{k}": {"force": 1.0} for k in range(65)}}),
+     ["pads: Dictionary should have at most 64 items"]),
     ("binary", "/sensors", lambda data: b"\x00\x01\x02", ["/sensors", "Invalid JSON"]),
     ("truth", "/truth", _json(lambda m: {**m, "object": "box"}), ["/truth", "object"]),
     ("trace_list", "/task/trace", lambda data: b"[1, 2]", ["/task/trace", "should be an object"]),
