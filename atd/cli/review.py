@@ -58,4 +58,3 @@ def compare_runs(first: Path, second: Path, plot: Path | None) -> None:
     if plot is not None:
         write_or_exit(plot, difference(a, b, rows).encode())
         click.echo(f"plot: {plot}")
-

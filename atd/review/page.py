@@ -91,8 +91,8 @@ def _event(record: TraceRecord) -> dict:
 
 
 def report_page(recording: Recording) -> str:
-    """The page; of a long run, the first and last SECTION_LINES // 2 stays and events (the
-    graph counts every visit, the plots draw them all)."""
+    """The page; of a long run, the first and last SECTION_LINES // 2 stays and events in its
+    tables (the graph counts every visit)."""
     run = recording.run
     title = f"{html.unescape(run.task)} on {run.robot} ({run.arm} arm) in {run.engine}"
     first, left_out, last = ends(recording.events())
