@@ -7,7 +7,7 @@ from pathlib import Path
 import click
 
 from atd.cli.app import EXIT_INVALID, OutputFile, guard_outputs, main, usage_error, write_or_exit
-from atd.review.compare import compare, render_text
+from atd.review.compare import compare, entered, listed, render_text
 from atd.review.load import Recording, RecordingError, load
 from atd.review.page import report_page
 from atd.review.plots import difference
@@ -48,8 +48,13 @@ def compare_runs(first: Path, second: Path, plot: Path | None) -> None:
     if plot is not None and plot.suffix.lower() != ".svg":
         usage_error(f"{plot}: --plot writes SVG; give a name ending in .svg")
     a, b = _load(first), _load(second)
-    click.echo(render_text(a, b))
+    durations, rows = compare(a, b)
+    if not durations:
+        click.echo(f"error: {first} and {second} entered no state in common (A: {listed(entered(a), 5)}; B: "
+                   f"{listed(entered(b), 5)}): there is nothing to set side by side; compare two runs of one task",
+                   err=True)
+        raise SystemExit(EXIT_INVALID)
+    click.echo(render_text(a, b, durations, rows))
     if plot is not None:
-        _, rows = compare(a, b)
         write_or_exit(plot, difference(a, b, rows).encode())
         click.echo(f"plot: {plot}")

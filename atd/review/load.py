@@ -1,95 +1,166 @@
-"""A recording read back: each topic's messages as time series, the run's metadata, and
-the ESTD that ran."""
+"""A recording read back: the signals drawn, the trace of the task, the run's metadata,
+and the ESTD that ran; or, for anything else, one line saying what is wrong with it.
+
+The work is bounded by the file's size (atd/review/mcap_records.py), and what is kept by
+what is drawn (atd/review/messages.py).
+"""
 
 from __future__ import annotations
 
-import io
-import json
-from dataclasses import dataclass, field
+from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
-from typing import Any
 
-import numpy as np
-from mcap.reader import make_reader
+from mcap.records import Attachment, Channel, Message, Metadata, Schema
 
 from atd.model.estd import Estd
 from atd.model.estd_xml import parse_estd
 from atd.model.files import InputError, read_capped
+from atd.review.mcap_records import Damaged, records
+from atd.review.messages import (RUN_TIME, MessageProblem, RunInfo, SensorsMessage, Signals, Timed, TraceRecord,
+                                 TruthMessage, parsed, signals)
 from atd.runtime.recording_format import RECORDING_FORMAT
 
 RECORDING_CAP = 2 << 30  # bytes: hours of a run at 100 Hz
+ESTD_ATTACHMENT = "task.estd.xml"
+TIME_SLACK = 1e-3  # s: the outcome's time is written to the microsecond, a message's to the nanosecond
+_READ = {"/sensors": SensorsMessage, "/truth": TruthMessage, "/task/trace": TraceRecord}  # the rest is skipped
+_REQUIRED = ("/sensors", "/task/trace")  # /truth is not: a real robot's recording has none
 
 
 class RecordingError(Exception):
-    """Not a recording `atd` can read; the message says why."""
+    """Not a recording `atd` can read; the message says why, in one line."""
 
 
-@dataclass
+@dataclass(frozen=True)
 class Recording:
     path: Path
-    run: dict[str, Any]  # robot, arm, engine, seed, task
+    run: RunInfo
     outcome: dict[str, str]  # succeeded, summary, end_state, sim_time
+    end_time: float  # s: the outcome's, or the last message's when the recording has none
     estd: Estd | None
-    messages: dict[str, list[tuple[float, dict[str, Any]]]] = field(default_factory=dict)  # topic -> (t, message)
+    estd_problem: str  # why the attached ESTD could not be read; "" when it could, or there is none
+    trace: list[TraceRecord]
+    signals: Signals
 
-    @property
-    def trace(self) -> list[dict[str, Any]]:
-        return [m for _, m in self.messages.get("/task/trace", [])]
-
-    def times(self, topic: str) -> np.ndarray:
-        return np.array([t for t, _ in self.messages.get(topic, [])])
-
-    def series(self, topic: str, *keys: str | int) -> np.ndarray:
-        """One field of every message of `topic`, following `keys` into the message
-        (e.g. "pads", "tactile_left", "force"), as an array (rows: messages)."""
-        rows = []
-        for _, message in self.messages.get(topic, []):
-            value: Any = message
-            for key in keys:
-                value = value[key] if value is not None else None
-            rows.append(np.nan if value is None else value)
-        return np.array(rows, dtype=float)
-
+    @cached_property
     def visits(self) -> list[tuple[str, float, float | None]]:
         """Each stay in a state: (path, entered, left or None while the run ended in it)."""
         stays: list[tuple[str, float, float | None]] = []
         open_: dict[str, int] = {}
         for record in self.trace:
-            if record["type"] == "enter":
-                open_[record["state"]] = len(stays)
-                stays.append((record["state"], record["t"], None))
-            elif record["type"] == "exit" and record["state"] in open_:
-                i = open_.pop(record["state"])
-                stays[i] = (stays[i][0], stays[i][1], record["t"])
+            if record.type == "enter":
+                open_[record.state] = len(stays)
+                stays.append((record.state, record.t, None))
+            elif record.type == "exit" and record.state in open_:
+                i = open_.pop(record.state)
+                stays[i] = (stays[i][0], stays[i][1], record.t)
         return stays
 
-    @property
-    def end_time(self) -> float:
-        return float(self.outcome.get("sim_time", 0.0))
+    def events(self) -> list[TraceRecord]:
+        return [r for r in self.trace if r.type == "event"]
 
 
 def load(path: Path) -> Recording:
-    """Read a recording whole; RecordingError when it is not one."""
+    """Read a recording; RecordingError, naming the file and what is wrong, when it is not one."""
     try:
         data = read_capped(path, RECORDING_CAP)
     except InputError as exc:
         raise RecordingError(f"{path}: {exc}") from None
+    if not data:
+        raise RecordingError(f"{path}: the file is empty; make a recording with atd run --record")
     try:
-        reader = make_reader(io.BytesIO(data))
-        meta = {m.name: dict(m.metadata) for m in reader.iter_metadata()}
-        attachments = {a.name: a.data for a in reader.iter_attachments()}
-        messages: dict[str, list[tuple[float, dict[str, Any]]]] = {}
-        for _, channel, message in reader.iter_messages(log_time_order=True):
-            messages.setdefault(channel.topic, []).append((message.log_time / 1e9, json.loads(message.data)))
-    except Exception as exc:  # noqa: BLE001 - bytes from anywhere through mcap, zstd, lz4, JSON: any failure says the same
-        raise RecordingError(f"{path}: not an MCAP recording ({exc}); make one with atd run --record") from None
+        return _read(path, data)
+    except Damaged as exc:
+        raise RecordingError(f"{path}: not an MCAP recording: {exc}; record the run with atd run --record") from None
+    except MessageProblem as exc:
+        raise RecordingError(f"{path}: {exc}") from None
+
+
+def _read(path: Path, data: bytes) -> Recording:
+    schemas: dict[int, Schema] = {}
+    topics: dict[int, str | None] = {}  # channel id -> the topic read from it, None for one skipped
+    meta: dict[str, dict[str, str]] = {}
+    estd_xml: bytes | None = None
+    timed: dict[str, Timed] = {topic: Timed() for topic in _READ}
+    for record in records(data):
+        if isinstance(record, Message):
+            if record.channel_id not in topics:
+                raise MessageProblem(f"a message on channel {record.channel_id}, which no channel record before it "
+                                     f"declares: the file is damaged")
+            topic = topics[record.channel_id]
+            if topic is not None:
+                t = record.log_time / 1e9
+                timed[topic].add(t, parsed(_READ[topic], record.data, f"its {topic} message at {t:.3f} s"))
+        elif isinstance(record, Schema):
+            schemas[record.id] = record
+        elif isinstance(record, Channel):
+            topics[record.id] = _topic(record, schemas)
+        elif isinstance(record, Metadata):
+            meta[record.name] = record.metadata
+        elif isinstance(record, Attachment) and record.name == ESTD_ATTACHMENT:
+            estd_xml = record.data
+    run = _run(meta)
+    for topic in _REQUIRED:
+        if not timed[topic].times:
+            raise MessageProblem(f"it holds no {topic} messages, which every recording of `atd run --record` has")
+    outcome = meta.get("atd.outcome", {})
+    end_time = _end_time(outcome, timed)
+    _, trace = timed["/task/trace"].in_time_order()
+    estd, estd_problem = None, ""
+    if estd_xml is not None:
+        estd, found = parse_estd(estd_xml, ESTD_ATTACHMENT)
+        estd_problem = "" if estd is not None else found[0].render()
+    return Recording(path, run, outcome, end_time, estd, estd_problem, trace,
+                     signals(timed["/sensors"], timed["/truth"]))
+
+
+def _topic(channel: Channel, schemas: dict[int, Schema]) -> str | None:
+    """The topic of a channel read, checked to carry JSON; None for a channel skipped."""
+    if channel.topic not in _READ:
+        return None
+    if channel.message_encoding != "json":
+        raise MessageProblem(f"its {channel.topic} channel holds messages encoded as "
+                             f"{channel.message_encoding[:40]!r}; `atd run --record` writes JSON")
+    if channel.schema_id != 0:
+        schema = schemas.get(channel.schema_id)
+        if schema is None:
+            raise MessageProblem(f"its {channel.topic} channel names schema {channel.schema_id}, which no schema "
+                                 f"record before it declares: the file is damaged")
+        if schema.encoding != "jsonschema":
+            raise MessageProblem(f"its {channel.topic} channel's schema is {schema.encoding[:40]!r}, not the JSON "
+                                 f"Schema ('jsonschema') that JSON messages carry")
+    return channel.topic
+
+
+def _run(meta: dict[str, dict[str, str]]) -> RunInfo:
     if "atd.run" not in meta:
-        raise RecordingError(f"{path}: an MCAP file, but not a recording of `atd run --record`")
-    run = json.loads(meta["atd.run"]["value"])
-    if run.get("format") != RECORDING_FORMAT:
-        raise RecordingError(f"{path}: a recording in format {run.get('format', 0)}, this atd reads format "
-                             f"{RECORDING_FORMAT}; record the run again")
-    estd = None
-    if "task.estd.xml" in attachments:
-        estd, _ = parse_estd(attachments["task.estd.xml"], "task.estd.xml")
-    return Recording(path, run, meta.get("atd.outcome", {}), estd, messages)
+        raise MessageProblem("an MCAP file, but not a recording of `atd run --record` (it has no atd.run metadata)")
+    if "value" not in meta["atd.run"]:
+        raise MessageProblem("its atd.run metadata has no 'value': the recording is damaged")
+    run = parsed(RunInfo, meta["atd.run"]["value"].encode(), "its atd.run metadata")
+    if run.format != RECORDING_FORMAT:
+        raise MessageProblem(f"a recording in format {run.format}, this atd reads format {RECORDING_FORMAT}; "
+                             f"record the run again")
+    return run
+
+
+def _end_time(outcome: dict[str, str], timed: dict[str, Timed]) -> float:
+    """When the run ended: the outcome's time, which no message may come after; without an
+    outcome, the last message's time."""
+    latest, topic = max((max(t.times), topic) for topic, t in timed.items() if t.times)
+    if "sim_time" not in outcome:
+        end, what = latest, f"its last message, on {topic} at {latest:.3f} s,"
+    else:
+        what = f"its atd.outcome metadata's sim_time {outcome['sim_time'][:40]!r}"
+        try:
+            end = float(outcome["sim_time"])
+        except ValueError:
+            raise MessageProblem(f"{what} is not a number of seconds: the recording is damaged") from None
+    problem = RUN_TIME.problem(end)
+    if problem:
+        raise MessageProblem(f"{what} is no time a run can end at: {problem.replace('give one', 'a run ends')}")
+    if latest > end + TIME_SLACK:
+        raise MessageProblem(f"its {topic} message at {latest:.3f} s comes after the run's end at {end:.3f} s "
+                             f"(its atd.outcome metadata's sim_time): the recording is damaged")
+    return end

@@ -11,10 +11,13 @@ from dataclasses import replace
 
 from jinja2 import Environment
 
+from atd.graph.layout import MAX_ELEMENTS
 from atd.graph.model import Graph, from_estd
 from atd.graph.render import render
 from atd.review.load import Recording
+from atd.review.messages import TraceRecord
 from atd.review.plots import signals, timeline
+from atd.runtime.report import ends
 
 _PAGE = Environment(autoescape=True).from_string("""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8">
@@ -36,9 +39,12 @@ code { font-size: .9em; }
 <h2>Timeline</h2>
 <figure id="timeline">{{ timeline|safe }}</figure>
 <table><tr><th>state</th><th>entered (s)</th><th>left (s)</th><th>time spent (s)</th></tr>
-{% for state, start, end in visits %}<tr><td>{{ state }}</td><td>{{ "%.3f"|format(start) }}</td>
+{% macro stay(s) %}{% set state, start, end = s %}<tr><td>{{ state }}</td><td>{{ "%.3f"|format(start) }}</td>
 <td>{{ "%.3f"|format(end) if end is not none else "(the end)" }}</td>
-<td>{{ "%.3f"|format((end if end is not none else end_time) - start) }}</td></tr>{% endfor %}
+<td>{{ "%.3f"|format((end if end is not none else end_time) - start) }}</td></tr>{% endmacro %}
+{% set first, left_out, last = visits %}{% for s in first %}{{ stay(s) }}{% endfor %}
+{% if left_out %}<tr><td colspan="4">... {{ left_out }} more stays (the graph counts every one)</td></tr>{% endif %}
+{% for s in last %}{{ stay(s) }}{% endfor %}
 </table>
 <h2>Signals</h2>
 <p>States are shaded; a dashed red line is an event firing. The last panel is the simulator's
@@ -46,8 +52,11 @@ ground truth, which the robot does not see.</p>
 <figure id="signals">{{ signals|safe }}</figure>
 <h2>Events, and the readings that fired them</h2>
 <table id="events"><tr><th>time (s)</th><th>transition</th><th>event</th><th>conditions and readings</th></tr>
-{% for e in events %}<tr><td>{{ "%.3f"|format(e.t) }}</td><td>{{ e.transition }}</td><td>{{ e.event }}</td>
-<td>{% for c in e.conditions %}<code>{{ c }}</code><br>{% endfor %}</td></tr>{% endfor %}
+{% macro event(e) %}<tr><td>{{ "%.3f"|format(e.t) }}</td><td>{{ e.transition }}</td><td>{{ e.event }}</td>
+<td>{% for c in e.conditions %}<code>{{ c }}</code><br>{% endfor %}</td></tr>{% endmacro %}
+{% set first, left_out, last = events %}{% for e in first %}{{ event(e) }}{% endfor %}
+{% if left_out %}<tr><td colspan="4">... {{ left_out }} more events</td></tr>{% endif %}
+{% for e in last %}{{ event(e) }}{% endfor %}
 </table>
 </body></html>
 """)
@@ -56,14 +65,18 @@ ground truth, which the robot does not see.</p>
 def _graph(recording: Recording) -> str:
     """The ESTD's graph as inline SVG, each state visited labelled with its visits and time."""
     if recording.estd is None:
-        return "<p>(this recording holds no ESTD)</p>"
+        return (f"<p>(the ESTD this recording holds cannot be read: {html.escape(recording.estd_problem)})</p>"
+                if recording.estd_problem else "<p>(this recording holds no ESTD)</p>")
+    graph: Graph = from_estd(recording.estd, recording.run.task or "task")
+    if len(graph.nodes) + len(graph.edges) > MAX_ELEMENTS:
+        return (f"<p>(the task's {len(graph.nodes)} states and {len(graph.edges)} transitions are more than a report "
+                f"draws, {MAX_ELEMENTS} in all; draw them with atd graph)</p>")
     spent: dict[str, float] = defaultdict(float)
     count: dict[str, int] = defaultdict(int)
-    for state, start, end in recording.visits():
+    for state, start, end in recording.visits:
         top = state.split("/", 1)[0]
         spent[top] += (recording.end_time if end is None else end) - start
         count[top] += 1 if "/" not in state else 0
-    graph: Graph = from_estd(recording.estd, recording.run.get("task") or "task")
     graph.nodes = [replace(n, lines=n.lines + (f">> visited {count[n.id]}x, {spent[n.id]:.2f} s",))
                    if n.id in spent else n for n in graph.nodes]
     svg, _ = render(graph, "svg")
@@ -71,23 +84,20 @@ def _graph(recording: Recording) -> str:
     return text[text.index("<svg"):]
 
 
-def _events(recording: Recording) -> list[dict]:
-    found = []
-    for record in recording.trace:
-        if record["type"] == "event":
-            conditions = [f"{c.get('kind')}: " + json.dumps({k: v for k, v in c.items()
-                                                              if k not in ("kind", "atd", "sensors")})
-                          for c in record.get("conditions", [])]
-            found.append({"t": record["t"], "transition": record.get("transition", ""),
-                          "event": record.get("event", ""), "conditions": conditions})
-    return found
+def _event(record: TraceRecord) -> dict:
+    conditions = [f"{c.get('kind')}: " + json.dumps({k: v for k, v in c.items() if k not in ("kind", "atd", "sensors")})
+                  for c in record.conditions]
+    return {"t": record.t, "transition": record.transition, "event": record.event, "conditions": conditions}
 
 
 def report_page(recording: Recording) -> str:
+    """The page; of a long run, the first and last SECTION_LINES // 2 stays and events in its
+    tables (the graph counts every visit)."""
     run = recording.run
-    title = (f"{html.unescape(str(run.get('task', '')))} on {run.get('robot')} ({run.get('arm')} arm) "
-             f"in {run.get('engine')}")
+    title = f"{html.unescape(run.task)} on {run.robot} ({run.arm} arm) in {run.engine}"
+    first, left_out, last = ends(recording.events())
     return _PAGE.render(
         title=title, run=run, outcome=recording.outcome, succeeded=recording.outcome.get("succeeded") == "true",
         end_time=recording.end_time, graph=_graph(recording), timeline=timeline(recording),
-        signals=signals(recording), visits=recording.visits(), events=_events(recording))
+        signals=signals(recording), visits=ends(recording.visits),
+        events=([_event(e) for e in first], left_out, [_event(e) for e in last]))

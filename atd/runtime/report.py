@@ -29,15 +29,21 @@ def _short(value: object) -> str:
     return str(value)
 
 
+def ends(items: list[T]) -> tuple[list[T], int, list[T]]:
+    """A long section's first and last SECTION_LINES // 2 items and how many lie between
+    them; a short section whole (then none between, none after)."""
+    half = SECTION_LINES // 2
+    if len(items) <= SECTION_LINES:
+        return items, 0, []
+    return items[:half], len(items) - 2 * half, items[-half:]
+
+
 def _capped(items: list[T], render: Callable[[T], str], what: str) -> list[str]:
     """A line per item; for a long section, the first and last lines and how many were left
     out between (only the lines shown are formatted, so a long run stays cheap to report)."""
-    half = SECTION_LINES // 2
-    if len(items) <= SECTION_LINES:
-        return [render(i) for i in items]
-    return [*map(render, items[:half]),
-            f"  ... {len(items) - 2 * half} more {what} (run with --trace FILE to keep every one)",
-            *map(render, items[-half:])]
+    head, left_out, tail = ends(items)
+    more = [f"  ... {left_out} more {what} (run with --trace FILE to keep every one)"] if left_out else []
+    return [*map(render, head), *more, *map(render, tail)]
 
 
 def summary(outcome: Outcome, records: list[dict], title: str) -> str:

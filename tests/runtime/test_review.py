@@ -85,7 +85,7 @@ def test_the_report_is_one_offline_page_with_the_graph_every_plot_and_the_events
     signals = etree.tostring(tree.xpath("//figure[@id='signals']")[0], encoding="unicode")
     assert {pad for pad in run.pads if pad in signals} == run.pads, "a pad-force line for each of the hand's pads"
     events = tree.xpath("//table[@id='events']//tr")[1:]
-    fired = [r for r in load(recordings[name]).trace if r["type"] == "event"]
+    fired = load(recordings[name]).events()
     assert len(events) == len(fired) and any("grasp_stable" in r.text_content() for r in events)
 
 
@@ -95,7 +95,7 @@ def test_compare_aligns_two_runs_state_by_state(recordings, a, b, tmp_path) -> N
     plot = tmp_path / "diff.svg"
     result = _atd("compare", str(recordings[a]), str(recordings[b]), "--plot", str(plot), cwd=tmp_path)
     assert result.returncode == 0, result.stderr
-    states = [r["state"] for r in load(recordings[a]).trace if r["type"] == "enter"]
+    states = [r.state for r in load(recordings[a]).trace if r.type == "enter"]
     rows = {line.split()[0]: line for line in result.stdout.splitlines() if line and line.split()[0] in states}
     assert set(rows) == set(states), "a row for every state both runs entered"
     holding = "carry" if RUNS[a].task == _PICK else "lift_object"
