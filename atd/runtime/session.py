@@ -168,7 +168,6 @@ class Run:
             self.robot = make_robot(robot or factory.robot, scene, engine, seed, window=viewer, belief=factory.robot)
         except SceneError as exc:
             raise InvalidScene(str(exc)) from None
-        self.has_object = scene.object is not None
         self.notes: list[str] = [str(self.robot.settling)] if self.robot.settling else []  # for the user
         context = Context(info=self.robot.info, params={}, object=estd.object, environment=estd.environment,
                           rng=np.random.default_rng(seed))
@@ -181,7 +180,7 @@ class Run:
         self.executor = Executor(estd, self.robot, context, self.trace, budget=budget)
         self.video = _Video(self.robot, video) if video is not None else None
         self.viewer = _Viewer(self.robot) if viewer else None
-        self.recorder = Recording(record, self.robot, self.executor, self.trace, self.has_object, record_rate,
+        self.recorder = Recording(record, self.robot, self.executor, self.trace, tuple(self.robot.object_poses()), record_rate,
                                  _run_info(estd, engine, seed), _attachments(estd)) if record is not None else None
         self.observers: list[Observer] = [o for o in (self.video, self.viewer, self.recorder) if o]
         if realtime or viewer:

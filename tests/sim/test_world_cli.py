@@ -3,11 +3,13 @@ both engines; a bad world file is a located error and exit 1, never a traceback.
 
 from __future__ import annotations
 
+import json
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
+from mcap.reader import make_reader
 
 from tests.conftest import EXAMPLES
 
@@ -44,6 +46,19 @@ def test_a_task_runs_in_the_world_the_file_describes(tmp_path: Path, engine: str
         "speaker", "duck", "mug", "ball"]
     assert "in 'box' at the end: duck, mug, ball (3 of 4 objects)" in out
     assert any(line.startswith("the world settled in ") for line in out)
+
+
+def test_a_recording_holds_every_object_s_true_pose(tmp_path: Path) -> None:
+    world, recording = tmp_path / "world.toml", tmp_path / "run.mcap"
+    world.write_text(WORLD)
+    result = atd("run", SIMPLE_MOVE, "--robot", "melfa", "--world", str(world), "--record", str(recording), "-q")
+    assert result.returncode == 0, result.stderr
+    with recording.open("rb") as f:
+        truth = [json.loads(m.data) for _, channel, m in make_reader(f).iter_messages() if channel.topic == "/truth"]
+    last = truth[-1]
+    assert list(last["objects"]) == ["speaker", "duck", "mug", "ball"]
+    assert last["object"] == last["objects"]["speaker"]  # the first object, where readers look for one
+    assert last["objects"]["speaker"]["position"]["x"] == pytest.approx(0.0, abs=0.01)
 
 
 def test_a_bad_world_file_is_a_located_error_and_exit_1(tmp_path: Path) -> None:
