@@ -37,7 +37,6 @@ from factories.base import (
     parallel_jaw_closest,
 )
 from factories.description import (
-    KINECT,
     DepthCamera,
     FingerPad,
     HandDof,
@@ -68,7 +67,7 @@ __all__ = [
     "State", "StateType", "EventType", "HandShape", "Movement", "ObjectInfo",
     # the description
     "RobotDescription", "Link", "Joint", "Servo", "Shape", "Origin", "Site", "HandModel", "HandDof",
-    "FingerPad", "SensorModel", "DepthCamera", "KINECT", "looking_at",
+    "FingerPad", "SensorModel", "DepthCamera", "looking_at",
     # helpers for descriptions
     "box", "capsule", "cylinder", "JawSpec", "parallel_jaw", "METAL", "DARK", "with_home", "HOME_TCP",
     "installed_hand", "read_urdf", "UrdfModel", "UrdfError", "urdf_parallel_jaw",

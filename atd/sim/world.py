@@ -87,7 +87,8 @@ class Drop:
 
 @dataclass(frozen=True)
 class World:
-    path: Path
+    """A world file, read: built into a scene once the task's belief is known."""
+
     objects: tuple[PlacedObject, ...]
     drops: tuple[Drop, ...]
     containers: tuple[tuple[Container, Location], ...]
@@ -97,7 +98,11 @@ class World:
         of the same name) and objects (replacing the task's, when it lists any); the drops'
         poses drawn from `seed`. WorldError for what needs the belief to be found: a drop
         into a container neither names, objects that cut into each other."""
-        found: list[Diagnostic] = []
+        found = [error("WLD023", f"'{name}' names an object here and a container of the task", loc,
+                       "give the object another name")
+                 for name, loc in [(p.body.name, p.loc) for p in self.objects]
+                 + [(n, d.loc) for d in self.drops for n, _ in d.objects]
+                 if name in {c.name for c in belief.containers}]
         mine = {c.name for c, _ in self.containers}
         containers = tuple(c for c in belief.containers if c.name not in mine) + tuple(c for c, _ in self.containers)
         fixed = [*belief.obstacles, *(part for c in containers for part in c.parts())]
@@ -150,7 +155,7 @@ def load_world(path: Path) -> tuple[World | None, list[Diagnostic]]:
     found = sorted(reader.found, key=lambda d: d.loc.line)
     if has_errors(found):
         return None, found
-    return World(path, tuple(placed), tuple(drops), containers), found
+    return World(tuple(placed), tuple(drops), containers), found
 
 
 class _Reader:
@@ -282,8 +287,9 @@ class _Reader:
                                 given is not None)
         shape = self.word(table, (*loc, "shape"))
         if shape is None:
-            self.error("WLD011", "[[object]] needs 'library' (an object of the library) or 'shape'", loc,
-                       f"library objects: {', '.join(library())}; shapes: box, cylinder, sphere")
+            if "shape" not in table:
+                self.error("WLD011", "[[object]] needs 'library' (an object of the library) or 'shape'", loc,
+                           f"library objects: {', '.join(library())}; shapes: box, cylinder, sphere")
             return None
         if shape not in ObjectClass.__members__.values():
             self.error("WLD012", f"no shape '{shape}'", (*loc, "shape"),

@@ -171,6 +171,18 @@ def test_a_drop_into_a_container_neither_file_names_is_located(world_file):
     assert _scene_problems(path) == [("WLD024", 6, "no container 'bx' to drop into", "did you mean 'box'?")]
 
 
+def test_an_object_named_like_a_container_of_the_task_is_located(world_file):
+    path = world_file("""
+        [[object]]
+        library = "mug"
+        name = "tray"
+        position = [0.0, 0.3]
+    """)
+    tray = Container("tray", np.eye(4), (0.2, 0.2, 0.05))
+    assert _scene_problems(path, Scene(containers=(tray,))) == [
+        ("WLD023", 1, "'tray' names an object here and a container of the task", "give the object another name")]
+
+
 def test_a_drop_goes_into_the_task_s_own_container_when_the_file_has_none(world_file):
     path = world_file("""
         [[drop]]
