@@ -37,6 +37,7 @@ from factories.base import (
     parallel_jaw_closest,
 )
 from factories.description import (
+    DepthCamera,
     FingerPad,
     HandDof,
     Joint,
@@ -47,6 +48,7 @@ from factories.description import (
     Servo,
     Shape,
     Site,
+    looking_at,
 )
 from factories.description import Hand as HandModel
 from factories.borrowed import installed_hand
@@ -65,7 +67,7 @@ __all__ = [
     "State", "StateType", "EventType", "HandShape", "Movement", "ObjectInfo",
     # the description
     "RobotDescription", "Link", "Joint", "Servo", "Shape", "Origin", "Site", "HandModel", "HandDof",
-    "FingerPad", "SensorModel",
+    "FingerPad", "SensorModel", "DepthCamera", "looking_at",
     # helpers for descriptions
     "box", "capsule", "cylinder", "JawSpec", "parallel_jaw", "METAL", "DARK", "with_home", "HOME_TCP",
     "installed_hand", "read_urdf", "UrdfModel", "UrdfError", "urdf_parallel_jaw",

@@ -16,7 +16,7 @@ from typing import Literal
 
 import numpy as np
 
-from atd.model.frames import axis_rotation, rotation_rpy
+from atd.model.frames import axis_rotation, rotation_rpy, rpy_of
 from atd.model.meshcheck import mesh_points
 
 Vec3 = tuple[float, float, float]
@@ -295,6 +295,51 @@ class SensorModel:
 
 
 @dataclass(frozen=True)
+class DepthCamera:
+    """A depth camera fixed in the world, looking at the work area (the thesis's Kinect over
+    the table). Its frame is the optical one: z along the view, x to the image's right, y down
+    it. A pixel reads the depth along z (m), 0 where nothing lies between `near` and `far`."""
+
+    name: str
+    """How primitives ask for its picture (`Robot.capture`)."""
+    origin: Origin
+    """Pose of its optical frame in the ATD world frame."""
+    width: int = 160
+    """Pixels across."""
+    height: int = 120
+    """Pixels down."""
+    fovy: float = 43.0
+    """Vertical field of view, degrees (square pixels: the horizontal one follows)."""
+    near: float = 0.4
+    """Nearest depth it reads, m."""
+    far: float = 3.5
+    """Farthest depth it reads, m."""
+    noise: float = 0.0
+    """Depth noise: its standard deviation is `noise` times the depth squared (1/m)."""
+
+    @property
+    def intrinsics(self) -> tuple[float, float, float, float]:
+        """(fx, fy, cx, cy) in pixels, pixel centres at whole numbers from the top left."""
+        focal = self.height / 2 / float(np.tan(np.radians(self.fovy) / 2))
+        return (focal, focal, (self.width - 1) / 2, (self.height - 1) / 2)
+
+
+def looking_at(eye: Vec3, target: Vec3) -> Origin:
+    """The optical frame at `eye` that looks at `target`, the image's top towards world +z."""
+    view = np.subtract(target, eye, dtype=float)
+    view /= np.linalg.norm(view)
+    right = np.cross(view, (0.0, 0.0, 1.0))
+    right /= np.linalg.norm(right)
+    return Origin(tuple(float(v) for v in eye), rpy_of(np.column_stack([right, np.cross(view, right), view])))
+
+
+#: The thesis's Kinect (v1, near mode, sampled down from 640 x 480): over the far side of the
+#: table, looking down at the work area from about 0.85 m. Its random depth error grows with
+#: the square of the depth, to about 4 cm at 5 m (Khoshelham and Elberink 2012): 1.6e-3 / m.
+KINECT = DepthCamera("kinect", looking_at((0.45, 0.0, 0.8), (0.15, 0.0, 0.0)), noise=1.6e-3)
+
+
+@dataclass(frozen=True)
 class RobotDescription:
     name: str
     """The robot's name, as its factory's `name`."""
@@ -330,6 +375,9 @@ class RobotDescription:
     """Seconds between control ticks."""
     timestep: float = 0.001
     """Physics step, s."""
+    cameras: tuple[DepthCamera, ...] = (KINECT,)
+    """Depth cameras it sees the world through; by default the Kinect over the table, which
+    every robot at this table shares."""
 
     @property
     def label(self) -> str:

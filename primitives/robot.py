@@ -16,6 +16,8 @@ real one (5.4.2). Conventions, shared by every implementation:
   two mirrored jaws of a parallel gripper); `HandInfo.closing` says which way closes.
 - A tactile image has its rows along the finger and its columns across it; each taxel
   holds the normal force (N) on it, and `pad_force` the pad's total.
+- A depth image is taken on demand (`Robot.capture`), never each tick: rendering one costs
+  what hundreds of ticks do.
 """
 
 from __future__ import annotations
@@ -93,6 +95,7 @@ class RobotInfo:
     hand: HandInfo
     has_range: bool  # an IR range sensor along the approach axis (Baxter)
     range_limits: tuple[float, float] = (0.0, 0.0)  # m, what the range sensor can measure
+    cameras: tuple[str, ...] = ()  # depth cameras `Robot.capture` reads
 
     @property
     def arm_dof(self) -> int:
@@ -120,6 +123,28 @@ class Readings:
     pad_force: np.ndarray  # per pad, N, in `HandInfo.pads` order
     range: float | None  # m; inf when nothing is in range; None without a range sensor
     seq: Mapping[str, int] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class DepthImage:
+    """One picture of a depth camera. `pose` is the camera's optical frame (z along the
+    view, x to the image's right, y down it) in the world as the robot believes it from its
+    calibration: where the camera truly stands may differ, and the picture shows the truth."""
+
+    sensor: str
+    time: float  # s, when it was taken
+    depth: np.ndarray  # (height, width) float32, m along the optical axis; 0 where nothing was seen
+    intrinsics: tuple[float, float, float, float]  # (fx, fy, cx, cy), pixels; pixel centres at whole numbers
+    pose: np.ndarray  # (4, 4) camera -> world
+
+
+def point_cloud(image: DepthImage) -> np.ndarray:
+    """(n, 3) world points of every pixel that saw something, through the believed pose."""
+    rows, cols = np.nonzero(image.depth > 0)
+    z = image.depth[rows, cols].astype(float)
+    fx, fy, cx, cy = image.intrinsics
+    points = np.column_stack([(cols - cx) * z / fx, (rows - cy) * z / fy, z])
+    return points @ image.pose[:3, :3].T + image.pose[:3, 3]
 
 
 _IDENTITY6 = np.eye(6)  # built once: adding it costs far less than indexing the diagonal every tick
@@ -194,3 +219,7 @@ class Robot(ABC):
     @abstractmethod
     def step(self) -> None:
         """Advance one control period."""
+
+    @abstractmethod
+    def capture(self, sensor: str) -> DepthImage:
+        """A picture of the depth camera `sensor` (one of `info.cameras`), taken now."""

@@ -5,6 +5,7 @@ from __future__ import annotations
 import sys
 from dataclasses import dataclass
 from pathlib import Path
+from typing import NoReturn
 
 import click
 
@@ -19,13 +20,14 @@ from atd.runtime.executor import Outcome
 from atd.runtime.isolated import EngineCrash, in_child
 from atd.runtime.report import summary
 from atd.model.files import OutputError
-from atd.runtime.session import ENGINES, InvalidScene, Run, RunError, Unrunnable
+from atd.runtime.session import ENGINES, InvalidScene, InvalidWorld, Run, RunError, Unrunnable, world_scene
+from atd.sim.scene import Scene
 from factories.base import Factory
 from factories.registry import UnknownRobot, create
 from translator import translate
 
 
-def _fail(message: str, code: int) -> None:
+def _fail(message: str, code: int) -> NoReturn:
     click.echo(message, err=True)
     raise SystemExit(code)
 
@@ -60,6 +62,29 @@ def _load(task: Path, robot: str | None, arm: str | None, grasp: str) -> tuple[E
     return result.estd, factory
 
 
+def _world(estd: Estd, world_file: Path, seed: int) -> Scene:
+    """The truth of `--world`, built before the engine starts: its errors are the input's."""
+    try:
+        return world_scene(estd, world_file, seed)
+    except InvalidWorld as exc:
+        _fail(str(exc), EXIT_INVALID)
+    except InvalidScene as exc:
+        _fail(f"error: {exc}", EXIT_INVALID)
+
+
+def _where(positions: dict[str, tuple[float, float, float]], inside: dict[str, list[str]]) -> None:
+    """Where the objects came to rest, and what each container holds at the end."""
+    if len(positions) == 1:
+        x, y, z = next(iter(positions.values()))
+        click.echo(f"the object rests at ({x:.3f}, {y:.3f}, {z:.3f})")
+    elif positions:
+        click.echo("the objects rest at: " + ", ".join(f"{name} ({x:.3f}, {y:.3f}, {z:.3f})"
+                                                       for name, (x, y, z) in positions.items()))
+    for container, names in inside.items():
+        click.echo(f"in '{container}' at the end: {', '.join(names) or 'nothing'} "
+                   f"({len(names)} of {len(positions)} objects)")
+
+
 class _Progress:
     """One line per state entered, with simulated time and real-time factor; on a terminal
     the line also updates in place while the state runs."""
@@ -86,7 +111,8 @@ class _Ran:
 
     outcome: Outcome
     records: list[dict]
-    object_position: tuple[float, float, float] | None
+    object_positions: dict[str, tuple[float, float, float]]
+    inside: dict[str, list[str]]
     notes: list[str]
 
 
@@ -120,28 +146,33 @@ class RecordRate(click.ParamType):
 @click.option("--realtime", is_flag=True, help="run no faster than real time")
 @click.option("--budget", type=Ranged(ranges.BUDGET), default=300.0, show_default=True,
               help="watchdog: simulated seconds before the run is stopped as a failure")
+@click.option("--world", "world_file", type=click.Path(path_type=Path), default=None, metavar="WORLD.toml",
+              help="what is truly on the table, whatever the task believes: placed objects, objects dropped "
+                   "into a container (seeded by --seed), containers (see docs/worlds.md)")
 @GRASP_OPTION
 @click.option("--quiet", "-q", is_flag=True, help="no live progress")
 def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, trace_path: Path | None,
         video: Path | None, record: Path | None, record_rate: float | None, viewer: bool, realtime: bool,
-        budget: float, grasp: str, quiet: bool) -> None:
+        budget: float, world_file: Path | None, grasp: str, quiet: bool) -> None:
     """Run TASK (an ATD, translated on the fly, or an ESTD) on a simulated robot.
 
     Exit status: 0 the task ended in a success state, 3 in a failure state (or the watchdog
     stopped it), 1 invalid input, 2 usage error, 4 the robot cannot do the task, 5 the
     engine crashed (it runs in a child process, so that is reported, not fatal).
     """
-    guard_outputs({"--trace": trace_path, "--video": video, "--record": record}, [task])
+    inputs = [task, *([world_file] if world_file else [])]
+    guard_outputs({"--trace": trace_path, "--video": video, "--record": record}, inputs)
     if record is not None and record.suffix.lower() != ".mcap":
         usage_error(f"{record}: --record writes MCAP; give a file name ending in .mcap")
     estd, factory = _load(task, robot, arm, grasp)
-    guard_outputs({"--trace": trace_path, "--video": video, "--record": record}, [task, *estd.files()])
+    guard_outputs({"--trace": trace_path, "--video": video, "--record": record}, [*inputs, *estd.files()])
+    truth = _world(estd, world_file, seed) if world_file else None
 
     def simulate() -> _Ran:
         session = Run(estd, factory, engine=engine, seed=seed, trace_path=trace_path, realtime=realtime,
-                      budget=budget, video=video, viewer=viewer, record=record, record_rate=record_rate)
+                      budget=budget, video=video, viewer=viewer, scene=truth, record=record, record_rate=record_rate)
         outcome = session.execute(_Progress(quiet))
-        return _Ran(outcome, session.trace.records, session.object_position, session.notes)
+        return _Ran(outcome, session.trace.records, session.object_positions, session.inside, session.notes)
 
     try:
         ran = in_child(simulate)
@@ -158,9 +189,7 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
               f"try --engine {'pybullet' if engine == 'mujoco' else 'mujoco'}", EXIT_ENGINE_CRASHED)
     title = f"{task.name} on {estd.robot} ({estd.arm} arm) in {engine}, seed {seed}"
     click.echo(summary(ran.outcome, ran.records, title))
-    if ran.object_position is not None:
-        x, y, z = ran.object_position
-        click.echo(f"the object rests at ({x:.3f}, {y:.3f}, {z:.3f})")
+    _where(ran.object_positions, ran.inside)
     if trace_path:
         click.echo(f"trace: {trace_path}")
     if record:

@@ -36,14 +36,14 @@ class Recording:
     the file; `abandon` (a run that did not end) leaves none."""
 
     def __init__(self, path: Path, robot: SimRobot, executor: Executor, trace: Trace,
-                 has_object: bool, rate: float | None = DEFAULT_RATE, info: dict[str, str] | None = None,
+                 objects: tuple[str, ...], rate: float | None = DEFAULT_RATE, info: dict[str, str] | None = None,
                  attachments: dict[str, bytes] | None = None) -> None:
         self.robot, self.executor, self.trace = robot, executor, trace
         self.period = 0.0 if rate is None else 1.0 / rate
         self.next = 0.0
         hand = robot.info.hand
         self.layout = Layout(len(robot.info.arm_joints), len(hand.dofs), tuple((p.name, p.taxels) for p in hand.pads),
-                             has_object)
+                             objects)
         self.block = np.empty((BLOCK, self.layout.width))
         self.samples: list[Sample] = []
         self.traces: list[tuple[int, dict[str, Any]]] = []
@@ -71,7 +71,7 @@ class Recording:
         if visit is not self.visit:
             self.visit, self.state = visit, (visit.path, visit.atd)
         row = self.layout.row(sim_time, self.robot.read(), command, self.robot.true_tcp(),
-                              self.robot.object_pose() if self.layout.has_object else None)
+                              list(self.robot.object_poses().values()))
         np.concatenate(row, out=self.block[len(self.samples)])
         pads, points, forces = self.robot.true_pad_contacts()
         self.samples.append((self.state, self.modes_sent, (pads.tolist(), points.tolist(), forces.tolist())))

@@ -49,7 +49,8 @@ SCHEMAS: dict[str, dict[str, Any]] = {
     "atd.State": {"type": "object", "properties": {"path": {"type": "string"}, "atd": {"type": "string"}}},
     "atd.TraceRecord": {"type": "object", "properties": {"type": {"type": "string"}, "state": {"type": "string"}}},
     "atd.Truth": {"type": "object", "properties": {
-        "object": {"oneOf": [_POSE, {"type": "null"}]}, "tcp": _POSE,
+        "object": {"oneOf": [_POSE, {"type": "null"}]}, "objects": {"type": "object", "additionalProperties": _POSE},
+        "tcp": _POSE,
         "pad_contacts": {"type": "array", "items": {"type": "object", "properties": {
             "pad": {"type": "string"}, "x": {"type": "number"}, "y": {"type": "number"},
             "force": {"type": "number"}}}}}},
@@ -69,7 +70,7 @@ class Layout:
     arm: int  # arm joints
     hand: int  # hand DOFs
     pads: tuple[tuple[str, tuple[int, int] | None], ...]  # each pad's name and taxel array (rows, cols)
-    has_object: bool
+    objects: tuple[str, ...]  # every object's name; the first is the task's own ("object")
 
     @cached_property
     def fields(self) -> dict[str, slice]:
@@ -78,11 +79,12 @@ class Layout:
                  ("tcp", _POSE_SIZE), ("wrench", 6), ("pad_force", len(self.pads)),
                  *((f"taxels {name}", rows * cols) for name, (rows, cols) in self.taxel_pads),
                  ("range", 1), ("twist", 6), ("joint_velocity", self.arm), ("hand_values", self.hand),
-                 ("true_tcp", _POSE_SIZE), ("object", _POSE_SIZE if self.has_object else 0)]
+                 ("true_tcp", _POSE_SIZE), ("objects", _POSE_SIZE * len(self.objects))]
         found, start = {}, 0
         for name, size in sizes:
             found[name] = slice(start, start + size)
             start += size
+        found["object"] = slice(found["objects"].start, found["objects"].start + (_POSE_SIZE if self.objects else 0))
         return found
 
     @property
@@ -90,7 +92,7 @@ class Layout:
         return [(name, shape) for name, shape in self.pads if shape is not None]
 
     def row(self, t: float, r: Readings, command: RobotCommand | None, true_tcp: np.ndarray,
-            object_pose: np.ndarray | None) -> list[np.ndarray | tuple[float]]:
+            object_poses: list[np.ndarray]) -> list[np.ndarray | tuple[float]]:
         """The pieces of one sample's row, in the order of `fields` (NaN for what is None)."""
         twist, joint_velocity, hand_values = (None, None, None) if command is None else (
             command.twist, command.joint_velocity, command.hand_values)
@@ -101,9 +103,7 @@ class Layout:
                  missing["twist"] if twist is None else twist,
                  missing["joint_velocity"] if joint_velocity is None else joint_velocity,
                  missing["hand_values"] if hand_values is None else hand_values, true_tcp.ravel()]
-        if object_pose is not None:
-            parts.append(object_pose.ravel())
-        return parts
+        return parts + [pose.ravel() for pose in object_poses]
 
     @cached_property
     def _missing(self) -> dict[str, np.ndarray]:
@@ -112,7 +112,7 @@ class Layout:
 
     @property
     def width(self) -> int:
-        return self.fields["object"].stop
+        return self.fields["objects"].stop
 
 
 def encode(message: dict[str, Any]) -> bytes:
@@ -158,12 +158,12 @@ def messages(layout: Layout, block: np.ndarray, samples: list[Sample],
     rounded = block.round(DECIMALS)
     f = layout.fields
     column = {name: rounded[:, f[name]].tolist()
-              for name in (*JOINTS, "wrench", "pad_force", *COMMANDED, "tcp", "true_tcp", "object")}
+              for name in (*JOINTS, "wrench", "pad_force", *COMMANDED, "tcp", "true_tcp", "objects")}
     taxels = {name: rounded[:, f[f"taxels {name}"]].reshape(len(block), *shape).tolist()
               for name, shape in layout.taxel_pads}
     # Shapes spelt out: a block may have no rows (a run's trace records after its last tick).
     poses = {name: block[:, f[name]].reshape(len(block), block[:, f[name]].shape[1] // 4, 4)
-             for name in ("tcp", "true_tcp", "object")}
+             for name in ("tcp", "true_tcp", "objects")}
     pad_names = [name for name, _ in layout.pads]
     pending = iter(traces)
     trace = next(pending, None)
@@ -183,8 +183,10 @@ def messages(layout: Layout, block: np.ndarray, samples: list[Sample],
         if hand_modes is not None:
             yield "/commands", ns, {**{name: _vector(column[name][i]) for name in COMMANDED}, "hand_modes": hand_modes}
         yield "/task/state", ns, {"path": state[0], "atd": state[1]}
+        objects = {name: _pose(poses["objects"][i][4 * k:4 * k + 4], column["objects"][i][16 * k:16 * k + 16])
+                   for k, name in enumerate(layout.objects)}
         yield "/truth", ns, {
-            "object": _pose(poses["object"][i], column["object"][i]) if layout.has_object else None,
+            "object": next(iter(objects.values()), None), "objects": objects,
             "tcp": _pose(poses["true_tcp"][i], column["true_tcp"][i]),
             "pad_contacts": _contacts(pad_names, *contacts)}
     for _, record in ([trace] if trace else []) + list(pending):

@@ -13,6 +13,7 @@ import numpy as np
 
 from atd.model import Task
 from atd.model.estd import Estd
+from atd.model.diagnostics import Diagnostic, render_all
 from atd.model.estd_xml import estd_to_xml
 from atd.model.files import InputError, read_capped
 from atd.model.xmlsafe import MAX_BYTES
@@ -23,11 +24,12 @@ from atd.sim import ENGINES, make_robot
 from atd.sim.scene import Scene, SceneError, scene_from_task
 from atd.sim.simrobot import SimRobot
 from atd.sim.video import Recorder, VideoError, check_video_path
+from atd.sim.world import WorldError, load_world
 from factories.base import Factory
 from factories.description import RobotDescription
 from primitives.base import Context
 
-__all__ = ["ENGINES", "InvalidScene", "Run", "RunError", "Unrunnable", "belief_scene"]
+__all__ = ["ENGINES", "InvalidScene", "InvalidWorld", "Run", "RunError", "Unrunnable", "belief_scene", "world_scene"]
 
 
 class RunError(Exception):
@@ -36,6 +38,14 @@ class RunError(Exception):
 
 class InvalidScene(RunError):
     """The task's object or environment cannot be simulated (a missing or broken mesh)."""
+
+
+class InvalidWorld(InvalidScene):
+    """A world file that cannot be built; its diagnostics say where and why."""
+
+    def __init__(self, diagnostics: list[Diagnostic]) -> None:
+        super().__init__(render_all(diagnostics))
+        self.diagnostics = diagnostics
 
 
 class Unrunnable(RunError):
@@ -57,6 +67,18 @@ def belief_scene(estd: Estd) -> Scene:
         return scene_from_task(Task(object=estd.object, environment=estd.environment), source)
     except SceneError as exc:
         raise InvalidScene(str(exc)) from None
+
+
+def world_scene(estd: Estd, world_file: Path, seed: int) -> Scene:
+    """The truth a world file describes, around the world the ESTD believes in (its obstacles
+    and containers); the drops are drawn from the run's `seed`. InvalidWorld when it cannot be built."""
+    world, found = load_world(world_file)
+    if world is None:
+        raise InvalidWorld(found)
+    try:
+        return world.scene(belief_scene(estd), seed)
+    except WorldError as exc:
+        raise InvalidWorld(exc.diagnostics) from None
 
 
 def _run_info(estd: Estd, engine: str, seed: int) -> dict[str, str]:
@@ -143,10 +165,10 @@ class Run:
         if viewer:
             _Viewer.check_display()
         try:
-            self.robot = make_robot(robot or factory.robot, scene, engine, seed, window=viewer)
+            self.robot = make_robot(robot or factory.robot, scene, engine, seed, window=viewer, belief=factory.robot)
         except SceneError as exc:
             raise InvalidScene(str(exc)) from None
-        self.has_object = scene.object is not None
+        self.notes: list[str] = [str(self.robot.settling)] if self.robot.settling else []  # for the user
         context = Context(info=self.robot.info, params={}, object=estd.object, environment=estd.environment,
                           rng=np.random.default_rng(seed))
         problems = build_problems(estd, context)
@@ -158,25 +180,27 @@ class Run:
         self.executor = Executor(estd, self.robot, context, self.trace, budget=budget)
         self.video = _Video(self.robot, video) if video is not None else None
         self.viewer = _Viewer(self.robot) if viewer else None
-        self.recorder = Recording(record, self.robot, self.executor, self.trace, self.has_object, record_rate,
+        self.recorder = Recording(record, self.robot, self.executor, self.trace, tuple(self.robot.object_poses()), record_rate,
                                  _run_info(estd, engine, seed), _attachments(estd)) if record is not None else None
         self.observers: list[Observer] = [o for o in (self.video, self.viewer, self.recorder) if o]
         if realtime or viewer:
             self.observers.append(_Pacer())
-        self.notes: list[str] = []  # what became of the video, for the user
 
     def execute(self, progress: Progress | None = None,
                 afterwards: Callable[[SimRobot], None] | None = None) -> Outcome:
-        """Run to the end; afterwards `object_position` is where the object came to rest
-        (None when the task has no object). `afterwards` gets the robot once the task has
-        ended, before it is released: a campaign's judge looks at the world there. The trace
-        and video are written last; OutputError when one cannot be."""
+        """Run to the end; afterwards `object_positions` is where each object came to rest,
+        `object_position` the first's (None when there is none), and `inside` which objects
+        each container holds. `afterwards` gets the robot once the task has ended, before it
+        is released: a campaign's judge looks at the world there. The trace and video are
+        written last; OutputError when one cannot be."""
         try:
             outcome = self.executor.run(progress, observers=tuple(self.observers))
             if afterwards is not None:
                 afterwards(self.robot)
-            self.object_position = (tuple(float(v) for v in self.robot.object_pose()[:3, 3])
-                                    if self.has_object else None)
+            self.object_positions = {name: tuple(float(v) for v in pose[:3, 3])
+                                     for name, pose in self.robot.object_poses().items()}
+            self.object_position = next(iter(self.object_positions.values()), None)
+            self.inside = {c.name: self.robot.objects_inside(c.name) for c in self.robot.scene.containers}
             if self.trace_path:
                 self.trace.save(self.trace_path)
             if self.recorder:

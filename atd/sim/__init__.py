@@ -31,16 +31,26 @@ def load_description(robot: str, arm: str | None = None) -> RobotDescription:
 
 
 def make_robot(description: RobotDescription, scene: Scene | None = None, engine: str = "mujoco", seed: int = 0,
-               window: bool = False) -> SimRobot:
+               window: bool = False, belief: RobotDescription | None = None) -> SimRobot:
     """A simulated robot in `scene` (default: a 5 cm box in the work area) on the named
-    engine; `window` opens the engine's interactive window (it needs a display)."""
+    engine; `window` opens the engine's interactive window (it needs a display). `belief` is
+    what the robot knows of itself where that differs from `description` (see `SimRobot`).
+    A scene that asks to settle has settled when it is returned (`robot.settling`)."""
     scene = scene if scene is not None else box_scene()
     if engine == "mujoco":
         from atd.sim.mujoco_engine import MujocoRobot
 
-        return MujocoRobot(description, scene, seed, window)
-    if engine == "pybullet":
+        robot: SimRobot = MujocoRobot(description, scene, seed, window, belief)
+    elif engine == "pybullet":
         from atd.sim.pybullet_engine import PybulletRobot
 
-        return PybulletRobot(description, scene, seed, window)
-    raise ValueError(f"unknown engine '{engine}'; use one of {', '.join(ENGINES)}")
+        robot = PybulletRobot(description, scene, seed, window, belief)
+    else:
+        raise ValueError(f"unknown engine '{engine}'; use one of {', '.join(ENGINES)}")
+    if scene.settle:
+        try:
+            robot.settle()
+        except BaseException:
+            robot.close()
+            raise
+    return robot

@@ -18,6 +18,9 @@ from atd.sim.scene import TABLE_CENTRE, TABLE_HALF, Body, Scene
 from factories.description import FingerPad, Link, Origin, RobotDescription, Shape
 from factories.parts import PAD
 
+#: A depth camera's optical frame (z along the view, y down the image) turned into a MuJoCo
+#: camera's (looking along -z, y up the image): half a turn about x.
+_MUJOCO_VIEW = np.diag([1.0, -1.0, -1.0, 1.0])
 #: Contacts reported per finger pad each physics step, strongest first: a box face on a pad
 #: makes four, an edge two; the weakest beyond these carry almost nothing.
 PAD_CONTACTS = 8
@@ -158,17 +161,25 @@ class MeshView:
     at: Placed
 
 
-def _meshes(body: Body) -> list[MeshView]:
-    """The body's collision meshes, named `object`, `object_1`, ... after the body."""
+def _meshes(body: Body, name: str) -> list[MeshView]:
+    """The body's collision meshes, named `name`, `name_1`, ..."""
     frame = Placed.of(body.mesh_frame if body.mesh_frame is not None else np.eye(4))
-    return [MeshView(body.name + (f"_{i}" if i else ""), f"{body.name}_mesh" + (f"_{i}" if i else ""), str(path),
+    return [MeshView(name + (f"_{i}" if i else ""), f"{name}_mesh" + (f"_{i}" if i else ""), str(path),
                      _fmt(body.mesh_scale), frame)
             for i, path in enumerate(body.collision_meshes)]
 
 
-def _body(body: Body) -> dict:
-    return {"body": body, "at": Placed.of(body.pose), "size": _fmt(body.half_extents), "inertia": _fmt(body.inertia()),
-            "meshes": _meshes(body)}
+def _body(body: Body, name: str | None = None) -> dict:
+    """A body ready for the template; `name` names its MJCF elements (default: the body's)."""
+    name = name or body.name
+    return {"body": body, "name": name, "at": Placed.of(body.pose), "size": _fmt(body.half_extents),
+            "inertia": _fmt(body.inertia()), "meshes": _meshes(body, name)}
+
+
+def object_name(body: Body) -> str:
+    """A free object's MJCF name: apart from the robot's links, the table and the obstacles,
+    whatever the world file calls it."""
+    return f"object:{body.name}"
 
 
 def _visual_meshes(root: BodyView) -> list[GeomView]:
@@ -183,21 +194,25 @@ def visual_meshes(d: RobotDescription) -> dict[str, Shape]:
 
 
 def mjcf(d: RobotDescription, scene: Scene) -> str:
-    """The whole MuJoCo world: options, defaults, table, object, obstacles, robot, sensors, home key."""
+    """The whole MuJoCo world: options, defaults, table, obstacles, containers, objects, robot,
+    cameras, sensors, home key."""
     hand_home = d.hand_joint_targets(np.array([dof.open for dof in d.hand.dofs]))
     hand_joints = [name for name in d.joints if name not in d.arm_joints]
     home = dict(zip(d.arm_joints, d.home)) | hand_home
     root = body_tree(d)
     qpos = [home.get(b.link.joint.name, 0.0) for b in _depth_first(root) if b.link.joint]
-    if scene.object is not None:
-        o = scene.object
+    for o in scene.objects:
         qpos += list(o.pose[:3, 3]) + list(matrix_to_quat(o.pose[:3, :3]))
+    cameras = [{"camera": c, "at": Placed.of(c.origin.matrix() @ _MUJOCO_VIEW)} for c in d.cameras]
     return _ENV.get_template("scene.mjcf.j2").render(
         d=d,
         root=root,
         table={"pos": _fmt(TABLE_CENTRE), "size": _fmt(TABLE_HALF)} if scene.table else None,
-        object=_body(scene.object) if scene.object else None,
+        objects=[_body(o, object_name(o)) for o in scene.objects],
         obstacles=[_body(b) for b in scene.obstacles],
+        container_parts=[_body(b, f"container:{b.name}") for c in scene.containers for b in c.parts()],
+        cameras=cameras,
+        offscreen=(max([640] + [c.width for c in d.cameras]), max([480] + [c.height for c in d.cameras])),
         hand_joints=hand_joints,
         key_qpos=_fmt(qpos),
         key_ctrl=_fmt([home.get(name, 0.0) for name in list(d.arm_joints) + hand_joints]),

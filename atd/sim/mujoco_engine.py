@@ -11,10 +11,10 @@ import mujoco
 import numpy as np
 
 from atd.model.meshcheck import read_mesh
-from atd.sim.models import mjcf, visual_meshes
+from atd.sim.models import mjcf, object_name, visual_meshes
 from atd.sim.scene import CAMERA_AZIMUTH, CAMERA_DISTANCE, CAMERA_ELEVATION, CAMERA_TARGET, Scene, SceneError
 from atd.sim.simrobot import SimRobot
-from factories.description import RobotDescription
+from factories.description import DepthCamera, RobotDescription
 
 
 def _id(m: mujoco.MjModel, kind: mujoco.mjtObj, name: str) -> int:
@@ -36,8 +36,9 @@ def compile_mjcf(xml: str, description: RobotDescription) -> mujoco.MjModel:
 class MujocoRobot(SimRobot):
     engine = "mujoco"
 
-    def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0, window: bool = False):
-        super().__init__(description, scene, seed)
+    def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0, window: bool = False,
+                 belief: RobotDescription | None = None):
+        super().__init__(description, scene, seed, belief)
         d = description
         self.xml = mjcf(d, scene)
         try:
@@ -85,9 +86,15 @@ class MujocoRobot(SimRobot):
         self._slot_centre = np.broadcast_to(3 * pad_geom + np.arange(3), self._slot_point.shape).copy()
         self._pad_axes = 9 * pad_geom + 3 * np.arange(3)[:, None] + np.arange(2)  # x and y columns of each pad's rotation
         self._range_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "range")] if d.range_sensor else -1
-        self._object_body = _id(m, mujoco.mjtObj.mjOBJ_BODY, "object")
-        self._object_qadr = m.jnt_qposadr[m.body_jntadr[self._object_body]]  # meaningful only with an object
+        self._object_bodies = [_id(m, mujoco.mjtObj.mjOBJ_BODY, object_name(b)) for b in scene.objects]
+        self._object_qadr = [m.jnt_qposadr[m.body_jntadr[b]] for b in self._object_bodies]
+        self._object_dofs = np.array([m.jnt_dofadr[m.body_jntadr[b]] + np.arange(6) for b in self._object_bodies],
+                                     np.intp).reshape(-1, 6)
+        robot_root = _id(m, mujoco.mjtObj.mjOBJ_BODY, f"world_{d.name}")
+        self._robot_geoms = np.flatnonzero(m.body_rootid[m.geom_bodyid] == robot_root)
+        self._robot_contype = m.geom_contype[self._robot_geoms].copy()
         self._renderer: mujoco.Renderer | None = None
+        self._depth_renderers: dict[str, mujoco.Renderer] = {}
         self._arm_from: np.ndarray | None = None  # where the arm's reference ramps from; None: hold it
         self._window = self._open_window() if window else None
         self._apply_arm(self._q_ref, self._dq_cmd)
@@ -158,24 +165,39 @@ class MujocoRobot(SimRobot):
         low, high = self.description.range_limits
         return distance if low <= distance <= high else np.inf
 
-    # ---- test hooks ------------------------------------------------------------------
-    def object_pose(self) -> np.ndarray:
-        if self._object_body < 0:
-            raise LookupError("the scene has no object")
-        pose = np.eye(4)
-        pose[:3, :3] = self.data.xmat[self._object_body].reshape(3, 3)
-        pose[:3, 3] = self.data.xpos[self._object_body]
-        return pose
+    def _object_poses(self) -> list[np.ndarray]:
+        poses = []
+        for body in self._object_bodies:
+            pose = np.eye(4)
+            pose[:3, :3] = self.data.xmat[body].reshape(3, 3)
+            pose[:3, 3] = self.data.xpos[body]
+            poses.append(pose)
+        return poses
 
+    def _object_speeds(self) -> tuple[np.ndarray, np.ndarray]:
+        velocity = self._qvel[self._object_dofs]  # free joints: linear (world), then angular (body)
+        return np.linalg.norm(velocity[:, :3], axis=1), np.linalg.norm(velocity[:, 3:], axis=1)
+
+    def _robot_collides(self, on: bool) -> None:
+        self.model.geom_contype[self._robot_geoms] = self._robot_contype if on else 0
+
+    def _render_depth(self, camera: DepthCamera) -> np.ndarray:
+        renderer = self._depth_renderers.get(camera.name)
+        if renderer is None:
+            renderer = self._depth_renderers[camera.name] = mujoco.Renderer(self.model, camera.height, camera.width)
+            renderer.enable_depth_rendering()
+        renderer.update_scene(self.data, camera.name)
+        return renderer.render()
+
+    # ---- test hooks ------------------------------------------------------------------
     def place_object(self, pose: np.ndarray) -> None:
-        if self._object_body < 0:
+        if not self._object_bodies:
             raise LookupError("the scene has no object")
         quat = np.zeros(4)
         mujoco.mju_mat2Quat(quat, np.ascontiguousarray(pose[:3, :3]).ravel())
-        a = self._object_qadr
+        a = self._object_qadr[0]
         self.data.qpos[a : a + 7] = np.concatenate([pose[:3, 3], quat])
-        dof = self.model.jnt_dofadr[self.model.body_jntadr[self._object_body]]
-        self.data.qvel[dof : dof + 6] = 0.0
+        self.data.qvel[self._object_dofs[0]] = 0.0
         mujoco.mj_forward(self.model, self.data)
 
     def render(self, width: int, height: int) -> np.ndarray:
@@ -206,6 +228,7 @@ class MujocoRobot(SimRobot):
         if self._window is not None:
             self._window.close()
             self._window = None
-        if self._renderer is not None:
-            self._renderer.close()
-            self._renderer = None
+        for renderer in [self._renderer, *self._depth_renderers.values()]:
+            if renderer is not None:
+                renderer.close()
+        self._renderer, self._depth_renderers = None, {}

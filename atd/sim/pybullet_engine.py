@@ -27,7 +27,7 @@ from atd.sim.scene import (
     Scene,
 )
 from atd.sim.simrobot import SimRobot
-from factories.description import RobotDescription
+from factories.description import DepthCamera, RobotDescription
 
 SOLVER_ITERATIONS = 50
 ARM_POSITION_GAIN = 0.1
@@ -38,6 +38,9 @@ COUPLING_FORCE = 10.0
 # Of a coupling's position error corrected each step: left at Bullet's default, a gear tied
 # the joints' speeds only, and one jaw set 17 mm from the other stayed there for 2 s.
 COUPLING_ERP = 0.2
+#: The renderer's clipping planes, as fractions of a depth camera's near and multiples of its
+#: far limit: what lies nearer still hides what is behind it, as on a real camera.
+CLIP_NEAR, CLIP_FAR = 0.25, 1.5
 
 
 def _xyzw(m: np.ndarray) -> list[float]:
@@ -55,8 +58,9 @@ def _matrix(position, xyzw) -> np.ndarray:
 class PybulletRobot(SimRobot):
     engine = "pybullet"
 
-    def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0, window: bool = False):
-        super().__init__(description, scene, seed)
+    def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0, window: bool = False,
+                 belief: RobotDescription | None = None):
+        super().__init__(description, scene, seed, belief)
         d = description
         self.client = c = pb.connect(pb.GUI if window else pb.DIRECT)
         if window:  # PyBullet's own window, without its side panels, looking where the videos look
@@ -153,11 +157,15 @@ class PybulletRobot(SimRobot):
             # A friction anchor pins a contact point, which a rolling ball's is not: anchored
             # (on either body), a ball rolling at 5 cm/s sped up to 17 cm/s in 2 s on a level
             # table, and balls the grasp had nudged rolled off it.
-            rolls = scene.object is not None and scene.object.rolls
+            rolls = any(body.rolls for body in scene.objects)
             pb.changeDynamics(self.table, -1, lateralFriction=1.0, frictionAnchor=int(not rolls), physicsClientId=c)
         for obstacle in scene.obstacles:
             self._make(obstacle, fixed=True)
-        self.object = self._make(scene.object, fixed=False) if scene.object else -1
+        for container in scene.containers:
+            for part in container.parts():
+                self._make(part, fixed=True)
+        self._objects = [self._make(body, fixed=False) for body in scene.objects]
+        self.object = self._objects[0] if self._objects else -1
 
     def _make(self, body: Body, fixed: bool) -> int:
         c = self.client
@@ -376,12 +384,32 @@ class PybulletRobot(SimRobot):
         hit = pb.rayTest(start.tolist(), (pose[:3, 3] + pose[:3, 2] * high).tolist(), physicsClientId=self.client)[0]
         return low + hit[2] * (high - low) if hit[0] >= 0 else np.inf
 
+    def _object_poses(self) -> list[np.ndarray]:
+        return [_matrix(*pb.getBasePositionAndOrientation(uid, physicsClientId=self.client)) for uid in self._objects]
+
+    def _object_speeds(self) -> tuple[np.ndarray, np.ndarray]:
+        velocities = np.array([pb.getBaseVelocity(uid, physicsClientId=self.client) for uid in self._objects]).reshape(-1, 2, 3)
+        return np.linalg.norm(velocities[:, 0], axis=1), np.linalg.norm(velocities[:, 1], axis=1)
+
+    def _robot_collides(self, on: bool) -> None:
+        for uid in self._objects:
+            for link in range(-1, pb.getNumJoints(self.body, physicsClientId=self.client)):
+                pb.setCollisionFilterPair(self.body, uid, link, -1, int(on), physicsClientId=self.client)
+
+    def _render_depth(self, camera: DepthCamera) -> np.ndarray:
+        pose = camera.origin.matrix()
+        eye = pose[:3, 3]
+        view = pb.computeViewMatrix(eye.tolist(), (eye + pose[:3, 2]).tolist(), (-pose[:3, 1]).tolist(),
+                                    physicsClientId=self.client)
+        near, far = CLIP_NEAR * camera.near, CLIP_FAR * camera.far
+        projection = pb.computeProjectionMatrixFOV(camera.fovy, camera.width / camera.height, near, far,
+                                                   physicsClientId=self.client)
+        buffer = pb.getCameraImage(camera.width, camera.height, view, projection, renderer=pb.ER_TINY_RENDERER,
+                                   physicsClientId=self.client)[3]
+        # The depth buffer is non-linear in depth: 0 at the near plane, 1 at the far one.
+        return far * near / (far - (far - near) * np.asarray(buffer, float).reshape(camera.height, camera.width))
+
     # ---- test hooks ------------------------------------------------------------------
-    def object_pose(self) -> np.ndarray:
-        if self.object < 0:
-            raise LookupError("the scene has no object")
-        position, xyzw = pb.getBasePositionAndOrientation(self.object, physicsClientId=self.client)
-        return _matrix(position, xyzw)
 
     def place_object(self, pose: np.ndarray) -> None:
         if self.object < 0:

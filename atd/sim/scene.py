@@ -1,18 +1,20 @@
-"""The world a robot works in, from an ATD's `<object>` and `<environment>`.
+"""The world a robot works in: by default what an ATD's `<object>` and `<environment>`
+say, or what a world file says is true (atd/sim/world.py).
 
 Everything is in the ATD world frame: the table top is the plane z = 0 and x points away
-from the robot. The object is free to move; obstacles are fixed.
+from the robot. Objects are free to move; obstacles and containers are fixed.
 """
 
 from __future__ import annotations
 
+import builtins
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal
 
 import numpy as np
 
-from atd.model import ObjectClass, Task
+from atd.model import ObjectClass, ObjectInfo, Task
 from atd.model.files import real_path
 from atd.model.meshcheck import MeshError, check_mesh
 
@@ -89,11 +91,104 @@ class Body:
         return (m * (b * b + c * c) / 12, m * (a * a + c * c) / 12, m * (a * a + b * b) / 12)
 
 
+#: Of a container, how far above its rim an object's centre may lie and still count as in
+#: it: one piled on others pokes out of the box; one carried off is well above this.
+PILE_HEIGHT = 0.1  # m
+
+
 @dataclass(frozen=True)
+class Container:
+    """An open-topped box standing on the table, fixed: a floor and four walls. `pose` is the
+    centre of its floor's underside, `size` its outer lengths (x, y, z in its own frame),
+    `wall` the thickness of walls and floor."""
+
+    name: str
+    pose: np.ndarray  # 4x4
+    size: tuple[float, float, float]
+    wall: float = 0.01
+    friction: float = DEFAULT_FRICTION
+
+    def parts(self) -> tuple[Body, ...]:
+        """The floor and the four walls, as fixed boxes in the world."""
+        sx, sy, sz = self.size
+        t = self.wall
+        boxes = [("floor", (0.0, 0.0, t / 2), (sx, sy, t))]
+        for sign in (1, -1):  # the x walls run the whole length; the y walls fit between them
+            boxes.append((f"wall_x{'+' if sign > 0 else '-'}", (sign * (sx - t) / 2, 0.0, sz / 2), (t, sy, sz)))
+            boxes.append((f"wall_y{'+' if sign > 0 else '-'}", (0.0, sign * (sy - t) / 2, sz / 2), (sx - 2 * t, t, sz)))
+        placed = []
+        for part, centre, size in boxes:
+            local = np.eye(4)
+            local[:3, 3] = centre
+            placed.append(Body(f"{self.name}_{part}", "box", size, self.pose @ local, 1.0, self.friction))
+        return tuple(placed)
+
+    def inner_corners(self) -> tuple[np.ndarray, np.ndarray]:
+        """(low, high) corners of the space inside, in the container's own frame."""
+        sx, sy, sz = self.size
+        t = self.wall
+        return np.array([-sx / 2 + t, -sy / 2 + t, t]), np.array([sx / 2 - t, sy / 2 - t, sz])
+
+    def inner_bounds(self) -> tuple[np.ndarray, np.ndarray]:
+        """(low, high) corners of the world-axis box around the space inside."""
+        low, high = self.inner_corners()
+        corners = np.array([[x, y, z, 1.0] for x in (low[0], high[0]) for y in (low[1], high[1])
+                            for z in (low[2], high[2])]) @ self.pose.T
+        return corners[:, :3].min(axis=0), corners[:, :3].max(axis=0)
+
+    def holds(self, point: np.ndarray) -> bool:
+        """Whether a point (an object's centre, world frame) is in the container: over its
+        floor, inside its walls, and no higher than PILE_HEIGHT above its rim."""
+        local = np.linalg.solve(self.pose, np.append(np.asarray(point, float), 1.0))[:3]
+        low, high = self.inner_corners()
+        high = high + (0.0, 0.0, PILE_HEIGHT)
+        return bool(np.all(local >= low) and np.all(local <= high))
+
+
+_set = builtins.object.__setattr__  # a frozen dataclass sets its own fields this way
+
+
+@dataclass(frozen=True, init=False)
 class Scene:
-    object: Body | None
-    obstacles: tuple[Body, ...] = ()
-    table: bool = True  # False: free space, for moving joints through their whole range
+    """What the engines build: free `objects` (names unique), fixed `obstacles` and
+    `containers`, the table. `settle`: let gravity bring the objects to rest before the
+    run's clock starts (objects a world file dropped or stacked)."""
+
+    objects: tuple[Body, ...]
+    obstacles: tuple[Body, ...]
+    table: bool  # False: free space, for moving joints through their whole range
+    containers: tuple[Container, ...]
+    settle: bool
+
+    def __init__(self, object: Body | None = None, obstacles: tuple[Body, ...] = (), table: bool = True, *,
+                 objects: tuple[Body, ...] = (), containers: tuple[Container, ...] = (), settle: bool = False):
+        """`object`, when given, is the first of `objects` (the task's own): `Scene(body)` and
+        `dataclasses.replace(scene, object=body)` make or change a one-object world."""
+        bodies = tuple(objects)
+        if object is not None:
+            bodies = (object, *bodies[1:])
+        names = [b.name for b in bodies] + [c.name for c in containers]
+        if len(set(names)) != len(names):
+            twice = sorted({n for n in names if names.count(n) > 1})
+            raise ValueError(f"objects and containers need names of their own; {', '.join(twice)} stand twice")
+        _set(self, "objects", bodies)
+        _set(self, "obstacles", tuple(obstacles))
+        _set(self, "table", table)
+        _set(self, "containers", tuple(containers))
+        _set(self, "settle", settle)
+
+    @property
+    def object(self) -> Body | None:
+        """The first object (the task's own), or None."""
+        return self.objects[0] if self.objects else None
+
+    def container(self, name: str) -> Container:
+        """The container called `name`; LookupError naming the ones there are."""
+        for container in self.containers:
+            if container.name == name:
+                return container
+        known = ", ".join(c.name for c in self.containers) or "none"
+        raise LookupError(f"no container '{name}' in this world; its containers: {known}")
 
 
 def box_scene(size: float = 0.05, xy: tuple[float, float] = (0.125, 0.0), mass: float = DEFAULT_WEIGHT) -> Scene:
@@ -105,41 +200,41 @@ def box_scene(size: float = 0.05, xy: tuple[float, float] = (0.125, 0.0), mass: 
 
 def scene_from_task(task: Task, atd_file: Path) -> Scene:
     """The object and obstacles of a task; a mesh `shape` is looked up next to the ATD."""
-    info = task.object
-    body = None
-    if info is not None:
-        kind = (info.object_class or ObjectClass.BOX).value
-        size = info.effective_size
-        mesh = None
-        if info.shape is not None:
-            mesh = real_path(atd_file.parent / info.shape)
-            where = f"{atd_file}: <object> shape '{info.shape}'"
-            if not mesh.exists():  # a directory or a FIFO too: check_mesh says what it is
-                raise SceneError(f"{where}: no such file {mesh}; put the mesh next to the ATD or fix the path")
-            try:
-                check_mesh(mesh)
-            except MeshError as exc:
-                raise SceneError(f"{where}: {exc}") from None
-            kind = "mesh"
-            size = _box_size(info)
-        if info.pose is not None:
-            pose = info.pose.as_array()
-        else:  # resting on the table in the middle of the work area
-            pose = np.eye(4)
-            pose[:3, 3] = (0.125, 0.0, info.half_height)
-        body = Body(
-            "object", kind, tuple(size), pose,
-            info.weight if info.weight is not None else DEFAULT_WEIGHT,
-            info.friction if info.friction is not None else DEFAULT_FRICTION,
-            mesh,
-        )
+    bodies = () if task.object is None else (object_body(task.object, "object", atd_file),)
     obstacles = []
     if task.environment is not None:
         for i, obstacle in enumerate(task.environment.obstacles):
             pose = np.eye(4)
             pose[:3, 3] = obstacle.position
             obstacles.append(Body(f"obstacle{i}", "box", obstacle.size or DEFAULT_OBSTACLE_SIZE, pose, 1.0, DEFAULT_FRICTION))
-    return Scene(body, tuple(obstacles))
+    return Scene(objects=bodies, obstacles=tuple(obstacles))
+
+
+def object_body(info: ObjectInfo, name: str, atd_file: Path) -> Body:
+    """The body an ATD's `<object>` describes; without a pose, it rests on the table in the
+    middle of the work area."""
+    kind = (info.object_class or ObjectClass.BOX).value
+    size = info.effective_size
+    mesh = None
+    if info.shape is not None:
+        mesh = real_path(atd_file.parent / info.shape)
+        where = f"{atd_file}: <object> shape '{info.shape}'"
+        if not mesh.exists():  # a directory or a FIFO too: check_mesh says what it is
+            raise SceneError(f"{where}: no such file {mesh}; put the mesh next to the ATD or fix the path")
+        try:
+            check_mesh(mesh)
+        except MeshError as exc:
+            raise SceneError(f"{where}: {exc}") from None
+        kind = "mesh"
+        size = _box_size(info)
+    if info.pose is not None:
+        pose = info.pose.as_array()
+    else:
+        pose = np.eye(4)
+        pose[:3, 3] = (0.125, 0.0, info.half_height)
+    return Body(name, kind, tuple(size), pose,
+                info.weight if info.weight is not None else DEFAULT_WEIGHT,
+                info.friction if info.friction is not None else DEFAULT_FRICTION, mesh)
 
 
 def _box_size(info) -> tuple[float, float, float]:

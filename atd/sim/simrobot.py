@@ -9,15 +9,15 @@ wrist wrench in the interface's convention, contacts on pads and the IR range.
 from __future__ import annotations
 
 from abc import abstractmethod
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import Sequence
 
 import numpy as np
 
 from atd.sim.scene import Scene
 from atd.sim.sensors import NoisySensors, TaxelImages
-from factories.description import RobotDescription, SensorModel
-from primitives.robot import SENSORS, HandInfo, HandMode, PadInfo, Readings, Robot, RobotInfo
+from factories.description import DepthCamera, RobotDescription, SensorModel
+from primitives.robot import SENSORS, DepthImage, HandInfo, HandMode, PadInfo, Readings, Robot, RobotInfo
 
 #: How far (rad or m) an arm servo reference may run ahead of the joint: a blocked arm
 #: pushes with a bounded force instead of winding up without end.
@@ -27,6 +27,12 @@ REFERENCE_LEASH = 0.02
 RAMP_TIME = 0.2
 # Hand modes as small integers, so a tick compares arrays instead of strings.
 POSITION, VELOCITY, FORCE = 0, 1, 2
+#: Settling a world (`SimRobot.settle`): an object is at rest below these speeds, all of them
+#: for SETTLED_FOR on end; after SETTLE_LIMIT the run starts whatever still moves.
+SETTLED_SPEED = 0.005  # m/s
+SETTLED_SPIN = 0.1  # rad/s: 1.5 mm/s at the rim of a 3 cm object
+SETTLED_FOR = 0.2  # s
+SETTLE_LIMIT = 5.0  # s of simulated time
 _MODE_CODE = {HandMode.POSITION: POSITION, HandMode.VELOCITY: VELOCITY, HandMode.FORCE: FORCE}
 
 
@@ -125,7 +131,23 @@ def robot_info(d: RobotDescription) -> RobotInfo:
         hand=hand,
         has_range=d.range_sensor is not None,
         range_limits=d.range_limits,
+        cameras=tuple(c.name for c in d.cameras),
     )
+
+
+@dataclass(frozen=True)
+class Settling:
+    """How a world came to rest before the run: simulated seconds, and the objects still
+    moving when SETTLE_LIMIT ran out (none when all came to rest)."""
+
+    seconds: float
+    moving: tuple[str, ...]
+
+    def __str__(self) -> str:
+        if self.moving:
+            return (f"the world had not settled after {self.seconds:.2f} s of simulated time "
+                    f"(still moving: {', '.join(self.moving)}); the run starts from there")
+        return f"the world settled in {self.seconds:.2f} s of simulated time before the run"
 
 
 class SimRobot(Robot):
@@ -133,10 +155,19 @@ class SimRobot(Robot):
 
     engine = ""
 
-    def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0):
+    def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0,
+                 belief: RobotDescription | None = None):
+        """`description` is the robot as it truly is; `belief` what it knows of itself (its
+        factory's description, by default the same): `info` and the camera poses that
+        pictures report come from the belief."""
         d = description
         self.description = d
-        self.info = robot_info(d)
+        self.scene = scene
+        self.info = robot_info(belief or d)
+        self._cameras = {c.name: c for c in d.cameras}
+        self._believed_cameras = {c.name: c for c in (belief or d).cameras}
+        self._camera_noise = np.random.default_rng([seed, 3])
+        self.settling: Settling | None = None
         self.hand_joints = tuple(n for n in d.joints if n not in d.arm_joints)
         self.substeps = int(round(d.control_period / d.timestep))
         n_arm = len(d.arm_joints)
@@ -311,9 +342,57 @@ class SimRobot(Robot):
         for _ in range(int(round(seconds / self.info.control_period))):
             self.step()
 
-    @abstractmethod
+    def capture(self, sensor: str) -> DepthImage:
+        believed = self._believed_cameras.get(sensor)
+        camera = self._cameras.get(sensor)
+        if believed is None or camera is None:
+            raise LookupError(f"{self.info.name} has no depth camera '{sensor}'; "
+                              f"its cameras: {', '.join(self.info.cameras) or 'none'}")
+        depth = self._render_depth(camera).astype(np.float32)
+        depth[(depth < camera.near) | (depth > camera.far)] = 0.0
+        if camera.noise:
+            seen = depth > 0
+            depth[seen] += (camera.noise * depth[seen] ** 2 * self._camera_noise.standard_normal(int(seen.sum())))
+        return DepthImage(sensor, self._time, depth, believed.intrinsics, believed.origin.matrix())
+
+    def settle(self) -> Settling:
+        """Let gravity bring the scene's objects to rest before the run's clock starts (a
+        world file's dropped or stacked objects). The robot holds its home, parked, and out
+        of their way: they fall through it, as if put there before it came."""
+        period = self.info.control_period
+        still, elapsed = 0.0, 0.0
+        self._robot_collides(False)
+        try:
+            while elapsed < SETTLE_LIMIT - 1e-9 and still < SETTLED_FOR - 1e-9:
+                self._apply_arm(self._q_ref, self._zero)
+                self._advance()
+                elapsed += period
+                linear, angular = self._object_speeds()
+                at_rest = bool((linear < SETTLED_SPEED).all() and (angular < SETTLED_SPIN).all())
+                still = still + period if at_rest else 0.0
+        finally:
+            self._robot_collides(True)
+        self._last = None
+        moving = () if still >= SETTLED_FOR - 1e-9 else tuple(
+            b.name for b, v, w in zip(self.scene.objects, *self._object_speeds())
+            if v >= SETTLED_SPEED or w >= SETTLED_SPIN)
+        self.settling = Settling(elapsed, moving)
+        return self.settling
+
+    def object_poses(self) -> dict[str, np.ndarray]:
+        """True 4x4 pose of every object by name (for judges and recordings, not for primitives)."""
+        return dict(zip((b.name for b in self.scene.objects), self._object_poses()))
+
     def object_pose(self) -> np.ndarray:
-        """True 4x4 pose of the scene's object (for checks, not for primitives)."""
+        """True 4x4 pose of the scene's first object (for checks, not for primitives)."""
+        if not self.scene.objects:
+            raise LookupError("the scene has no object")
+        return self._object_poses()[0]
+
+    def objects_inside(self, container: str) -> list[str]:
+        """The objects truly in the named container now (for judges, not for primitives)."""
+        box = self.scene.container(container)
+        return [name for name, pose in self.object_poses().items() if box.holds(pose[:3, 3])]
 
     @abstractmethod
     def place_object(self, pose: np.ndarray) -> None:
@@ -367,6 +446,22 @@ class SimRobot(Robot):
     @abstractmethod
     def _range(self) -> float:
         """True distance along the IR sensor's axis, inf when nothing is in range."""
+
+    @abstractmethod
+    def _object_poses(self) -> list[np.ndarray]:
+        """True 4x4 pose of each object, in the scene's order."""
+
+    @abstractmethod
+    def _object_speeds(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each object's linear (m/s) and angular (rad/s) speed, in the scene's order."""
+
+    @abstractmethod
+    def _robot_collides(self, on: bool) -> None:
+        """Let the robot touch the objects, or let them pass through it."""
+
+    @abstractmethod
+    def _render_depth(self, camera: DepthCamera) -> np.ndarray:
+        """(height, width) depth along the optical axis, m, from where `camera` truly stands."""
 
     # ---- sampling --------------------------------------------------------------------------
     def _sample(self) -> Readings:

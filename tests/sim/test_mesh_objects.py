@@ -61,7 +61,7 @@ def test_a_concave_mesh_collides_as_several_convex_parts_in_both_engines(melfa, 
     robot = robot_of(melfa, engine, Scene(body))
     if engine == "mujoco":
         m = robot.model
-        collided = [g for g in range(m.ngeom) if m.geom_bodyid[g] == robot._object_body and m.geom_contype[g]]
+        collided = [g for g in range(m.ngeom) if m.geom_bodyid[g] == robot._object_bodies[0] and m.geom_contype[g]]
         assert [m.geom_type[g] for g in collided] == [mujoco.mjtGeom.mjGEOM_MESH] * len(parts)
     else:
         assert len(pb.getCollisionShapeData(robot.object, -1, physicsClientId=robot.client)) == len(parts)

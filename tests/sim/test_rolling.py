@@ -28,8 +28,7 @@ def _roll(sim) -> None:
     """Start the ball rolling at SPEED along x, as a nudge would."""
     spin = SPEED / RADIUS  # about y, so the contact point stands still
     if isinstance(sim, MujocoRobot):
-        dof = sim.model.jnt_dofadr[sim.model.body_jntadr[sim._object_body]]
-        sim.data.qvel[dof: dof + 6] = (SPEED, 0.0, 0.0, 0.0, spin, 0.0)
+        sim.data.qvel[sim._object_dofs[0]] = (SPEED, 0.0, 0.0, 0.0, spin, 0.0)
     else:
         pb.resetBaseVelocity(sim.object, [SPEED, 0.0, 0.0], [0.0, spin, 0.0], physicsClientId=sim.client)
 
