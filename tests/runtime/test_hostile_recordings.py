@@ -155,7 +155,7 @@ def looping(path: Path, visits: int, samples: int, states: tuple[str, ...] = ("a
     """A recording of a task going round `states` until it made `visits` visits, 5 ms each,
     with `samples` samples of a robot standing still: written by the recorder's own writer
     process, as `atd run --record` writes one, with no simulation."""
-    layout = Layout(arm=6, hand=1, pads=(("left", None), ("right", None)), has_object=True)
+    layout = Layout(arm=6, hand=1, pads=(("left", None), ("right", None)), objects=("object",))
     end = visits * 0.005
     block = np.zeros((samples, layout.width))
     block[:, 0] = np.linspace(0.0, end, samples)
