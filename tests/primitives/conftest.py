@@ -136,3 +136,14 @@ def preset_trials(indices: tuple[int, ...], **cell: str) -> list:
     assert loaded is not None, diagnostics
     only = parse_only(tuple(f"{k}={v}" for k, v in cell.items()))
     return [run_trial(plan) for plan in plans(loaded, only, max(indices) + 1) if plan.index in indices]
+
+
+def lifted_but_at_most_one(trials: list[tuple[str, int]], **cell: str) -> None:
+    """Preset trials (object, index) that once failed to one defect: all but at most one now
+    lift their object, and none is a false success. One may fail honestly: the robust grasp
+    fails about one preset trial in eight, and which one turns on the last bit of a sum
+    (docs/reliability.md), so a single pinned trial would test the arithmetic, not the fix."""
+    records = [record for obj, index in trials for record in preset_trials((index,), **cell, object=obj)]
+    assert not [r for r in records if r.task_succeeded and not r.judged_succeeded], "a false success"
+    failed = [(r.cell.object, r.index, r.judge_reason, r.summary) for r in records if not r.judged_succeeded]
+    assert len(failed) <= 1, failed
