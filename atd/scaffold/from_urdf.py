@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
+from atd.scaffold.source import IDENTIFIER
 from factories.description import Origin, RobotDescription, Site
 from factories.home import HOME_TCP, with_home
 from factories.urdf import UrdfError, UrdfModel, read_urdf
@@ -47,18 +48,20 @@ def _chain(model: UrdfModel, link: str) -> list[str]:
 
 
 def _import_path(urdf: Path) -> tuple[str, str] | None:
-    """(package, path inside it) when the URDF ships inside an installed Python package."""
+    """(package, path inside it) when the URDF ships inside an installed Python package
+    whose name is a plain identifier (the generated code imports it by that name)."""
     for entry in sys.path:
         folder = Path(entry or ".").resolve()
         if folder.is_dir() and urdf.is_relative_to(folder) and len(urdf.relative_to(folder).parts) > 1:
             package = urdf.relative_to(folder).parts[0]
-            if (folder / package / "__init__.py").is_file():
+            if IDENTIFIER.fullmatch(package) and (folder / package / "__init__.py").is_file():
                 return package, str(Path(*urdf.relative_to(folder).parts[1:]))
     return None
 
 
 def urdf_values(urdf: Path, name: str) -> dict[str, object]:
-    """The template values of a description read from `urdf`."""
+    """The template values of a description read from `urdf`, as read: the templates write
+    each through `atd.scaffold.source.literal` (their `py` filter)."""
     urdf = Path(urdf).resolve()
     try:
         model = read_urdf(urdf)
@@ -83,7 +86,6 @@ def urdf_values(urdf: Path, name: str) -> dict[str, object]:
         raise UrdfScaffoldError(f"{urdf}: {exc}") from None
     inside = _import_path(urdf)
     return {"urdf_package": inside[0] if inside else "", "urdf_inside": inside[1] if inside else "",
-            "urdf_path": str(urdf), "urdf_shown": f"the installed {inside[0]}'s {inside[1]}" if inside else str(urdf),
-            "urdf_source": f" on {inside[0]}'s {inside[1]}" if inside else f" on {urdf}",
-            "arm_joints": repr(arm_joints), "dof": len(arm_joints), "hand_root": hand_root, "fingers": repr(fingers),
-            "max_opening": round(2 * hand.dofs[0].open, 6), "base_x": base_x, "home": repr(home)}
+            "urdf_path": str(urdf), "arm_joints": arm_joints, "dof": len(arm_joints), "hand_root": hand_root,
+            "fingers": fingers, "max_opening": round(2 * hand.dofs[0].open, 6), "base_x": base_x,
+            "home": tuple(home)}

@@ -63,8 +63,8 @@ def test_each_maps_as_its_kind_of_hand(installed):
 def test_the_urdf_robot_reads_the_installed_urdf_and_stands_where_its_home_is_central(installed):
     folder = Path(installed["PYTHONPATH"].split(os.pathsep)[-1])
     text = (folder / "atd_franka" / "description.py").read_text()
-    assert 'URDF = Path(str(files("pybullet_data") / "franka_panda/panda.urdf"))' in text
-    assert "FINGERS = ('panda_finger_joint1', 'panda_finger_joint2')" in text and 'HAND_ROOT = "panda_hand"' in text
+    assert "URDF = Path(str(files('pybullet_data') / 'franka_panda/panda.urdf'))" in text
+    assert "FINGERS = ('panda_finger_joint1', 'panda_finger_joint2')" in text and "HAND_ROOT = 'panda_hand'" in text
     assert not list(folder.rglob("*.urdf")) and not list(folder.rglob("*.obj"))  # nothing copied
 
 
