@@ -49,8 +49,8 @@ def package_files(name: str, hand: str, urdf: Path | None = None) -> dict[str, s
     """Path inside the package folder -> text, for a robot `name` with a `hand` of HANDS,
     its body built in Python or, with `urdf`, read from that URDF."""
     package = f"atd_{name}"
-    values: dict[str, object] = {"name": name, "hand": hand, "package": package,
-                                 "urdf_option": " --from-urdf URDF" if urdf else "", "urdf_package": "", "urdf_path": "", "dof": 6,
+    values: dict[str, object] = {"name": name, "hand": hand, "package": package, "dof": 6,
+                                 "urdf_option": " --from-urdf URDF" if urdf else "", "urdf_package": "", "urdf_path": "",
                                  "cls": "".join(part.capitalize() for part in name.split("_")) + "Factory"}
     if urdf is not None:
         if hand != "parallel_jaw":
