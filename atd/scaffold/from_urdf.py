@@ -15,6 +15,7 @@ from factories.home import HOME_TCP, with_home
 from factories.urdf import UrdfError, UrdfModel, read_urdf
 from factories.urdf_hand import urdf_parallel_jaw
 
+MAX_ARM_JOINTS = 32  # a redundant arm has 7 or 8: a longer chain to the hand is a mistake, or no arm
 REACH_SHARE = 0.4  # of the summed joint offsets, root to TCP: the Panda's 1.43 m puts its base 45 cm back, where its home is central
 
 
@@ -72,6 +73,11 @@ def urdf_values(urdf: Path, name: str) -> dict[str, object]:
     by_name = {link.name: link for link in model.links}
     chain = _chain(model, hand_root)
     arm_joints = tuple(by_name[l].joint.name for l in chain if by_name[l].joint is not None)
+    if len(arm_joints) > MAX_ARM_JOINTS:
+        line = model.joint_lines[arm_joints[MAX_ARM_JOINTS]]
+        raise UrdfScaffoldError(f"{urdf}:{line}: the arm down to '{hand_root}' has {len(arm_joints)} moving joints, "
+                                f"more than the {MAX_ARM_JOINTS} atd drives; make the extra joints fixed, or start "
+                                "from a URDF of the arm and its hand alone")
     if len(arm_joints) < 6:
         raise UrdfScaffoldError(f"{urdf}: the arm down to '{hand_root}' has {len(arm_joints)} moving joints; "
                                 "a hand pointing down anywhere in the work area needs at least 6")
