@@ -47,7 +47,8 @@ def check_name(name: str, taken: list[str]) -> None:
 
 def package_files(name: str, hand: str, urdf: Path | None = None) -> dict[str, str]:
     """Path inside the package folder -> text, for a robot `name` with a `hand` of HANDS,
-    its body built in Python or, with `urdf`, read from that URDF."""
+    its body built in Python or, with `urdf`, read from that URDF: UrdfScaffoldError when
+    the URDF cannot be imported, ScaffoldError for the rest."""
     package = f"atd_{name}"
     values: dict[str, object] = {"name": name, "hand": hand, "package": package, "dof": 6,
                                  "urdf_option": " --from-urdf URDF" if urdf else "", "urdf_package": "", "urdf_path": "",
@@ -56,10 +57,7 @@ def package_files(name: str, hand: str, urdf: Path | None = None) -> dict[str, s
         if hand != "parallel_jaw":
             raise ScaffoldError("--from-urdf makes a parallel-jaw robot (--hand parallel_jaw): a multi-finger hand's "
                                 "DOFs and postures are not in a URDF; describe it by hand (docs/writing-a-robot.md)")
-        try:
-            values |= urdf_values(urdf, name)
-        except UrdfScaffoldError as exc:
-            raise ScaffoldError(str(exc)) from None
+        values |= urdf_values(urdf, name)
     files = {
         "pyproject.toml": "pyproject.toml.j2",
         "README.md": "README.md.j2",
@@ -73,7 +71,7 @@ def package_files(name: str, hand: str, urdf: Path | None = None) -> dict[str, s
     try:
         return {path: _ENV.get_template(template).render(values) for path, template in files.items()}
     except SourceError as exc:
-        raise ScaffoldError(f"{urdf}: cannot write the description: {exc}; check the URDF's numbers") from None
+        raise UrdfScaffoldError(f"{urdf}: cannot write the description: {exc}; check the URDF's numbers") from None
 
 
 def write_package(target: Path, files: dict[str, str]) -> None:

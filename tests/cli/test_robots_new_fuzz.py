@@ -1,5 +1,5 @@
 """Issue 30: `atd robots new --from-urdf` under hostile URDFs. What it cannot import is one
-line at the URDF's file:line, exit 2, nothing written; what it writes runs nothing from its
+line at the URDF's file:line, exit 1, nothing written; what it writes runs nothing from its
 input when imported; reading costs time linear in the links.
 
 A small arm of boxes (each link and joint on its own line) is the base every case edits.
@@ -80,7 +80,7 @@ def _refused(tmp_path: Path, text: str, line: int | None, message: str) -> None:
     urdf.write_text(text)
     code, output = _new(tmp_path, urdf)
     where = f"{urdf}:{line}: " if line is not None else f"{urdf}: "
-    assert code == 2 and where in output and message in output, output
+    assert code == 1 and where in output and message in output, output
     assert len(output.strip().splitlines()) == 1, output
     assert sorted(p.name for p in tmp_path.iterdir()) == ["robot.urdf"]
 
