@@ -21,6 +21,7 @@ import pytest
 from click.testing import CliRunner
 
 from atd.cli import main
+from benchmarks.bench_urdf import seconds, tree
 from atd.scaffold import package_files
 from factories.urdf import read_urdf
 from factories.urdf_tree import NAME
@@ -240,18 +241,12 @@ def test_bombs_and_huge_files_are_refused_within_seconds(tmp_path, text, line, m
 
 
 def _seconds_to_read(tmp_path: Path, links: int) -> float:
-    """The best of three reads of a binary tree of `links` links: one slowed by another
-    process would fake a quadratic cost."""
-    lines = ['<robot name="tree">', *(_link(f"l{k}") for k in range(links))]
-    lines += [_joint(f"j{k}", f"l{(k - 1) // 2}", f"l{k}", "0 0 0.1") for k in range(1, links)]
+    """The best of three reads (CPU time) of a binary tree of `links` links: one slowed by
+    another process would fake a quadratic cost."""
     path = tmp_path / f"tree{links}.urdf"
-    path.write_text("\n".join([*lines, "</robot>"]))
-    times = []
-    for _ in range(3):
-        started = time.perf_counter()
-        assert len(read_urdf(path).links) == links
-        times.append(time.perf_counter() - started)
-    return min(times)
+    path.write_text(tree(links))
+    assert len(read_urdf(path).links) == links
+    return seconds(path, 3)[0]
 
 
 def test_reading_costs_time_linear_in_the_links(tmp_path):
