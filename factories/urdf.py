@@ -6,8 +6,8 @@ collision and visual geometry; links that are only frames (welded, massless, bar
 folded into their parents. What a simulator cannot take is refused: a link left out of
 the tree, a moving link without a positive mass and a possible inertia, a joint that
 cannot move or a shape without size. Reading takes time linear in the links, at most
-`MAX_LINKS` of them (`factories/urdf_tree.py`). A mesh (OBJ or STL) is read from where the URDF names it, checked
-as every mesh is before an engine sees it, and becomes a mesh shape: both engines collide a
+`MAX_LINKS` of them (`factories/urdf_tree.py`). A mesh (OBJ or STL) is read from where the
+URDF names it, checked as every mesh is before an engine sees it, and becomes a mesh shape: both engines collide a
 collision mesh's convex hull and draw a visual mesh as it is, without contact or mass. Boxes,
 cylinders and spheres are taken as they are. A link whose visual mesh no engine can load (a
 COLLADA .dae) is drawn as its collision shapes instead.
@@ -34,6 +34,8 @@ from factories.urdf_tree import Tree, link_tree
 
 MAX_URDF_BYTES = 16 * 1024 * 1024
 _DOCTYPE = re.compile(rb"<!DOCTYPE|<!ENTITY", re.I)
+Inertial = tuple[float, Vec3 | None, Vec3 | None, Vec3]
+"""A link's mass (kg), centre of mass, moments and products of inertia (None: none given)."""
 JOINT_KINDS = {"revolute": "revolute", "continuous": "revolute", "prismatic": "prismatic", "fixed": None}
 
 
@@ -81,7 +83,7 @@ def read_urdf(path: Path, servo: Callable[[float], Servo] = default_servo) -> Ur
     except InputError as exc:
         raise UrdfError(f"{path}: cannot read the URDF: {exc}") from None
     declaration = _DOCTYPE.search(data)
-    if declaration:  # no entity is ever expanded, so none can blow up; refused, since a URDF has no use for one
+    if declaration:  # a URDF has no use for one, and an entity can be a bomb: refused before parsing, at its line
         line = data.count(b"\n", 0, declaration.start()) + 1
         raise UrdfError(f"{path}:{line}: the URDF declares a DOCTYPE or "
                         "an entity; remove the declaration (a URDF needs no DTD, and atd expands no entities)")
@@ -169,29 +171,7 @@ class _Reader:
         return _without_bare_frames([self.link(tree.links[name], tree.joints.get(name)) for name in tree.order])
 
     def link(self, element: etree._Element, joint_element: etree._Element | None) -> Link:
-        name = element.get("name")
-        moving = joint_element is not None and JOINT_KINDS.get(joint_element.get("type")) is not None
-        inertial = element.find("inertial")
-        mass, com, inertia, products = 0.0, None, None, (0.0, 0.0, 0.0)
-        if inertial is None and moving:
-            raise self.fail(element, f"link '{name}' moves on joint '{joint_element.get('name')}' but has no "
-                            "<inertial>", "add one with its <mass value=\"...\"/> (kg) and <inertia ixx=... iyy=... "
-                            "izz=.../> about its centre of mass (kg m^2)")
-        if inertial is not None:
-            mass_element = inertial.find("mass")
-            if mass_element is None and moving:
-                raise self.fail(inertial, f"the <inertial> of link '{name}', which a joint moves, has no <mass>",
-                                "add <mass value=\"...\"/> in kg")
-            mass = self.number(mass_element, "value") if mass_element is not None else 0.0
-            self.check(mass_element, mass_problem(name, mass, moving))
-            frame = self.origin(inertial)
-            com = frame.xyz
-            tensor = inertial.find("inertia")
-            if tensor is None and moving:
-                raise self.fail(inertial, f"the <inertial> of link '{name}', which a joint moves, has no <inertia>",
-                                "add <inertia ixx=\"...\" iyy=\"...\" izz=\"...\"/> about its centre of mass (kg m^2)")
-            if tensor is not None:
-                inertia, products = self.inertia(tensor, frame, name if mass > 0 else None)
+        mass, com, inertia, products = self.inertial(element, joint_element)
         shapes = tuple(shape for collision in element.findall("collision")
                        for shape in self.geometry(collision, element.get("name")))
         visuals = self.visuals(element)
@@ -201,8 +181,35 @@ class _Reader:
             origin = self.origin(joint_element)
             joint = self.joint(joint_element)
         return Link(element.get("name"), parent, origin, mass, shapes, joint, com=com,
-                    inertia=inertia if mass > 0 else None, inertia_products=products,  # type: ignore[arg-type]
+                    inertia=inertia, inertia_products=products,  # type: ignore[arg-type]
                     visuals=visuals)
+
+    def inertial(self, link: etree._Element, joint: etree._Element | None) -> Inertial:
+        """The link's mass, centre of mass, moments and products of inertia: a link the
+        `joint` moves must have them, and a possible body's; a welded one may go without."""
+        name = link.get("name")
+        moving = joint is not None and JOINT_KINDS.get(joint.get("type")) is not None
+        inertial = link.find("inertial")
+        if inertial is None:
+            if moving:
+                raise self.fail(link, f"link '{name}' moves on joint '{joint.get('name')}' but has no <inertial>",
+                                "add one with its <mass value=\"...\"/> (kg) and <inertia ixx=... iyy=... izz=.../> "
+                                "about its centre of mass (kg m^2)")
+            return 0.0, None, None, (0.0, 0.0, 0.0)
+        mass_element, tensor = inertial.find("mass"), inertial.find("inertia")
+        for element, what, fix in ((mass_element, "mass", "<mass value=\"...\"/> in kg"),
+                                   (tensor, "inertia", "<inertia ixx=\"...\" iyy=\"...\" izz=\"...\"/> about its "
+                                    "centre of mass (kg m^2)")):
+            if element is None and moving:
+                raise self.fail(inertial, f"the <inertial> of link '{name}', which a joint moves, has no <{what}>",
+                                f"add {fix}")
+        mass = self.number(mass_element, "value") if mass_element is not None else 0.0
+        self.check(mass_element, mass_problem(name, mass, moving))
+        frame = self.origin(inertial)
+        if tensor is None:
+            return mass, frame.xyz, None, (0.0, 0.0, 0.0)
+        moments, products = self.inertia(tensor, frame, name if mass > 0 else None)
+        return mass, frame.xyz, moments if mass > 0 else None, products
 
     def visuals(self, link: etree._Element) -> tuple[Shape, ...]:
         """The link's <visual> shapes in their colours, or none (draw the collision shapes)
