@@ -6,6 +6,7 @@ installed the cheap way, as the .dist-info pip would write beside the package fo
 
 from __future__ import annotations
 
+import importlib.metadata
 import os
 import subprocess
 import sys
@@ -99,6 +100,8 @@ def test_it_says_what_it_wrote_and_what_to_do_next(tmp_path, monkeypatch):
     pyproject = (tmp_path / "atd-gizmo" / "pyproject.toml").read_text()
     assert 'gizmo = "atd_gizmo.factory:GizmoFactory"' in pyproject
     assert 'atd_gizmo = ["config.toml"]' in pyproject  # a wheel carries the tuning
+    # it depends on this project by the distribution name it is installed as ("atd" on PyPI is another project)
+    assert 'dependencies = ["atd-robotics"]' in pyproject and importlib.metadata.distribution("atd-robotics")
 
 
 @pytest.mark.parametrize(("args", "message"), [
