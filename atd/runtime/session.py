@@ -170,7 +170,7 @@ class Run:
             raise InvalidScene(str(exc)) from None
         self.notes: list[str] = [str(self.robot.settling)] if self.robot.settling else []  # for the user
         context = Context(info=self.robot.info, params={}, object=estd.object, environment=estd.environment,
-                          rng=np.random.default_rng(seed))
+                          rng=np.random.default_rng(seed), camera=self.robot.capture)
         problems = build_problems(estd, context)
         if problems:
             self.robot.close()

@@ -93,5 +93,6 @@ class Explore(Controller):
         self.found = Contact(position.copy(), sensor, force, self.direction.copy(), readings.time)
         if self.writes:
             self.ctx.memory[self.writes] = self.found
+        x, y, z = position
         self.finish(Status.DONE, f"contact after {travelled * 100:.1f} cm: {sensor} {force:.1f} N "
-                                 f">= {self.threshold:g} N at ({position[0]:.3f}, {position[1]:.3f}, {position[2]:.3f})")
+                                 f">= {self.threshold:g} N at ({x:.3f}, {y:.3f}, {z:.3f})")
