@@ -54,6 +54,10 @@ class BlindExploration(Perceiver):
         self.sweep_height = float(p["sweep_height"])
         self.lane_spacing = float(p["lane_spacing"])
         self.floor_band = float(p["floor_band"])
+        inner = self.container.inner
+        if np.any(inner[:2] <= 2 * self.margin):
+            raise ValueError(f"a hand reaching {self.margin:g} m sideways cannot sweep a container "
+                             f"{inner[0]:g} x {inner[1]:g} m inside without touching its walls")
         self.moving = {"speed": p["speed"], "force_threshold": p["force_threshold"], "filter_time": p["filter_time"]}
 
     def start(self, readings: Readings) -> None:

@@ -13,7 +13,7 @@ from primitives.base import Context, StateView, Status
 from primitives.perception.clusters import euclidean_clusters
 from primitives.perception.container import ContainerBelief
 from primitives.perception.generators import Approaching, VisionSettings, random_blind, vision
-from primitives.registry import build_condition
+from primitives.registry import BuildError, build_condition, build_controller
 from primitives.values import Approach, NothingFound
 from tests.primitives.box_worlds import BELIEF, BOX_POSE, CORNER, FLOOR, MELFA_REACH, box_world, cube, perceive
 from tests.primitives.conftest import Stage, events, execute, leaf, machine, use
@@ -156,6 +156,24 @@ def test_blind_exploration_lands_on_an_object_under_its_probe_and_knows_its_top(
     assert outcome.succeeded, outcome.summary
     assert found.point[2] == pytest.approx(FLOOR + 0.03, abs=0.003)
     assert abs(found.point[0] - 0.18) < 0.075 and abs(found.point[1] - 0.15) < 0.075
+
+
+def test_a_hand_too_wide_to_sweep_the_box_is_refused_before_the_run() -> None:
+    """It could not tell the walls from objects; an honest refusal, not a false "empty"."""
+    robot = box_world()
+    with pytest.raises(BuildError, match="reaching 0.1 m sideways cannot sweep a container 0.22 x 0.18 m"):
+        build_controller(perceive("blind_exploration", hand_radius=0.1), "arm", Context(info=robot.info, params={}))
+    robot.close()
+
+
+def test_random_blind_as_a_state_always_finds_something_even_in_an_empty_box() -> None:
+    robot = box_world()
+    estd = machine(Stage(perceive("random_blind"), use("hold_position"), leaf("object_found", value="found")))
+    outcome, executor = execute(estd, robot)
+    robot.close()
+    assert outcome.succeeded, outcome.summary
+    found = executor.machine.base.memory["found"]
+    assert found.method == "random_blind" and BELIEF.to_local(found.point[None])[0][2] == pytest.approx(0.0)
 
 
 def test_blind_exploration_of_an_empty_box_finds_nothing() -> None:
