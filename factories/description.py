@@ -458,6 +458,17 @@ class RobotDescription:
                        for name in self.hand_links for shape in self.links_by_name[name].shapes)
         return farthest - float(tcp[:3, 3] @ approach)
 
+    def hand_radius(self, posture: str | np.ndarray) -> float:
+        """How far the hand's links reach sideways from the TCP's axis in a posture (its name,
+        or its DOF values), the furthest along the hand's x and y: what a hand pointing down
+        must keep from a wall it moves beside (the perceive primitive's `hand_radius`)."""
+        dofs = self.hand.postures[posture] if isinstance(posture, str) else posture
+        poses = self.link_poses(self.hand_joint_targets(np.asarray(dofs, float)))
+        tcp = poses[self.tcp.link] @ self.tcp.origin.matrix()
+        sideways = [sign * tcp[:3, axis] for axis in (0, 1) for sign in (1.0, -1.0)]
+        return max(shape.support(poses[name], way) - float(tcp[:3, 3] @ way)
+                   for way in sideways for name in self.hand_links for shape in self.links_by_name[name].shapes)
+
     def closing_swing(self, start: str, end: str, steps: int = 20) -> float:
         """How much further than in posture `start` the hand reaches along the approach axis
         on its way to posture `end` (m, at least 0): closing fingertips that swing down on

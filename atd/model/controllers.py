@@ -372,7 +372,8 @@ _ARM_CONTROLLERS = (
             "hand_reach": _p(NUM, "how far the hand reaches below the TCP, pointing down (the robot's own "
                              "geometry: `RobotDescription.hand_reach`)", 0.0, unit="m", limits=ranges.COORDINATE),
             "hand_radius": _p(NUM, "how far the hand reaches sideways from the TCP: random blind and the sweep "
-                              "keep the TCP this far in from the walls (the robot's own geometry)", 0.05, unit="m"),
+                              "keep the TCP this far in from the walls (the robot's own geometry: "
+                              "`RobotDescription.hand_radius`)", 0.05, unit="m"),
             "approach_height": _p(NUM, "the approach puts the hand's lowest point this far over the higher of "
                                   "the object's top and the container's rim (ours)", 0.05, unit="m"),
             **_EXPLORING,

@@ -9,6 +9,7 @@ import pytest
 
 from atd.model.estd import Condition
 from atd.model.vocabulary import EventType
+from atd.sim import load_description
 from primitives.base import Context, StateView, Status
 from primitives.perception.clusters import euclidean_clusters
 from primitives.perception.container import ContainerBelief
@@ -164,6 +165,18 @@ def test_a_hand_too_wide_to_sweep_the_box_is_refused_before_the_run() -> None:
     with pytest.raises(BuildError, match="reaching 0.1 m sideways cannot sweep a container 0.22 x 0.18 m"):
         build_controller(perceive("blind_exploration", hand_radius=0.1), "arm", Context(info=robot.info, params={}))
     robot.close()
+
+
+def test_the_descriptions_say_how_wide_a_hand_is_and_so_which_can_sweep_the_box() -> None:
+    robot = box_world()
+    ctx = Context(info=robot.info, params={})
+    robot.close()
+    melfa, barrett = load_description("melfa"), load_description("tombatossals", "right")
+    assert melfa.hand_radius("open") == pytest.approx(0.05, abs=0.005)
+    assert barrett.hand_radius("open") > 2 * barrett.hand_radius("closed")  # spread fingers
+    build_controller(perceive("blind_exploration", hand_radius=melfa.hand_radius("open")), "arm", ctx)
+    with pytest.raises(BuildError, match="cannot sweep"):
+        build_controller(perceive("blind_exploration", hand_radius=barrett.hand_radius("open")), "arm", ctx)
 
 
 def test_random_blind_as_a_state_always_finds_something_even_in_an_empty_box() -> None:
