@@ -174,7 +174,8 @@ def test_the_descriptions_say_how_wide_a_hand_is_and_so_which_can_sweep_the_box(
     melfa, barrett = load_description("melfa"), load_description("tombatossals", "right")
     assert melfa.hand_radius("open") == pytest.approx(0.05, abs=0.005)
     assert barrett.hand_radius("open") > 2 * barrett.hand_radius("closed")  # spread fingers
-    build_controller(perceive("blind_exploration", hand_radius=melfa.hand_radius("open")), "arm", ctx)
+    for fits in (melfa.hand_radius("open"), barrett.hand_radius("closed")):
+        build_controller(perceive("blind_exploration", hand_radius=fits), "arm", ctx)
     with pytest.raises(BuildError, match="cannot sweep"):
         build_controller(perceive("blind_exploration", hand_radius=barrett.hand_radius("open")), "arm", ctx)
 
