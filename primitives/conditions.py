@@ -62,24 +62,6 @@ class StatusIs(Condition):
         return True
 
 
-class Perceived(Condition):
-    """The state's perceive controller has finished and written what it found under `value`:
-    an object (`Approach`, for object_found) or none (`NothingFound`, for nothing_found)."""
-
-    def __init__(self, ctx: Context, sensors: tuple[str, ...], kind: type[Approach] | type[NothingFound]) -> None:
-        super().__init__(ctx, sensors)
-        self.value = str(self.params["value"])
-        self.kind = kind
-
-    def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
-        found = self.ctx.memory.get(self.value)
-        if state.arm is not Status.DONE or not isinstance(found, self.kind):
-            return False
-        self.evidence = ({"value": self.value, "point": found.point, "method": found.method}
-                         if isinstance(found, Approach) else {"value": self.value, "nothing": found.reason})
-        return True
-
-
 class Timeout(Condition):
     def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
         limit = float(self.params["seconds"])
@@ -340,3 +322,21 @@ class Range(Debounced):
         value = math.inf if readings.range is None else float(readings.range)
         self.evidence = {"range": value if math.isfinite(value) else "out of range", "distance": self.distance}
         return (value > self.distance) if self.above else (value < self.distance)
+
+
+class Perceived(Condition):
+    """The state's perceive controller has finished and written what it found under `value`:
+    an object (`Approach`, for object_found) or none (`NothingFound`, for nothing_found)."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...], kind: type[Approach] | type[NothingFound]) -> None:
+        super().__init__(ctx, sensors)
+        self.value = str(self.params["value"])
+        self.kind = kind
+
+    def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
+        found = self.ctx.memory.get(self.value)
+        if state.arm is not Status.DONE or not isinstance(found, self.kind):
+            return False
+        self.evidence = ({"value": self.value, "point": found.point, "method": found.method}
+                         if isinstance(found, Approach) else {"value": self.value, "nothing": found.reason})
+        return True
