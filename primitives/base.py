@@ -107,6 +107,7 @@ class StateView:
     arm: Status
     hand: Status
     subtask: Status | None = None  # DONE / ERROR once a sub-task's machine has ended
+    subtask_end: str | None = None  # the end state it ended in
     reasons: dict[str, str] = field(default_factory=dict)
 
 

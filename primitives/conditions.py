@@ -62,6 +62,17 @@ class StatusIs(Condition):
         return True
 
 
+class SubtaskEndedIn(Condition):
+    """The sub-task's machine ended in the end state `end_state`: a parent branching on
+    which of its outcomes a sub-task reached (an ATD `<outcome name="..."/>`)."""
+
+    def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
+        if state.subtask_end != self.params["end_state"]:
+            return False
+        self.evidence = {"subtask_end": state.subtask_end}
+        return True
+
+
 class Timeout(Condition):
     def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
         limit = float(self.params["seconds"])

@@ -498,6 +498,8 @@ _CONDITIONS = (
                   params={"seconds": _p(NUM, "time limit", unit="s", required=True, limits=ranges.TIMEOUT)}),
     ConditionSpec("subtask_succeeded", "The sub-task's machine ended in a success state."),
     ConditionSpec("subtask_failed", "The sub-task's machine ended in a failure state."),
+    ConditionSpec("subtask_ended_in", "The sub-task's machine ended in the end state named (an ATD <outcome>).",
+                  params={"end_state": _p(WORD, "the sub-task's end state", required=True)}),
     ConditionSpec("tactile_force_above", "At least min_pads pads read >= force_threshold.",
                   SensorKind.TACTILE, _TACTILE_PARAMS),
     ConditionSpec("tactile_force_below", "Fewer than min_pads pads read >= force_threshold.",

@@ -64,7 +64,7 @@ def belief_scene(estd: Estd) -> Scene:
     """The world as the ESTD describes it."""
     try:
         source = Path(estd.source) if estd.source else Path("task.xml")
-        return scene_from_task(Task(object=estd.object, environment=estd.environment), source)
+        return scene_from_task(Task(known_objects=estd.known_objects, environment=estd.environment), source)
     except SceneError as exc:
         raise InvalidScene(str(exc)) from None
 
