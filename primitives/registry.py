@@ -34,7 +34,8 @@ from primitives.conditions import (
     WristForceAbove,
 )
 from primitives.hands import hand_kind
-from primitives.hands.multi_finger import NaiveGraspHand, RobustGraspHand
+from primitives.hands.multi_finger import NaiveGraspHand
+from primitives.hands.robust_grasp import RobustGraspHand
 from primitives.hands.parallel_jaw import CloseUntilForce, NaiveJawGrasp, Squeeze
 from primitives.hands.posture import HandShape, HoldPosition, OpenTo
 
