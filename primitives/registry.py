@@ -15,9 +15,10 @@ from typing import Callable, Mapping
 from atd.model.controllers import ARM_CONTROLLERS, CONDITIONS, HAND_CONTROLLERS, defaults
 from atd.model.estd import Condition as Leaf
 from atd.model.estd import Controller as Use
-from primitives.arm.grasp import NaiveGraspApproach, RobustGraspApproach
+from primitives.arm.grasp import NaiveGraspApproach
 from primitives.arm.jaw_grasp import JawGraspCorrection
 from primitives.arm.move import CartesianMove, Hold, Push
+from primitives.arm.robust_approach import RobustGraspApproach
 from primitives.arm.surface import Place, ReleaseRetreat, Slide
 from primitives.base import Condition, Context, Controller, Status
 from primitives.conditions import (
