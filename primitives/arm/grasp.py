@@ -1,5 +1,5 @@
 """The arm side of the naive baseline grasp of thesis 3.4.1; the robust grasp's is in
-`primitives.arm.robust_approach`. It raises CONTACT when the hand may close."""
+`primitives.arm.robust_approach`. It raises `contact` when the hand may close."""
 
 from __future__ import annotations
 
@@ -8,7 +8,6 @@ import numpy as np
 from primitives.arm.motion import GAIN, orientation_twist, unit
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
-from primitives.blackboard import CONTACT
 from primitives.filters import ContactWrench
 from primitives.robot import Readings
 
@@ -35,7 +34,7 @@ class NaiveGraspApproach(Controller):
         self.contact.start(readings)
         self.origin = readings.tcp[:3, 3].copy()
         self.rotation = readings.tcp[:3, :3].copy()
-        self.ctx.blackboard[CONTACT] = False
+        self.ctx.blackboard.contact = False
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         self.contact.update(readings, dt)
@@ -52,5 +51,5 @@ class NaiveGraspApproach(Controller):
 
     def _stop(self, position: np.ndarray, rotation: np.ndarray, reason: str) -> None:
         self.goal = position - BACK_OFF * (rotation @ self.direction)
-        self.ctx.blackboard[CONTACT] = True
+        self.ctx.blackboard.contact = True
         self.finish(Status.DONE, reason)

@@ -12,7 +12,6 @@ from primitives.arm.motion import (GAIN, ORIENTATION_TOLERANCE, SUPPORT_BAND, WO
                                    orientation_twist, top_down, unit)
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
-from primitives.blackboard import CONTACT, FINGERS_STOPPED, PRESHAPED, PRESSING, SHIFT, WEIGH
 from primitives.filters import ContactWrench, contact_across
 from primitives.robot import Readings
 
@@ -42,7 +41,7 @@ class RobustGraspApproach(Controller):
     grasp direction, measured against the free hand and filtered over SURFACE_FILTER);
     F_s above the contact the slide keeps (F_t) by F_t backs off until F_s is down to F_t
     (and no further than `max_back_off` above where the slide began), telling the hand
-    (PRESSING) to hold its fingers meanwhile; F_s down to zero moves forward (unless
+    (`pressing`) to hold its fingers meanwhile; F_s down to zero moves forward (unless
     `follow_surface` is off); it ends when the fingers stop. Once they have, the arm holds
     its place, still backing off while the squeeze presses the fingertips on the surface.
     A shift the hand asks for before it has preshaped (rising to free a preshape blocked
@@ -89,7 +88,7 @@ class RobustGraspApproach(Controller):
         # not made again; docs/robust-grasp.md, "Known quirks".
         self.weighing: float | None = None
         self.moves = 0  # moves across a contact made so far
-        self.ctx.blackboard[CONTACT] = False
+        self.ctx.blackboard.contact = False
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         """One tick: the phases in `Phase`'s order, each only while it is the phase."""
@@ -97,10 +96,10 @@ class RobustGraspApproach(Controller):
         wrench = self.contact.update(readings, dt)
         pushed = -float(self.surface.update(readings, dt)[:3] @ self.direction)  # F_s
         rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
-        if board.get(SHIFT) is not None and self.phase is not Phase.SHIFT:
+        if board.shift is not None and self.phase is not Phase.SHIFT:
             self._begin_shift(readings)
         v = np.zeros(3)  # hand frame
-        if self.phase is Phase.APPROACH and board.get(PRESHAPED, True):
+        if self.phase is Phase.APPROACH and board.preshaped:
             v = self._approach(readings, wrench, dt)
         self._back_off(position, rotation, pushed)
         if self.phase is Phase.SLIDE:
@@ -144,7 +143,7 @@ class RobustGraspApproach(Controller):
 
     def _slide(self, position: np.ndarray, pushed: float) -> np.ndarray:
         """Eq. 3.2 (hand frame): back off while pressing, follow a surface lost; hold once the fingers have stopped."""
-        if self.ctx.blackboard.get(FINGERS_STOPPED):
+        if self.ctx.blackboard.fingers_stopped:
             self.phase, self.holding = Phase.HOLD, Holding(position.copy())
             self.finish(Status.DONE, "the fingers closed")
         elif self.backing:
@@ -155,26 +154,26 @@ class RobustGraspApproach(Controller):
 
     def _hold(self, readings: Readings, dt: float) -> None:
         """Stay, backing off while the squeeze presses the fingertips on the surface; make
-        a raise or lower the hand asks for (WEIGH): the goal moves once, then the arm holds
+        a raise or lower the hand asks for (`weigh`): the goal moves once, then the arm holds
         still there for SETTLE before it says it is done."""
         holding, board = self.holding, self.ctx.blackboard
         if self.backing:
             holding.goal = holding.goal - self.backoff_speed * dt * (readings.tcp[:3, :3] @ self.direction)
-        if board.get(WEIGH) is None:
+        if board.weigh is None:
             return
-        height = float(board[WEIGH])
+        height = board.weigh
         if self.weighing != height:
             self.weighing, self.still = height, 0.0
             holding.goal = holding.goal + height * np.array([0.0, 0.0, 1.0])
         arrived = np.linalg.norm(holding.goal - readings.tcp[:3, 3]) < SHIFT_TOLERANCE
         self.still = self.still + dt if arrived else 0.0
         if self.still >= SETTLE:
-            board[WEIGH] = None
+            board.weigh = None
             self.weighing = None
 
     def _settle(self, readings: Readings, angle: float, dt: float) -> None:
         """Turning level, or stopped after a move: approach (again) once level, preshaped and still for SETTLE."""
-        ready = angle < ORIENTATION_TOLERANCE and self.ctx.blackboard.get(PRESHAPED, True)
+        ready = angle < ORIENTATION_TOLERANCE and self.ctx.blackboard.preshaped
         self.still = self.still + dt if ready else 0.0
         if self.still >= SETTLE:
             self.contact.start(readings)  # the wrist's reading is the free hand's
@@ -199,17 +198,17 @@ class RobustGraspApproach(Controller):
         made = np.linalg.norm(shifting.goal - readings.tcp[:3, 3]) < SHIFT_TOLERANCE and angle < ORIENTATION_TOLERANCE
         probed = shifting.probing and self.contact.force >= self.force_threshold
         if made or probed or readings.time - shifting.started > SHIFT_TIME:
-            board[SHIFT] = None
-            if board.get(PRESHAPED, True):
+            board.shift = None
+            if board.preshaped:
                 self._begin_slide(readings)
             else:
                 self.phase, self.still = Phase.SETTLE, 0.0
 
     # -- transitions ----------------------------------------------------------------------
     def _begin_shift(self, readings: Readings) -> None:
-        """The hand asks for a move (SHIFT: hand-frame m and a turn about the approach axis)."""
-        request = self.ctx.blackboard[SHIFT]
-        shift, turn = np.asarray(request[:3], float), float(request[3])
+        """The hand asks for a move (`Shift`: hand-frame m and a turn about the approach axis)."""
+        request = self.ctx.blackboard.shift
+        shift, turn = request.offset, request.turn
         rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
         self.rotation = self.rotation @ axis_rotation(self.direction, turn)
         # A shift along the approach looks for the object, so a contact ends it; a
@@ -242,9 +241,9 @@ class RobustGraspApproach(Controller):
         self.backing = pushed >= 2.0 * self.force_threshold or (self.backing and pushed > self.force_threshold)
         risen = float((self.slid_from - position) @ (rotation @ self.direction)) if self.phase is Phase.SLIDE else 0.0
         self.backing = self.backing and risen < self.max_back_off
-        self.ctx.blackboard[PRESSING] = self.backing and self.phase is Phase.SLIDE
+        self.ctx.blackboard.pressing = self.backing and self.phase is Phase.SLIDE
 
     def _begin_slide(self, readings: Readings) -> None:
         self.phase = Phase.SLIDE
         self.slid_from = readings.tcp[:3, 3].copy()
-        self.ctx.blackboard[CONTACT] = True
+        self.ctx.blackboard.contact = True

@@ -12,6 +12,7 @@ from enum import Enum
 
 import numpy as np
 
+from primitives.blackboard import Shift
 from primitives.filters import LowPass
 
 
@@ -71,7 +72,7 @@ class Corrections:
     """What the robust grasp's corrections remember from one close to the next."""
 
     retries: int = 0  # corrections made so far, of RETRIES
-    shift: np.ndarray = field(default_factory=lambda: np.zeros(4))  # the pending move: hand-frame m, turn rad
+    shift: Shift | None = None  # the move the arm is to make before the next close
     lost_shift: np.ndarray = field(default_factory=lambda: np.zeros(3))  # the latest finger-lost shift
     quality: float = np.inf  # D5's Q at the latest uneven grasp
     freed: bool = False  # the arm has risen once to free a blocked preshape

@@ -13,7 +13,7 @@ from abc import abstractmethod
 import numpy as np
 
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
-from primitives.blackboard import CONTACT, EMPTY_HAND, FINGERS_STOPPED, PRESHAPED, PRESSING
+from primitives.blackboard import EMPTY_HAND
 from primitives.filters import world_load
 from primitives.hands.grasp_phases import Phase
 from primitives.hands.posture import Stillness
@@ -28,7 +28,7 @@ REACHED = 0.02  # of a DOF's range: a DOF this near its goal or limit has reache
 class FingerGrasp(Controller):
     """What every grasp of a multi-finger hand shares: which DOFs grasp (those the grasp
     posture moves), which pad each one's finger carries, and the phases preshape, wait
-    for the arm's CONTACT, close, and hold (`Phase`, a method each); subclasses say how
+    for the arm's `contact`, close, and hold (`Phase`, a method each); subclasses say how
     to close and how to hold."""
 
     def __init__(self, ctx: Context) -> None:
@@ -72,8 +72,8 @@ class FingerGrasp(Controller):
         self.pressing = moving  # the DOFs pressed by force once holding
         self.phase = Phase.PRESHAPE
         self.stillness.start(readings.hand_q)
-        self.ctx.blackboard[FINGERS_STOPPED] = False
-        self.ctx.blackboard[PRESHAPED] = False
+        self.ctx.blackboard.fingers_stopped = False
+        self.ctx.blackboard.preshaped = False
         self.ctx.memory[EMPTY_HAND] = world_load(readings)  # a grasp begins empty-handed
         if not self.fingers:
             self.finish(Status.ERROR, "from this posture the grasp shape moves no finger that has a tactile pad")
@@ -88,15 +88,15 @@ class FingerGrasp(Controller):
         """Open into the preshape; once made (or blocked short of it, and not freed), wait for the arm."""
         if self._ramp(self.pre, dt, readings.hand_q) or (self._blocked(readings, dt) and not self._free_fingers()):
             self.phase = Phase.WAIT
-            self.ctx.blackboard[PRESHAPED] = True
+            self.ctx.blackboard.preshaped = True
 
     def _wait(self, readings: Readings, dt: float) -> None:
-        if self.ctx.blackboard.get(CONTACT):
+        if self.ctx.blackboard.contact:
             self._begin_closing()
 
     @abstractmethod
     def _close(self, readings: Readings, dt: float) -> None:
-        """One tick of closing; ends by setting FINGERS_STOPPED and the next phase."""
+        """One tick of closing; ends by setting `fingers_stopped` and the next phase."""
 
     @abstractmethod
     def _hold(self, readings: Readings, dt: float) -> None:
@@ -114,7 +114,7 @@ class FingerGrasp(Controller):
     def _begin_closing(self) -> None:
         self.phase = Phase.CLOSE
         self.stillness.seconds[:] = 0.0
-        self.ctx.blackboard[FINGERS_STOPPED] = False
+        self.ctx.blackboard.fingers_stopped = False
 
     def _closed(self, readings: Readings, dt: float) -> bool:
         """One tick of closing: every grasping finger closes until it stands still (on the
@@ -122,11 +122,11 @@ class FingerGrasp(Controller):
         the way (a fingertip sliding on the table) does not stop a finger: only where the
         fingers end up counts, as a Barrett finger's clutch stops it only when blocked.
         While the arm's sliding grasp backs off a surface the fingertips press on
-        (PRESSING), the fingers not yet on the object wait where they are: pressed on
+        (`pressing`), the fingers not yet on the object wait where they are: pressed on
         the table, they would stall there, short of the object."""
         hand = self.ctx.info.hand
         q = readings.hand_q
-        waiting = self.moving & ~self._on_object(readings) if self.ctx.blackboard.get(PRESSING) else np.zeros_like(self.moving)
+        waiting = self.moving & ~self._on_object(readings) if self.ctx.blackboard.pressing else np.zeros_like(self.moving)
         closing = self.moving & ~waiting
         step = self.rate * dt
         self.reference[closing] += np.clip(hand.closed[closing] - self.reference[closing], -step[closing], step[closing])
@@ -178,7 +178,7 @@ class NaiveGraspHand(FingerGrasp):
     def _close(self, readings: Readings, dt: float) -> None:
         if not self._closed(readings, dt):
             return
-        self.ctx.blackboard[FINGERS_STOPPED] = True
+        self.ctx.blackboard.fingers_stopped = True
         touching = self._touching(readings)
         if not touching:
             self.finish(Status.ERROR, "nothing between the fingers")

@@ -1,5 +1,5 @@
 """The hand side of the robust grasp (thesis 3.3.1; D5 appendix) for any three-finger hand:
-preshape, wait for the arm to find the object (CONTACT), close every grasping finger
+preshape, wait for the arm to find the object (`contact`), close every grasping finger
 until it can close no further, then judge the close by the pads (`_judge`): hold and
 adapt the force, or correct and close again. Its phases, the corrections and the trials
 behind each constant are in docs/robust-grasp.md.
@@ -15,7 +15,7 @@ import numpy as np
 from atd.model.frames import GRAVITY
 from primitives.arm.motion import SUPPORT_BAND
 from primitives.base import Context, Status
-from primitives.blackboard import EMPTY_HAND, FINGERS_STOPPED, PRESSING, SHIFT, WEIGH
+from primitives.blackboard import EMPTY_HAND, Shift
 from primitives.filters import LowPass, held_wrench, world_load
 from primitives.hands.extension import ExtensionGauge, contact_points
 from primitives.hands.grasp_phases import Closing, Corrections, Holding, Phase, Weighing
@@ -71,7 +71,7 @@ class RobustGraspHand(FingerGrasp):
     # -- phases: one tick each ------------------------------------------------------------
     def _free(self, readings: Readings, dt: float) -> None:
         """Risen: preshape again, in free air, once the arm has made the rise."""
-        if self.ctx.blackboard.get(SHIFT) is None:
+        if self.ctx.blackboard.shift is None:
             self.phase = Phase.PRESHAPE
             self.stillness.seconds[:] = 0.0
             self.ctx.memory[EMPTY_HAND] = world_load(readings)
@@ -83,18 +83,18 @@ class RobustGraspHand(FingerGrasp):
             self._feel_across(readings, touching)
         if self._closed(readings, dt) or self._pinching(readings, dt) or self._passed(readings):
             self.corrections.jammed = self._jammed(readings)
-            self.ctx.blackboard[FINGERS_STOPPED] = True
+            self.ctx.blackboard.fingers_stopped = True
             self.effort = self._starting_effort(readings)
             self._judge(readings)
 
     def _reopen(self, readings: Readings, dt: float) -> None:
         """Back to the preshape, fast; then the arm is asked for the correction's move."""
         if self._ramp(self.pre, dt, readings.hand_q, OPENING_SPEED / CLOSING_SPEED) or self._blocked(readings, dt):
-            self.ctx.blackboard[SHIFT] = self.corrections.shift
+            self.ctx.blackboard.shift = self.corrections.shift
             self.phase = Phase.SHIFT
 
     def _shift(self, readings: Readings, dt: float) -> None:
-        if self.ctx.blackboard.get(SHIFT) is None:  # the arm has made the move
+        if self.ctx.blackboard.shift is None:  # the arm has made the move
             self.corrections.retries += 1
             self._begin_closing()
 
@@ -118,7 +118,7 @@ class RobustGraspHand(FingerGrasp):
             return
         if held.settled >= SETTLE_TIME and self._corrects_pinch():
             self.phase, self.weighing = Phase.WEIGH, Weighing()  # lift it, to feel where its weight hangs
-            self.ctx.blackboard[WEIGH] = WEIGH_LIFT
+            self.ctx.blackboard.weigh = WEIGH_LIFT
         elif held.settled >= SETTLE_TIME:
             self.finish(Status.DONE, f"object held after {self.corrections.retries} corrections: "
                                      f"{self._forces(readings.pad_force)}")
@@ -132,7 +132,7 @@ class RobustGraspHand(FingerGrasp):
         than OFF_CENTRE off the pinch line, and turning the object harder than friction
         over RIM_CONTACT carries, the arm sets it down (SET_DOWN) to grasp it again that
         far across; otherwise it is held, lifted."""
-        if self._squeeze(readings, dt) is None or self.ctx.blackboard.get(WEIGH) is not None:
+        if self._squeeze(readings, dt) is None or self.ctx.blackboard.weigh is not None:
             return  # dropped, or the arm is still raising the hand
         weighing = self.weighing
         weighing.weights.append(held_wrench(self.ctx.info.hand, readings))
@@ -148,11 +148,11 @@ class RobustGraspHand(FingerGrasp):
         weighing.off_line = f"its weight hung {abs(offset) * 100:.1f} cm off the pinch line"
         weighing.regrasp = self.search.look(self.search.across + offset)
         self.phase = Phase.SET_DOWN
-        self.ctx.blackboard[WEIGH] = -WEIGH_LIFT
+        self.ctx.blackboard.weigh = -WEIGH_LIFT
 
     def _set_down(self, readings: Readings, dt: float) -> None:
         """Once the arm has set the object down: grasp it again across its centre of mass."""
-        if self._squeeze(readings, dt) is not None and self.ctx.blackboard.get(WEIGH) is None:
+        if self._squeeze(readings, dt) is not None and self.ctx.blackboard.weigh is None:
             self._try_again(self.weighing.regrasp, self.weighing.off_line)
 
     # -- closing ------------------------------------------------------------------------
@@ -162,7 +162,7 @@ class RobustGraspHand(FingerGrasp):
         if self.corrections.freed:
             return False
         self.corrections.freed = True
-        self.ctx.blackboard[SHIFT] = np.array([0.0, 0.0, -FREE_RISE, 0.0])
+        self.ctx.blackboard.shift = Shift(np.array([0.0, 0.0, -FREE_RISE]))
         self.phase = Phase.FREE
         return True
 
@@ -177,7 +177,7 @@ class RobustGraspHand(FingerGrasp):
         the arm backs off the surface: fingertips pressed on the table read the same."""
         pads = readings.pad_force
         pressed = all(pads[self.pad_of[f]] >= PINCHED * self.grasp_force for f in self.fingers)
-        self.closing.pinched = self.closing.pinched + dt if pressed and not self.ctx.blackboard.get(PRESSING) else 0.0
+        self.closing.pinched = self.closing.pinched + dt if pressed and not self.ctx.blackboard.pressing else 0.0
         return self.closing.pinched >= SETTLE_TIME
 
     def _passed(self, readings: Readings) -> bool:
@@ -323,7 +323,7 @@ class RobustGraspHand(FingerGrasp):
         if self.corrections.retries >= RETRIES:
             self._fail(what)
             return
-        self.corrections.shift = np.array([*shift, turn])
+        self.corrections.shift = Shift(np.array(shift, float), float(turn))
         self.effort[:] = 0.0
         self.stillness.seconds[:] = 0.0
         self.phase = Phase.REOPEN
@@ -346,7 +346,7 @@ class RobustGraspHand(FingerGrasp):
         held = self.held
         held.lost_for = held.lost_for + dt if self.correct and len(touching) < len(self.fingers) else 0.0
         if held.lost_for >= LOST_TIME and self.status is Status.RUNNING:
-            self.ctx.blackboard[WEIGH] = None  # dropped while weighed: no more weighing
+            self.ctx.blackboard.weigh = None  # dropped while weighed: no more weighing
             self._judge(readings)
             return None
         grasping = np.flatnonzero(self.moving)
