@@ -21,7 +21,7 @@ from atd.model.vocabulary import StateType
 from atd.runtime.arbitrator import RobotCommand, arbitrate
 from atd.runtime.trace import Trace
 from primitives.base import Condition, Context, ControlData, Status, StateView
-from primitives.blackboard import ARM_TWIST
+from primitives.blackboard import ARM_TWIST, Blackboard
 from primitives.registry import BuildError, build_condition, build_controller
 from primitives.robot import Readings, Robot
 
@@ -96,7 +96,7 @@ class Machine:
         state = self.states[name]
         self.current = state
         self.entered = readings.time
-        ctx = replace(self.base, blackboard={})
+        ctx = replace(self.base, blackboard=Blackboard())
         self.arm = build_controller(state.arm, "arm", ctx) if state.arm else None
         self.hand = build_controller(state.hand, "hand", ctx) if state.hand else None
         self.edges = [
@@ -205,7 +205,7 @@ def build_problems(estd: Estd, base: Context) -> list[str]:
     a sensor it lacks), found before the run starts rather than in the middle of it."""
     problems = []
     for prefix, machine in estd.walk():
-        ctx = replace(base, blackboard={})
+        ctx = replace(base, blackboard=Blackboard())
         for state in machine.states:
             for role, use in (("arm", state.arm), ("hand", state.hand)):
                 if use is not None:
