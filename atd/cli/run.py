@@ -21,7 +21,8 @@ from atd.runtime.isolated import EngineCrash, in_child
 from atd.runtime.report import summary
 from atd.model.files import OutputError
 from atd.runtime.session import ENGINES, InvalidScene, InvalidWorld, Run, RunError, Unrunnable, world_scene
-from atd.sim.scene import Scene
+from atd.sim.scene import WORKSPACE_CAMERA, Scene
+from atd.sim.video import VideoError, parse_size
 from factories.base import Factory
 from factories.registry import UnknownRobot, create
 from translator import translate
@@ -116,6 +117,20 @@ class _Ran:
     notes: list[str]
 
 
+class VideoSize(click.ParamType):
+    """--video-size WIDTHxHEIGHT, refused in one line (not click's usage text) when malformed."""
+
+    name = "size"
+
+    def convert(self, value, param, ctx) -> tuple[int, int]:
+        if isinstance(value, tuple):  # the default
+            return value
+        try:
+            return parse_size(value)
+        except VideoError as exc:
+            usage_error(str(exc))
+
+
 class RecordRate(click.ParamType):
     """--rate: Hz of simulated time in its declared range, or 'tick' (None: every control tick)."""
 
@@ -136,7 +151,12 @@ class RecordRate(click.ParamType):
 @click.option("--trace", "trace_path", type=OutputFile(), default=None,
               help="write every state entry, exit and event as JSON lines")
 @click.option("--video", type=OutputFile(), default=None,
-              help="record the run from an offscreen camera: .gif, or .mp4 (needs ffmpeg: the video extra)")
+              help="record the run from an offscreen camera, the state and simulated time drawn on each frame "
+                   "(10 frames per simulated second): .gif, or .mp4 (needs ffmpeg: the video extra)")
+@click.option("--video-size", type=VideoSize(), default="640x480", show_default=True, metavar="WxH",
+              help="the video's width and height in pixels")
+@click.option("--camera", default=WORKSPACE_CAMERA, show_default=True,
+              help="the video's camera: 'workspace' (a free camera on the work area) or one of the robot's cameras")
 @click.option("--record", type=OutputFile(), default=None, metavar="FILE.mcap",
               help="record every sensor reading, command, state and the simulator's ground truth as MCAP "
                    "(opens in Foxglove and PlotJuggler; see `atd report`)")
@@ -152,7 +172,7 @@ class RecordRate(click.ParamType):
 @GRASP_OPTION
 @click.option("--quiet", "-q", is_flag=True, help="no live progress")
 def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, trace_path: Path | None,
-        video: Path | None, record: Path | None, record_rate: float | None, viewer: bool, realtime: bool,
+        video: Path | None, video_size: tuple[int, int], camera: str, record: Path | None, record_rate: float | None, viewer: bool, realtime: bool,
         budget: float, world_file: Path | None, grasp: str, quiet: bool) -> None:
     """Run TASK (an ATD, translated on the fly, or an ESTD) on a simulated robot.
 
@@ -161,6 +181,10 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
     engine crashed (it runs in a child process, so that is reported, not fatal).
     """
     inputs = [task, *([world_file] if world_file else [])]
+    shaping = [opt for opt in ("--video-size", "--camera")
+               if click.get_current_context().get_parameter_source(opt[2:].replace("-", "_")).name != "DEFAULT"]
+    if shaping and video is None:
+        usage_error(f"{' and '.join(shaping)} shape the video; give --video FILE.gif too")
     guard_outputs({"--trace": trace_path, "--video": video, "--record": record}, inputs)
     if record is not None and record.suffix.lower() != ".mcap":
         usage_error(f"{record}: --record writes MCAP; give a file name ending in .mcap")
@@ -170,7 +194,8 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
 
     def simulate() -> _Ran:
         session = Run(estd, factory, engine=engine, seed=seed, trace_path=trace_path, realtime=realtime,
-                      budget=budget, video=video, viewer=viewer, scene=truth, record=record, record_rate=record_rate)
+                      budget=budget, video=video, video_size=video_size, camera=camera, viewer=viewer, scene=truth,
+                      record=record, record_rate=record_rate)
         outcome = session.execute(_Progress(quiet))
         return _Ran(outcome, session.trace.records, session.object_positions, session.inside, session.notes)
 

@@ -12,9 +12,26 @@ import numpy as np
 
 from atd.model.meshcheck import read_mesh
 from atd.sim.models import mjcf, object_name, visual_meshes
-from atd.sim.scene import CAMERA_AZIMUTH, CAMERA_DISTANCE, CAMERA_ELEVATION, CAMERA_TARGET, Scene, SceneError
+from atd.sim.scene import (CAMERA_AZIMUTH, CAMERA_DISTANCE, CAMERA_ELEVATION, CAMERA_TARGET, WORKSPACE_CAMERA, Scene,
+                           SceneError)
 from atd.sim.simrobot import SimRobot
 from factories.description import DepthCamera, RobotDescription
+
+
+def _video_renderer(model: mujoco.MjModel, width: int, height: int) -> mujoco.Renderer:
+    """A renderer for video frames, without shadows or multisampling: on the software OpenGL
+    of a machine without a GPU (llvmpipe) they make a 640x480 frame cost 60 to 600 ms instead
+    of 20, more than the simulation it shows. The scene's light and the headlight still shade it."""
+    samples = model.vis.quality.offsamples  # read when the renderer's context is made, only then
+    model.vis.global_.offwidth = max(model.vis.global_.offwidth, width)
+    model.vis.global_.offheight = max(model.vis.global_.offheight, height)
+    model.vis.quality.offsamples = 0
+    try:
+        renderer = mujoco.Renderer(model, height, width)
+    finally:
+        model.vis.quality.offsamples = samples
+    renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = False
+    return renderer
 
 
 def _id(m: mujoco.MjModel, kind: mujoco.mjtObj, name: str) -> int:
@@ -200,14 +217,21 @@ class MujocoRobot(SimRobot):
         self.data.qvel[self._object_dofs[0]] = 0.0
         mujoco.mj_forward(self.model, self.data)
 
-    def render(self, width: int, height: int) -> np.ndarray:
+    def render(self, width: int, height: int, camera: str = WORKSPACE_CAMERA) -> np.ndarray:
         """An RGB picture of the scene (needs an OpenGL backend, e.g. MUJOCO_GL=egl)."""
-        if self._renderer is None:
-            self._renderer = mujoco.Renderer(self.model, height, width)
-        camera = mujoco.MjvCamera()
-        camera.lookat[:] = CAMERA_TARGET
-        camera.distance, camera.azimuth, camera.elevation = CAMERA_DISTANCE, CAMERA_AZIMUTH, CAMERA_ELEVATION
-        self._renderer.update_scene(self.data, camera)
+        if camera != WORKSPACE_CAMERA and camera not in self._cameras:
+            raise LookupError(f"{self.info.name} has no camera '{camera}'")
+        if self._renderer is None or (self._renderer.width, self._renderer.height) != (width, height):
+            if self._renderer is not None:
+                self._renderer.close()
+            self._renderer = _video_renderer(self.model, width, height)
+        if camera == WORKSPACE_CAMERA:
+            view = mujoco.MjvCamera()
+            view.lookat[:] = CAMERA_TARGET
+            view.distance, view.azimuth, view.elevation = CAMERA_DISTANCE, CAMERA_AZIMUTH, CAMERA_ELEVATION
+            self._renderer.update_scene(self.data, view)
+        else:
+            self._renderer.update_scene(self.data, camera)
         return self._renderer.render()
 
     def _open_window(self):

@@ -31,6 +31,7 @@ CAMERA_TARGET = (0.1, 0.0, 0.1)
 CAMERA_DISTANCE = 1.4
 CAMERA_AZIMUTH = 150.0  # degrees about z, from +x
 CAMERA_ELEVATION = -25.0  # degrees
+WORKSPACE_CAMERA = "workspace"  # that view's name among the cameras a video can be rendered from
 
 
 class SceneError(ValueError):

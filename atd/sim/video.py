@@ -1,75 +1,63 @@
-"""Recording a run as a video: an animated GIF written here with numpy alone, or an MP4
-encoded by ffmpeg when one is installed (the `video` extra brings one: imageio-ffmpeg).
+"""Recording a run as a video: a frame every `FRAME_PERIOD` of simulated time, with the
+state and the simulated time drawn on it, encoded by a library: Pillow writes GIF, ffmpeg
+writes MP4 (the `video` extra brings one: imageio-ffmpeg).
 
-The GIF is written with an uncompressed LZW stream (a clear code every 254 pixels keeps
-the code width at 9 bits): larger files than a real encoder makes, but a few lines of
-numpy and readable by every viewer. Frames use a fixed 3-3-2 bit colour palette.
+A GIF frame is quantised at capture to the palette of the first frame (255 colours, one
+left free): the scene's colours barely change during a run, so every frame shares one
+global palette, and Pillow writes each frame after the first as its changed rectangle
+with the unchanged pixels transparent, which is what keeps a run's GIF small.
 """
 
 from __future__ import annotations
 
 import errno
 import os
+import re
 import shutil
-import struct
 import subprocess
 from pathlib import Path
-
 import numpy as np
+from PIL import Image, ImageDraw, ImageFont
 
-from atd.model import replacing, write_atomically
+from atd.model import replacing
 from atd.model.files import OutputError, describe_write_error
+from atd.sim.scene import WORKSPACE_CAMERA
+from factories.description import RobotDescription
 
 FORMATS = (".gif", ".mp4")
-WIDTH, HEIGHT = 320, 240
-FRAME_PERIOD = 0.1  # s of simulated time between frames
-_CLEAR, _END = 256, 257
+DEFAULT_SIZE = (640, 480)
+SIZE_LIMITS = (64, 3840)  # pixels, each side: MP4's yuv420p also wants even sides
+FRAME_PERIOD = 0.1  # s of simulated time between frames: what a video costs grows with the run, not the tick
 # Failures of ffmpeg that are the file system's, reported like those of any other output.
 _WRITE_ERRORS = (errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EACCES, errno.EROFS)
-_RUN = 254  # pixel codes between clear codes
-
-
-def _palette() -> bytes:
-    i = np.arange(256)
-    rgb = np.stack([(i >> 5) * 255 // 7, ((i >> 2) & 7) * 255 // 7, (i & 3) * 255 // 3], axis=1)
-    return rgb.astype(np.uint8).tobytes()
-
-
-def _indices(frame: np.ndarray) -> np.ndarray:
-    f = frame.astype(np.uint16)
-    return ((f[..., 0] >> 5) << 5 | (f[..., 1] >> 5) << 2 | (f[..., 2] >> 6)).ravel()
-
-
-def _lzw(pixels: np.ndarray) -> bytes:
-    n = len(pixels)
-    chunks = -(-n // _RUN)
-    codes = np.full(chunks * (_RUN + 1), -1, dtype=np.int32)
-    codes[:: _RUN + 1] = _CLEAR
-    body = np.arange(len(codes)) % (_RUN + 1) != 0
-    codes[np.flatnonzero(body)[:n]] = pixels
-    codes = np.concatenate([codes[codes >= 0], [_END]])
-    bits = ((codes[:, None] >> np.arange(9)) & 1).astype(np.uint8).ravel()
-    data = np.packbits(bits, bitorder="little").tobytes()
-    blocks = b"".join(bytes([len(data[i : i + 255])]) + data[i : i + 255] for i in range(0, len(data), 255))
-    return bytes([8]) + blocks + b"\x00"
-
-
-def write_gif(path: Path, frames: list[np.ndarray], frame_period: float = FRAME_PERIOD) -> None:
-    """Write RGB frames (h, w, 3) as a looping GIF, atomically."""
-    height, width = frames[0].shape[:2]
-    delay = max(1, round(frame_period * 100))
-    out = [b"GIF89a", struct.pack("<HHBBB", width, height, 0xF7, 0, 0), _palette()]
-    out.append(b"\x21\xff\x0bNETSCAPE2.0\x03\x01\x00\x00\x00")  # loop for ever
-    for frame in frames:
-        out.append(struct.pack("<BBBBHBB", 0x21, 0xF9, 4, 0, delay, 0, 0))
-        out.append(struct.pack("<BHHHHB", 0x2C, 0, 0, width, height, 0))
-        out.append(_lzw(_indices(frame)))
-    out.append(b"\x3b")
-    write_atomically(path, b"".join(out))
 
 
 class VideoError(Exception):
     """The video cannot be written; the message says what to do instead."""
+
+
+def parse_size(text: str) -> tuple[int, int]:
+    """'640x480' as (640, 480); VideoError naming the accepted form otherwise."""
+    low, high = SIZE_LIMITS
+    match = re.fullmatch(r"\s*(\d{1,5})\s*[xX]\s*(\d{1,5})\s*", text)
+    size = (int(match[1]), int(match[2])) if match else None
+    if size is None or not all(low <= side <= high and side % 2 == 0 for side in size):
+        raise VideoError(f"--video-size {text}: give WIDTHxHEIGHT in pixels, e.g. 640x480, "
+                         f"each an even number from {low} to {high}")
+    return size
+
+
+def cameras(robot: RobotDescription) -> tuple[str, ...]:
+    """The cameras a video of `robot` can be rendered from: the free one on the work area
+    (the default), then the robot's described cameras."""
+    return (WORKSPACE_CAMERA, *(c.name for c in robot.cameras))
+
+
+def check_camera(camera: str, robot: RobotDescription) -> None:
+    """Refuse a camera `robot` and its scene do not have, naming those they have."""
+    if camera not in cameras(robot):
+        raise VideoError(f"--camera {camera}: {robot.name} has no such camera; "
+                         f"choose one of: {', '.join(cameras(robot))}")
 
 
 def mp4_encoder() -> str | None:
@@ -94,6 +82,28 @@ def check_video_path(path: Path) -> None:
         raise VideoError(f"--video {path}: the folder {path.parent} does not exist")
 
 
+def draw_label(frame: np.ndarray, text: str) -> Image.Image:
+    """The frame with `text` in white on a dark band at its top left."""
+    image = Image.fromarray(frame)
+    draw = ImageDraw.Draw(image)
+    font = ImageFont.load_default(size=max(10, image.height // 28))
+    margin = max(4, image.height // 80)
+    left, top, right, bottom = draw.textbbox((2 * margin, 2 * margin), text, font=font)
+    draw.rectangle((margin, margin, right + margin, bottom + margin), fill=(20, 20, 24))
+    draw.text((2 * margin, 2 * margin), text, font=font, fill=(255, 255, 255))
+    return image
+
+
+def write_gif(path: Path, frames: list[Image.Image], frame_period: float = FRAME_PERIOD) -> None:
+    """Write palette frames sharing one palette as a looping GIF, atomically (on disk, not
+    only in the page cache, before it replaces anything: a full disk says so here)."""
+    with replacing(path) as tmp, tmp.open("wb") as out:
+        frames[0].save(out, format="GIF", save_all=True, append_images=frames[1:], loop=0, optimize=True,
+                       duration=round(frame_period * 1000), palette=frames[0].getpalette())
+        out.flush()
+        os.fsync(out.fileno())
+
+
 def write_mp4(path: Path, frames: list[np.ndarray], frame_period: float = FRAME_PERIOD) -> None:
     """Encode RGB frames (h, w, 3; even sizes) as H.264 in MP4, atomically; OSError when the
     file system refuses it (full, over a size limit, read-only), VideoError when ffmpeg fails otherwise."""
@@ -115,31 +125,46 @@ def write_mp4(path: Path, frames: list[np.ndarray], frame_period: float = FRAME_
 
 
 class Recorder:
-    """Called every control tick; keeps a frame every `FRAME_PERIOD` of simulated time."""
+    """Called every control tick; keeps a frame every `FRAME_PERIOD` of simulated time, from
+    `camera`, at `size` (width, height), labelled with what the caller says is going on.
+    For an MP4 it keeps RGB frames; for a GIF, frames already quantised (a third of the memory)."""
 
-    def __init__(self) -> None:
-        self.frames: list[np.ndarray] = []
+    def __init__(self, path: Path, size: tuple[int, int] = DEFAULT_SIZE, camera: str = WORKSPACE_CAMERA) -> None:
+        self.path, self.size, self.camera = path, size, camera
+        self.mp4 = path.suffix.lower() == ".mp4"
+        self.frames: list = []
         self.error: str | None = None  # why rendering failed, if it did: recording then stops
         self._next = 0.0
+        self._palette: Image.Image | None = None
 
-    def __call__(self, robot) -> None:
+    def __call__(self, robot, label: str = "") -> None:
         now = robot.read().time
-        if self.error is None and now >= self._next:
-            try:
-                self.frames.append(robot.render(WIDTH, HEIGHT))
-            except Exception as exc:  # no OpenGL context, or no display: report, keep simulating
-                self.error = f"{type(exc).__name__}: {exc}"
-            self._next = now + FRAME_PERIOD
+        if self.error is not None or now < self._next:
+            return
+        self._next = now + FRAME_PERIOD
+        try:
+            rendered = robot.render(*self.size, camera=self.camera)
+        except Exception as exc:  # no OpenGL context, or no display: report, keep simulating
+            self.error = f"{type(exc).__name__}: {exc}"
+            return
+        image = draw_label(rendered, f"{now:6.2f} s  {label}" if label else f"{now:6.2f} s")
+        if self.mp4:
+            self.frames.append(np.asarray(image))
+        elif self._palette is None:
+            self._palette = image.quantize(255, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.NONE)
+            self.frames.append(self._palette)
+        else:
+            self.frames.append(image.quantize(palette=self._palette, dither=Image.Dither.NONE))
 
-    def save(self, path: Path) -> str:
-        """Write the frames as `path`'s format says; what became of the video, for the user."""
+    def save(self) -> str:
+        """Write the frames as the path's format says; what became of the video, for the user."""
         if self.error or not self.frames:
-            return (f"no video written to {path}: offscreen rendering failed ({self.error or 'no frames'}); "
+            return (f"no video written to {self.path}: offscreen rendering failed ({self.error or 'no frames'}); "
                     "try MUJOCO_GL=egl or MUJOCO_GL=osmesa")
         try:
-            (write_mp4 if path.suffix.lower() == ".mp4" else write_gif)(path, self.frames)
+            (write_mp4 if self.mp4 else write_gif)(self.path, self.frames)
         except VideoError as exc:
             return f"no video written: {exc}"
         except OSError as exc:
-            raise OutputError(describe_write_error(path, exc)) from None
-        return f"video: {path} ({len(self.frames)} frames)"
+            raise OutputError(describe_write_error(self.path, exc)) from None
+        return f"video: {self.path} ({len(self.frames)} frames, {self.size[0]}x{self.size[1]}, {self.camera} camera)"
