@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
-import sys
+import json
 from dataclasses import dataclass
 from pathlib import Path
-from typing import NoReturn
+from typing import Callable, NoReturn
 
 import click
 
+from atd.cli.run_output import Progress, document, next_step, where
 from atd.cli.translate import GRASP_OPTION
 from atd.cli.app import (EXIT_ENGINE_CRASHED, EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, EXIT_UNTRANSLATABLE,
                          EXIT_USAGE, OutputFile, Ranged, guard_outputs, main, usage_error)
@@ -73,39 +74,6 @@ def _world(estd: Estd, world_file: Path, seed: int) -> Scene:
         _fail(f"error: {exc}", EXIT_INVALID)
 
 
-def _where(positions: dict[str, tuple[float, float, float]], inside: dict[str, list[str]]) -> None:
-    """Where the objects came to rest, and what each container holds at the end."""
-    if len(positions) == 1:
-        x, y, z = next(iter(positions.values()))
-        click.echo(f"the object rests at ({x:.3f}, {y:.3f}, {z:.3f})")
-    elif positions:
-        click.echo("the objects rest at: " + ", ".join(f"{name} ({x:.3f}, {y:.3f}, {z:.3f})"
-                                                       for name, (x, y, z) in positions.items()))
-    for container, names in inside.items():
-        click.echo(f"in '{container}' at the end: {', '.join(names) or 'nothing'} "
-                   f"({len(names)} of {len(positions)} objects)")
-
-
-class _Progress:
-    """One line per state entered, with simulated time and real-time factor; on a terminal
-    the line also updates in place while the state runs."""
-
-    def __init__(self, quiet: bool) -> None:
-        self.quiet = quiet
-        self.tty = sys.stderr.isatty()
-        self.state = ""
-
-    def __call__(self, state: str, sim: float, wall: float) -> None:
-        if self.quiet:
-            return
-        line = f"[{sim:7.2f} s  {sim / wall if wall else 0:5.1f}x real time]  {state}"
-        if state != self.state:
-            self.state = state
-            click.echo(("\r" if self.tty else "") + line, err=True)
-        elif self.tty:
-            click.echo("\r" + line, err=True, nl=False)
-
-
 @dataclass
 class _Ran:
     """What the process that ran the engine sends back for the summary."""
@@ -115,6 +83,15 @@ class _Ran:
     object_positions: dict[str, tuple[float, float, float]]
     inside: dict[str, list[str]]
     notes: list[str]
+
+
+def _in_child(simulate: Callable[[], _Ran], progress: Progress) -> _Ran:
+    """The run, in a child process; the progress line is cleared however it ends, before
+    anything else is said."""
+    try:
+        return in_child(simulate)
+    finally:
+        progress.finish()
 
 
 class VideoSize(click.ParamType):
@@ -171,9 +148,11 @@ class RecordRate(click.ParamType):
                    "into a container (seeded by --seed), containers (see docs/worlds.md)")
 @GRASP_OPTION
 @click.option("--quiet", "-q", is_flag=True, help="no live progress")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True,
+              help="the outcome as text, or as one JSON document (state path, events with their readings)")
 def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, trace_path: Path | None,
         video: Path | None, video_size: tuple[int, int], camera: str, record: Path | None, record_rate: float | None, viewer: bool, realtime: bool,
-        budget: float, world_file: Path | None, grasp: str, quiet: bool) -> None:
+        budget: float, world_file: Path | None, grasp: str, quiet: bool, fmt: str) -> None:
     """Run TASK (an ATD, translated on the fly, or an ESTD) on a simulated robot.
 
     Exit status: 0 the task ended in a success state, 3 in a failure state (or the watchdog
@@ -196,11 +175,12 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
         session = Run(estd, factory, engine=engine, seed=seed, trace_path=trace_path, realtime=realtime,
                       budget=budget, video=video, video_size=video_size, camera=camera, viewer=viewer, scene=truth,
                       record=record, record_rate=record_rate)
-        outcome = session.execute(_Progress(quiet))
+        outcome = session.execute(progress)
         return _Ran(outcome, session.trace.records, session.object_positions, session.inside, session.notes)
 
+    progress = Progress(quiet)
     try:
-        ran = in_child(simulate)
+        ran = _in_child(simulate, progress)
     except Unrunnable as exc:
         _fail(f"error: {exc}", EXIT_UNTRANSLATABLE)
     except InvalidScene as exc:
@@ -212,13 +192,22 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
     except EngineCrash as exc:
         _fail(f"error: the {engine} engine crashed ({exc}) running {task}; "
               f"try --engine {'pybullet' if engine == 'mujoco' else 'mujoco'}", EXIT_ENGINE_CRASHED)
+    outputs = {"trace": trace_path, "record": record, "video": video}
+    if fmt == "json":
+        about = {"task": str(task), "robot": estd.robot, "arm": estd.arm, "engine": engine, "seed": seed}
+        click.echo(json.dumps(document(about, ran.outcome, ran.records, ran.object_positions, ran.inside, outputs,
+                                       ran.notes), indent=2))
+        raise SystemExit(EXIT_OK if ran.outcome.succeeded else EXIT_TASK_FAILED)
     title = f"{task.name} on {estd.robot} ({estd.arm} arm) in {engine}, seed {seed}"
     click.echo(summary(ran.outcome, ran.records, title))
-    _where(ran.object_positions, ran.inside)
+    for line in where(ran.object_positions, ran.inside):
+        click.echo(line)
     if trace_path:
         click.echo(f"trace: {trace_path}")
     if record:
         click.echo(f"recording: {record} (see it with: atd report {record})")
     for note in ran.notes:
         click.echo(note)
+    command = ["atd", "run", str(task), *(["--robot", robot] if robot else []), *(["--arm", arm] if arm else [])]
+    click.echo(next_step(command, record, video, ran.outcome.succeeded))
     raise SystemExit(EXIT_OK if ran.outcome.succeeded else EXIT_TASK_FAILED)
