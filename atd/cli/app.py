@@ -184,11 +184,15 @@ def main() -> None:
     "show": ("atd.cli.robots_command", "A robot's arms, mapping table, events and configuration."),
     "test": ("atd.cli.robot_test", "Self-test a simulated robot: kinematics, sensors, a grasp."),
     "new": ("atd.cli.robots_new", "Write a new robot as a pip package whose tests pass.")})
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True,
+              help="bare `atd robots`: the list as text, or as one JSON document")
 @click.pass_context
-def robots(ctx: click.Context) -> None:
+def robots(ctx: click.Context, fmt: str) -> None:
     """The robots installed through factories (bare `atd robots` lists them)."""
     if ctx.invoked_subcommand is None:
-        ctx.invoke(robots.get_command(ctx, "list"))
+        ctx.invoke(robots.get_command(ctx, "list"), fmt=fmt)
+    elif ctx.get_parameter_source("fmt") is not click.core.ParameterSource.DEFAULT:
+        usage_error(f"give --format after the sub-command: atd robots {ctx.invoked_subcommand} ... --format {fmt}")
 
 
 @main.group(lazy={
