@@ -25,7 +25,8 @@ def robot_test(robot: str, arm: str | None, engine: str, seed: int, video: Path 
     """
     from atd.sim import UnknownRobot, load_description
     from atd.sim.selftest import run_all
-    from atd.sim.video import Recorder, VideoError, check_video_path
+    from atd.sim.video import VideoError, check_video_path
+    from atd.sim.video_recorder import Recorder
 
     try:
         description = load_description(robot, arm)

@@ -23,7 +23,8 @@ from atd.runtime.trace import Trace
 from atd.sim import ENGINES, make_robot
 from atd.sim.scene import WORKSPACE_CAMERA, Scene, SceneError, scene_from_task
 from atd.sim.simrobot import SimRobot
-from atd.sim.video import DEFAULT_SIZE, Recorder, VideoError, check_camera, check_video_path
+from atd.sim.video import DEFAULT_SIZE, VideoError, check_camera, check_video_path
+from atd.sim.video_recorder import Recorder
 from atd.sim.world import WorldError, load_world
 from factories.base import Factory
 from factories.description import RobotDescription
@@ -112,6 +113,9 @@ class _Video:
     def write(self) -> str:
         """What became of the video, for the user."""
         return self.recorder.save()
+
+    def abandon(self) -> None:
+        self.recorder.abandon()
 
 
 class _Viewer:
@@ -213,6 +217,7 @@ class Run:
                 self.notes.append(self.video.write())
             return outcome
         finally:
-            if self.recorder:
-                self.recorder.abandon()
+            for unfinished in (self.recorder, self.video):
+                if unfinished:
+                    unfinished.abandon()
             self.robot.close()

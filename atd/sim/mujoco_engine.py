@@ -234,6 +234,14 @@ class MujocoRobot(SimRobot):
             self._renderer.update_scene(self.data, camera)
         return self._renderer.render()
 
+    def scene_state(self) -> np.ndarray:
+        return self.data.qpos.copy()
+
+    def set_scene_state(self, state: np.ndarray) -> None:
+        self.data.qpos[:] = state
+        mujoco.mj_kinematics(self.model, self.data)
+        mujoco.mj_camlight(self.model, self.data)
+
     def _open_window(self):
         """MuJoCo's interactive viewer on this model, looking where the videos look."""
         import mujoco.viewer

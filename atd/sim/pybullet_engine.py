@@ -21,6 +21,7 @@ from atd.sim.scene import (
     CAMERA_DISTANCE,
     CAMERA_ELEVATION,
     CAMERA_TARGET,
+    COLOURS,
     TABLE_CENTRE,
     TABLE_HALF,
     WORKSPACE_CAMERA,
@@ -157,20 +158,21 @@ class PybulletRobot(SimRobot):
         if scene.table:
             table = pb.createCollisionShape(pb.GEOM_BOX, halfExtents=TABLE_HALF, physicsClientId=c)
             self.table = pb.createMultiBody(0, table, basePosition=TABLE_CENTRE, physicsClientId=c)
+            pb.changeVisualShape(self.table, -1, rgbaColor=COLOURS["table"], physicsClientId=c)
             # A friction anchor pins a contact point, which a rolling ball's is not: anchored
             # (on either body), a ball rolling at 5 cm/s sped up to 17 cm/s in 2 s on a level
             # table, and balls the grasp had nudged rolled off it.
             rolls = any(body.rolls for body in scene.objects)
             pb.changeDynamics(self.table, -1, lateralFriction=1.0, frictionAnchor=int(not rolls), physicsClientId=c)
         for obstacle in scene.obstacles:
-            self._make(obstacle, fixed=True)
+            self._make(obstacle, fixed=True, colour=COLOURS["obstacle"])
         for container in scene.containers:
             for part in container.parts():
-                self._make(part, fixed=True)
-        self._objects = [self._make(body, fixed=False) for body in scene.objects]
+                self._make(part, fixed=True, colour=COLOURS["container"])
+        self._objects = [self._make(body, fixed=False, colour=COLOURS["object"]) for body in scene.objects]
         self.object = self._objects[0] if self._objects else -1
 
-    def _make(self, body: Body, fixed: bool) -> int:
+    def _make(self, body: Body, fixed: bool, colour: tuple[float, ...]) -> int:
         c = self.client
         half = body.half_extents
         if body.kind == "box":
@@ -187,6 +189,7 @@ class PybulletRobot(SimRobot):
         )
         pb.changeDynamics(uid, -1, lateralFriction=body.friction, frictionAnchor=int(not body.rolls),
                           physicsClientId=c)
+        pb.changeVisualShape(uid, -1, rgbaColor=colour, physicsClientId=c)
         if not fixed:
             pb.changeDynamics(
                 uid, -1, spinningFriction=0.01 * body.friction, rollingFriction=0.0001,
@@ -442,6 +445,18 @@ class PybulletRobot(SimRobot):
                                   lightDirection=LIGHT_DIRECTION, lightAmbientCoeff=0.5, lightDiffuseCoeff=0.5,
                                   physicsClientId=self.client)[2]
         return np.asarray(image, np.uint8).reshape(height, width, 4)[:, :, :3]
+
+    def scene_state(self) -> tuple[list[float], list[tuple]]:
+        c = self.client
+        joints = pb.getJointStates(self.body, range(pb.getNumJoints(self.body, physicsClientId=c)), physicsClientId=c)
+        return [j[0] for j in joints], [pb.getBasePositionAndOrientation(uid, physicsClientId=c) for uid in self._objects]
+
+    def set_scene_state(self, state: tuple[list[float], list[tuple]]) -> None:
+        joints, objects = state
+        for index, q in enumerate(joints):
+            pb.resetJointState(self.body, index, q, physicsClientId=self.client)
+        for uid, (position, orientation) in zip(self._objects, objects):
+            pb.resetBasePositionAndOrientation(uid, position, orientation, physicsClientId=self.client)
 
     def show(self) -> None:
         """PyBullet's window draws the physics server's state by itself."""

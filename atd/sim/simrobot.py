@@ -404,6 +404,16 @@ class SimRobot(Robot):
         work area, or from one of the robot's described cameras (LookupError for another name)."""
 
     @abstractmethod
+    def scene_state(self) -> object:
+        """What a picture of the scene depends on (joint positions, object poses), small and
+        picklable: a copy of this robot made by fork renders it after `set_scene_state`."""
+
+    @abstractmethod
+    def set_scene_state(self, state: object) -> None:
+        """Pose the robot and the objects as `scene_state` found them, for a picture (the
+        physics is not stepped: this copy only renders)."""
+
+    @abstractmethod
     def show(self) -> None:
         """Bring the engine's window (opened with `window=True`) up to date."""
 

@@ -1,6 +1,6 @@
-"""Recording a run as a video: a frame every `FRAME_PERIOD` of simulated time, with the
-state and the simulated time drawn on it, encoded by a library: Pillow writes GIF, ffmpeg
-writes MP4 (the `video` extra brings one: imageio-ffmpeg).
+"""A run's video as a file: frames with the state and the simulated time drawn on them,
+encoded by a library: Pillow writes GIF, ffmpeg writes MP4 (the `video` extra brings one:
+imageio-ffmpeg). `atd.sim.video_recorder` renders the frames.
 
 A GIF frame is quantised at capture to the palette of the first frame (255 colours, one
 left free): the scene's colours barely change during a run, so every frame shares one
@@ -11,16 +11,16 @@ with the unchanged pixels transparent, which is what keeps a run's GIF small.
 from __future__ import annotations
 
 import errno
+import io
 import os
 import re
 import shutil
 import subprocess
+import tempfile
 from pathlib import Path
 import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
-from atd.model import replacing
-from atd.model.files import OutputError, describe_write_error
 from atd.sim.scene import WORKSPACE_CAMERA
 from factories.description import RobotDescription
 
@@ -94,25 +94,25 @@ def draw_label(frame: np.ndarray, text: str) -> Image.Image:
     return image
 
 
-def write_gif(path: Path, frames: list[Image.Image], frame_period: float = FRAME_PERIOD) -> None:
-    """Write palette frames sharing one palette as a looping GIF, atomically (on disk, not
-    only in the page cache, before it replaces anything: a full disk says so here)."""
-    with replacing(path) as tmp, tmp.open("wb") as out:
-        frames[0].save(out, format="GIF", save_all=True, append_images=frames[1:], loop=0, optimize=True,
-                       duration=round(frame_period * 1000), palette=frames[0].getpalette())
-        out.flush()
-        os.fsync(out.fileno())
+def encode_gif(frames: list[Image.Image], frame_period: float = FRAME_PERIOD) -> bytes:
+    """Palette frames sharing one palette as a looping GIF."""
+    out = io.BytesIO()
+    frames[0].save(out, format="GIF", save_all=True, append_images=frames[1:], loop=0, optimize=True,
+                   duration=round(frame_period * 1000), palette=frames[0].getpalette())
+    return out.getvalue()
 
 
-def write_mp4(path: Path, frames: list[np.ndarray], frame_period: float = FRAME_PERIOD) -> None:
-    """Encode RGB frames (h, w, 3; even sizes) as H.264 in MP4, atomically; OSError when the
-    file system refuses it (full, over a size limit, read-only), VideoError when ffmpeg fails otherwise."""
+def encode_mp4(frames: list[np.ndarray], folder: Path, frame_period: float = FRAME_PERIOD) -> bytes:
+    """RGB frames (h, w, 3; even sizes) as H.264 in MP4, by way of a temporary file in
+    `folder` (where the video goes, so that the file system that refuses it is that one's);
+    OSError when it is refused (full, over a size limit), VideoError when ffmpeg fails otherwise."""
     height, width = frames[0].shape[:2]
     frames_in = b"".join(np.ascontiguousarray(f).tobytes() for f in frames)
-    with replacing(path) as tmp:
+    with tempfile.TemporaryDirectory(prefix=".atd-video-", dir=folder) as work:
+        encoded = Path(work) / "video.mp4"  # MP4 puts its index at the end: ffmpeg seeks, so no pipe
         command = [mp4_encoder(), "-y", "-loglevel", "error", "-f", "rawvideo", "-pix_fmt", "rgb24",
                    "-s", f"{width}x{height}", "-r", f"{1 / frame_period:g}", "-i", "-",
-                   "-c:v", "libx264", "-pix_fmt", "yuv420p", "-f", "mp4", str(tmp)]
+                   "-c:v", "libx264", "-pix_fmt", "yuv420p", "-f", "mp4", str(encoded)]
         # restore_signals=False: ffmpeg keeps SIGXFSZ ignored, as here, so a file-size limit is
         # an error it reports (EFBIG) rather than a signal that kills it without a word.
         done = subprocess.run(command, input=frames_in, capture_output=True, restore_signals=False)
@@ -121,33 +121,24 @@ def write_mp4(path: Path, frames: list[np.ndarray], frame_period: float = FRAME_
             write_error = next((code for code in _WRITE_ERRORS if os.strerror(code) in said), None)
             if write_error is not None:
                 raise OSError(write_error, os.strerror(write_error))
-            raise VideoError(f"ffmpeg could not write {path}: {said}")
+            raise VideoError(f"ffmpeg could not encode the video: {said}")
+        return encoded.read_bytes()
 
 
-class Recorder:
-    """Called every control tick; keeps a frame every `FRAME_PERIOD` of simulated time, from
-    `camera`, at `size` (width, height), labelled with what the caller says is going on.
-    For an MP4 it keeps RGB frames; for a GIF, frames already quantised (a third of the memory)."""
+class Frames:
+    """The frames of one video as they are rendered, each labelled; `encode` makes them the
+    file the path names. For an MP4 it keeps RGB frames; for a GIF, frames already
+    quantised (a third of the memory)."""
 
-    def __init__(self, path: Path, size: tuple[int, int] = DEFAULT_SIZE, camera: str = WORKSPACE_CAMERA) -> None:
+    def __init__(self, path: Path, size: tuple[int, int], camera: str) -> None:
         self.path, self.size, self.camera = path, size, camera
         self.mp4 = path.suffix.lower() == ".mp4"
         self.frames: list = []
-        self.error: str | None = None  # why rendering failed, if it did: recording then stops
-        self._next = 0.0
         self._palette: Image.Image | None = None
 
-    def __call__(self, robot, label: str = "") -> None:
-        now = robot.read().time
-        if self.error is not None or now < self._next:
-            return
-        self._next = now + FRAME_PERIOD
-        try:
-            rendered = robot.render(*self.size, camera=self.camera)
-        except Exception as exc:  # no OpenGL context, or no display: report, keep simulating
-            self.error = f"{type(exc).__name__}: {exc}"
-            return
-        image = draw_label(rendered, f"{now:6.2f} s  {label}" if label else f"{now:6.2f} s")
+    def add(self, rendered: np.ndarray, sim_time: float, state: str) -> None:
+        """One frame, with the simulated time and the state (if any) drawn on it."""
+        image = draw_label(rendered, f"{sim_time:6.2f} s  {state}" if state else f"{sim_time:6.2f} s")
         if self.mp4:
             self.frames.append(np.asarray(image))
         elif self._palette is None:
@@ -156,15 +147,6 @@ class Recorder:
         else:
             self.frames.append(image.quantize(palette=self._palette, dither=Image.Dither.NONE))
 
-    def save(self) -> str:
-        """Write the frames as the path's format says; what became of the video, for the user."""
-        if self.error or not self.frames:
-            return (f"no video written to {self.path}: offscreen rendering failed ({self.error or 'no frames'}); "
-                    "try MUJOCO_GL=egl or MUJOCO_GL=osmesa")
-        try:
-            (write_mp4 if self.mp4 else write_gif)(self.path, self.frames)
-        except VideoError as exc:
-            return f"no video written: {exc}"
-        except OSError as exc:
-            raise OutputError(describe_write_error(self.path, exc)) from None
-        return f"video: {self.path} ({len(self.frames)} frames, {self.size[0]}x{self.size[1]}, {self.camera} camera)"
+    def encode(self) -> bytes:
+        """The file's bytes, in the format the path names (VideoError, OSError: see `encode_mp4`)."""
+        return encode_mp4(self.frames, self.path.parent) if self.mp4 else encode_gif(self.frames)

@@ -3,6 +3,7 @@ the state and the simulated time drawn on every frame; bad sizes and cameras in 
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 
@@ -12,6 +13,7 @@ from PIL import Image
 
 from atd.sim import load_description, make_robot
 from atd.sim.video import draw_label
+from atd.sim.video_recorder import Recorder
 from tests.runtime.test_run_cli import PICK_AND_PLACE, SHORT_MOVE
 
 
@@ -79,3 +81,19 @@ def test_each_engine_renders_from_the_robots_camera_and_refuses_another(engine):
             robot.render(96, 64, camera="top")
     finally:
         robot.close()
+
+
+def test_a_run_that_does_not_end_leaves_no_video_and_no_rendering_process(tmp_path):
+    robot = make_robot(load_description("melfa"))
+    recorder = Recorder(tmp_path / "run.gif")
+    try:
+        for _ in range(100):
+            robot.step()
+            recorder(robot, "moving")
+        rendering = recorder._process.pid
+        recorder.abandon()
+    finally:
+        robot.close()
+    with pytest.raises(ProcessLookupError):
+        os.kill(rendering, 0)  # ended and reaped
+    assert list(tmp_path.iterdir()) == []
