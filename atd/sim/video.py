@@ -11,6 +11,7 @@ with the unchanged pixels transparent, which is what keeps a run's GIF small.
 from __future__ import annotations
 
 import errno
+import functools
 import io
 import os
 import re
@@ -82,11 +83,17 @@ def check_video_path(path: Path) -> None:
         raise VideoError(f"--video {path}: the folder {path.parent} does not exist")
 
 
+@functools.cache
+def _font(size: int) -> ImageFont.FreeTypeFont | ImageFont.ImageFont:
+    """Pillow's own font at `size` pixels (its bitmap font where Pillow has no FreeType), loaded once."""
+    return ImageFont.load_default(size=size)
+
+
 def draw_label(frame: np.ndarray, text: str) -> Image.Image:
     """The frame with `text` in white on a dark band at its top left."""
     image = Image.fromarray(frame)
     draw = ImageDraw.Draw(image)
-    font = ImageFont.load_default(size=max(10, image.height // 28))
+    font = _font(max(10, image.height // 28))
     margin = max(4, image.height // 80)
     left, top, right, bottom = draw.textbbox((2 * margin, 2 * margin), text, font=font)
     draw.rectangle((margin, margin, right + margin, bottom + margin), fill=(20, 20, 24))
