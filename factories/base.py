@@ -15,7 +15,7 @@ same way (timeout, success, error, hardware failure).
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from pathlib import Path
 from typing import ClassVar, Mapping
@@ -27,7 +27,7 @@ from atd.model.estd import Condition, ConditionGroup, Controller
 from atd.model.frames import GRAVITY, rpy_of
 from atd.model.ranges import FORCE, TILT, WEIGHT
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
-from atd.model.vocabulary import EventType, HandShape, Movement, StateType
+from atd.model.vocabulary import FIRED_BY, PERCEPTUAL_PRIMITIVES, EventType, HandShape, Movement, StateType
 from factories.beside import description_module, shipped_config
 from factories.config import RobotConfig, load_config
 from factories.description import RobotDescription
@@ -139,20 +139,28 @@ class MappingContext:
     own file need not repeat."""
 
     task: Task
-    """The task being translated: its object and environment."""
+    """The task being translated: its objects and environment."""
     surroundings: Environment | None = None
     """The environment of the task around a sub-task, or None."""
+    acting: str | None = None
+    """The object the node or the origin of the edge acts on (`object="..."`); None: the task's first."""
+
+    def acting_on(self, name: str | None) -> MappingContext:
+        """This context for a node or edge that acts on the object called `name` (None: the first)."""
+        return self if name == self.acting else replace(self, acting=name)
 
     @property
     def object(self) -> ObjectInfo | None:
-        return self.task.object
+        """The object the node or edge acts on: the one it names, or the task's first."""
+        return self.task.objects[self.acting] if self.acting else self.task.object
 
     @property
     def environment(self) -> Environment | None:
         own = self.task.environment
         if self.surroundings is None or own is None:
             return own or self.surroundings
-        return Environment(obstacles=self.surroundings.obstacles + own.obstacles)
+        return Environment(obstacles=self.surroundings.obstacles + own.obstacles,
+                           containers=self.surroundings.containers + own.containers)
 
     def state(self, name: str) -> State:
         return self.task.states_by_name[name]
@@ -197,7 +205,10 @@ class Factory(ABC):
     # -- what the robot is ----------------------------------------------------------------
     @property
     def capabilities(self) -> Capabilities:
-        events = frozenset(EventType) - frozenset(self.undetectable_events)
+        """What it maps. Of the events only some states fire, those whose states it maps; a
+        sub-task's outcome is the executor's, every robot's."""
+        events = frozenset(e for e in EventType if e not in self.undetectable_events
+                           and (e not in FIRED_BY or FIRED_BY[e] & (self.primitives | {StateType.TASK})))
         return Capabilities(self.primitives, self.arm.hand.shapes, events)
 
     undetectable_events: ClassVar[tuple[EventType, ...]] = ()
@@ -209,6 +220,14 @@ class Factory(ABC):
         3.4.1, the baseline the robust grasp is measured by (same hand shape and checks, and
         on a gripper the same grip force: with 10% of the Baxter's 20 N it never reached the
         8 N its grasp_stable asks, and never lifted)."""
+        if state.type in PERCEPTUAL_PRIMITIVES - self.primitives:
+            raise Unmappable(f"the {self.name} has no {state.type.value} primitive: no controller of its runs "
+                             f"'{state.type.value}' yet", "translate the task for a robot that lists it "
+                             "(`atd robots list`: primitives)")
+        if state.target_from is not None:
+            raise Unmappable(f"its target is the value '{state.target_from}', known only at run time, and the "
+                             f"{self.name}'s {state.type.value} primitive takes a target fixed at translation",
+                             "give the state a <path> for now")
         mapping = self.map_node(state, context)
         if self.grasp != "naive" or state.type is not StateType.GRASP:
             return mapping

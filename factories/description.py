@@ -444,19 +444,32 @@ class RobotDescription:
     def site_pose(self, site: Site, joints: dict[str, float]) -> np.ndarray:
         return self.link_poses(joints)[site.link] @ site.origin.matrix()
 
+    def _hand_in(self, posture: str | np.ndarray) -> tuple[dict[str, np.ndarray], np.ndarray]:
+        """The links' world poses and the TCP's with the hand in a posture (its name, or its DOF values)."""
+        dofs = self.hand.postures[posture] if isinstance(posture, str) else posture
+        poses = self.link_poses(self.hand_joint_targets(np.asarray(dofs, float)))
+        return poses, poses[self.tcp.link] @ self.tcp.origin.matrix()
+
     def hand_reach(self, posture: str | np.ndarray) -> float:
         """How far the hand's links reach past the TCP along the approach axis (hand z) in a
         posture (its name, or its DOF values): about 0 when the fingertips end at the TCP,
         negative when the hand ends short of it (a closed fist), so a hand pointing down has
         its lowest point that far below the TCP. The thin tactile pads lie on the links and
         are left out."""
-        dofs = self.hand.postures[posture] if isinstance(posture, str) else posture
-        poses = self.link_poses(self.hand_joint_targets(np.asarray(dofs, float)))
-        tcp = poses[self.tcp.link] @ self.tcp.origin.matrix()
+        poses, tcp = self._hand_in(posture)
         approach = tcp[:3, 2]
         farthest = max(shape.support(poses[name], approach)
                        for name in self.hand_links for shape in self.links_by_name[name].shapes)
         return farthest - float(tcp[:3, 3] @ approach)
+
+    def hand_radius(self, posture: str | np.ndarray) -> float:
+        """How far the hand's links reach sideways from the TCP's axis in a posture (its name,
+        or its DOF values), the furthest along the hand's x and y: what a hand pointing down
+        must keep from a wall it moves beside (the perceive primitive's `hand_radius`)."""
+        poses, tcp = self._hand_in(posture)
+        sideways = [sign * tcp[:3, axis] for axis in (0, 1) for sign in (1.0, -1.0)]
+        return max(shape.support(poses[name], way) - float(tcp[:3, 3] @ way)
+                   for way in sideways for name in self.hand_links for shape in self.links_by_name[name].shapes)
 
     def closing_swing(self, start: str, end: str, steps: int = 20) -> float:
         """How much further than in posture `start` the hand reaches along the approach axis

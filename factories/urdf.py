@@ -3,8 +3,11 @@
 What a URDF says becomes description `Link`s: the tree (parents before children), joint
 origins, axes, limits, damping and friction, masses, centres of mass and inertias, and the
 collision and visual geometry; links that are only frames (welded, massless, bare) are
-folded into their parents. A mesh (OBJ or STL) is read from where the URDF names it, checked
-as every mesh is before an engine sees it, and becomes a mesh shape: both engines collide a
+folded into their parents. What a simulator cannot take is refused: a link left out of
+the tree, a moving link without a positive mass and a possible inertia, a joint that
+cannot move or a shape without size. Reading takes time linear in the links, at most
+`MAX_LINKS` of them (`factories/urdf_tree.py`). A mesh (OBJ or STL) is read from where the
+URDF names it, checked as every mesh is before an engine sees it, and becomes a mesh shape: both engines collide a
 collision mesh's convex hull and draw a visual mesh as it is, without contact or mass. Boxes,
 cylinders and spheres are taken as they are. A link whose visual mesh no engine can load (a
 COLLADA .dae) is drawn as its collision shapes instead.
@@ -14,6 +17,7 @@ description adds. Anything that cannot be imported is a `UrdfError` naming file:
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Callable
@@ -25,8 +29,13 @@ from atd.model.files import InputError, read_capped
 from atd.model.frames import rotation_rpy, rpy_of
 from atd.model.meshcheck import SUFFIXES as MESH_SUFFIXES, MeshError, check_mesh
 from factories.description import Joint, Link, Origin, Servo, Shape, Vec3
+from factories.urdf_physics import Problem, inertia_problem, mass_problem
+from factories.urdf_tree import Tree, link_tree
 
 MAX_URDF_BYTES = 16 * 1024 * 1024
+_DOCTYPE = re.compile(rb"<!DOCTYPE|<!ENTITY", re.I)
+Inertial = tuple[float, Vec3 | None, Vec3 | None, Vec3]
+"""A link's mass (kg), centre of mass, moments and products of inertia (None: none given)."""
 JOINT_KINDS = {"revolute": "revolute", "continuous": "revolute", "prismatic": "prismatic", "fixed": None}
 
 
@@ -42,6 +51,8 @@ class UrdfModel:
     """The URDF file."""
     links: tuple[Link, ...]
     """Every link, parents before children, with its joint, mass, inertia and shapes."""
+    joint_lines: dict[str, int] = field(default_factory=dict, compare=False)
+    """The line of each <joint> in the URDF, by the joint's name: where to point at it."""
 
     def link(self, name: str) -> Link:
         """The link called `name`; UrdfError naming the URDF when it has none."""
@@ -71,6 +82,11 @@ def read_urdf(path: Path, servo: Callable[[float], Servo] = default_servo) -> Ur
         data = read_capped(path, MAX_URDF_BYTES)
     except InputError as exc:
         raise UrdfError(f"{path}: cannot read the URDF: {exc}") from None
+    declaration = _DOCTYPE.search(data)
+    if declaration:  # a URDF has no use for one, and an entity can be a bomb: refused before parsing, at its line
+        line = data.count(b"\n", 0, declaration.start()) + 1
+        raise UrdfError(f"{path}:{line}: the URDF declares a DOCTYPE or "
+                        "an entity; remove the declaration (a URDF needs no DTD, and atd expands no entities)")
     parser = etree.XMLParser(resolve_entities=False, no_network=True, load_dtd=False, huge_tree=False)
     try:
         root = etree.fromstring(data, parser)
@@ -81,7 +97,9 @@ def read_urdf(path: Path, servo: Callable[[float], Servo] = default_servo) -> Ur
         raise UrdfError(f"{path}:{root.sourceline}: the root element is <{root.tag}>, not <robot>; "
                         "give a URDF file (a xacro must be expanded first: xacro FILE.xacro > FILE.urdf)")
     reader = _Reader(path, servo)
-    return UrdfModel(path, reader.links(root))
+    tree = link_tree(root, reader.fail)
+    return UrdfModel(path, reader.links(root, tree), {joint.get("name"): joint.sourceline
+                                                     for joint in tree.joints.values()})
 
 
 @dataclass
@@ -93,6 +111,26 @@ class _Reader:
 
     def fail(self, element: etree._Element, what: str, fix: str) -> UrdfError:
         return UrdfError(f"{self.path}:{element.sourceline}: {what}; {fix}")
+
+    def check(self, element: etree._Element, problem: Problem | None) -> None:
+        if problem is not None:
+            raise self.fail(element, *problem)
+
+    def positive(self, element: etree._Element, attribute: str, default: float | None = None) -> float:
+        """A number above 0: a size, a mass, a limit a drive must reach."""
+        value = self.number(element, attribute, default)
+        if value <= 0:
+            raise self.fail(element, f"{attribute}=\"{element.get(attribute)}\" is not above 0",
+                            f"give {attribute} as a number above 0")
+        return value
+
+    def non_negative(self, element: etree._Element, attribute: str, default: float) -> float:
+        """A number not below 0: damping or friction, which may be absent but never push."""
+        value = self.number(element, attribute, default)
+        if value < 0:
+            raise self.fail(element, f"{attribute}=\"{element.get(attribute)}\" is below 0",
+                            f"give {attribute} as 0 or more")
+        return value
 
     def number(self, element: etree._Element, attribute: str, default: float | None = None) -> float:
         text = element.get(attribute)
@@ -125,56 +163,15 @@ class _Reader:
         element = parent.find("origin")
         return Origin(self.vector(element, "xyz", (0.0, 0.0, 0.0)), self.vector(element, "rpy", (0.0, 0.0, 0.0)))
 
-    def links(self, root: etree._Element) -> tuple[Link, ...]:
+    def links(self, root: etree._Element, tree: Tree) -> tuple[Link, ...]:
         for material in root.iter("material"):
             colour = material.find("color")
             if colour is not None and material.get("name"):
                 self.colours[material.get("name")] = self.rgba(colour)
-        elements = {}
-        for element in root.findall("link"):
-            name = element.get("name")
-            if not name:
-                raise self.fail(element, "a <link> has no name", "add name=\"...\"")
-            if name in elements:
-                raise self.fail(element, f"a second link '{name}'", "give every link its own name")
-            elements[name] = element
-        joints = {}
-        for element in root.findall("joint"):
-            child = element.find("child")
-            if child is None or child.get("link") not in elements:
-                raise self.fail(element, f"joint '{element.get('name')}' has no <child link=...> naming a link",
-                                "name one of the URDF's links")
-            parent = element.find("parent")
-            if parent is None or parent.get("link") not in elements:
-                raise self.fail(element, f"joint '{element.get('name')}' has no <parent link=...> naming a link",
-                                "name one of the URDF's links")
-            if child.get("link") in joints:
-                raise self.fail(element, f"link '{child.get('link')}' is the child of two joints",
-                                "a URDF is a tree: give each link one parent")
-            joints[child.get("link")] = element
-        roots = [name for name in elements if name not in joints]
-        if len(roots) != 1:
-            raise UrdfError(f"{self.path}: a URDF has one root link, this one has {len(roots)} "
-                            f"({', '.join(roots) or 'a loop'}); join them by joints into one tree")
-        ordered: list[Link] = []
-        pending = roots
-        while pending:
-            name = pending.pop(0)
-            ordered.append(self.link(elements[name], joints.get(name)))
-            pending += [child for child, joint in joints.items() if joint.find("parent").get("link") == name]
-        return _without_bare_frames(ordered)
+        return _without_bare_frames([self.link(tree.links[name], tree.joints.get(name)) for name in tree.order])
 
     def link(self, element: etree._Element, joint_element: etree._Element | None) -> Link:
-        inertial = element.find("inertial")
-        mass, com, inertia, products = 0.0, None, None, (0.0, 0.0, 0.0)
-        if inertial is not None:
-            mass_element = inertial.find("mass")
-            mass = self.number(mass_element, "value") if mass_element is not None else 0.0
-            frame = self.origin(inertial)
-            com = frame.xyz
-            tensor = inertial.find("inertia")
-            if tensor is not None:
-                inertia, products = self.inertia(tensor, frame)
+        mass, com, inertia, products = self.inertial(element, joint_element)
         shapes = tuple(shape for collision in element.findall("collision")
                        for shape in self.geometry(collision, element.get("name")))
         visuals = self.visuals(element)
@@ -184,8 +181,35 @@ class _Reader:
             origin = self.origin(joint_element)
             joint = self.joint(joint_element)
         return Link(element.get("name"), parent, origin, mass, shapes, joint, com=com,
-                    inertia=inertia if mass > 0 else None, inertia_products=products,  # type: ignore[arg-type]
+                    inertia=inertia, inertia_products=products,  # type: ignore[arg-type]
                     visuals=visuals)
+
+    def inertial(self, link: etree._Element, joint: etree._Element | None) -> Inertial:
+        """The link's mass, centre of mass, moments and products of inertia: a link the
+        `joint` moves must have them, and a possible body's; a welded one may go without."""
+        name = link.get("name")
+        moving = joint is not None and JOINT_KINDS.get(joint.get("type")) is not None
+        inertial = link.find("inertial")
+        if inertial is None:
+            if moving:
+                raise self.fail(link, f"link '{name}' moves on joint '{joint.get('name')}' but has no <inertial>",
+                                "add one with its <mass value=\"...\"/> (kg) and <inertia ixx=... iyy=... izz=.../> "
+                                "about its centre of mass (kg m^2)")
+            return 0.0, None, None, (0.0, 0.0, 0.0)
+        mass_element, tensor = inertial.find("mass"), inertial.find("inertia")
+        for element, what, fix in ((mass_element, "mass", "<mass value=\"...\"/> in kg"),
+                                   (tensor, "inertia", "<inertia ixx=\"...\" iyy=\"...\" izz=\"...\"/> about its "
+                                    "centre of mass (kg m^2)")):
+            if element is None and moving:
+                raise self.fail(inertial, f"the <inertial> of link '{name}', which a joint moves, has no <{what}>",
+                                f"add {fix}")
+        mass = self.number(mass_element, "value") if mass_element is not None else 0.0
+        self.check(mass_element, mass_problem(name, mass, moving))
+        frame = self.origin(inertial)
+        if tensor is None:
+            return mass, frame.xyz, None, (0.0, 0.0, 0.0)
+        moments, products = self.inertia(tensor, frame, name if mass > 0 else None)
+        return mass, frame.xyz, moments if mass > 0 else None, products
 
     def visuals(self, link: etree._Element) -> tuple[Shape, ...]:
         """The link's <visual> shapes in their colours, or none (draw the collision shapes)
@@ -217,12 +241,16 @@ class _Reader:
                             "write rgba=\"r g b a\"")
         return rgba  # type: ignore[return-value]
 
-    def inertia(self, tensor: etree._Element, frame: Origin) -> tuple[Vec3, Vec3]:
+    def inertia(self, tensor: etree._Element, frame: Origin, link: str | None) -> tuple[Vec3, Vec3]:
         """The <inertia>'s moments and products along the link axes: a URDF may give the
-        tensor in axes turned by the <inertial>'s rpy."""
+        tensor in axes turned by the <inertial>'s rpy. Checked as a body's inertia when it is
+        that of `link` (None: a massless frame's, which no simulator sees)."""
         xx, yy, zz, xy, xz, yz = (self.number(tensor, k, 0.0) for k in ("ixx", "iyy", "izz", "ixy", "ixz", "iyz"))
+        given = np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]])
+        if link is not None:
+            self.check(tensor, inertia_problem(link, given))
         turn = rotation_rpy(frame.rpy)
-        full = turn @ np.array([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]) @ turn.T
+        full = turn @ given @ turn.T
         return ((float(full[0, 0]), float(full[1, 1]), float(full[2, 2])),
                 (float(full[0, 1]), float(full[0, 2]), float(full[1, 2])))
 
@@ -249,10 +277,10 @@ class _Reader:
             if lower >= upper:
                 raise self.fail(limit, f"joint '{element.get('name')}' has lower {lower:g} >= upper {upper:g}",
                                 "give its range with lower below upper")
-        effort, velocity = self.number(limit, "effort"), self.number(limit, "velocity")
+        effort, velocity = self.positive(limit, "effort"), self.positive(limit, "velocity")
         dynamics = element.find("dynamics")
-        damping = self.number(dynamics, "damping", DAMPING * effort) if dynamics is not None else DAMPING * effort
-        friction = self.number(dynamics, "friction", 0.0) if dynamics is not None else 0.0
+        damping = self.non_negative(dynamics, "damping", DAMPING * effort) if dynamics is not None else DAMPING * effort
+        friction = self.non_negative(dynamics, "friction", 0.0) if dynamics is not None else 0.0
         unit = tuple(float(v) for v in axis / np.linalg.norm(axis))
         return Joint(element.get("name"), JOINT_KINDS[kind], unit, lower, upper, velocity, effort,  # type: ignore[arg-type]
                      self.servo(effort), damping=damping, friction=friction, armature=ARMATURE * effort)
@@ -266,11 +294,14 @@ class _Reader:
         shape = geometry[0]
         if shape.tag == "box":
             size = self.vector(shape, "size", (0.0, 0.0, 0.0))
+            if min(size) <= 0:
+                raise self.fail(shape, f"a <box> of link '{link}' has size=\"{shape.get('size', '')}\"",
+                                "give its three sides, each above 0, in metres: size=\"x y z\"")
             return (Shape("box", tuple(v / 2 for v in size), origin),)
         if shape.tag == "sphere":
-            return (Shape("sphere", (self.number(shape, "radius"),), origin),)
+            return (Shape("sphere", (self.positive(shape, "radius"),), origin),)
         if shape.tag == "cylinder":
-            return (Shape("cylinder", (self.number(shape, "radius"), self.number(shape, "length") / 2), origin),)
+            return (Shape("cylinder", (self.positive(shape, "radius"), self.positive(shape, "length") / 2), origin),)
         if shape.tag == "mesh":
             return (self.mesh(shape, origin),)
         raise self.fail(shape, f"<{shape.tag}> is not a URDF geometry", "use box, cylinder, sphere or mesh")

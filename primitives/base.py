@@ -12,13 +12,13 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from enum import StrEnum
-from typing import Any, Mapping
+from typing import Any, Callable, Mapping
 
 import numpy as np
 
 from atd.model.controllers import ParamValue
 from atd.model.task import Environment, ObjectInfo
-from primitives.robot import HandMode, Readings, RobotInfo
+from primitives.robot import DepthImage, HandMode, Readings, RobotInfo
 
 
 class Status(StrEnum):
@@ -72,6 +72,9 @@ class Context:
     # context is the run's with a fresh blackboard): see `primitives.blackboard.EMPTY_HAND`.
     memory: dict[str, Any] = field(default_factory=dict)
     rng: np.random.Generator = field(default_factory=lambda: np.random.default_rng(0))
+    # Takes a picture with the named depth camera now (`Robot.capture`): a camera is read on
+    # demand, never each tick. None where nothing runs (an ESTD checked before its run).
+    camera: Callable[[str], DepthImage] | None = None
 
 
 class Controller(ABC):
@@ -104,6 +107,7 @@ class StateView:
     arm: Status
     hand: Status
     subtask: Status | None = None  # DONE / ERROR once a sub-task's machine has ended
+    subtask_end: str | None = None  # the end state it ended in
     reasons: dict[str, str] = field(default_factory=dict)
 
 

@@ -20,6 +20,7 @@ from primitives.base import Condition, Context, StateView, Status
 from primitives.blackboard import EMPTY_HAND
 from primitives.filters import ContactWrench, Debounce, LowPass, world_load
 from primitives.robot import HandInfo, Readings
+from primitives.values import Approach, NothingFound
 
 # hardware_failure ingredients (ours)
 STALE_TIME = 0.05  # s a sensor stream may go without an update before it counts as frozen
@@ -58,6 +59,17 @@ class StatusIs(Condition):
             return False
         self.evidence = {self.which: actual.value, "reason": state.reasons.get(self.which, ""),
                          "held_for": self.debounce.held}
+        return True
+
+
+class SubtaskEndedIn(Condition):
+    """The sub-task's machine ended in the end state `end_state`: a parent branching on
+    which of its outcomes a sub-task reached (an ATD `<outcome name="..."/>`)."""
+
+    def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
+        if state.subtask_end != self.params["end_state"]:
+            return False
+        self.evidence = {"subtask_end": state.subtask_end}
         return True
 
 
@@ -321,3 +333,21 @@ class Range(Debounced):
         value = math.inf if readings.range is None else float(readings.range)
         self.evidence = {"range": value if math.isfinite(value) else "out of range", "distance": self.distance}
         return (value > self.distance) if self.above else (value < self.distance)
+
+
+class Perceived(Condition):
+    """The state's perceive controller has finished and written what it found under `value`:
+    an object (`Approach`, for object_found) or none (`NothingFound`, for nothing_found)."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...], kind: type[Approach] | type[NothingFound]) -> None:
+        super().__init__(ctx, sensors)
+        self.value = str(self.params["value"])
+        self.kind = kind
+
+    def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
+        found = self.ctx.memory.get(self.value)
+        if state.arm is not Status.DONE or not isinstance(found, self.kind):
+            return False
+        self.evidence = ({"value": self.value, "point": found.point, "method": found.method}
+                         if isinstance(found, Approach) else {"value": self.value, "nothing": found.reason})
+        return True

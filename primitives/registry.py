@@ -15,6 +15,7 @@ from typing import Callable, Mapping
 from atd.model.controllers import ARM_CONTROLLERS, CONDITIONS, HAND_CONTROLLERS, defaults
 from atd.model.estd import Condition as Leaf
 from atd.model.estd import Controller as Use
+from primitives.arm.explore import Explore
 from primitives.arm.grasp import NaiveGraspApproach, RobustGraspApproach
 from primitives.arm.jaw_grasp import JawGraspCorrection
 from primitives.arm.move import CartesianMove, Hold, Push
@@ -25,9 +26,11 @@ from primitives.conditions import (
     FingersStill,
     Gripper,
     LoadHeld,
+    Perceived,
     Range,
     SimulationUnstable,
     StatusIs,
+    SubtaskEndedIn,
     TactileForce,
     TactileLoadChange,
     Timeout,
@@ -37,6 +40,8 @@ from primitives.hands import hand_kind
 from primitives.hands.multi_finger import NaiveGraspHand, RobustGraspHand
 from primitives.hands.parallel_jaw import CloseUntilForce, NaiveJawGrasp, Squeeze
 from primitives.hands.posture import HandShape, HoldPosition, OpenTo
+from primitives.perception.perceive import perceive
+from primitives.values import Approach, NothingFound
 
 
 class BuildError(ValueError):
@@ -56,6 +61,8 @@ ARM: Mapping[str, ControllerClass] = {
     "robust_grasp_approach": RobustGraspApproach,
     "naive_grasp_approach": NaiveGraspApproach,
     "jaw_grasp_correction": JawGraspCorrection,
+    "explore": Explore,
+    "perceive": perceive,
 }
 
 _POSTURES: Mapping[str, ControllerClass] = {"hold_position": HoldPosition, "hand_shape": HandShape, "open_to": OpenTo}
@@ -82,6 +89,7 @@ CONDITION_KINDS: Mapping[str, ConditionMaker] = {
     "hand_error": _status("hand", Status.ERROR),
     "subtask_succeeded": _status("subtask", Status.DONE),
     "subtask_failed": _status("subtask", Status.ERROR),
+    "subtask_ended_in": SubtaskEndedIn,
     "arm_fault": lambda ctx, sensors: Fault(ctx, sensors, "arm", ("joints", "wrench")),
     "hand_fault": lambda ctx, sensors: Fault(ctx, sensors, "hand", _hand_streams(ctx)),
     "simulation_unstable": SimulationUnstable,
@@ -98,6 +106,8 @@ CONDITION_KINDS: Mapping[str, ConditionMaker] = {
     "gripper_opening_below": lambda ctx, sensors: Gripper(ctx, sensors, "opening", above=False),
     "range_below": lambda ctx, sensors: Range(ctx, sensors, above=False),
     "range_above": lambda ctx, sensors: Range(ctx, sensors, above=True),
+    "object_found": lambda ctx, sensors: Perceived(ctx, sensors, Approach),
+    "nothing_found": lambda ctx, sensors: Perceived(ctx, sensors, NothingFound),
 }
 
 

@@ -88,8 +88,8 @@ class _Translator:
         if self._errors() > failures_before:
             return None
         estd = Estd(robot=self.factory.name, arm=self.factory.arm.name, source=task.source,
-                    initial=task.initial_state or "", object=task.object, environment=task.environment,
-                    states=tuple(states), transitions=tuple(transitions))
+                    initial=task.initial_state or "", known_objects=task.known_objects, environment=task.environment,
+                    inputs=task.inputs, states=tuple(states), transitions=tuple(transitions))
         problems = check_rules(task, estd) + self._sensor_problems(estd) + validate_vocabulary(estd)
         for problem in problems:
             self.diagnostics.append(error("TRN100", f"{self.robot}: refusing to emit an ESTD: {problem}", task.loc,
@@ -113,14 +113,16 @@ class _Translator:
 
     # -- nodes --------------------------------------------------------------------------
     def node(self, state: State, task: Task, context: MappingContext, chain: tuple[Path, ...]) -> EstdState | None:
-        base = {"name": state.name, "type": state.type, "atd": state.name, "loc": _loc_text(state.loc)}
+        base = {"name": state.name, "type": state.type, "atd": state.name, "loc": _loc_text(state.loc),
+                "object": state.object, "writes": state.writes, "target_from": state.target_from,
+                "inputs": state.inputs}
         if state.type.is_end:
             return EstdState(**base)
         if state.type is StateType.TASK:
             machine = self.subtask(state, context, chain)
             return EstdState(**base, machine=machine) if machine else None
         try:
-            mapping = self.factory.map_state(state, context)
+            mapping = self.factory.map_state(state, context.acting_on(state.object))
         except Unmappable as exc:
             self._refuse("TRN001", f"{state.type.value} state '{state.name}'", exc.reason, state.loc, exc.hint)
             return None
@@ -177,10 +179,14 @@ class _Translator:
         events = []
         for atd, event in zip(ids, transition.events):
             try:
-                if origin.type is StateType.TASK and event.type in _SUBTASK_OUTCOMES:
-                    node: Condition | ConditionGroup = Condition(kind=_SUBTASK_OUTCOMES[event.type])
+                if origin.type is StateType.TASK and event.type is EventType.OUTCOME:
+                    node: Condition | ConditionGroup = Condition(kind="subtask_ended_in",
+                                                                 params={"end_state": event.name})
+                elif origin.type is StateType.TASK and event.type in _SUBTASK_OUTCOMES:
+                    node = Condition(kind=_SUBTASK_OUTCOMES[event.type])
                 else:
-                    node = self.factory.map_event(event.type, event.seconds, transition, context)
+                    node = self.factory.map_event(event.type, event.seconds, transition,
+                                                  context.acting_on(origin.object))
             except Unmappable as exc:
                 self._refuse("TRN002", f"event '{event.type.value}' of transition {tid}", exc.reason,
                              event.loc or transition.loc, exc.hint)

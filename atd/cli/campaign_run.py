@@ -60,7 +60,7 @@ def run_campaign(spec_file: Path, workers: int | None, ray_address: str | None, 
     so the records do not depend on --workers, --ray or the order trials ran in.
     """
     if ray_address is not None and find_spec("ray") is None:
-        _fail("error: --ray needs Ray, which is not installed; pip install 'atd[ray]'", EXIT_USAGE)
+        _fail("error: --ray needs Ray, which is not installed; pip install 'atd-robotics[ray]'", EXIT_USAGE)
     loaded, found = load_spec(spec_file)
     if loaded is None or has_errors(found):
         _fail(render_all(found), EXIT_INVALID)

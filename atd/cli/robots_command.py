@@ -13,7 +13,7 @@ from atd.cli.app import robots
 from atd.cli.translate import make_factory
 from atd.model.controllers import format_value
 from atd.model.task import Event, State, Task, Transition
-from atd.model.vocabulary import EventType, StateType
+from atd.model.vocabulary import FIRED_BY, EventType, StateType
 from atd.model.estd import describe
 from factories.base import Factory, MappingContext, Unmappable
 from factories.beside import description_file
@@ -55,6 +55,8 @@ def event_rows(factory: Factory) -> list[tuple[str, str]]:
         origin = State(name="origin", type=origin_type)
         task = Task(states=(origin, State(name="next", type=StateType.SUCCESS)))
         for event in EventType:
+            if event in FIRED_BY and origin_type not in FIRED_BY[event]:
+                continue  # fired only by states of other types (perception, sub-tasks)
             edge = Transition(origin="origin", destination="next", events=(Event(type=event),))
             try:
                 text = describe(factory.map_event(event, 5.0, edge, MappingContext(task)), thresholds=True)

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import click
 
-from atd.cli.app import robots, usage_error
-from atd.scaffold import HANDS, ScaffoldError, check_name, package_files, write_package
+from atd.cli.app import EXIT_INVALID, robots, usage_error
+from atd.scaffold import HANDS, ScaffoldError, UrdfScaffoldError, check_name, package_files, write_package
 from factories.registry import installed
 
 
@@ -29,6 +29,9 @@ def new(name: str, hand: str, urdf: Path | None, output: Path | None) -> None:
     try:
         check_name(name, list(installed()))
         write_package(target, package_files(name, hand, urdf))
+    except UrdfScaffoldError as exc:  # the URDF is invalid input: exit 1, as a task with errors is
+        click.echo(f"error: {exc}", err=True)
+        raise SystemExit(EXIT_INVALID) from None
     except ScaffoldError as exc:
         usage_error(str(exc))
     click.echo(f"wrote the robot '{name}' to {target}/")

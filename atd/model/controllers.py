@@ -125,6 +125,14 @@ _FORCE_SOURCE = _p(WORD, "what measures the grip force: the tactile pads or the 
 _FOR = _p(NUM, "the condition must hold this long without a break before it fires (ours; 0 = at once)",
           0.0, unit="s")
 
+# How explore moves, and the explore moves a blind exploration makes.
+_EXPLORING = {
+    "speed": _p(NUM, "speed of an explore move (ours)", 0.04, unit="m/s"),
+    "force_threshold": _p(NUM, "force over the start's, on the wrist or a pad, that is a contact (ours, over "
+                          "the robust grasp's 2 N)", 3.0, unit="N"),
+    "filter_time": _FILTER,
+}
+
 # cartesian_move's parameters; push takes them too, with its own defaults where it differs.
 _MOVE = {
     "target": _TARGET,
@@ -333,6 +341,60 @@ _ARM_CONTROLLERS = (
             "filter_time": _FILTER,
         },
     ),
+    ControllerSpec(
+        "explore", Role.ARM,
+        "Move the TCP along a direction until the wrist or a pad feels a contact (done; where, written "
+        "under `writes`), or until max_distance without one (error).",
+        "thesis Table 3.1 (explore)",
+        {
+            "direction": _p(VEC, "direction of the motion, world frame", required=True, length=3,
+                            limits=ranges.DIRECTION),
+            **_EXPLORING,
+            "max_distance": _p(NUM, "how far to go without a contact before giving up (ours)", 0.3, unit="m"),
+            "writes": _p(WORD, "the name the contact (a point) is written under for later states; unset: none"),
+        },
+    ),
+    ControllerSpec(
+        "perceive", Role.ARM,
+        "Choose an object in the container to grasp, by one of thesis 3.4.3's approach-vector generators, "
+        "and write its approach (a top-down TCP pose over it) under `writes`, or that nothing was found.",
+        "thesis 3.4.3, Fig. 3.26 (random blind, blind exploration, vision)",
+        {
+            "method": _p(WORD, "the generator: random_blind, blind_exploration or vision", required=True,
+                         choices=("random_blind", "blind_exploration", "vision")),
+            "writes": _p(WORD, "the name the approach (or nothing found) is written under", required=True),
+            "container_pose": _p(VEC, "the container as the task knows it: the frame at the centre of its floor's "
+                                 "underside, 4x4 row-major, world frame", required=True, length=16,
+                                 limits=ranges.COORDINATE),
+            "container_size": _p(VEC, "its outer lengths along its own x y z", required=True, length=3, unit="m",
+                                 limits=ranges.SIZE),
+            "container_wall": _p(NUM, "the thickness of its walls and floor", 0.01, unit="m"),
+            "hand_reach": _p(NUM, "how far the hand reaches below the TCP, pointing down (the robot's own "
+                             "geometry: `RobotDescription.hand_reach`)", 0.0, unit="m", limits=ranges.COORDINATE),
+            "hand_radius": _p(NUM, "how far the hand reaches sideways from the TCP: random blind and the sweep "
+                              "keep the TCP this far in from the walls (the robot's own geometry: "
+                              "`RobotDescription.hand_radius`)", 0.05, unit="m"),
+            "approach_height": _p(NUM, "the approach puts the hand's lowest point this far over the higher of "
+                                  "the object's top and the container's rim (ours)", 0.05, unit="m"),
+            **_EXPLORING,
+            "sweep_height": _p(NUM, "blind exploration: the hand's lowest point sweeps this far over the floor "
+                               "(ours)", 0.02, unit="m"),
+            "lane_spacing": _p(NUM, "blind exploration: the sweep's lanes lie at most this far apart (ours: under "
+                               "the width of a hand)", 0.05, unit="m"),
+            "floor_band": _p(NUM, "blind exploration: a contact of the hand's lowest point within this of the "
+                             "floor is the floor (ours)", 0.015, unit="m"),
+            "camera": _p(WORD, "vision: the depth camera to look with; unset: the robot's first"),
+            "floor_margin": _p(NUM, "vision: points less than this over the floor are the floor (ours)", 0.01,
+                               unit="m"),
+            "wall_margin": _p(NUM, "vision: points less than this in from the walls are the walls (ours)", 0.01,
+                              unit="m"),
+            "above_rim": _p(NUM, "vision: objects piled up to this far over the rim are still looked for (ours)",
+                            0.1, unit="m"),
+            "voxel": _p(NUM, "vision: the clustering grid; points more than two voxels apart, with nothing "
+                        "between them, are never one object (ours)", 0.01, unit="m"),
+            "min_points": _p(INT, "vision: a cluster of fewer points is noise (ours)", 20),
+        },
+    ),
 )
 
 _HAND_CONTROLLERS = (
@@ -436,6 +498,8 @@ _CONDITIONS = (
                   params={"seconds": _p(NUM, "time limit", unit="s", required=True, limits=ranges.TIMEOUT)}),
     ConditionSpec("subtask_succeeded", "The sub-task's machine ended in a success state."),
     ConditionSpec("subtask_failed", "The sub-task's machine ended in a failure state."),
+    ConditionSpec("subtask_ended_in", "The sub-task's machine ended in the end state named (an ATD <outcome>).",
+                  params={"end_state": _p(WORD, "the sub-task's end state", required=True)}),
     ConditionSpec("tactile_force_above", "At least min_pads pads read >= force_threshold.",
                   SensorKind.TACTILE, _TACTILE_PARAMS),
     ConditionSpec("tactile_force_below", "Fewer than min_pads pads read >= force_threshold.",
@@ -496,6 +560,11 @@ _CONDITIONS = (
                   {"distance": _p(NUM, "range", 0.05, unit="m"), "for_time": _FOR}),
     ConditionSpec("range_above", "The range sensor reads more than the distance.", SensorKind.RANGE,
                   {"distance": _p(NUM, "range", 0.05, unit="m"), "for_time": _FOR}),
+    ConditionSpec("object_found", "The state's perceive controller has finished and written an approach under "
+                  "`value`.", params={"value": _p(WORD, "the name the perceive state writes", required=True)}),
+    ConditionSpec("nothing_found", "The state's perceive controller has finished and found nothing; it wrote "
+                  "so under `value`.", params={"value": _p(WORD, "the name the perceive state writes",
+                                                           required=True)}),
 )
 
 ARM_CONTROLLERS: Mapping[str, ControllerSpec] = MappingProxyType({c.name: c for c in _ARM_CONTROLLERS})

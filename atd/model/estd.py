@@ -26,7 +26,7 @@ from atd.model.controllers import (
     check_params,
     format_value,
 )
-from atd.model.task import Environment, ObjectInfo
+from atd.model.task import Environment, KnowsObjects, Value
 from atd.model.vocabulary import EventType, StateType
 
 FORMAT_VERSION = 1
@@ -98,6 +98,11 @@ class EstdState(EstdElement):
     arm: Controller | None = None
     hand: Controller | None = None
     machine: Estd | None = None  # a translated sub-task
+    # What the ATD state says of the data around it, for the runtime (docs/atd-format.md):
+    object: str | None = None  # which of the task's objects it acts on
+    writes: tuple[Value, ...] = ()  # the values it writes when it leaves on its finding event
+    target_from: str | None = None  # the value its target is read from when it starts
+    inputs: dict[str, str] = Field(default_factory=dict)  # sub-task input -> this machine's value
 
 
 class EstdTransition(EstdElement):
@@ -110,15 +115,15 @@ class EstdTransition(EstdElement):
     events: tuple[EstdEvent, ...] = Field(min_length=1)
 
 
-class Estd(EstdElement):
+class Estd(EstdElement, KnowsObjects):
     """A whole ESTD: the machine for one robot (and arm) translated from one ATD file."""
 
     robot: str
     arm: str
     source: str | None = None  # the ATD file; relative object shapes are relative to it
     initial: str
-    object: ObjectInfo | None = None
     environment: Environment | None = None
+    inputs: tuple[Value, ...] = ()  # a sub-machine's values its parent gives it
     states: tuple[EstdState, ...]
     transitions: tuple[EstdTransition, ...] = ()
     version: int = FORMAT_VERSION
@@ -140,8 +145,8 @@ class Estd(EstdElement):
         """Every file this ESTD was made from (each machine's ATD, the object's mesh): the
         files a command that writes must never overwrite."""
         found = [Path(machine.source) for _, machine in self.walk() if machine.source]
-        if self.object is not None and self.object.shape and self.source:
-            found.append(Path(self.source).parent / self.object.shape)
+        if self.source:
+            found += [Path(self.source).parent / o.shape for o in self.known_objects if o.shape]
         return found
 
     def walk(self, prefix: str = "") -> list[tuple[str, Estd]]:

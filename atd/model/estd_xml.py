@@ -31,7 +31,7 @@ from atd.model.estd import (
 )
 from atd.model.reader import TaskReader
 from atd.model.task import Location
-from atd.model.writer import object_element
+from atd.model.writer import environment_element, object_element, value_element
 from atd.model.xmlsafe import MAX_BYTES, ParsedXml, parse_bytes, read_file
 from schemas import schema_path
 
@@ -65,19 +65,25 @@ def _machine(parent: etree._Element | None, estd: Estd) -> etree._Element:
     attrs = _attrs(version=str(estd.version), robot=estd.robot, arm=estd.arm, source=estd.source,
                    initial=estd.initial)
     root = etree.Element(ROOT, attrs) if parent is None else etree.SubElement(parent, ROOT, attrs)
-    if estd.object is not None:
-        object_element(root, estd.object)
+    for obj in estd.known_objects:
+        object_element(root, obj)
     if estd.environment is not None:
-        env = etree.SubElement(root, "environment")
-        for obstacle in estd.environment.obstacles:
-            size = {"size": " ".join(map(format_number, obstacle.size))} if obstacle.size else {}
-            etree.SubElement(env, "obstacle", size).text = " ".join(map(format_number, obstacle.position))
+        environment_element(root, estd.environment, format_number)
+    for value in estd.inputs:
+        value_element(root, "input", value)
     for state in estd.states:
         node = etree.SubElement(root, "state", _attrs(
-            name=state.name, type=state.type.value, atd=state.atd, loc=state.loc, primitive=state.primitive))
+            name=state.name, type=state.type.value, atd=state.atd, loc=state.loc, primitive=state.primitive,
+            object=state.object))
         for role, controller in (("arm", state.arm), ("hand", state.hand)):
             if controller is not None:
                 _params(etree.SubElement(node, role, controller=controller.name), controller.params)
+        if state.target_from is not None:
+            etree.SubElement(node, "target", {"from": state.target_from})
+        for value in state.writes:
+            value_element(node, "writes", value)
+        for name, source in state.inputs.items():
+            etree.SubElement(node, "input", {"name": name, "from": source})
         if state.machine is not None:
             _machine(node, state.machine)
     for transition in estd.transitions:
@@ -146,20 +152,25 @@ def _read_machine(node: etree._Element, doc: ParsedXml) -> Estd:
     reader = TaskReader(doc)
     fields: dict = {k: node.get(k) for k in ("robot", "arm", "source", "initial") if node.get(k) is not None}
     fields["version"] = int(node.get("version", "1"))
-    states, transitions = [], []
-    for child in node.iterchildren("object", "environment", "state", "transition"):
+    states, transitions, objects, inputs = [], [], [], []
+    for child in node.iterchildren("object", "environment", "input", "state", "transition"):
         if child.tag == "object":
-            fields["object"] = reader.object(child)
+            objects.append(reader.object(child))
         elif child.tag == "environment":
             fields["environment"] = reader.environment(child)
+        elif child.tag == "input":
+            inputs.append(reader.value_declaration(child, "input"))
         elif child.tag == "state":
-            arm, hand, sub = child.find("arm"), child.find("hand"), child.find(ROOT)
+            arm, hand, sub, target = child.find("arm"), child.find("hand"), child.find(ROOT), child.find("target")
             states.append(EstdState(
                 name=child.get("name"), type=child.get("type"), atd=child.get("atd"), loc=child.get("loc"),
-                primitive=child.get("primitive"),
+                primitive=child.get("primitive"), object=child.get("object"),
                 arm=_read_controller(arm) if arm is not None else None,
                 hand=_read_controller(hand) if hand is not None else None,
-                machine=_read_machine(sub, doc) if sub is not None else None))
+                machine=_read_machine(sub, doc) if sub is not None else None,
+                target_from=target.get("from") if target is not None else None,
+                writes=tuple(reader.value_declaration(w, "value") for w in child.iterchildren("writes")),
+                inputs={i.get("name"): i.get("from") for i in child.iterchildren("input")}))
         else:
             transitions.append(EstdTransition(
                 origin=child.get("origin"), destination=child.get("destination"), atd=child.get("atd"),
@@ -169,7 +180,8 @@ def _read_machine(node: etree._Element, doc: ParsedXml) -> Estd:
     if reader.diagnostics:
         first = reader.diagnostics[0]
         raise _Problem(first.message, node)
-    return Estd(states=tuple(states), transitions=tuple(transitions), **fields)
+    return Estd(states=tuple(states), transitions=tuple(transitions), known_objects=tuple(objects),
+                inputs=tuple(inputs), **fields)
 
 
 def parse_estd(data: bytes, file: str) -> tuple[Estd | None, list[Diagnostic]]:

@@ -12,8 +12,8 @@ from atd.model.diagnostics import Diagnostic, error, has_errors, warning
 from atd.model.files import unreadable
 from atd.model.reader import read_task
 from atd.model.task import Location, State, Task
-from atd.model.validate import check_task, subtask_path
-from atd.model.vocabulary import StateType
+from atd.model.validate import check_task, subtask_path, value_kinds
+from atd.model.vocabulary import EventType, StateType
 from atd.model.xmlsafe import ParsedXml, read_file
 from schemas import schema_path
 
@@ -83,14 +83,53 @@ def _check_subtasks(task: Task, including: tuple[Path, ...], seen: Loaded) -> li
                 seen[sub.resolve()] = (None, [])
                 seen[sub.resolve()] = _load(sub, including, seen)
                 found += seen[sub.resolve()][1]
-            found += _unsimulated_object(task, state, seen[sub.resolve()][0])
+            sub_task = seen[sub.resolve()][0]
+            found += _unsimulated_object(task, state, sub_task)
+            if sub_task is not None:
+                found += _outcomes(task, state, sub_task) + _inputs(task, state, sub_task)
+    return found
+
+
+def _outcomes(task: Task, state: State, sub: Task) -> list[Diagnostic]:
+    """An `<outcome name="..."/>` leaving a sub-task state names one of the sub-task's end states."""
+    ends = [s.name for s in sub.states if s.type.is_end]
+    found = []
+    for t in task.transitions:
+        if t.origin != state.name:
+            continue
+        for event in t.events:
+            if event.type is EventType.OUTCOME and event.name not in ends:
+                found.append(error("ATD224", f"sub-task '{state.file}' of state '{state.name}' has no end state "
+                                             f"'{event.name}'", event.loc or t.loc,
+                                   f"its outcomes (end states): {', '.join(ends) or 'none'}"))
+    return found
+
+
+def _inputs(task: Task, state: State, sub: Task) -> list[Diagnostic]:
+    """A sub-task state gives each of the sub-task's inputs a value of its kind, and no others."""
+    declared = {v.name: v.kind for v in sub.inputs}
+    kinds = value_kinds(task)
+    found = []
+    for name in [n for n in declared if n not in state.inputs]:
+        found.append(error("ATD225", f"state '{state.name}' gives sub-task '{state.file}' no input '{name}'",
+                           state.loc, f'add <input name="{name}" from="..."/>, naming a {declared[name].value} '
+                                      "this task writes"))
+    for name, source in state.inputs.items():
+        if name not in declared:
+            found.append(error("ATD225", f"sub-task '{state.file}' of state '{state.name}' has no input '{name}'",
+                               state.loc, f"its inputs: {', '.join(declared) or 'none'}"))
+        elif source in kinds and kinds[source][0] is not declared[name]:
+            kind, by = kinds[source]
+            found.append(error("ATD222", f"state '{state.name}' gives input '{name}' (a {declared[name].value}) the "
+                                         f"value '{source}', a {kind.value} ({by})", state.loc,
+                               f"give it a {declared[name].value}"))
     return found
 
 
 def _unsimulated_object(task: Task, state: State, sub: Task | None) -> list[Diagnostic]:
     """A run simulates the top task's world only; a sub-task describing another object would
     be silently left out of it, so say so."""
-    if sub is None or sub.object is None or sub.object == task.object:
+    if sub is None or all(o in task.known_objects for o in sub.known_objects):
         return []
     return [warning("ATD217", f"the <object> of sub-task '{state.file}' differs from this task's and is not "
                               "simulated: a run builds the world of the top task only", state.loc,

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import re
 from functools import cache
 from enum import StrEnum
 from pathlib import Path
@@ -21,19 +22,24 @@ from atd.model.controllers import CONTROLLERS, parse_value
 from atd.model.files import name_too_long
 from atd.model.ranges import Range
 from atd.model.task import (
+    ContainerInfo,
     Environment,
     ObjectInfo,
     Obstacle,
     Pose,
     Task,
+    Value,
 )
 from atd.model.vocabulary import (
+    PRODUCES,
     SIZE_LAYOUT,
     EventType,
     HandShape,
     Movement,
     ObjectClass,
+    PerceptionMethod,
     StateType,
+    ValueKind,
 )
 from atd.model.xmlsafe import ParsedXml
 
@@ -45,11 +51,17 @@ E = TypeVar("E", bound=StrEnum)
 Fields = dict[str, object]
 
 ROOT = "statemachine"
-TASK_CHILDREN = ("object", "environment", "state", "transition")
+TASK_CHILDREN = ("object", "environment", "input", "state", "transition")
 OBJECT_CHILDREN = ("pose", "weight", "inertia", "shape", "friction", "class", "size")
+ENVIRONMENT_CHILDREN = ("obstacle", "container")
+CONTAINER_CHILDREN = ("pose", "size", "wall")
 STATE_CHILDREN = (
     "movement", "hand_shape", "path", "trajectory", "preshape", "object_size", "hand_opening", "parameter",
+    "method", "direction", "contact_force", "max_distance", "writes", "target", "input",
 )
+STATE_ATTRIBUTES = ("name", "type", "file", "object", "container")
+IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+UNIT_TOLERANCE = 1e-3  # how far from 1 the length of a direction may be
 WAYPOINTS = ("position", "pose", "point")
 WAYPOINT_COUNT = {"position": 3, "pose": 16, "point": 3}
 RIGID_TOLERANCE = 1e-3
@@ -183,6 +195,32 @@ class TaskReader:
             self._error("ATD112", f"{what}: {problem}", node, "rename the file and this reference")
         return problem is None
 
+    def _identifier(self, node: etree._Element, name: str, what: str) -> bool:
+        """A name other elements refer to: a plain identifier; a located error when it is not."""
+        if IDENTIFIER.fullmatch(name):
+            return True
+        self._error("ATD113", f"{what} '{name}' is not a plain name", node,
+                    "use letters, digits and underscores, starting with a letter or an underscore, e.g. mug_2")
+        return False
+
+    def value_declaration(self, node: etree._Element, what: str) -> Value | None:
+        """`<writes name="..." kind="..."/>` or a sub-task's `<input name="..." kind="..."/>`."""
+        self._check_attributes(node, ("name", "kind"))
+        self._no_children(node)
+        name, word = node.get("name"), node.get("kind")
+        kind = None
+        if word is None:
+            self._error("ATD102", f"<{node.tag}> has no kind", node,
+                        f"add kind=\"...\", one of: {', '.join(k.value for k in ValueKind)}")
+        else:
+            kind = self._enum(node, ValueKind, "value kind", text=word)
+        if not name:
+            self._error("ATD102", f"<{node.tag}> has no name", node, f'add name="..." naming the {what}')
+            return None
+        if not self._identifier(node, name, what) or kind is None:
+            return None
+        return Value(name=name, kind=kind, loc=self.doc.loc(node))
+
     def _single(self, seen: dict[str, etree._Element], node: etree._Element, parent: str) -> bool:
         """True the first time a property appears; a repeat is reported."""
         if node.tag in seen:
@@ -202,12 +240,18 @@ class TaskReader:
             return None
         self._check_attributes(root, ("initial",))
         seen: dict[str, etree._Element] = {}
-        obj = env = None
+        env = None
+        objects: list[ObjectInfo] = []
+        inputs: list[Value] = []
         states: list[Fields] = []
         transitions: list[Fields] = []
         for node in _elements(root):
-            if node.tag == "object" and self._single(seen, node, ROOT):
-                obj = self.object(node)
+            if node.tag == "object":
+                objects.append(self.object(node))
+            elif node.tag == "input":
+                value = self.value_declaration(node, "input")
+                if value is not None:
+                    inputs.append(value)
             elif node.tag == "environment" and self._single(seen, node, ROOT):
                 env = self.environment(node)
             elif node.tag == "state":
@@ -222,8 +266,9 @@ class TaskReader:
                 self._unknown_element(node, ROOT, TASK_CHILDREN)
         return Task.model_validate({
             "initial": root.get("initial"),
-            "object": obj,
+            "known_objects": objects,
             "environment": env,
+            "inputs": inputs,
             "states": states,
             "transitions": transitions,
             "source": self.doc.file,
@@ -231,9 +276,12 @@ class TaskReader:
         })
 
     def object(self, node: etree._Element) -> ObjectInfo:
-        self._check_attributes(node, ())
+        self._check_attributes(node, ("name",))
         seen: dict[str, etree._Element] = {}
         fields: dict = {}
+        name = node.get("name")
+        if name is not None and self._identifier(node, name, "object name"):
+            fields["name"] = name
         for child in _elements(node):
             if child.tag not in OBJECT_CHILDREN:
                 self._unknown_element(child, "object", OBJECT_CHILDREN)
@@ -270,9 +318,15 @@ class TaskReader:
     def environment(self, node: etree._Element) -> Environment:
         self._check_attributes(node, ())
         obstacles = []
+        containers = []
         for child in _elements(node):
+            if child.tag == "container":
+                container = self.container(child)
+                if container is not None:
+                    containers.append(container)
+                continue
             if child.tag != "obstacle":
-                self._unknown_element(child, "environment", ("obstacle",))
+                self._unknown_element(child, "environment", ENVIRONMENT_CHILDREN)
                 continue
             self._check_attributes(child, ("size",))
             position = self._numbers(child, "obstacle position", 3, ranges.COORDINATE)
@@ -281,10 +335,47 @@ class TaskReader:
                 size = self._numbers(child, "obstacle size", 3, ranges.SIZE, words=child.get("size", "").split())
             if position is not None:
                 obstacles.append(Obstacle(position=position, size=size, loc=self.doc.loc(child)))
-        return Environment(obstacles=tuple(obstacles), loc=self.doc.loc(node))
+        return Environment(obstacles=tuple(obstacles), containers=tuple(containers), loc=self.doc.loc(node))
+
+    def container(self, node: etree._Element) -> ContainerInfo | None:
+        """`<container name="box">` with its pose, outer size and wall: an open box the robot knows."""
+        self._check_attributes(node, ("name",))
+        name = node.get("name")
+        if not name:
+            self._error("ATD102", "<container> has no name", node, 'add name="..." (states look in it by name)')
+        seen: dict[str, etree._Element] = {}
+        fields: dict = {}
+        for child in _elements(node):
+            if child.tag not in CONTAINER_CHILDREN:
+                self._unknown_element(child, "container", CONTAINER_CHILDREN)
+                continue
+            if not self._single(seen, child, "container"):
+                continue
+            self._check_attributes(child, ())
+            if child.tag == "pose":
+                fields["pose"] = self._pose(child, "container pose")
+            elif child.tag == "size":
+                fields["size"] = self._numbers(child, "container size (outer x y z)", 3, ranges.SIZE)
+            else:
+                fields["wall"] = self._value(child, "container wall", ranges.SIZE)
+        for needed, example in (("pose", "<pose>1 0 0 0.3  0 1 0 0  0 0 1 0  0 0 0 1</pose>"),
+                                ("size", "<size>0.30 0.25 0.10</size>")):
+            if needed not in seen:
+                self._error("ATD102", f"<container> '{name}' has no <{needed}>", node, f"add {example}")
+        fields = {k: v for k, v in fields.items() if v is not None}
+        if not name or not self._identifier(node, name, "container name") or {"pose", "size"} - set(fields):
+            return None
+        wall = fields.get("wall", ContainerInfo.model_fields["wall"].default)
+        size = fields["size"]
+        if 2 * wall >= min(size[0], size[1]) or wall >= size[2]:
+            self._error("ATD108", f"container '{name}': walls {wall:g} m thick leave no room inside "
+                        f"{' x '.join(f'{v:g}' for v in size)} m", seen.get("wall", node),
+                        "size is the outer size; give walls thinner than half of it")
+            return None
+        return ContainerInfo(name=name, **fields, loc=self.doc.loc(node))
 
     def state(self, node: etree._Element) -> Fields | None:
-        self._check_attributes(node, ("name", "type", "file"))
+        self._check_attributes(node, STATE_ATTRIBUTES)
         name, word, file = node.get("name"), node.get("type"), node.get("file")
         if not name:
             self._error("ATD102", "<state> has no name", node, 'add name="..." (unique within the task)')
@@ -303,17 +394,72 @@ class TaskReader:
         fields = self._state_properties(node)
         if file and not self._file_name(node, file, "file"):
             kind = None
+        if kind is not None and not self._fits(node, kind, name, fields):
+            kind = None
         if name is None or kind is None:
             if name:
                 self.dropped_states.add(name)
             return None
         fields.update(name=name, type=kind, file=file if kind is StateType.TASK else None, loc=self.doc.loc(node))
+        for attribute in ("object", "container"):
+            if node.get(attribute) is not None:
+                fields[attribute] = node.get(attribute)
         return fields
+
+    def _fits(self, node: etree._Element, kind: StateType, name: str | None, fields: dict) -> bool:
+        """What a state of this type needs and may hold, beyond the common properties: a
+        perceive its method and container, an explore its direction; values written only
+        by the primitives that produce them; inputs bound only on a sub-task."""
+        fine = True
+        needs = {StateType.PERCEIVE: (("method", "<method>vision</method>"),),
+                 StateType.EXPLORE: (("direction", "<direction>0 0 -1</direction>"),)}.get(kind, ())
+        for field, example in needs:
+            if field not in fields:
+                self._error("ATD102", f"{kind.value} state '{name}' has no <{field}>", node, f"add {example}")
+                fine = False
+        if kind is StateType.PERCEIVE and node.get("container") is None:
+            self._error("ATD102", f"perceive state '{name}' names no container", node,
+                        'add container="box", a <container> of the <environment>, to look in')
+            fine = False
+        only = {"method": StateType.PERCEIVE, "direction": StateType.EXPLORE, "contact_force": StateType.EXPLORE,
+                "max_distance": StateType.EXPLORE, "inputs": StateType.TASK}
+        for field, owner in only.items():
+            if field in fields and kind is not owner:
+                what = "<input>" if field == "inputs" else f"<{field}>"
+                self._error("ATD103", f"{what} is for {owner.value} states, not type=\"{kind.value}\"", node,
+                            f"remove it from state '{name}'")
+                fine = False
+        if node.get("container") is not None and kind is not StateType.PERCEIVE:
+            self._error("ATD103", f"only perceive states look in a container, not type=\"{kind.value}\"", node,
+                        'remove container="..."')
+            fine = False
+        if node.get("object") is not None and (kind.is_end or kind is StateType.TASK):
+            self._error("ATD103", f"a {kind.value} state acts on no object", node, 'remove object="..."')
+            fine = False
+        if "target_from" in fields and not kind.moves_arm:
+            self._error("ATD103", f"<target> is for arm primitives, not type=\"{kind.value}\"", node,
+                        "an arm primitive (move, transport, place, push, slide) takes its target from a value")
+            fine = False
+        produces = PRODUCES.get(kind, frozenset())
+        kinds_written: set[ValueKind] = set()
+        for value in fields.get("writes", ()):
+            if value.kind not in produces:
+                can = (f"a {kind.value} state writes a {' or a '.join(sorted(k.value for k in produces))}"
+                       if produces else "only perceive (a pose, a count) and explore (a point) states write values")
+                self._error("ATD114", f"state '{name}' cannot write a {value.kind.value}", node, can)
+                fine = False
+            elif value.kind in kinds_written:
+                self._error("ATD109", f"state '{name}' writes a {value.kind.value} twice", node, "keep one <writes>")
+                fine = False
+            kinds_written.add(value.kind)
+        return fine
 
     def _state_properties(self, node: etree._Element) -> dict:
         seen: dict[str, etree._Element] = {}
         fields: dict = {}
         parameters: dict[str, str] = {}
+        writes: list[Value] = []
+        inputs: dict[str, str] = {}
         for child in _elements(node):
             if child.tag not in STATE_CHILDREN:
                 self._unknown_element(child, "state", STATE_CHILDREN)
@@ -321,13 +467,21 @@ class TaskReader:
             if child.tag == "parameter":
                 self._parameter(child, parameters)
                 continue
+            if child.tag == "writes":
+                value = self.value_declaration(child, "value")
+                if value is not None:
+                    writes.append(value)
+                continue
+            if child.tag == "input":
+                self._binding(child, inputs)
+                continue
             key = "path" if child.tag == "trajectory" else str(child.tag)
             if key in seen:
                 self._error("ATD109", f"<state> has more than one <{child.tag}>" if key == child.tag
                             else "<state> has both <path> and <trajectory>", child, "keep one")
                 continue
             seen[key] = child
-            self._check_attributes(child, ())
+            self._check_attributes(child, ("from",) if key == "target" else ())
             if key == "movement":
                 fields["movement"] = self._enum(child, Movement, "movement")
             elif key in ("hand_shape", "preshape"):
@@ -338,9 +492,64 @@ class TaskReader:
                 fields["object_size"] = self._value(child, "object size", ranges.SIZE)
             elif key == "hand_opening":
                 fields["hand_opening"] = self._value(child, "hand opening", ranges.FRACTION)
+            elif key == "method":
+                fields["method"] = self._enum(child, PerceptionMethod, "perception method")
+            elif key == "direction":
+                fields["direction"] = self._direction(child)
+            elif key == "contact_force":
+                fields["contact_force"] = self._value(child, "contact force", ranges.FORCE)
+            elif key == "max_distance":
+                fields["max_distance"] = self._value(child, "max distance", ranges.DISTANCE)
+            elif key == "target":
+                fields["target_from"] = self._target(child)
+        if "path" in seen and "target" in seen:
+            self._error("ATD109", f"<state> has both <{seen['path'].tag}> and <target>", seen["target"],
+                        "keep one: a fixed path, or the target a value gives at run time")
+            fields.pop("target_from", None)
         if parameters:
             fields["parameters"] = parameters
+        if writes:
+            fields["writes"] = tuple(writes)
+        if inputs:
+            fields["inputs"] = inputs
         return {k: v for k, v in fields.items() if v is not None}
+
+    def _direction(self, node: etree._Element) -> tuple[float, ...] | None:
+        values = self._numbers(node, "direction", 3, ranges.DIRECTION)
+        if values is None:
+            return None
+        length = math.sqrt(sum(v * v for v in values))
+        if abs(length - 1.0) > UNIT_TOLERANCE:
+            self._error("ATD108", f"direction is not a unit vector: its length is {length:.4g}", node,
+                        "give x y z of length 1 in the world frame, e.g. 0 0 -1 (straight down)")
+            return None
+        return values
+
+    def _reference(self, node: etree._Element, attribute: str, example: str) -> str | None:
+        """The value name an element takes from its `attribute`; located errors when missing or malformed."""
+        name = node.get(attribute)
+        if not name:
+            self._error("ATD102", f"<{node.tag}> has no {attribute}", node, example)
+            return None
+        return name if self._identifier(node, name, "value name") else None
+
+    def _target(self, node: etree._Element) -> str | None:
+        """`<target from="approach"/>`: the state's target is a value written by an earlier state."""
+        self._no_children(node)
+        return self._reference(node, "from", 'e.g. <target from="approach"/>, naming a value an earlier state writes')
+
+    def _binding(self, node: etree._Element, into: dict[str, str]) -> None:
+        """`<input name="approach" from="found"/>` on a sub-task state: its input from this task's value."""
+        self._check_attributes(node, ("name", "from"))
+        self._no_children(node)
+        name = node.get("name")
+        value = self._reference(node, "from", 'e.g. <input name="approach" from="found"/>')
+        if not name:
+            self._error("ATD102", "<input> has no name", node, "name the sub-task's <input> it gives a value")
+        elif name in into:
+            self._error("ATD109", f"input '{name}' is given twice", node, "keep one")
+        elif value is not None:
+            into[name] = value
 
     def _parameter(self, node: etree._Element, into: dict[str, str]) -> None:
         self._check_attributes(node, ("name",))
@@ -400,11 +609,19 @@ class TaskReader:
             if kind is None:
                 self._unknown_element(child, "transition", list(_members(EventType)))
                 continue
-            self._check_attributes(child, ())
+            self._check_attributes(child, ("name",) if kind is EventType.OUTCOME else ())
             if kind is EventType.TIMEOUT:
                 seconds = self._value(child, "timeout", ranges.TIMEOUT)
                 if seconds is not None:
                     events.append({"type": kind, "seconds": seconds, "loc": self.doc.loc(child)})
+            elif kind is EventType.OUTCOME:
+                self._no_children(child)
+                name = child.get("name")
+                if name:
+                    events.append({"type": kind, "name": name, "loc": self.doc.loc(child)})
+                else:
+                    self._error("ATD102", "<outcome> has no name", child,
+                                'name the sub-task\'s end state, e.g. <outcome name="nothing_left"/>')
             else:
                 self._no_children(child)
                 if (child.text or "").strip():

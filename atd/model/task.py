@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 from functools import cached_property
-from typing import TYPE_CHECKING, Literal, NamedTuple
+from typing import TYPE_CHECKING, Any, Literal, NamedTuple
 
 from atd.model.frozen import Frozen
 from pydantic import Field, InstanceOf
@@ -20,7 +20,9 @@ from atd.model.vocabulary import (
     HandShape,
     Movement,
     ObjectClass,
+    PerceptionMethod,
     StateType,
+    ValueKind,
 )
 
 if TYPE_CHECKING:
@@ -79,8 +81,10 @@ class Pose(AtdElement):
 
 
 class ObjectInfo(AtdElement):
-    """What the task knows of the object it manipulates (D5 Table 2.1)."""
+    """What the task knows of an object it manipulates (D5 Table 2.1). `name` tells apart
+    the objects of a task that knows several; a task's one object may go unnamed."""
 
+    name: str | None = None
     pose: Pose | None = None
     weight: float | None = None  # kg
     inertia: tuple[float, ...] | None = None  # 3x3, row-major, kg m^2
@@ -154,8 +158,34 @@ class Obstacle(AtdElement):
     size: Vec3 | None = None
 
 
+class ContainerInfo(AtdElement):
+    """An open box the robot knows (thesis 3.4.3: its pose and size, not what is in it),
+    given as a world file gives one (docs/worlds.md): `pose` is the centre of its floor's
+    underside, `size` its outer lengths along its own axes, `wall` the thickness of its
+    walls and floor."""
+
+    name: str
+    pose: Pose
+    size: Vec3
+    wall: float = 0.01
+
+    @property
+    def inner_size(self) -> Vec3:
+        """The room inside: what perception searches and a hand reaches into."""
+        sx, sy, sz = self.size
+        return (sx - 2 * self.wall, sy - 2 * self.wall, sz - self.wall)
+
+
 class Environment(AtdElement):
     obstacles: tuple[Obstacle, ...] = ()
+    containers: tuple[ContainerInfo, ...] = ()
+
+
+class Value(AtdElement):
+    """A named value a state writes or a sub-task takes as input, and what it holds."""
+
+    name: str
+    kind: ValueKind
 
 
 class Waypoint(AtdElement):
@@ -183,16 +213,45 @@ class State(AtdElement):
     hand_opening: float | None = None  # release, 0 closed .. 1 open
     file: str | None = None  # task: the sub-task's ATD, relative to this file
     parameters: dict[str, str] = Field(default_factory=dict)  # primitive parameter overrides
+    object: str | None = None  # which of the task's objects it acts on
+    container: str | None = None  # perceive: which of the task's containers it looks in
+    method: PerceptionMethod | None = None  # perceive
+    direction: Vec3 | None = None  # explore: a unit vector, world frame
+    contact_force: float | None = None  # explore: N felt that means contact
+    max_distance: float | None = None  # explore: m to go before giving up
+    writes: tuple[Value, ...] = ()  # perceptual primitives: the values it produces
+    target_from: str | None = None  # arm primitives: the named value that is its target
+    inputs: dict[str, str] = Field(default_factory=dict)  # task: sub-task input -> this task's value
 
     @property
     def target(self) -> Waypoint | None:
         """The last waypoint is where an arm primitive ends."""
         return self.path[-1] if self.path else None
 
+    @property
+    def reads(self) -> tuple[str, ...]:
+        """The named values the state needs when it starts: its target's, its sub-task's inputs'."""
+        named = (self.target_from,) if self.target_from else ()
+        return named + tuple(self.inputs.values())
+
 
 class Event(AtdElement):
     type: EventType
     seconds: float | None = None  # only for timeout
+    name: str | None = None  # only for outcome: the sub-task's end state
+
+    @property
+    def key(self) -> tuple:
+        """What the event means: two edges from one state on the same keys cannot both be taken."""
+        return (self.type, self.seconds, self.name)
+
+    @property
+    def label(self) -> str:
+        if self.type is EventType.TIMEOUT:
+            return f"timeout({self.seconds:g}s)"
+        if self.type is EventType.OUTCOME:
+            return f"outcome({self.name})"
+        return self.type.value
 
 
 class Transition(AtdElement):
@@ -204,18 +263,45 @@ class Transition(AtdElement):
 
     @property
     def label(self) -> str:
-        return " & ".join(
-            f"timeout({e.seconds:g}s)" if e.type is EventType.TIMEOUT else e.type.value
-            for e in self.events
-        )
+        return " & ".join(e.label for e in self.events)
 
 
-class Task(AtdElement):
+UNNAMED_OBJECT = "object"  # the name of a task's one unnamed object, as the simulator calls it
+
+
+class KnowsObjects(Frozen):
+    """A machine that knows objects: an ATD or the ESTD made from it. `known_objects` keeps
+    the file's order, which is the simulator's; `object`, the first, is what a one-object
+    task plans with, and `model_copy(update={"object": ...})` replaces it."""
+
+    known_objects: tuple[ObjectInfo, ...] = ()
+
+    @cached_property
+    def objects(self) -> dict[str, ObjectInfo]:
+        """The objects by name, in the file's order."""
+        return {o.name or UNNAMED_OBJECT: o for o in self.known_objects}
+
+    @property
+    def object(self) -> ObjectInfo | None:
+        return self.known_objects[0] if self.known_objects else None
+
+    def model_copy(self, *, update: dict[str, Any] | None = None, deep: bool = False):  # type: ignore[override]
+        """`update={"object": info}` replaces the first object (or adds it), keeping its name."""
+        if update and "object" in update:
+            update = dict(update)
+            one = update.pop("object")
+            if one is not None and self.object is not None and self.object.name:
+                one = one.model_copy(update={"name": self.object.name})
+            update["known_objects"] = tuple(o for o in (one,) if o is not None) + self.known_objects[1:]
+        return super().model_copy(update=update, deep=deep)
+
+
+class Task(AtdElement, KnowsObjects):
     """A whole ATD: the `statemachine` element."""
 
     initial: str | None = None
-    object: ObjectInfo | None = None
     environment: Environment | None = None
+    inputs: tuple[Value, ...] = ()  # a sub-task's values the including task gives it
     states: tuple[State, ...] = ()
     transitions: tuple[Transition, ...] = ()
     source: str | None = Field(default=None, exclude=True, repr=False)
@@ -230,6 +316,11 @@ class Task(AtdElement):
     @cached_property
     def states_by_name(self) -> dict[str, State]:
         return {s.name: s for s in self.states}
+
+    @cached_property
+    def containers(self) -> dict[str, ContainerInfo]:
+        """The containers the task knows, by name."""
+        return {c.name: c for c in (self.environment.containers if self.environment else ())}
 
     @cached_property
     def transition_ids(self) -> tuple[str, ...]:

@@ -17,6 +17,8 @@ class StateType(StrEnum):
     GRASP = "grasp"
     RELEASE = "release"
     SLIDE = "slide"
+    EXPLORE = "explore"  # perceptual (thesis Table 3.1): move along a direction until contact
+    PERCEIVE = "perceive"  # perceptual (thesis 3.4.3): choose an object to grasp, or find none
     TASK = "task"
     SUCCESS = "success"
     FAILURE = "failure"
@@ -30,6 +32,11 @@ class StateType(StrEnum):
         """Arm primitives take a target (Table 7.1); grasp and release act on the hand only."""
         return self in ARM_PRIMITIVES
 
+    @property
+    def acts_on_object(self) -> bool:
+        """Primitives that handle an object, and so say which when a task knows several."""
+        return self in OBJECT_PRIMITIVES
+
 
 # Sets, not tuples of members: a member looked up on its class costs a descriptor call, and these
 # are asked of every state of a 40,000-state task.
@@ -37,6 +44,10 @@ END_STATES = frozenset({StateType.SUCCESS, StateType.FAILURE})
 ARM_PRIMITIVES = frozenset(
     {StateType.MOVE, StateType.TRANSPORT, StateType.PLACE, StateType.PUSH, StateType.SLIDE}
 )
+OBJECT_PRIMITIVES = frozenset(
+    {StateType.GRASP, StateType.TRANSPORT, StateType.PLACE, StateType.PUSH, StateType.SLIDE}
+)
+PERCEPTUAL_PRIMITIVES = frozenset({StateType.EXPLORE, StateType.PERCEIVE})
 
 
 class Movement(StrEnum):
@@ -78,6 +89,50 @@ class EventType(StrEnum):
     COLLISION = "collision"
     HARDWARE_FAILURE = "hardware_failure"
     ERROR = "error"
+    OBJECT_FOUND = "object_found"  # perceive chose an object: its approach is written
+    NOTHING_FOUND = "nothing_found"  # perceive found no object where it looked
+    CONTACT = "contact"  # explore felt contact: where is written
+    NO_CONTACT = "no_contact"  # explore went its whole distance without contact
+    OUTCOME = "outcome"  # a sub-task ended in the end state it names
+
+
+class ValueKind(StrEnum):
+    """What a named value holds: the data a state passes to later states."""
+
+    POSE = "pose"  # 16 numbers, as a <pose>
+    POINT = "point"  # x y z
+    COUNT = "count"  # a whole number
+
+
+class PerceptionMethod(StrEnum):
+    """How a perceive state chooses the object to grasp (thesis 3.4.3, Fig. 3.26)."""
+
+    RANDOM_BLIND = "random_blind"  # top approaches drawn uniformly inside the container
+    BLIND_EXPLORATION = "blind_exploration"  # down until contact, then sweep the container
+    VISION = "vision"  # depth camera: clusters inside the container, one chosen at random
+
+
+# What each perceptual primitive can write (the kinds a `<writes>` may name), and the event on
+# which it has: a value is written only when the state leaves on that event.
+PRODUCES: dict[StateType, frozenset[ValueKind]] = {
+    StateType.PERCEIVE: frozenset({ValueKind.POSE, ValueKind.COUNT}),
+    StateType.EXPLORE: frozenset({ValueKind.POINT}),
+}
+FINDING_EVENT: dict[StateType, EventType] = {
+    StateType.PERCEIVE: EventType.OBJECT_FOUND,
+    StateType.EXPLORE: EventType.CONTACT,
+}
+# Events only some states fire: each with the state types it may leave.
+FIRED_BY: dict[EventType, frozenset[StateType]] = {
+    EventType.OBJECT_FOUND: frozenset({StateType.PERCEIVE}),
+    EventType.NOTHING_FOUND: frozenset({StateType.PERCEIVE}),
+    EventType.CONTACT: frozenset({StateType.EXPLORE}),
+    EventType.NO_CONTACT: frozenset({StateType.EXPLORE}),
+    EventType.OUTCOME: frozenset({StateType.TASK}),
+}
+# Where a value may be read, and the kinds each place takes: an arm primitive's target is a
+# pose (the hand turned as it says) or a point (the hand top-down).
+TARGET_KINDS = frozenset({ValueKind.POSE, ValueKind.POINT})
 
 
 class ObjectClass(StrEnum):

@@ -10,16 +10,20 @@ import os
 import tempfile
 from contextlib import contextmanager
 from pathlib import Path
-from typing import Iterator
+from typing import Callable, Iterator
 
 from lxml import etree
 
-from atd.model.task import ObjectInfo, State, Task, Transition
+from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Value
 from atd.model.vocabulary import EventType
 
 
+def _number(value: float) -> str:
+    return repr(float(value))
+
+
 def _numbers(values: tuple[float, ...]) -> str:
-    return " ".join(repr(float(v)) for v in values)
+    return " ".join(map(_number, values))
 
 
 def _child(parent: etree._Element, tag: str, text: str | None = None, **attrib: str) -> etree._Element:
@@ -30,7 +34,7 @@ def _child(parent: etree._Element, tag: str, text: str | None = None, **attrib: 
 
 def object_element(parent: etree._Element, obj: ObjectInfo) -> None:
     """The `<object>` block; ESTD files carry the same block as the ATD they came from."""
-    node = _child(parent, "object")
+    node = _child(parent, "object", **({"name": obj.name} if obj.name else {}))
     if obj.pose is not None:
         _child(node, "pose", _numbers(obj.pose.matrix))
     if obj.weight is not None:
@@ -47,10 +51,29 @@ def object_element(parent: etree._Element, obj: ObjectInfo) -> None:
         _child(node, "size", _numbers(obj.size))
 
 
+def environment_element(parent: etree._Element, env: Environment, number: Callable[[float], str] = _number) -> None:
+    """The `<environment>` block, numbers written by `number`; ESTD files carry it too."""
+    node = _child(parent, "environment")
+    for obstacle in env.obstacles:
+        attrib = {"size": " ".join(map(number, obstacle.size))} if obstacle.size else {}
+        _child(node, "obstacle", " ".join(map(number, obstacle.position)), **attrib)
+    for container in env.containers:
+        box = _child(node, "container", name=container.name)
+        _child(box, "pose", " ".join(map(number, container.pose.matrix)))
+        _child(box, "size", " ".join(map(number, container.size)))
+        _child(box, "wall", number(container.wall))
+
+
+def value_element(parent: etree._Element, tag: str, value: Value) -> None:
+    """`<writes>` of a state or `<input>` of a sub-task: a named value and its kind."""
+    _child(parent, tag, name=value.name, kind=value.kind.value)
+
+
 def _state(parent: etree._Element, state: State) -> None:
     attrib = {"name": state.name, "type": state.type.value}
-    if state.file is not None:
-        attrib["file"] = state.file
+    for key in ("file", "object", "container"):
+        if getattr(state, key) is not None:
+            attrib[key] = getattr(state, key)
     node = _child(parent, "state", **attrib)
     if state.movement is not None:
         _child(node, "movement", state.movement.value)
@@ -66,26 +89,39 @@ def _state(parent: etree._Element, state: State) -> None:
         _child(node, "object_size", repr(state.object_size))
     if state.hand_opening is not None:
         _child(node, "hand_opening", repr(state.hand_opening))
+    if state.target_from is not None:
+        _child(node, "target", **{"from": state.target_from})
+    if state.method is not None:
+        _child(node, "method", state.method.value)
+    if state.direction is not None:
+        _child(node, "direction", _numbers(state.direction))
+    if state.contact_force is not None:
+        _child(node, "contact_force", repr(state.contact_force))
+    if state.max_distance is not None:
+        _child(node, "max_distance", repr(state.max_distance))
     for name, value in state.parameters.items():
         _child(node, "parameter", value, name=name)
+    for value in state.writes:
+        value_element(node, "writes", value)
+    for name, source in state.inputs.items():
+        _child(node, "input", name=name, **{"from": source})
 
 
 def _transition(parent: etree._Element, transition: Transition) -> None:
     node = _child(parent, "transition", origin=transition.origin, destination=transition.destination)
     for event in transition.events:
         seconds = repr(event.seconds) if event.type is EventType.TIMEOUT else None
-        _child(node, event.type.value, seconds)
+        _child(node, event.type.value, seconds, **({"name": event.name} if event.name is not None else {}))
 
 
 def task_to_xml(task: Task) -> bytes:
     root = etree.Element("statemachine", {"initial": task.initial} if task.initial else {})
-    if task.object is not None:
-        object_element(root, task.object)
+    for obj in task.known_objects:
+        object_element(root, obj)
     if task.environment is not None:
-        env = _child(root, "environment")
-        for obstacle in task.environment.obstacles:
-            attrib = {"size": _numbers(obstacle.size)} if obstacle.size else {}
-            _child(env, "obstacle", _numbers(obstacle.position), **attrib)
+        environment_element(root, task.environment)
+    for value in task.inputs:
+        value_element(root, "input", value)
     for state in task.states:
         _state(root, state)
     for transition in task.transitions:

@@ -122,14 +122,16 @@ class Machine:
 
     # -- one tick -------------------------------------------------------------------------
     def _view(self, readings: Readings) -> StateView:
-        sub = None
+        sub = end = None
         if self.sub and self.sub.ended:
             sub = Status.DONE if self.sub.ended.type is StateType.SUCCESS else Status.ERROR
+            end = self.sub.ended.name
         return StateView(
             elapsed=readings.time - self.entered,
             arm=self.arm.status if self.arm else Status.DONE,
             hand=self.hand.status if self.hand else Status.DONE,
             subtask=sub,
+            subtask_end=end,
             reasons={k: c.reason for k, c in (("arm", self.arm), ("hand", self.hand)) if c and c.reason},
         )
 

@@ -65,7 +65,7 @@ def belief_scene(estd: Estd) -> Scene:
     """The world as the ESTD describes it."""
     try:
         source = Path(estd.source) if estd.source else Path("task.xml")
-        return scene_from_task(Task(object=estd.object, environment=estd.environment), source)
+        return scene_from_task(Task(known_objects=estd.known_objects, environment=estd.environment), source)
     except SceneError as exc:
         raise InvalidScene(str(exc)) from None
 
@@ -178,7 +178,7 @@ class Run:
             raise InvalidScene(str(exc)) from None
         self.notes: list[str] = [str(self.robot.settling)] if self.robot.settling else []  # for the user
         context = Context(info=self.robot.info, params={}, object=estd.object, environment=estd.environment,
-                          rng=np.random.default_rng(seed))
+                          rng=np.random.default_rng(seed), camera=self.robot.capture)
         problems = build_problems(estd, context)
         if problems:
             self.robot.close()

@@ -17,6 +17,7 @@ import jinja2
 
 from atd.model.files import describe_write_error, name_too_long
 from atd.scaffold.from_urdf import UrdfScaffoldError, urdf_values
+from atd.scaffold.source import SourceError, identifier, literal
 
 HANDS = ("parallel_jaw", "multi_finger")
 NAME = re.compile(r"[a-z][a-z0-9_]{0,31}")
@@ -29,6 +30,9 @@ class ScaffoldError(ValueError):
 _ENV = jinja2.Environment(loader=jinja2.PackageLoader("atd.scaffold", "templates"),
                           undefined=jinja2.StrictUndefined, keep_trailing_newline=True,
                           trim_blocks=True, lstrip_blocks=True)
+# Every value read from input is written as a literal, `{{ value | py }}`, or as a checked name.
+_ENV.filters["py"] = literal
+_ENV.filters["identifier"] = identifier
 
 
 def check_name(name: str, taken: list[str]) -> None:
@@ -43,19 +47,17 @@ def check_name(name: str, taken: list[str]) -> None:
 
 def package_files(name: str, hand: str, urdf: Path | None = None) -> dict[str, str]:
     """Path inside the package folder -> text, for a robot `name` with a `hand` of HANDS,
-    its body built in Python or, with `urdf`, read from that URDF."""
+    its body built in Python or, with `urdf`, read from that URDF: UrdfScaffoldError when
+    the URDF cannot be imported, ScaffoldError for the rest."""
     package = f"atd_{name}"
-    values: dict[str, object] = {"name": name, "hand": hand, "package": package,
-                                 "urdf_option": " --from-urdf URDF" if urdf else "", "urdf_source": "", "dof": 6,
+    values: dict[str, object] = {"name": name, "hand": hand, "package": package, "dof": 6,
+                                 "urdf_option": " --from-urdf URDF" if urdf else "", "urdf_package": "", "urdf_path": "",
                                  "cls": "".join(part.capitalize() for part in name.split("_")) + "Factory"}
     if urdf is not None:
         if hand != "parallel_jaw":
             raise ScaffoldError("--from-urdf makes a parallel-jaw robot (--hand parallel_jaw): a multi-finger hand's "
                                 "DOFs and postures are not in a URDF; describe it by hand (docs/writing-a-robot.md)")
-        try:
-            values |= urdf_values(urdf, name)
-        except UrdfScaffoldError as exc:
-            raise ScaffoldError(str(exc)) from None
+        values |= urdf_values(urdf, name)
     files = {
         "pyproject.toml": "pyproject.toml.j2",
         "README.md": "README.md.j2",
@@ -66,7 +68,10 @@ def package_files(name: str, hand: str, urdf: Path | None = None) -> dict[str, s
         f"tests/test_{name}.py": "test_robot.py.j2",
         "tests/pick_and_place.xml": "pick_and_place.xml.j2",
     }
-    return {path: _ENV.get_template(template).render(values) for path, template in files.items()}
+    try:
+        return {path: _ENV.get_template(template).render(values) for path, template in files.items()}
+    except SourceError as exc:
+        raise UrdfScaffoldError(f"{urdf}: cannot write the description: {exc}; check the URDF's numbers") from None
 
 
 def write_package(target: Path, files: dict[str, str]) -> None:

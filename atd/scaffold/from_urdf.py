@@ -9,11 +9,13 @@ from pathlib import Path
 
 import numpy as np
 
+from atd.scaffold.source import IDENTIFIER
 from factories.description import Origin, RobotDescription, Site
 from factories.home import HOME_TCP, with_home
 from factories.urdf import UrdfError, UrdfModel, read_urdf
 from factories.urdf_hand import urdf_parallel_jaw
 
+MAX_ARM_JOINTS = 32  # a redundant arm has 7 or 8: a longer chain to the hand is a mistake, or no arm
 REACH_SHARE = 0.4  # of the summed joint offsets, root to TCP: the Panda's 1.43 m puts its base 45 cm back, where its home is central
 
 
@@ -47,18 +49,20 @@ def _chain(model: UrdfModel, link: str) -> list[str]:
 
 
 def _import_path(urdf: Path) -> tuple[str, str] | None:
-    """(package, path inside it) when the URDF ships inside an installed Python package."""
+    """(package, path inside it) when the URDF ships inside an installed Python package
+    whose name is a plain identifier (the generated code imports it by that name)."""
     for entry in sys.path:
         folder = Path(entry or ".").resolve()
         if folder.is_dir() and urdf.is_relative_to(folder) and len(urdf.relative_to(folder).parts) > 1:
             package = urdf.relative_to(folder).parts[0]
-            if (folder / package / "__init__.py").is_file():
+            if IDENTIFIER.fullmatch(package) and (folder / package / "__init__.py").is_file():
                 return package, str(Path(*urdf.relative_to(folder).parts[1:]))
     return None
 
 
 def urdf_values(urdf: Path, name: str) -> dict[str, object]:
-    """The template values of a description read from `urdf`."""
+    """The template values of a description read from `urdf`, as read: the templates write
+    each through `atd.scaffold.source.literal` (their `py` filter)."""
     urdf = Path(urdf).resolve()
     try:
         model = read_urdf(urdf)
@@ -69,6 +73,11 @@ def urdf_values(urdf: Path, name: str) -> dict[str, object]:
     by_name = {link.name: link for link in model.links}
     chain = _chain(model, hand_root)
     arm_joints = tuple(by_name[l].joint.name for l in chain if by_name[l].joint is not None)
+    if len(arm_joints) > MAX_ARM_JOINTS:
+        line = model.joint_lines[arm_joints[MAX_ARM_JOINTS]]
+        raise UrdfScaffoldError(f"{urdf}:{line}: the arm down to '{hand_root}' has {len(arm_joints)} moving joints, "
+                                f"more than the {MAX_ARM_JOINTS} atd drives; make the extra joints fixed, or start "
+                                "from a URDF of the arm and its hand alone")
     if len(arm_joints) < 6:
         raise UrdfScaffoldError(f"{urdf}: the arm down to '{hand_root}' has {len(arm_joints)} moving joints; "
                                 "a hand pointing down anywhere in the work area needs at least 6")
@@ -83,7 +92,6 @@ def urdf_values(urdf: Path, name: str) -> dict[str, object]:
         raise UrdfScaffoldError(f"{urdf}: {exc}") from None
     inside = _import_path(urdf)
     return {"urdf_package": inside[0] if inside else "", "urdf_inside": inside[1] if inside else "",
-            "urdf_path": str(urdf), "urdf_shown": f"the installed {inside[0]}'s {inside[1]}" if inside else str(urdf),
-            "urdf_source": f" on {inside[0]}'s {inside[1]}" if inside else f" on {urdf}",
-            "arm_joints": repr(arm_joints), "dof": len(arm_joints), "hand_root": hand_root, "fingers": repr(fingers),
-            "max_opening": round(2 * hand.dofs[0].open, 6), "base_x": base_x, "home": repr(home)}
+            "urdf_path": str(urdf), "arm_joints": arm_joints, "dof": len(arm_joints), "hand_root": hand_root,
+            "fingers": fingers, "max_opening": round(2 * hand.dofs[0].open, 6), "base_x": base_x,
+            "home": tuple(home)}

@@ -203,15 +203,17 @@ def box_scene(size: float = 0.05, xy: tuple[float, float] = (0.125, 0.0), mass: 
 
 
 def scene_from_task(task: Task, atd_file: Path) -> Scene:
-    """The object and obstacles of a task; a mesh `shape` is looked up next to the ATD."""
-    bodies = () if task.object is None else (object_body(task.object, "object", atd_file),)
+    """The objects, obstacles and containers of a task, each object by its name (the one
+    unnamed object: 'object'); a mesh `shape` is looked up next to the ATD."""
+    bodies = tuple(object_body(info, name, atd_file) for name, info in task.objects.items())
+    containers = tuple(Container(c.name, c.pose.as_array(), c.size, c.wall) for c in task.containers.values())
     obstacles = []
     if task.environment is not None:
         for i, obstacle in enumerate(task.environment.obstacles):
             pose = np.eye(4)
             pose[:3, 3] = obstacle.position
             obstacles.append(Body(f"obstacle{i}", "box", obstacle.size or DEFAULT_OBSTACLE_SIZE, pose, 1.0, DEFAULT_FRICTION))
-    return Scene(objects=bodies, obstacles=tuple(obstacles))
+    return Scene(objects=bodies, obstacles=tuple(obstacles), containers=containers)
 
 
 def object_body(info: ObjectInfo, name: str, atd_file: Path) -> Body:

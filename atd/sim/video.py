@@ -78,7 +78,7 @@ def check_video_path(path: Path) -> None:
         raise VideoError(f"--video {path}: name the file *.gif or *.mp4")
     if suffix == ".mp4" and mp4_encoder() is None:
         raise VideoError(f"--video {path}: MP4 needs ffmpeg, and none is installed; "
-                         "pip install 'atd[video]', or name the file *.gif")
+                         "pip install 'atd-robotics[video]', or name the file *.gif")
     if not path.parent.is_dir():
         raise VideoError(f"--video {path}: the folder {path.parent} does not exist")
 

@@ -24,7 +24,7 @@ MESHED = [name for name, o in library().items() if o.mesh]
 
 
 def _belief_body(name: str, x: float = 0.1, y: float = 0.0):
-    return scene_from_task(Task(object=get(name).object_info(x, y)), Path("campaign.xml")).object
+    return scene_from_task(Task(known_objects=(get(name).object_info(x, y),)), Path("campaign.xml")).object
 
 
 def test_the_library_has_ten_everyday_objects_with_meshes_from_the_installed_pybullet_data() -> None:

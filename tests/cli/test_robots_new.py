@@ -6,6 +6,7 @@ installed the cheap way, as the .dist-info pip would write beside the package fo
 
 from __future__ import annotations
 
+import importlib.metadata
 import os
 import subprocess
 import sys
@@ -63,17 +64,17 @@ def test_each_maps_as_its_kind_of_hand(installed):
 def test_the_urdf_robot_reads_the_installed_urdf_and_stands_where_its_home_is_central(installed):
     folder = Path(installed["PYTHONPATH"].split(os.pathsep)[-1])
     text = (folder / "atd_franka" / "description.py").read_text()
-    assert 'URDF = Path(str(files("pybullet_data") / "franka_panda/panda.urdf"))' in text
-    assert "FINGERS = ('panda_finger_joint1', 'panda_finger_joint2')" in text and 'HAND_ROOT = "panda_hand"' in text
+    assert "URDF = Path(str(files('pybullet_data') / 'franka_panda/panda.urdf'))" in text
+    assert "FINGERS = ('panda_finger_joint1', 'panda_finger_joint2')" in text and "HAND_ROOT = 'panda_hand'" in text
     assert not list(folder.rglob("*.urdf")) and not list(folder.rglob("*.obj"))  # nothing copied
 
 
-@pytest.mark.parametrize(("urdf", "options", "message"), [
-    ("panda", ["--hand", "multi_finger"], "--from-urdf makes a parallel-jaw robot (--hand parallel_jaw)"),
-    ("arm", [], "robot.urdf: found 0 links with two prismatic finger joints"),
-    ("broken", [], "robot.urdf:10: joint 'shoulder' is of type 'planar', which atd cannot simulate"),
+@pytest.mark.parametrize(("urdf", "options", "code", "message"), [
+    ("panda", ["--hand", "multi_finger"], 2, "--from-urdf makes a parallel-jaw robot (--hand parallel_jaw)"),
+    ("arm", [], 1, "robot.urdf: found 0 links with two prismatic finger joints"),
+    ("broken", [], 1, "robot.urdf:10: joint 'shoulder' is of type 'planar', which atd cannot simulate"),
 ])
-def test_a_urdf_it_cannot_start_from_is_one_line_naming_it(tmp_path, monkeypatch, urdf, options, message):
+def test_a_urdf_it_cannot_start_from_is_one_line_naming_it(tmp_path, monkeypatch, urdf, options, code, message):
     monkeypatch.chdir(tmp_path)
     path = PANDA
     if urdf != "panda":
@@ -83,7 +84,7 @@ def test_a_urdf_it_cannot_start_from_is_one_line_naming_it(tmp_path, monkeypatch
         path = tmp_path / "robot.urdf"
         path.write_text(URDF.format(kind="revolute" if urdf == "arm" else "planar"))
     result = CliRunner().invoke(main, ["robots", "new", "gizmo", "--from-urdf", str(path), *options])
-    assert result.exit_code == 2 and message in result.output, result.output
+    assert result.exit_code == code and message in result.output, result.output
     assert len(result.output.strip().splitlines()) == 1 and not (tmp_path / "atd-gizmo").exists()
 
 
@@ -99,6 +100,8 @@ def test_it_says_what_it_wrote_and_what_to_do_next(tmp_path, monkeypatch):
     pyproject = (tmp_path / "atd-gizmo" / "pyproject.toml").read_text()
     assert 'gizmo = "atd_gizmo.factory:GizmoFactory"' in pyproject
     assert 'atd_gizmo = ["config.toml"]' in pyproject  # a wheel carries the tuning
+    # it depends on this project by the distribution name it is installed as ("atd" on PyPI is another project)
+    assert 'dependencies = ["atd-robotics"]' in pyproject and importlib.metadata.distribution("atd-robotics")
 
 
 @pytest.mark.parametrize(("args", "message"), [

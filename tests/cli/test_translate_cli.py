@@ -52,6 +52,17 @@ def test_untranslatable_exits_4_and_writes_nothing(tmp_path):
     assert list(tmp_path.iterdir()) == [task]
 
 
+def test_perception_no_robot_maps_yet_exits_4_naming_why(tmp_path):
+    """Issue 31: the thesis's box-emptying task validates, and each robot says what it cannot do yet."""
+    task = REPO / "tests" / "data" / "empty_the_box" / "empty_the_box.xml"
+    result = atd("translate", str(task), "--robot", "baxter", "-o", str(tmp_path / "out.estd.xml"))
+    assert result.returncode == 4 and "Traceback" not in result.stderr
+    assert (f"{task}:18:3: error[TRN001]: baxter (right arm): cannot map perceive state 'look': the baxter has no "
+            "perceive primitive") in result.stderr
+    assert "cannot map explore state 'feel'" in result.stderr and "no mapping for event 'contact'" in result.stderr
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_invalid_atd_exits_1(tmp_path):
     task = tmp_path / "bad.xml"
     task.write_text('<statemachine>\n  <state name="a" type="mvoe"/>\n</statemachine>\n')

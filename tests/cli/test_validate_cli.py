@@ -32,6 +32,28 @@ def test_errors_give_exit_one_with_compiler_style_lines(atd_file):
     assert "Traceback" not in result.stdout + result.stderr
 
 
+def test_a_value_read_before_it_is_written_is_one_located_error(atd_file):
+    """Issue 31: perceive writes the approach only when it found an object."""
+    path = atd_file("""\
+        <statemachine>
+          <environment><container name="box"><pose>1 0 0 0.3  0 1 0 0  0 0 1 0  0 0 0 1</pose>
+            <size>0.3 0.25 0.1</size></container></environment>
+          <state name="look" type="perceive" container="box"><method>random_blind</method>
+            <writes name="approach" kind="pose"/></state>
+          <state name="reach" type="move"><target from="approch"/></state>
+          <state name="done" type="success"/>
+          <transition origin="look" destination="reach"><object_found/></transition>
+          <transition origin="look" destination="done"><nothing_found/></transition>
+          <transition origin="reach" destination="done"><success/></transition>
+        </statemachine>
+        """)
+    result = atd("validate", str(path))
+    assert result.returncode == 1 and "Traceback" not in result.stdout + result.stderr
+    assert result.stdout.splitlines()[:2] == [
+        f"{path}:6:3: error[ATD221]: state 'reach' reads 'approch', which is not written on every way to it: "
+        "look -> reach writes it nowhere", "  hint: did you mean 'approach'?"]
+
+
 def test_hostile_input_gives_a_diagnostic_not_a_traceback(tmp_path):
     path = tmp_path / "x.xml"
     path.write_bytes(b"\x89PNG\r\n\x1a\n\x00\x00binary")

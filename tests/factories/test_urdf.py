@@ -39,13 +39,13 @@ def test_the_pandas_urdf_gives_its_tree_limits_masses_and_collision_meshes():
 def test_a_collision_mesh_is_read_at_its_scale_with_the_inertias_products(tmp_path):
     urdf = URDF.format(kind="revolute").replace(
         '<cylinder radius="0.03" length="0.2"/>', '<mesh filename="meshes/arm.obj" scale="0.001 0.001 0.001"/>')
-    urdf = urdf.replace('<inertia ixx="0.01" iyy="0.02" izz="0.03"/>',
-                        '<inertia ixx="0.01" iyy="0.02" izz="0.03" ixy="0.001" ixz="-0.002" iyz="0.003"/>')
+    urdf = urdf.replace('<inertia ixx="0.01" iyy="0.02" izz="0.03"/>',  # a body's: principal moments A + B >= C
+                        '<inertia ixx="0.02" iyy="0.03" izz="0.04" ixy="0.001" ixz="-0.002" iyz="0.003"/>')
     arm = read_urdf(_write(tmp_path, urdf)).links[1]
     (shape,) = arm.shapes
     assert shape.kind == "mesh" and shape.origin.xyz == (0, 0, 0.1)
     assert np.ptp(shape.points, axis=0) == pytest.approx((0.1, 0.2, 0.3))  # drawn in millimetres
-    assert arm.inertia == (0.01, 0.02, 0.03) and arm.inertia_products == (0.001, -0.002, 0.003)
+    assert arm.inertia == (0.02, 0.03, 0.04) and arm.inertia_products == (0.001, -0.002, 0.003)
 
 
 URDF = """\

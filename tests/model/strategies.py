@@ -21,7 +21,7 @@ from atd.model import (
     Transition,
     Waypoint,
 )
-from atd.model.vocabulary import SIZE_LAYOUT
+from atd.model.vocabulary import FIRED_BY, SIZE_LAYOUT
 
 coordinate = st.floats(-1.0, 1.0, allow_nan=False, allow_infinity=False)
 positive = st.floats(1e-3, 10.0, allow_nan=False, allow_infinity=False)
@@ -90,7 +90,9 @@ def primitive_states(draw, name: str, arm_types=tuple(ARM), hand_types=tuple(HAN
 
 
 events = st.one_of(
-    st.builds(lambda t: Event(type=t), st.sampled_from([e for e in EventType if e is not EventType.TIMEOUT])),
+    # Events any primitive fires: the perception events and outcomes leave only their own states.
+    st.builds(lambda t: Event(type=t), st.sampled_from([e for e in EventType
+                                                        if e is not EventType.TIMEOUT and e not in FIRED_BY])),
     st.builds(lambda s: Event(type=EventType.TIMEOUT, seconds=s), positive),
 )
 
@@ -115,7 +117,7 @@ def tasks(draw, max_states: int = 8, **state_kinds) -> Task:
                 transitions.append(Transition(origin=origin, destination=draw(st.sampled_from(chain + ["failed"])),
                                               events=evs))
     return Task(
-        object=draw(st.none() | objects()),
+        known_objects=tuple(draw(st.lists(objects(), max_size=1))),
         environment=draw(st.none() | st.builds(
             lambda obs: Environment(obstacles=tuple(obs)),
             st.lists(st.builds(lambda p, s: Obstacle(position=p, size=s),

@@ -49,5 +49,5 @@ def test_atd_schema_prints_a_json_schema_of_the_model():
     result = CliRunner().invoke(main, ["schema"])
     schema = json.loads(result.output)
     assert result.exit_code == 0
-    assert set(schema["properties"]) >= {"states", "transitions", "object", "environment", "initial"}
+    assert set(schema["properties"]) >= {"states", "transitions", "known_objects", "environment", "initial", "inputs"}
     assert schema["$defs"]["HandShape"]["enum"] == [h.value for h in HandShape]

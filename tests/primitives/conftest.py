@@ -80,7 +80,7 @@ def _edge(origin: str, destination: str, event: EventType, condition, suffix: st
 
 def execute(estd: Estd, robot: SimRobot, hook: Hook | None = None, task=None) -> tuple[Outcome, Executor]:
     ctx = Context(info=robot.info, params={}, object=task.object if task else None,
-                  environment=task.environment if task else None)
+                  environment=task.environment if task else None, camera=robot.capture)
     executor = Executor(estd, robot, ctx, budget=60.0)
     progress = (lambda path, time, wall: hook(robot, path, time)) if hook else None
     return executor.run(progress=progress, every=1), executor

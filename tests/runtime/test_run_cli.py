@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import shutil
 import subprocess
 import sys
 
@@ -110,7 +111,7 @@ def test_an_mp4_without_ffmpeg_is_refused_before_the_run(tmp_path, monkeypatch):
     from atd.sim import video
 
     monkeypatch.setattr(video, "mp4_encoder", lambda: None)
-    with pytest.raises(video.VideoError, match=r"MP4 needs ffmpeg.*pip install 'atd\[video\]', or name the file \*\.gif"):
+    with pytest.raises(video.VideoError, match=r"MP4 needs ffmpeg.*pip install 'atd-robotics\[video\]', or name the file \*\.gif"):
         video.check_video_path(tmp_path / "run.mp4")
 
 
@@ -142,6 +143,22 @@ def test_empty_the_box_loops_over_its_sub_task_until_nothing_is_left(tmp_path):
     rests = next(line for line in result.stdout.splitlines() if line.startswith("the object rests at"))
     y = float(rests.split(",")[1])
     assert y > 0.05  # outside the box, whose walls span y = -0.16 .. 0.0
+
+
+def test_the_sub_task_outcome_it_names_reaches_the_parent(tmp_path):
+    """Issue 31: the parent branches on which end state the round reached, `<outcome name="..."/>`."""
+    shutil.copy(EXAMPLES / "pick_one.xml", tmp_path)
+    text = (EXAMPLES / "empty_the_box.xml").read_text()
+    task = tmp_path / "empty.xml"
+    task.write_text(text.replace("<success/></transition>", '<outcome name="placed"/></transition>')
+                    .replace("<error/>", '<outcome name="nothing_there"/>'))
+    trace = tmp_path / "t.jsonl"
+    result = atd("run", str(task), "--robot", "melfa", "--trace", str(trace), "-q")
+    assert result.returncode == 0, result.stdout + result.stderr
+    events = [json.loads(line) for line in trace.read_text().splitlines()]
+    taken = [(r["atd"], r["conditions"]) for r in events if r["type"] == "event" and r["event"] == "outcome"]
+    assert [atd for atd, _ in taken] == ["pick_one->pick_one/outcome", "pick_one->box_empty/outcome"]
+    assert "nothing_there" in json.dumps(taken[1][1])
 
 
 def test_the_barrett_is_refused_the_box_its_pinch_cannot_reach_into():

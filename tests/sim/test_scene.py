@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from atd.model import Environment, ObjectClass, ObjectInfo, Obstacle, Pose, Task
+from atd.model.task import ContainerInfo
 from atd.sim.scene import SceneError, scene_from_task
 
 CUBE_OBJ = """\
@@ -37,7 +38,7 @@ f 4 5 8
 
 def _task(**object_fields) -> Task:
     obstacles = (Obstacle(position=(0.2, -0.2, 0.05), size=(0.1, 0.1, 0.1)),)
-    return Task(object=ObjectInfo(**object_fields), environment=Environment(obstacles=obstacles))
+    return Task(known_objects=(ObjectInfo(**object_fields),), environment=Environment(obstacles=obstacles))
 
 
 def _at(x: float, y: float, z: float) -> Pose:
@@ -101,3 +102,14 @@ def test_a_world_mujoco_refuses_is_a_scene_error_not_its_traceback() -> None:
 
     with pytest.raises(SceneError, match="MuJoCo cannot simulate this world: .*mjMINVAL"):
         make_robot(create("melfa").robot, box_scene(size=1e-9, mass=0.001), "mujoco")
+
+
+def test_every_object_and_container_of_the_atd_is_in_the_scene_by_its_name(tmp_path) -> None:
+    """Issue 31: a second named object is simulated, and the box the robot knows stands there."""
+    mug, duck = ObjectInfo(name="mug", pose=_at(0.1, 0.1, 0.025)), ObjectInfo(name="duck", pose=_at(0.1, -0.1, 0.025))
+    box = ContainerInfo(name="box", pose=_at(0.3, 0.0, 0.0), size=(0.3, 0.25, 0.1), wall=0.02)
+    task = Task(known_objects=(mug, duck), environment=Environment(containers=(box,)))
+    scene = scene_from_task(task, tmp_path / "task.xml")
+    assert [b.name for b in scene.objects] == ["mug", "duck"]
+    assert scene.objects[1].pose[1, 3] == pytest.approx(-0.1)
+    assert scene.container("box").size == (0.3, 0.25, 0.1) and scene.container("box").wall == 0.02

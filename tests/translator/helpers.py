@@ -20,6 +20,6 @@ def at(*xyz: float) -> tuple[Waypoint, ...]:
 
 def one_state_task(state: State, *events: Event, obj: ObjectInfo | None = BOX) -> Task:
     """`state` then success, with one edge on `events` (default: success)."""
-    return Task(object=obj, states=(state, State(name="done", type=StateType.SUCCESS)),
+    return Task(known_objects=(obj,) if obj else (), states=(state, State(name="done", type=StateType.SUCCESS)),
                 transitions=(Transition(origin=state.name, destination="done",
                                         events=events or (Event(type=EventType.SUCCESS),)),))

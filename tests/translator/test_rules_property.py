@@ -96,7 +96,7 @@ def test_a_transport_whose_object_no_grasp_force_could_carry_is_refused_with_the
     defective ESTD (TRN100), not in the factory's reasons."""
     states = (State(name="carry", type=StateType.TRANSPORT, path=(Waypoint(kind="position", values=(0.1, 0.0, 0.2)),)),
               State(name="done", type=StateType.SUCCESS))
-    task = Task(object={"weight": 4.0, "friction": 0.015625}, states=states,
+    task = Task(known_objects=({"weight": 4.0, "friction": 0.015625},), states=states,
                 transitions=({"origin": "carry", "destination": "done", "events": ({"type": "success"},)},))
     for factory in FACTORIES:
         result = translate(task, factory)

@@ -1,0 +1,98 @@
+"""The explore primitive (thesis Table 3.1): "move the hand towards a specified direction and
+stop when a contact is detected", and say where.
+
+It feels a contact as the other guarded motions do: the wrist's contact wrench, tared as it
+starts (`ContactWrench`), and the tactile pads, each tared as it starts too (a hand that
+holds something reads its grip all along).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from primitives.arm.grasp import APPROACH_ACCELERATION
+from primitives.arm.motion import GAIN, TwistShaper, clamp_norm, orientation_twist, unit
+from primitives.arm.move import EASE_OFF, arm_output
+from primitives.base import Context, ControlData, Controller, Status
+from primitives.blackboard import ARM_TWIST
+from primitives.filters import ContactWrench
+from primitives.robot import Readings
+from primitives.values import Contact
+
+ARRIVED = 0.001  # m short of max_distance that counts as having gone all the way
+
+
+class Explore(Controller):
+    """Move the TCP along `direction` (world frame) at `speed` until the wrist, or a pad, feels
+    `force_threshold` more than it did at the start: DONE, the contact written to
+    `Context.memory` under `writes` (a `Contact`), the hand resting EASE_OFF back from it.
+    Having gone `max_distance` without one: ERROR, "nothing within D m". The hand keeps the
+    orientation it started with; it speeds up at the robust grasp's gentle
+    APPROACH_ACCELERATION (a faster start reads as a contact on the wrist) and slows down
+    over the last centimetres, so a leg that ends without a contact ends at rest."""
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        p = self.params
+        self.direction = unit(p["direction"])
+        self.speed = float(p["speed"])
+        self.threshold = float(p["force_threshold"])
+        self.max_distance = float(p["max_distance"])
+        self.writes = str(p.get("writes", ""))
+        self.contact = ContactWrench(float(p["filter_time"]))
+        self.shaper = TwistShaper(acceleration_limits=(APPROACH_ACCELERATION,) * 3 + (0.0,) * 3)
+        self.found: Contact | None = None
+
+    def start(self, readings: Readings) -> None:
+        self.contact.start(readings)
+        self.shaper.start(self.ctx.memory.get(ARM_TWIST))
+        self.pad_bias = readings.pad_force.copy()
+        self.origin = readings.tcp[:3, 3].copy()
+        self.rotation = readings.tcp[:3, :3].copy()
+        self.rest = self.origin
+        if self.writes:
+            self.ctx.memory.pop(self.writes, None)  # an earlier visit's contact is not this one's
+
+    def felt(self, readings: Readings) -> tuple[str, float] | None:
+        """The sensor that feels a contact and its force over the start's, or None: the wrist
+        first, then the pads."""
+        if self.contact.force >= self.threshold:
+            return "wrist", self.contact.force
+        if len(self.pad_bias):
+            extra = readings.pad_force - self.pad_bias
+            pad = int(np.argmax(extra))
+            if extra[pad] >= self.threshold:
+                return self.ctx.info.hand.pads[pad].name, float(extra[pad])
+        return None
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        position = readings.tcp[:3, 3]
+        w, _ = orientation_twist(self.rotation, readings.tcp[:3, :3])
+        if self.status is Status.RUNNING:
+            self.contact.update(readings, dt)
+            travelled = float((position - self.origin) @ self.direction)
+            felt = self.felt(readings)
+            if felt is not None:
+                self._touched(readings, felt, travelled)
+            elif travelled >= self.max_distance - ARRIVED:
+                self.shaper.stop()
+                self.rest = position.copy()
+                self.finish(Status.ERROR, f"nothing within {self.max_distance:g} m")
+            else:
+                along = min(self.speed, GAIN * (self.max_distance - travelled))
+                on_line = self.origin + travelled * self.direction
+                v = along * self.direction + GAIN * (on_line - position)
+                return arm_output(self.shaper(np.concatenate([clamp_norm(v, self.speed), w]), dt))
+        return arm_output(np.concatenate([GAIN * (self.rest - position), w]))
+
+    def _touched(self, readings: Readings, felt: tuple[str, float], travelled: float) -> None:
+        sensor, force = felt
+        position = readings.tcp[:3, 3]
+        self.shaper.stop()
+        self.rest = position - EASE_OFF * self.direction  # or the arm goes on pressing on what it met
+        self.found = Contact(position.copy(), sensor, force, self.direction.copy(), readings.time)
+        if self.writes:
+            self.ctx.memory[self.writes] = self.found
+        x, y, z = position
+        self.finish(Status.DONE, f"contact after {travelled * 100:.1f} cm: {sensor} {force:.1f} N "
+                                 f">= {self.threshold:g} N at ({x:.3f}, {y:.3f}, {z:.3f})")

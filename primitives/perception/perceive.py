@@ -1,0 +1,65 @@
+"""The `perceive` arm controller: one of thesis 3.4.3's approach-vector generators, chosen by
+its `method` parameter, run as a state of the task."""
+
+from __future__ import annotations
+
+from typing import Callable, Mapping
+
+from primitives.base import Context, Status
+from primitives.perception.blind import BlindExploration
+from primitives.perception.generators import VisionSettings, random_blind, vision
+from primitives.perception.perceiver import Perceiver
+from primitives.robot import Readings
+
+
+class RandomBlind(Perceiver):
+    """Random blind: an approach drawn over the container's floor, `hand_radius` in from its
+    walls, from the run's seeded generator. It always finds "something"."""
+
+    method = "random_blind"
+
+    def start(self, readings: Readings) -> None:
+        super().start(readings)
+        self.found(random_blind(self.container, self.ctx.rng, float(self.params["hand_radius"]), self.approaching),
+                   "")
+
+
+class Vision(Perceiver):
+    """Vision: one picture of the depth camera `camera` (the robot's first when empty), its
+    points inside the container clustered, one cluster chosen at random."""
+
+    method = "vision"
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        p = self.params
+        cameras = ctx.info.cameras
+        self.camera = str(p.get("camera", "")) or (cameras[0] if cameras else "")
+        if self.camera not in cameras:
+            raise ValueError(f"vision needs a depth camera; the {ctx.info.name} has "
+                             f"{'only ' + ', '.join(cameras) if cameras else 'none'}"
+                             + (f", not '{self.camera}'" if self.camera else ""))
+        self.settings = VisionSettings(float(p["floor_margin"]), float(p["wall_margin"]), float(p["above_rim"]),
+                                       float(p["voxel"]), int(p["min_points"]))
+
+    def start(self, readings: Readings) -> None:
+        super().start(readings)
+        if self.ctx.camera is None:
+            self.finish(Status.ERROR, "this run gives the controller no camera to take a picture with")
+            return
+        image = self.ctx.camera(self.camera)
+        self.found(vision(image, self.container, self.ctx.rng, self.settings, self.approaching),
+                   f"no cluster of {self.settings.min_points} points or more inside the container in the "
+                   f"'{self.camera}' picture")
+
+
+METHODS: Mapping[str, Callable[[Context], Perceiver]] = {
+    "random_blind": RandomBlind,
+    "blind_exploration": BlindExploration,
+    "vision": Vision,
+}
+
+
+def perceive(ctx: Context) -> Perceiver:
+    """The perceive controller of the state's `method`."""
+    return METHODS[str(ctx.params["method"])](ctx)

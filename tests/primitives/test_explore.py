@@ -1,0 +1,72 @@
+"""The explore primitive (thesis Table 3.1): down until the hand feels the object's top or the
+box's floor, and where it felt it; nothing within its distance is an error; a pad's contact
+counts as the wrist's does."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from atd.model.vocabulary import EventType
+from primitives.arm.explore import Explore
+from primitives.base import Context, Status
+from primitives.values import Contact
+from tests.primitives.box_worlds import CORNER, FLOOR, MELFA_REACH, box_world, cube
+from tests.primitives.conftest import Stage, events, execute, leaf, machine, melfa, use
+
+DOWN = (0.0, 0.0, -1.0)
+
+
+def _over_then_down(xy: tuple[float, float], **explore) -> tuple:
+    """Move over `xy` with the jaws closed (so the fingertips, not the palm between open jaws,
+    touch a small object first), then explore down."""
+    closed = use("hand_shape", shape="closed")
+    return (Stage(use("cartesian_move", target=(*xy, 0.16)), closed, leaf("arm_done")),
+            Stage(use("explore", direction=DOWN, writes="touched", **explore), closed, leaf("arm_done")))
+
+
+@pytest.mark.parametrize("engine", ["mujoco", "pybullet"])
+def test_explore_stops_on_the_object_top_and_on_the_floor_and_says_where(engine: str) -> None:
+    robot = box_world(cube("block", CORNER), engine=engine)
+    top = robot.object_poses()["block"][2, 3] + 0.025
+    for xy, surface in ((CORNER, top), ((0.13, 0.12), FLOOR)):
+        outcome, executor = execute(machine(*_over_then_down(xy)), robot)
+        assert outcome.succeeded, outcome.summary
+        touched = executor.machine.base.memory["touched"]
+        assert isinstance(touched, Contact) and touched.sensor == "wrist"
+        assert abs(touched.point[2] - MELFA_REACH - surface) < 0.003  # the fingertips' height, within 3 mm
+        assert np.linalg.norm(touched.point[:2] - xy) < 0.003  # straight down, not pushed aside
+        assert "contact after" in events(executor)[-1]["conditions"][0]["reason"]
+    robot.close()
+
+
+def test_nothing_within_the_distance_is_an_error_and_writes_nothing() -> None:
+    robot = box_world()
+    stages = _over_then_down((0.13, 0.12), max_distance=0.05)
+    estd = machine(stages[0], dataclasses.replace(stages[1], until=leaf("arm_done")),
+                   failures={"s1": (EventType.ERROR, leaf("arm_error"))})
+    outcome, executor = execute(estd, robot)
+    assert not outcome.succeeded and outcome.end_state == "failed"
+    assert events(executor)[-1]["conditions"][0]["reason"] == "nothing within 0.05 m"
+    assert "touched" not in executor.machine.base.memory
+    assert robot.read().tcp[2, 3] == pytest.approx(0.11, abs=0.003)  # went its 5 cm and stopped there
+    robot.close()
+
+
+def test_a_pad_s_force_over_its_start_is_a_contact_and_named() -> None:
+    robot = melfa()
+    ctx = Context(info=robot.info, params={"direction": DOWN, "speed": 0.04, "force_threshold": 3.0,
+                                           "max_distance": 0.3, "filter_time": 0.0, "writes": "touched"})
+    explore = Explore(ctx)
+    held = dataclasses.replace(robot.read(), pad_force=np.array([4.0, 0.0]))  # a grip's force, tared at the start
+    explore.start(held)
+    explore.update(dataclasses.replace(held, pad_force=np.array([6.5, 0.0])), 0.005)
+    assert explore.status is Status.RUNNING  # 6.5 N, but only 2.5 N more than it held at the start
+    explore.update(dataclasses.replace(held, pad_force=np.array([7.5, 0.0])), 0.005)
+    assert explore.status is Status.DONE
+    pad = robot.info.hand.pads[0].name
+    assert ctx.memory["touched"].sensor == pad and ctx.memory["touched"].force == pytest.approx(3.5)
+    robot.close()
+

@@ -1,0 +1,199 @@
+"""Thesis 3.4.3's approach-vector generators on scripted worlds: one object in a corner of the
+box, an empty box, two objects touching. The tests read where the objects truly rest; the
+generators know only the box the task believes in and what their sensors say."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from atd.model.estd import Condition
+from atd.model.vocabulary import EventType
+from atd.sim import load_description
+from primitives.base import Context, StateView, Status
+from primitives.perception.clusters import euclidean_clusters
+from primitives.perception.container import ContainerBelief
+from primitives.perception.generators import Approaching, VisionSettings, random_blind, vision
+from primitives.registry import BuildError, build_condition, build_controller
+from primitives.values import Approach, NothingFound
+from tests.primitives.box_worlds import BELIEF, BOX_POSE, CORNER, FLOOR, MELFA_REACH, box_world, cube, perceive
+from tests.primitives.conftest import Stage, events, execute, leaf, machine, use
+
+SETTINGS = VisionSettings(floor_margin=0.01, wall_margin=0.01, above_rim=0.1, voxel=0.01, min_points=20)
+APPROACHING = Approaching(reach=MELFA_REACH, height=0.05)
+RIM = 0.08
+
+
+# -- the pieces ----------------------------------------------------------------------------
+def test_clusters_apart_are_two_touching_are_one_and_specks_are_dropped() -> None:
+    rng = np.random.default_rng(0)
+    blob = lambda centre, n=200: rng.uniform(-0.02, 0.02, (n, 3)) + centre  # noqa: E731
+    apart = np.vstack([blob((0.0, 0.0, 0.0)), blob((0.1, 0.0, 0.0), 150)])
+    assert sorted(len(c) for c in euclidean_clusters(apart, 0.01)) == [150, 200]
+    touching = np.vstack([blob((0.0, 0.0, 0.0)), blob((0.04, 0.0, 0.0))])
+    assert [len(c) for c in euclidean_clusters(touching, 0.01)] == [400]
+    speck = np.vstack([apart, [[0.3, 0.3, 0.3]]])
+    assert len(euclidean_clusters(speck, 0.01, min_points=5)) == 2
+    assert euclidean_clusters(np.empty((0, 3)), 0.01) == []
+
+
+def test_the_container_belief_is_the_room_inside_the_box() -> None:
+    assert BELIEF.floor == pytest.approx(FLOOR) and BELIEF.rim == pytest.approx(RIM)
+    np.testing.assert_allclose(BELIEF.inner, (0.22, 0.18, 0.07))
+    low, high = BELIEF.footprint(0.05)
+    np.testing.assert_allclose((low, high), ((-0.06, -0.04), (0.06, 0.04)))
+    bent = {"container_pose": tuple((BOX_POSE * 2).reshape(-1)), "container_size": (0.2, 0.2, 0.1),
+            "container_wall": 0.01}
+    with pytest.raises(ValueError, match="not a rigid transform"):
+        ContainerBelief.from_params(bent)
+
+
+def test_random_blind_draws_over_the_whole_floor_inside_the_walls_and_never_gives_up() -> None:
+    rng = np.random.default_rng(3)
+    drawn = [random_blind(BELIEF, rng, 0.03, APPROACHING) for _ in range(2000)]
+    points = np.array([a.point for a in drawn])
+    assert np.all(np.abs(points[:, 0] - 0.18) <= 0.08 + 1e-9) and np.all(np.abs(points[:, 1] - 0.15) <= 0.06 + 1e-9)
+    assert np.ptp(points[:, 0]) > 0.15 and np.ptp(points[:, 1]) > 0.11  # all of it, not the middle
+    assert all(a.candidates is None for a in drawn)  # it cannot count
+    pose = drawn[0].pose
+    np.testing.assert_allclose(pose[:3, 2], (0.0, 0.0, -1.0))  # top-down
+    assert pose[2, 3] == pytest.approx(RIM + 0.05 + MELFA_REACH)  # the fingertips 5 cm over the rim
+
+
+# -- vision ---------------------------------------------------------------------------------
+@pytest.mark.parametrize("engine", ["mujoco", "pybullet"])
+def test_vision_finds_the_corner_object_and_nothing_in_an_empty_box(engine: str) -> None:
+    robot = box_world(cube("block", CORNER), engine=engine)
+    truth = robot.object_poses()["block"][:3, 3]
+    found = vision(robot.capture("kinect"), BELIEF, np.random.default_rng(0), SETTINGS, APPROACHING)
+    robot.close()
+    assert found is not None and found.candidates == 1
+    assert np.linalg.norm(found.point[:2] - truth[:2]) < 0.02
+    assert found.point[2] == pytest.approx(truth[2] + 0.025, abs=0.005)  # its top
+    empty = box_world(engine=engine)
+    assert vision(empty.capture("kinect"), BELIEF, np.random.default_rng(0), SETTINGS, APPROACHING) is None
+    empty.close()
+
+
+def test_vision_separates_two_objects_apart_and_chooses_each_at_random() -> None:
+    robot = box_world(cube("a", (0.12, 0.1)), cube("b", (0.24, 0.2)))
+    truth = [pose[:3, 3] for pose in robot.object_poses().values()]
+    image = robot.capture("kinect")
+    robot.close()
+    picks = [vision(image, BELIEF, np.random.default_rng(seed), SETTINGS, APPROACHING) for seed in range(8)]
+    assert {p.candidates for p in picks} == {2}
+    chosen = {int(np.argmin([np.linalg.norm(p.point[:2] - t[:2]) for t in truth])) for p in picks}
+    assert chosen == {0, 1}
+    assert all(min(np.linalg.norm(p.point[:2] - t[:2]) for t in truth) < 0.02 for p in picks)
+
+
+def test_of_two_touching_objects_vision_comes_down_over_the_taller() -> None:
+    """Touching, they make one cluster; its top is the taller's, and the approach is over it."""
+    robot = box_world(cube("tall", (0.15, 0.15)), cube("flat", (0.2005, 0.15), height=0.02))
+    tall = robot.object_poses()["tall"][:3, 3]
+    found = vision(robot.capture("kinect"), BELIEF, np.random.default_rng(0), SETTINGS, APPROACHING)
+    robot.close()
+    assert found is not None and found.candidates == 1
+    assert np.linalg.norm(found.point[:2] - tall[:2]) < 0.02
+
+
+def test_perceive_by_vision_ends_on_object_found_or_on_nothing_found() -> None:
+    found = Stage(perceive("vision"), use("hold_position"), leaf("object_found", value="found"))
+    estd = machine(found, failures={"s0": (EventType.ERROR, leaf("nothing_found", value="found"))})
+    robot = box_world(cube("block", CORNER))
+    outcome, executor = execute(estd, robot)
+    assert outcome.succeeded, outcome.summary
+    approach = executor.machine.base.memory["found"]
+    assert isinstance(approach, Approach) and approach.method == "vision"
+    assert approach.candidates == 1 and events(executor)[-1]["conditions"][0]["kind"] == "object_found"
+    robot.close()
+    empty = box_world()
+    outcome, executor = execute(estd, empty)
+    empty.close()
+    assert outcome.end_state == "failed"
+    [cause] = events(executor)[-1]["conditions"]
+    assert cause["kind"] == "nothing_found" and "no cluster" in cause["nothing"]
+    assert isinstance(executor.machine.base.memory["found"], NothingFound)
+
+
+def test_what_an_earlier_round_found_fires_nothing_while_this_round_looks() -> None:
+    earlier = Approach(np.eye(4), np.zeros(3), "blind_exploration")
+    robot = box_world()
+    ctx = Context(info=robot.info, params={}, memory={"found": earlier})
+    robot.close()
+    found, nothing = (build_condition(Condition(kind=kind, params={"value": "found"}), ctx)
+                      for kind in ("object_found", "nothing_found"))
+    looking, done = (StateView(elapsed=1.0, arm=status, hand=Status.DONE) for status in (Status.RUNNING, Status.DONE))
+    assert not found.holds(None, looking, 0.005)  # still exploring: the value is the last round's
+    assert found.holds(None, done, 0.005) and not nothing.holds(None, done, 0.005)
+    assert found.evidence["method"] == "blind_exploration"
+
+
+# -- blind exploration ----------------------------------------------------------------------
+def _explore_blind(robot) -> tuple:
+    stage = Stage(perceive("blind_exploration", speed=0.06), use("hand_shape", shape="closed"),
+                  leaf("object_found", value="found"), seconds=60.0)
+    estd = machine(stage, failures={"s0": (EventType.ERROR, leaf("nothing_found", value="found"))})
+    outcome, executor = execute(estd, robot)
+    return outcome, executor.machine.base.memory.get("found"), events(executor)[-1]["conditions"][0]
+
+
+def test_blind_exploration_sweeps_the_floor_to_the_corner_object() -> None:
+    robot = box_world(cube("block", CORNER))
+    truth = robot.object_poses()["block"][:3, 3]
+    outcome, found, cause = _explore_blind(robot)
+    robot.close()
+    assert outcome.succeeded, outcome.summary
+    assert isinstance(found, Approach) and cause["kind"] == "object_found"
+    assert np.linalg.norm(found.point[:2] - truth[:2]) < 0.03
+    assert found.pose[2, 3] == pytest.approx(RIM + 0.05 + MELFA_REACH)  # over the rim: the top is not known
+
+
+def test_blind_exploration_lands_on_an_object_under_its_probe_and_knows_its_top() -> None:
+    """A 15 x 15 cm slab, 3 cm tall, covers every point the probe can come down on."""
+    robot = box_world(cube("slab", (0.18, 0.15), size=0.15, height=0.03))
+    outcome, found, cause = _explore_blind(robot)
+    robot.close()
+    assert outcome.succeeded, outcome.summary
+    assert found.point[2] == pytest.approx(FLOOR + 0.03, abs=0.003)
+    assert abs(found.point[0] - 0.18) < 0.075 and abs(found.point[1] - 0.15) < 0.075
+
+
+def test_a_hand_too_wide_to_sweep_the_box_is_refused_before_the_run() -> None:
+    """It could not tell the walls from objects; an honest refusal, not a false "empty"."""
+    robot = box_world()
+    with pytest.raises(BuildError, match="reaching 0.1 m sideways cannot sweep a container 0.22 x 0.18 m"):
+        build_controller(perceive("blind_exploration", hand_radius=0.1), "arm", Context(info=robot.info, params={}))
+    robot.close()
+
+
+def test_the_descriptions_say_how_wide_a_hand_is_and_so_which_can_sweep_the_box() -> None:
+    robot = box_world()
+    ctx = Context(info=robot.info, params={})
+    robot.close()
+    melfa, barrett = load_description("melfa"), load_description("tombatossals", "right")
+    assert melfa.hand_radius("open") == pytest.approx(0.05, abs=0.005)
+    assert barrett.hand_radius("open") > 2 * barrett.hand_radius("closed")  # spread fingers
+    for fits in (melfa.hand_radius("open"), barrett.hand_radius("closed")):
+        build_controller(perceive("blind_exploration", hand_radius=fits), "arm", ctx)
+    with pytest.raises(BuildError, match="cannot sweep"):
+        build_controller(perceive("blind_exploration", hand_radius=barrett.hand_radius("open")), "arm", ctx)
+
+
+def test_random_blind_as_a_state_always_finds_something_even_in_an_empty_box() -> None:
+    robot = box_world()
+    estd = machine(Stage(perceive("random_blind"), use("hold_position"), leaf("object_found", value="found")))
+    outcome, executor = execute(estd, robot)
+    robot.close()
+    assert outcome.succeeded, outcome.summary
+    found = executor.machine.base.memory["found"]
+    assert found.method == "random_blind" and BELIEF.to_local(found.point[None])[0][2] == pytest.approx(0.0)
+
+
+def test_blind_exploration_of_an_empty_box_finds_nothing() -> None:
+    robot = box_world()
+    outcome, found, cause = _explore_blind(robot)
+    robot.close()
+    assert outcome.end_state == "failed"
+    assert isinstance(found, NothingFound) and cause["kind"] == "nothing_found"
+    assert "swept the container's floor" in found.reason

@@ -1,0 +1,113 @@
+"""Issue 31 in translation: a state acts on the object it names, the ESTD carries the task's
+objects, containers, values and sub-task inputs for the runtime, a sub-task's outcome becomes
+a condition on how its machine ended, and perception no robot maps yet is refused with why."""
+
+from __future__ import annotations
+
+import shutil
+
+from lxml import etree
+
+from atd.model import Event, EventType, ObjectInfo, Pose, State, StateType, Task, Transition, load_task
+from atd.model.estd import Estd, EstdState, leaves
+from atd.model.estd_xml import estd_to_json, estd_to_xml, parse_estd, parse_estd_json
+from atd.model.task import ContainerInfo, Environment, Value
+from atd.model.vocabulary import ValueKind
+from factories.registry import create
+from schemas import schema_path
+from tests.conftest import EXAMPLES, REPO
+from tests.translator.helpers import every_factory
+from translator import translate
+
+THESIS = REPO / "tests" / "data" / "empty_the_box"
+MUG = ObjectInfo(name="mug", pose=Pose.from_position((0.10, 0.05, 0.025)))
+DUCK = ObjectInfo(name="duck", pose=Pose.from_position((0.12, -0.06, 0.025)))
+BOX = ContainerInfo(name="box", pose=Pose.from_position((0.10, -0.08, 0.0)), size=(0.3, 0.25, 0.1))
+
+
+def _two_objects(state: State) -> Task:
+    return Task(known_objects=(MUG, DUCK), environment=Environment(containers=(BOX,)),
+                states=(state, State(name="done", type=StateType.SUCCESS)),
+                transitions=(Transition(origin=state.name, destination="done", events=(Event(type=EventType.SUCCESS),)),))
+
+
+def test_a_state_is_mapped_for_the_object_it_names():
+    """A move to the duck, with no path, ends above the duck, not above the task's first object."""
+    for name, obj in (("duck", DUCK), ("mug", MUG)):
+        task = _two_objects(State(name="go", type=StateType.MOVE, object=name))
+        state = translate(task, create("melfa")).estd.states_by_name["go"]
+        x, y, _ = state.arm.params["target"]
+        assert (round(x, 3), round(y, 3)) == obj.pose.position[:2] and state.object == name
+
+
+def test_the_estd_carries_objects_containers_and_the_state_s_object():
+    task = _two_objects(State(name="go", type=StateType.GRASP, object="duck"))
+    for factory in every_factory():
+        estd = translate(task, factory).estd
+        assert list(estd.objects) == ["mug", "duck"] and estd.environment.containers == (BOX,)
+        assert estd.states_by_name["go"].object == "duck"
+        assert parse_estd(estd_to_xml(estd), "x.xml") == (estd, [])
+        assert parse_estd_json(estd_to_json(estd), "x.json") == (estd, [])
+
+
+def test_values_and_inputs_read_back_from_both_estd_forms_and_satisfy_the_xsd():
+    """What the runtime will use: which values a state writes and reads, and what a sub-task is given."""
+    inner = Estd(robot="melfa", arm="main", initial="reach", inputs=(Value(name="approach", kind=ValueKind.POSE),),
+                 states=(EstdState(name="reach", type=StateType.SUCCESS, atd="reach", target_from="approach"),))
+    estd = Estd(robot="melfa", arm="main", initial="look", environment=Environment(containers=(BOX,)), states=(
+        EstdState(name="look", type=StateType.SUCCESS, atd="look",
+                  writes=(Value(name="approach", kind=ValueKind.POSE), Value(name="seen", kind=ValueKind.COUNT))),
+        EstdState(name="take", type=StateType.TASK, atd="take", machine=inner, inputs={"approach": "approach"})))
+    data = estd_to_xml(estd)
+    schema = etree.XMLSchema(etree.parse(str(schema_path("estd.xsd"))))
+    assert schema.validate(etree.fromstring(data)), schema.error_log
+    assert parse_estd(data, "x.xml") == (estd, [])
+    assert parse_estd_json(estd_to_json(estd), "x.json") == (estd, [])
+    assert b'<writes name="seen" kind="count"/>' in data and b'<target from="approach"/>' in data
+    assert b'<input name="approach" from="approach"/>' in data and b'<input name="approach" kind="pose"/>' in data
+
+
+def test_a_sub_task_outcome_becomes_a_condition_on_the_end_state_it_names(tmp_path):
+    shutil.copy(EXAMPLES / "pick_one.xml", tmp_path)
+    text = (EXAMPLES / "empty_the_box.xml").read_text()
+    (tmp_path / "empty.xml").write_text(text.replace("<error/>", '<outcome name="nothing_there"/>'))
+    task, found = load_task(tmp_path / "empty.xml")
+    assert found == []
+    estd = translate(task, create("melfa")).estd
+    edge = next(t for t in estd.transitions if t.atd == "pick_one->box_empty")
+    assert edge.events[0].type is EventType.OUTCOME
+    assert (edge.events[0].condition.kind, edge.events[0].condition.params) == \
+        ("subtask_ended_in", {"end_state": "nothing_there"})
+    assert parse_estd(estd_to_xml(estd), "x.xml") == (estd, [])
+
+
+def test_perception_no_robot_maps_yet_is_refused_naming_why():
+    task, found = load_task(THESIS / "empty_the_box.xml")
+    assert found == []
+    for factory in every_factory():
+        result = translate(task, factory)
+        assert result.estd is None
+        reasons = {(d.code, d.message.split(": ", 2)[-1]) for d in result.diagnostics}
+        assert ("TRN001", f"the {factory.name} has no perceive primitive: no controller of its runs 'perceive' yet") \
+            in reasons
+        assert ("TRN002", "no mapping for event 'object_found'") in reasons
+        assert any(code == "TRN001" and "its target is the value 'approach', known only at run time" in text
+                   for code, text in reasons)
+
+
+def test_robots_do_not_claim_perception_events_they_cannot_map():
+    for factory in every_factory():
+        events = factory.capabilities.events
+        assert EventType.OBJECT_FOUND not in events and EventType.CONTACT not in events
+        assert EventType.OUTCOME in events  # the executor's, every robot's
+
+
+def test_a_named_object_s_weight_is_what_its_transport_checks():
+    """The edge leaving a transport of the heavy duck asks the wrist to feel the duck, not the mug."""
+    heavy = DUCK.model_copy(update={"weight": 0.8})
+    task = Task(known_objects=(MUG, heavy), states=(
+        State(name="lift", type=StateType.TRANSPORT, object="duck"), State(name="done", type=StateType.SUCCESS)),
+        transitions=(Transition(origin="lift", destination="done", events=(Event(type=EventType.GRASP_STABLE),)),))
+    estd = translate(task, create("melfa")).estd
+    load = next(leaf for leaf in leaves(estd.transitions[0].events[0].condition) if leaf.kind == "load_held")
+    assert load.params["weight"] == 0.4
