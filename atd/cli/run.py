@@ -151,8 +151,9 @@ class RecordRate(click.ParamType):
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True,
               help="the outcome as text, or as one JSON document (state path, events with their readings)")
 def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, trace_path: Path | None,
-        video: Path | None, video_size: tuple[int, int], camera: str, record: Path | None, record_rate: float | None, viewer: bool, realtime: bool,
-        budget: float, world_file: Path | None, grasp: str, quiet: bool, fmt: str) -> None:
+        video: Path | None, video_size: tuple[int, int], camera: str, record: Path | None,
+        record_rate: float | None, viewer: bool, realtime: bool, budget: float, world_file: Path | None, grasp: str,
+        quiet: bool, fmt: str) -> None:
     """Run TASK (an ATD, translated on the fly, or an ESTD) on a simulated robot.
 
     Exit status: 0 the task ended in a success state, 3 in a failure state (or the watchdog
@@ -160,10 +161,11 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
     engine crashed (it runs in a child process, so that is reported, not fatal).
     """
     inputs = [task, *([world_file] if world_file else [])]
-    shaping = [opt for opt in ("--video-size", "--camera")
-               if click.get_current_context().get_parameter_source(opt[2:].replace("-", "_")).name != "DEFAULT"]
+    given = click.get_current_context().get_parameter_source
+    shaping = [option for option, name in (("--video-size", "video_size"), ("--camera", "camera"))
+               if given(name) is not click.core.ParameterSource.DEFAULT]
     if shaping and video is None:
-        usage_error(f"{' and '.join(shaping)} shape the video; give --video FILE.gif too")
+        usage_error(f"{' and '.join(shaping)}: there is no video to shape; give --video FILE.gif too")
     guard_outputs({"--trace": trace_path, "--video": video, "--record": record}, inputs)
     if record is not None and record.suffix.lower() != ".mcap":
         usage_error(f"{record}: --record writes MCAP; give a file name ending in .mcap")

@@ -89,8 +89,8 @@ class Recorder:
             env={**os.environ, "PYTHONPATH": os.pathsep.join(p for p in sys.path if p)})  # the modules this one sees
         try:
             fcntl.fcntl(self._process.stdin.fileno(), fcntl.F_SETPIPE_SZ, PIPE_SIZE)
-        except OSError:
-            pass  # a lower limit set for this system: the run may wait for the process to start
+        except (AttributeError, OSError):
+            pass  # not Linux, or a lower limit set for this system: the run may wait for the process to start
         self._send((robot.description, robot.scene, robot.engine, self.path, self.size, self.camera))
 
     def _send(self, item: object) -> None:

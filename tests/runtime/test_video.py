@@ -67,7 +67,8 @@ def test_an_unknown_camera_is_one_line_naming_the_cameras(tmp_path):
 
 def test_camera_without_video_is_refused():
     result = atd("run", PICK_AND_PLACE, "--robot", "melfa", "--camera", "kinect")
-    assert result.returncode == 2 and result.stderr.strip() == "error: --camera shape the video; give --video FILE.gif too"
+    assert result.returncode == 2
+    assert result.stderr.strip() == "error: --camera: there is no video to shape; give --video FILE.gif too"
 
 
 @pytest.mark.parametrize("engine", ["mujoco", "pybullet"])
