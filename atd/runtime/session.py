@@ -172,9 +172,14 @@ class Run:
             scene = belief_scene(estd)
         if viewer:
             _Viewer.check_display()
+        filming = Recorder(video, video_size, camera) if video is not None else None
+        if filming:  # it builds its copy of the robot while this process builds the run
+            filming.start(robot or factory.robot, scene, engine)
         try:
             self.robot = make_robot(robot or factory.robot, scene, engine, seed, window=viewer, belief=factory.robot)
         except SceneError as exc:
+            if filming:
+                filming.abandon()
             raise InvalidScene(str(exc)) from None
         self.notes: list[str] = [str(self.robot.settling)] if self.robot.settling else []  # for the user
         context = Context(info=self.robot.info, params={}, object=estd.object, environment=estd.environment,
@@ -182,11 +187,13 @@ class Run:
         problems = build_problems(estd, context)
         if problems:
             self.robot.close()
+            if filming:
+                filming.abandon()
             raise Unrunnable(problems)
         self.trace = Trace()
         self.trace_path = trace_path
         self.executor = Executor(estd, self.robot, context, self.trace, budget=budget)
-        self.video = _Video(self.robot, self.executor, Recorder(video, video_size, camera)) if video is not None else None
+        self.video = _Video(self.robot, self.executor, filming) if filming else None
         self.viewer = _Viewer(self.robot) if viewer else None
         self.recorder = Recording(record, self.robot, self.executor, self.trace, tuple(self.robot.object_poses()), record_rate,
                                  _run_info(estd, engine, seed), _attachments(estd)) if record is not None else None

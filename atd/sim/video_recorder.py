@@ -27,8 +27,9 @@ from pathlib import Path
 from typing import BinaryIO
 
 from atd.model.files import OutputError, describe_write_error, write_output
-from atd.sim.scene import WORKSPACE_CAMERA
+from atd.sim.scene import WORKSPACE_CAMERA, Scene
 from atd.sim.simrobot import SimRobot
+from factories.description import RobotDescription
 from atd.sim.video import DEFAULT_SIZE, FRAME_PERIOD, Frames, VideoError
 
 _END = None  # the feed's last item when the run ended and the video is wanted
@@ -51,7 +52,7 @@ class Recorder:
             return
         self._next = now + FRAME_PERIOD
         if self._process is None:
-            self._start(robot)
+            self.start(robot.description, robot.scene, robot.engine)
         self._send((now, state, robot.scene_state()))
 
     def save(self) -> str:
@@ -81,7 +82,9 @@ class Recorder:
             self._process.kill()
             self._reap()
 
-    def _start(self, robot: SimRobot) -> None:
+    def start(self, description: RobotDescription, scene: Scene, engine: str) -> None:
+        """Start the rendering process on this robot and scene now, before the first frame
+        (by default it starts at the first): it builds its copy while the run builds its own."""
         self._errors = tempfile.TemporaryFile()
         self._process = subprocess.Popen(
             [sys.executable, "-m", "atd.sim.video_recorder"], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
@@ -91,7 +94,7 @@ class Recorder:
             fcntl.fcntl(self._process.stdin.fileno(), fcntl.F_SETPIPE_SZ, PIPE_SIZE)
         except (AttributeError, OSError):
             pass  # not Linux, or a lower limit set for this system: the run may wait for the process to start
-        self._send((robot.description, robot.scene, robot.engine, self.path, self.size, self.camera))
+        self._send((description, scene, engine, self.path, self.size, self.camera))
 
     def _send(self, item: object) -> None:
         if self._process is None or self._process.stdin.closed:
