@@ -1,15 +1,21 @@
 """The root click group and the exit codes every sub-command shares."""
 
+from __future__ import annotations
+
 import faulthandler
 import importlib
 from pathlib import Path
-from typing import Iterable, Mapping, NoReturn
+from typing import TYPE_CHECKING, Iterable, Mapping, NoReturn
 
 import click
 
 from atd import __version__
-from atd.model import ranges
-from atd.model.files import OutputError, output_problem, output_problems, write_output
+
+if TYPE_CHECKING:
+    from atd.model import ranges
+
+# `atd --help` imports this module and click alone: atd.model (pydantic, lxml, numpy) is
+# imported by the functions below that need it, when a command runs.
 
 EXIT_OK = 0
 EXIT_INVALID = 1  # the input file has errors
@@ -28,6 +34,8 @@ class OutputFile(click.Path):
         super().__init__(path_type=Path)  # a directory too is refused below, in the same words
 
     def convert(self, value, param, ctx) -> Path:
+        from atd.model.files import output_problem
+
         path = super().convert(value, param, ctx)
         problem = output_problem(path)
         if problem:
@@ -43,6 +51,8 @@ class Ranged(click.ParamType):
         self.name = f"{'integer' if integer else 'number'} in {allowed}"
 
     def convert(self, value, param, ctx) -> float | int:
+        from atd.model import ranges
+
         try:
             text = str(value)  # a default is already a number
             number = ranges.integer(text) if self.integer else ranges.numbers([text.strip()])[0]
@@ -64,6 +74,8 @@ def usage_error(message: str) -> NoReturn:
 def guard_outputs(outputs: Mapping[str, Path | None], inputs: Iterable[Path] = ()) -> None:
     """Exit 2 before any work when an output would overwrite an input, another output or
     something that is not a regular file."""
+    from atd.model.files import output_problems
+
     problems = output_problems(outputs, inputs)
     if problems:
         usage_error("; ".join(problems))
@@ -71,6 +83,8 @@ def guard_outputs(outputs: Mapping[str, Path | None], inputs: Iterable[Path] = (
 
 def write_or_exit(path: Path, data: bytes) -> None:
     """Write an output atomically, or exit 2 with one line and nothing left behind."""
+    from atd.model.files import OutputError, write_output
+
     try:
         write_output(path, data)
     except OutputError as exc:
@@ -111,32 +125,51 @@ def _paths(value: object) -> list[Path]:
 class Commands(click.Group):
     """The group class of `atd`: its commands refuse repeated options, its sub-groups too.
 
-    A command's module is imported when the command is asked for, not at start-up:
-    `atd validate` then loads neither the engines nor the campaign tools.
+    A command's module is imported when the command is asked for, not at start-up: `atd
+    validate` then loads neither the engines nor the campaign tools, and `atd --help` loads
+    none of them, listing each command with the one line the group keeps for it here.
     """
 
     command_class = GuardedCommand
 
-    def __init__(self, *args, modules: Mapping[str, str] | None = None, **kwargs) -> None:
+    def __init__(self, *args, lazy: Mapping[str, tuple[str, str]] | None = None, **kwargs) -> None:
         super().__init__(*args, **kwargs)
-        self.modules = dict(modules or {})  # command name -> the module that registers it here
+        self.lazy = dict(lazy or {})  # command name -> (the module that registers it here, its one line)
 
     def list_commands(self, ctx: click.Context) -> list[str]:
-        return sorted({*self.commands, *self.modules})
+        return sorted({*self.commands, *self.lazy})
 
     def get_command(self, ctx: click.Context, name: str) -> click.Command | None:
-        if name not in self.commands and name in self.modules:
-            importlib.import_module(self.modules[name])
-        return super().get_command(ctx, name)
+        if name not in self.commands and name in self.lazy:
+            importlib.import_module(self.lazy[name][0])
+        command = super().get_command(ctx, name)
+        if command is not None and name in self.lazy:  # one line for it, listed before or after it loads
+            command.short_help = self.lazy[name][1]
+        return command
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        """The commands and their one line each, without importing a command's module."""
+        names = [name for name in self.list_commands(ctx) if name in self.lazy or not self.commands[name].hidden]
+        limit = formatter.width - 6 - max(map(len, names), default=0)  # as click's own listing
+        rows = [(name, self.lazy[name][1] if name in self.lazy else self.commands[name].get_short_help_str(limit))
+                for name in names]
+        if rows:
+            with formatter.section("Commands"):
+                formatter.write_dl(rows)
 
 
 Commands.group_class = Commands
 
 
-@click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]}, modules={
-    "validate": "atd.cli.validate", "schema": "atd.cli.validate", "translate": "atd.cli.translate",
-    "check": "atd.cli.check", "run": "atd.cli.run", "graph": "atd.cli.graph", "report": "atd.cli.review",
-    "compare": "atd.cli.review"})
+@click.group(cls=Commands, context_settings={"help_option_names": ["-h", "--help"]}, lazy={
+    "validate": ("atd.cli.validate", "Check ATD files: every problem, where it is and how to fix it."),
+    "schema": ("atd.cli.validate", "Print the JSON Schema of the ATD model."),
+    "translate": ("atd.cli.translate", "Translate an ATD into an ESTD for one robot."),
+    "check": ("atd.cli.check", "Which installed robot can do which task, and why not."),
+    "run": ("atd.cli.run", "Run a task on a simulated robot: the outcome in the task's terms."),
+    "graph": ("atd.cli.graph", "Draw a task's state machine (SVG, PNG or DOT)."),
+    "report": ("atd.cli.review", "One HTML page for a recorded run (atd run --record)."),
+    "compare": ("atd.cli.review", "Two recorded runs of one task, state by state.")})
 @click.version_option(__version__, prog_name="atd")
 def main() -> None:
     """Describe a manipulation task once (ATD), translate it for a robot (ESTD), run it in simulation."""
@@ -146,17 +179,25 @@ def main() -> None:
         pass
 
 
-@main.group(invoke_without_command=True, modules={
-    "list": "atd.cli.robots_command", "show": "atd.cli.robots_command", "test": "atd.cli.robot_test",
-    "new": "atd.cli.robots_new"})
+@main.group(invoke_without_command=True, lazy={
+    "list": ("atd.cli.robots_command", "Every installed robot with its arms and capabilities."),
+    "show": ("atd.cli.robots_command", "A robot's arms, mapping table, events and configuration."),
+    "test": ("atd.cli.robot_test", "Self-test a simulated robot: kinematics, sensors, a grasp."),
+    "new": ("atd.cli.robots_new", "Write a new robot as a pip package whose tests pass.")})
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True,
+              help="bare `atd robots`: the list as text, or as one JSON document")
 @click.pass_context
-def robots(ctx: click.Context) -> None:
+def robots(ctx: click.Context, fmt: str) -> None:
     """The robots installed through factories (bare `atd robots` lists them)."""
     if ctx.invoked_subcommand is None:
-        ctx.invoke(robots.get_command(ctx, "list"))
+        ctx.invoke(robots.get_command(ctx, "list"), fmt=fmt)
+    elif ctx.get_parameter_source("fmt") is not click.core.ParameterSource.DEFAULT:
+        usage_error(f"give --format after the sub-command: atd robots {ctx.invoked_subcommand} ... --format {fmt}")
 
 
-@main.group(modules={"run": "atd.cli.campaign_run", "report": "atd.cli.campaign_report",
-                     "export": "atd.cli.campaign_report"})
+@main.group(lazy={
+    "run": ("atd.cli.campaign_run", "Run a campaign's trials, each judged by the simulator."),
+    "report": ("atd.cli.campaign_report", "Success rates with Wilson intervals, per group and condition."),
+    "export": ("atd.cli.campaign_report", "Every trial of a campaign, every field, for other tools.")})
 def campaign() -> None:
     """Trial campaigns: run a task many times under perturbed truth, judge each trial by the simulator."""

@@ -2,12 +2,13 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import click
 
 from atd.cli.app import EXIT_INVALID, OutputFile, guard_outputs, main, usage_error, write_or_exit
-from atd.review.compare import compare, entered, listed, render_text
+from atd.review.compare import as_document, compare, entered, listed, render_text
 from atd.review.load import Recording, RecordingError, load
 from atd.review.page import report_page
 from atd.review.plots import difference
@@ -42,7 +43,9 @@ def report(recording: Path, output: Path | None) -> None:
 @click.argument("second", metavar="B.mcap", type=click.Path(path_type=Path))
 @click.option("--plot", type=OutputFile(), default=None, metavar="FILE.svg",
               help="also draw the differences per state and signal")
-def compare_runs(first: Path, second: Path, plot: Path | None) -> None:
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True,
+              help="the table as text, or as one JSON document")
+def compare_runs(first: Path, second: Path, plot: Path | None, fmt: str) -> None:
     """Two runs of one task aligned state by state: time in each state, and per signal the
     difference of its mean (two seeds, two engines, a simulated and a real run)."""
     if plot is not None and plot.suffix.lower() != ".svg":
@@ -54,7 +57,12 @@ def compare_runs(first: Path, second: Path, plot: Path | None) -> None:
                    f"{listed(entered(b), 5)}): there is nothing to set side by side; compare two runs of one task",
                    err=True)
         raise SystemExit(EXIT_INVALID)
-    click.echo(render_text(a, b, durations, rows))
     if plot is not None:
         write_or_exit(plot, difference(a, b, rows).encode())
+    if fmt == "json":
+        click.echo(json.dumps({**as_document(a, b, durations, rows), "plot": None if plot is None else str(plot)},
+                              indent=2))
+        return
+    click.echo(render_text(a, b, durations, rows))
+    if plot is not None:
         click.echo(f"plot: {plot}")

@@ -25,7 +25,8 @@ def robot_test(robot: str, arm: str | None, engine: str, seed: int, video: Path 
     """
     from atd.sim import UnknownRobot, load_description
     from atd.sim.selftest import run_all
-    from atd.sim.video import Recorder, VideoError, check_video_path
+    from atd.sim.video import VideoError, check_video_path
+    from atd.sim.video_recorder import Recorder
 
     try:
         description = load_description(robot, arm)
@@ -37,7 +38,7 @@ def robot_test(robot: str, arm: str | None, engine: str, seed: int, video: Path 
         except VideoError as exc:
             usage_error(str(exc))
 
-    recorder = Recorder() if video is not None else None
+    recorder = Recorder(video) if video is not None else None
     click.echo(f"atd robots test {description.label} on {engine} (seed {seed})")
     checks = run_all(description, engine, seed, recorder)
     width = max(len(c.name) for c in checks)
@@ -47,7 +48,7 @@ def robot_test(robot: str, arm: str | None, engine: str, seed: int, video: Path 
     click.echo(f"{passed}/{len(checks)} checks passed")
     if video is not None:
         try:
-            click.echo(recorder.save(video))
+            click.echo(recorder.save())
         except OutputError as exc:
             usage_error(str(exc))
     sys.exit(EXIT_OK if passed == len(checks) else EXIT_TASK_FAILED)

@@ -5,6 +5,8 @@
 
 from __future__ import annotations
 
+import json
+
 import click
 
 from atd.cli.app import robots
@@ -18,17 +20,32 @@ from factories.beside import description_file
 from factories.registry import installed
 
 
+FORMAT_OPTION = click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True,
+                             help="as text, or as one JSON document")
+
+
+def robot_entry(name: str, factory: Factory) -> dict:
+    """What `atd robots list` says of one robot, as data."""
+    caps = factory.capabilities
+    return {"name": name, "description": factory.description, "arms": [a.name for a in factory.arms],
+            "default_arm": factory.arms[0].name, "primitives": sorted(p.value for p in caps.primitives),
+            "hand_shapes": sorted(s.value for s in caps.hand_shapes), "events": sorted(e.value for e in caps.events)}
+
+
 @robots.command("list")
-def list_robots() -> None:
+@FORMAT_OPTION
+def list_robots(fmt: str = "text") -> None:
     """Every installed robot with its arms and capabilities."""
-    for name, entry in installed().items():
-        factory = entry.load()()
-        caps = factory.capabilities
-        click.echo(f"{name}: {factory.description}")
-        click.echo(f"  arms:        {', '.join(a.name for a in factory.arms)} (default {factory.arms[0].name})")
-        click.echo(f"  primitives:  {', '.join(sorted(p.value for p in caps.primitives))}")
-        click.echo(f"  hand shapes: {', '.join(sorted(s.value for s in caps.hand_shapes))}")
-        click.echo(f"  events:      {', '.join(sorted(e.value for e in caps.events))}")
+    entries = [robot_entry(name, entry.load()()) for name, entry in installed().items()]
+    if fmt == "json":
+        click.echo(json.dumps(entries, indent=2))
+        return
+    for robot in entries:
+        click.echo(f"{robot['name']}: {robot['description']}")
+        click.echo(f"  arms:        {', '.join(robot['arms'])} (default {robot['default_arm']})")
+        click.echo(f"  primitives:  {', '.join(robot['primitives'])}")
+        click.echo(f"  hand shapes: {', '.join(robot['hand_shapes'])}")
+        click.echo(f"  events:      {', '.join(robot['events'])}")
 
 
 def event_rows(factory: Factory) -> list[tuple[str, str]]:
@@ -59,12 +76,33 @@ def mapping_table(factory: Factory) -> str:
     return "\n".join(lines)
 
 
+def robot_sheet(factory: Factory) -> dict:
+    """What `atd robots show` says of one robot and arm, as data."""
+    return {
+        "name": factory.name, "description": factory.description, "arm": factory.arm.name,
+        "arms": [{"name": a.name, "description": a.description, "hand": a.hand.kind,
+                  "sensors": [{"name": s.name, "kind": s.kind.value} for s in a.sensors]} for a in factory.arms],
+        "base": list(factory.robot.base.xyz), "reach_checked_on": str(description_file(type(factory))),
+        "primitives": [{"abstract": r.abstract, "concrete": r.concrete, "extra_parameters": r.extra_parameters,
+                        "control_and_sensors": r.control_and_sensors} for r in factory.node_table],
+        "events": [{"event": label, "detected_by": text} for label, text in event_rows(factory)],
+        "config": {"controllers": {name: dict(sorted(params.items()))
+                                   for name, params in sorted(factory.config.controllers.items())},
+                   "conditions": {f"{event}/{kind}": dict(sorted(params.items()))
+                                  for (event, kind), params in sorted(factory.config.conditions.items())}},
+    }
+
+
 @robots.command("show")
 @click.argument("robot")
 @click.option("--arm", default=None, help="which arm (default: the robot's first)")
-def show(robot: str, arm: str | None) -> None:
+@FORMAT_OPTION
+def show(robot: str, arm: str | None, fmt: str) -> None:
     """Print ROBOT's description, arms, mapping table, event conditions and config values."""
     factory = make_factory(robot, arm, None)
+    if fmt == "json":
+        click.echo(json.dumps(robot_sheet(factory), indent=2))
+        return
     click.echo(f"{factory.name}: {factory.description}\n")
     for a in factory.arms:
         click.echo(f"arm '{a.name}': {a.description} ({a.hand.kind} hand)")

@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
-import sys
+import json
 from dataclasses import dataclass
 from pathlib import Path
-from typing import NoReturn
+from typing import Callable, NoReturn
 
 import click
 
+from atd.cli.run_output import Progress, document, next_step, where
 from atd.cli.translate import GRASP_OPTION
 from atd.cli.app import (EXIT_ENGINE_CRASHED, EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, EXIT_UNTRANSLATABLE,
                          EXIT_USAGE, OutputFile, Ranged, guard_outputs, main, usage_error)
@@ -21,7 +22,8 @@ from atd.runtime.isolated import EngineCrash, in_child
 from atd.runtime.report import summary
 from atd.model.files import OutputError
 from atd.runtime.session import ENGINES, InvalidScene, InvalidWorld, Run, RunError, Unrunnable, world_scene
-from atd.sim.scene import Scene
+from atd.sim.scene import WORKSPACE_CAMERA, Scene
+from atd.sim.video import VideoError, parse_size
 from factories.base import Factory
 from factories.registry import UnknownRobot, create
 from translator import translate
@@ -72,39 +74,6 @@ def _world(estd: Estd, world_file: Path, seed: int) -> Scene:
         _fail(f"error: {exc}", EXIT_INVALID)
 
 
-def _where(positions: dict[str, tuple[float, float, float]], inside: dict[str, list[str]]) -> None:
-    """Where the objects came to rest, and what each container holds at the end."""
-    if len(positions) == 1:
-        x, y, z = next(iter(positions.values()))
-        click.echo(f"the object rests at ({x:.3f}, {y:.3f}, {z:.3f})")
-    elif positions:
-        click.echo("the objects rest at: " + ", ".join(f"{name} ({x:.3f}, {y:.3f}, {z:.3f})"
-                                                       for name, (x, y, z) in positions.items()))
-    for container, names in inside.items():
-        click.echo(f"in '{container}' at the end: {', '.join(names) or 'nothing'} "
-                   f"({len(names)} of {len(positions)} objects)")
-
-
-class _Progress:
-    """One line per state entered, with simulated time and real-time factor; on a terminal
-    the line also updates in place while the state runs."""
-
-    def __init__(self, quiet: bool) -> None:
-        self.quiet = quiet
-        self.tty = sys.stderr.isatty()
-        self.state = ""
-
-    def __call__(self, state: str, sim: float, wall: float) -> None:
-        if self.quiet:
-            return
-        line = f"[{sim:7.2f} s  {sim / wall if wall else 0:5.1f}x real time]  {state}"
-        if state != self.state:
-            self.state = state
-            click.echo(("\r" if self.tty else "") + line, err=True)
-        elif self.tty:
-            click.echo("\r" + line, err=True, nl=False)
-
-
 @dataclass
 class _Ran:
     """What the process that ran the engine sends back for the summary."""
@@ -114,6 +83,29 @@ class _Ran:
     object_positions: dict[str, tuple[float, float, float]]
     inside: dict[str, list[str]]
     notes: list[str]
+
+
+def _in_child(simulate: Callable[[], _Ran], progress: Progress) -> _Ran:
+    """The run, in a child process; the progress line is cleared however it ends, before
+    anything else is said."""
+    try:
+        return in_child(simulate)
+    finally:
+        progress.finish()
+
+
+class VideoSize(click.ParamType):
+    """--video-size WIDTHxHEIGHT, refused in one line (not click's usage text) when malformed."""
+
+    name = "size"
+
+    def convert(self, value, param, ctx) -> tuple[int, int]:
+        if isinstance(value, tuple):  # the default
+            return value
+        try:
+            return parse_size(value)
+        except VideoError as exc:
+            usage_error(str(exc))
 
 
 class RecordRate(click.ParamType):
@@ -136,7 +128,12 @@ class RecordRate(click.ParamType):
 @click.option("--trace", "trace_path", type=OutputFile(), default=None,
               help="write every state entry, exit and event as JSON lines")
 @click.option("--video", type=OutputFile(), default=None,
-              help="record the run from an offscreen camera: .gif, or .mp4 (needs ffmpeg: the video extra)")
+              help="record the run from an offscreen camera, the state and simulated time drawn on each frame "
+                   "(10 frames per simulated second): .gif, or .mp4 (needs ffmpeg: the video extra)")
+@click.option("--video-size", type=VideoSize(), default="640x480", show_default=True, metavar="WxH",
+              help="the video's width and height in pixels")
+@click.option("--camera", default=WORKSPACE_CAMERA, show_default=True,
+              help="the video's camera: 'workspace' (a free camera on the work area) or one of the robot's cameras")
 @click.option("--record", type=OutputFile(), default=None, metavar="FILE.mcap",
               help="record every sensor reading, command, state and the simulator's ground truth as MCAP "
                    "(opens in Foxglove and PlotJuggler; see `atd report`)")
@@ -151,9 +148,12 @@ class RecordRate(click.ParamType):
                    "into a container (seeded by --seed), containers (see docs/worlds.md)")
 @GRASP_OPTION
 @click.option("--quiet", "-q", is_flag=True, help="no live progress")
+@click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True,
+              help="the outcome as text, or as one JSON document (state path, events with their readings)")
 def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, trace_path: Path | None,
-        video: Path | None, record: Path | None, record_rate: float | None, viewer: bool, realtime: bool,
-        budget: float, world_file: Path | None, grasp: str, quiet: bool) -> None:
+        video: Path | None, video_size: tuple[int, int], camera: str, record: Path | None,
+        record_rate: float | None, viewer: bool, realtime: bool, budget: float, world_file: Path | None, grasp: str,
+        quiet: bool, fmt: str) -> None:
     """Run TASK (an ATD, translated on the fly, or an ESTD) on a simulated robot.
 
     Exit status: 0 the task ended in a success state, 3 in a failure state (or the watchdog
@@ -161,6 +161,11 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
     engine crashed (it runs in a child process, so that is reported, not fatal).
     """
     inputs = [task, *([world_file] if world_file else [])]
+    given = click.get_current_context().get_parameter_source
+    shaping = [option for option, name in (("--video-size", "video_size"), ("--camera", "camera"))
+               if given(name) is not click.core.ParameterSource.DEFAULT]
+    if shaping and video is None:
+        usage_error(f"{' and '.join(shaping)}: there is no video to shape; give --video FILE.gif too")
     guard_outputs({"--trace": trace_path, "--video": video, "--record": record}, inputs)
     if record is not None and record.suffix.lower() != ".mcap":
         usage_error(f"{record}: --record writes MCAP; give a file name ending in .mcap")
@@ -170,12 +175,14 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
 
     def simulate() -> _Ran:
         session = Run(estd, factory, engine=engine, seed=seed, trace_path=trace_path, realtime=realtime,
-                      budget=budget, video=video, viewer=viewer, scene=truth, record=record, record_rate=record_rate)
-        outcome = session.execute(_Progress(quiet))
+                      budget=budget, video=video, video_size=video_size, camera=camera, viewer=viewer, scene=truth,
+                      record=record, record_rate=record_rate)
+        outcome = session.execute(progress)
         return _Ran(outcome, session.trace.records, session.object_positions, session.inside, session.notes)
 
+    progress = Progress(quiet)
     try:
-        ran = in_child(simulate)
+        ran = _in_child(simulate, progress)
     except Unrunnable as exc:
         _fail(f"error: {exc}", EXIT_UNTRANSLATABLE)
     except InvalidScene as exc:
@@ -187,13 +194,22 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
     except EngineCrash as exc:
         _fail(f"error: the {engine} engine crashed ({exc}) running {task}; "
               f"try --engine {'pybullet' if engine == 'mujoco' else 'mujoco'}", EXIT_ENGINE_CRASHED)
+    outputs = {"trace": trace_path, "record": record, "video": video}
+    if fmt == "json":
+        about = {"task": str(task), "robot": estd.robot, "arm": estd.arm, "engine": engine, "seed": seed}
+        click.echo(json.dumps(document(about, ran.outcome, ran.records, ran.object_positions, ran.inside, outputs,
+                                       ran.notes), indent=2))
+        raise SystemExit(EXIT_OK if ran.outcome.succeeded else EXIT_TASK_FAILED)
     title = f"{task.name} on {estd.robot} ({estd.arm} arm) in {engine}, seed {seed}"
     click.echo(summary(ran.outcome, ran.records, title))
-    _where(ran.object_positions, ran.inside)
+    for line in where(ran.object_positions, ran.inside):
+        click.echo(line)
     if trace_path:
         click.echo(f"trace: {trace_path}")
     if record:
         click.echo(f"recording: {record} (see it with: atd report {record})")
     for note in ran.notes:
         click.echo(note)
+    command = ["atd", "run", str(task), *(["--robot", robot] if robot else []), *(["--arm", arm] if arm else [])]
+    click.echo(next_step(command, record, video, ran.outcome.succeeded))
     raise SystemExit(EXIT_OK if ran.outcome.succeeded else EXIT_TASK_FAILED)

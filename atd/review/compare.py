@@ -99,3 +99,27 @@ def render_text(a: Recording, b: Recording, durations: list[tuple[str, float, fl
     lines.append("")
     lines.append("each signal: mean in B minus mean in A over the state's first visit (A's own mean in brackets)")
     return "\n".join(lines)
+
+
+def _number(value: float) -> float | None:
+    """A mean for JSON: null where a run has no sample in the state (NaN is not JSON)."""
+    return None if np.isnan(value) else round(float(value), 6)
+
+
+def as_document(a: Recording, b: Recording, durations: list[tuple[str, float, float]],
+                rows: list[tuple[str, str, float, float]]) -> dict:
+    """The comparison `compare` made, as data (`atd compare --format json`): each run, the
+    states one run entered and the other not, and per state both durations and per signal
+    the mean in A and the difference B - A."""
+    cell = {(state, signal): (d, m) for state, signal, d, m in rows}
+    return {
+        "runs": {name: {"path": str(r.path), "robot": r.run.robot, "arm": r.run.arm, "engine": r.run.engine,
+                        "seed": r.run.seed, "task": r.run.task, "outcome": r.outcome}
+                 for name, r in (("a", a), ("b", b))},
+        "only_in_one": sorted(entered(a) ^ entered(b)),
+        "states": [{"state": state, "time_a": round(time_a, 6), "time_b": round(time_b, 6),
+                    "signals": {s.name: {"mean_a": _number(cell[state, s.name][1]),
+                                         "difference": _number(cell[state, s.name][0])} for s in SIGNALS}}
+                   for state, time_a, time_b in durations],
+        "difference": "mean in B minus mean in A over the state's first visit",
+    }

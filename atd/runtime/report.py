@@ -1,5 +1,5 @@
 """The end-of-run summary, in the ATD's own terms: the path through the task graph, the
-events that fired with the readings behind them, and the outcome."""
+events that fired with the readings behind them, and the outcome; as text, or as data."""
 
 from __future__ import annotations
 
@@ -67,3 +67,19 @@ def summary(outcome: Outcome, records: list[dict], title: str) -> str:
               f"simulated {outcome.sim_time:.2f} s in {outcome.wall_time:.2f} s of wall-clock time "
               f"({rtf:.1f}x real time)"]
     return "\n".join(lines)
+
+
+def outcome_document(outcome: Outcome, records: list[dict]) -> dict:
+    """The summary as data (`atd run --format json`): every state visited and every event
+    that fired, none left out, each event with the readings behind it as the trace has them."""
+    return {
+        "succeeded": outcome.succeeded,
+        "end_state": outcome.end_state,
+        "summary": outcome.summary,
+        "sim_time": round(outcome.sim_time, 6),
+        "wall_time": round(outcome.wall_time, 3),
+        "path": [{"state": v.path, "atd": v.atd, "entered": round(v.entered, 6),
+                  "left": None if v.left is None else round(v.left, 6), "left_by": v.left_by, "left_on": v.left_on}
+                 for v in outcome.visits],
+        "events": [{k: v for k, v in r.items() if k != "type"} for r in records if r["type"] == "event"],
+    }

@@ -21,9 +21,10 @@ from atd.runtime.executor import Executor, Observer, Outcome, Progress, build_pr
 from atd.runtime.recording import DEFAULT_RATE, RECORDING_FORMAT, Recording
 from atd.runtime.trace import Trace
 from atd.sim import ENGINES, make_robot
-from atd.sim.scene import Scene, SceneError, scene_from_task
+from atd.sim.scene import WORKSPACE_CAMERA, Scene, SceneError, scene_from_task
 from atd.sim.simrobot import SimRobot
-from atd.sim.video import Recorder, VideoError, check_video_path
+from atd.sim.video import DEFAULT_SIZE, VideoError, check_camera, check_video_path
+from atd.sim.video_recorder import Recorder
 from atd.sim.world import WorldError, load_world
 from factories.base import Factory
 from factories.description import RobotDescription
@@ -100,17 +101,21 @@ def _attachments(estd: Estd) -> dict[str, bytes]:
 
 
 class _Video:
-    """Keeps a frame every 0.1 s of simulated time; written when the run ends."""
+    """Keeps a frame every `FRAME_PERIOD` of simulated time, labelled with the state the
+    executor is in; written when the run ends."""
 
-    def __init__(self, robot, path: Path) -> None:
-        self.robot, self.path, self.recorder = robot, path, Recorder()
+    def __init__(self, robot: SimRobot, executor: Executor, recorder: Recorder) -> None:
+        self.robot, self.executor, self.recorder = robot, executor, recorder
 
     def __call__(self, sim_time: float) -> None:
-        self.recorder(self.robot)
+        self.recorder(self.robot, self.executor.machine.innermost().visit.path)
 
     def write(self) -> str:
         """What became of the video, for the user."""
-        return self.recorder.save(self.path)
+        return self.recorder.save()
+
+    def abandon(self) -> None:
+        self.recorder.abandon()
 
 
 class _Viewer:
@@ -149,24 +154,32 @@ class Run:
                  trace_path: Path | None = None, realtime: bool = False, budget: float = 300.0,
                  video: Path | None = None, viewer: bool = False, scene: Scene | None = None,
                  robot: RobotDescription | None = None, record: Path | None = None,
-                 record_rate: float | None = DEFAULT_RATE) -> None:
+                 record_rate: float | None = DEFAULT_RATE, video_size: tuple[int, int] = DEFAULT_SIZE,
+                 camera: str = WORKSPACE_CAMERA) -> None:
         """`factory` is the robot's factory: it knows the physical robot the ESTD was made for.
         `scene` and `robot` are the truth where it differs from what the ESTD and the factory
         believe (a campaign's perturbed trial): by default the world is built from the ESTD's
         object and environment, and the robot is the factory's. `record` writes the run's
-        signals to MCAP at `record_rate` Hz of simulated time (None: every tick)."""
+        signals to MCAP at `record_rate` Hz of simulated time (None: every tick); `video` is
+        rendered at `video_size` (width, height) from `camera` (see `atd.sim.video.cameras`)."""
         if video is not None:
             try:
                 check_video_path(video)
+                check_camera(camera, robot or factory.robot)
             except VideoError as exc:
                 raise RunError(str(exc)) from None
         if scene is None:
             scene = belief_scene(estd)
         if viewer:
             _Viewer.check_display()
+        filming = Recorder(video, video_size, camera) if video is not None else None
+        if filming:  # it builds its copy of the robot while this process builds the run
+            filming.start(robot or factory.robot, scene, engine)
         try:
             self.robot = make_robot(robot or factory.robot, scene, engine, seed, window=viewer, belief=factory.robot)
         except SceneError as exc:
+            if filming:
+                filming.abandon()
             raise InvalidScene(str(exc)) from None
         self.notes: list[str] = [str(self.robot.settling)] if self.robot.settling else []  # for the user
         context = Context(info=self.robot.info, params={}, object=estd.object, environment=estd.environment,
@@ -174,11 +187,13 @@ class Run:
         problems = build_problems(estd, context)
         if problems:
             self.robot.close()
+            if filming:
+                filming.abandon()
             raise Unrunnable(problems)
         self.trace = Trace()
         self.trace_path = trace_path
         self.executor = Executor(estd, self.robot, context, self.trace, budget=budget)
-        self.video = _Video(self.robot, video) if video is not None else None
+        self.video = _Video(self.robot, self.executor, filming) if filming else None
         self.viewer = _Viewer(self.robot) if viewer else None
         self.recorder = Recording(record, self.robot, self.executor, self.trace, tuple(self.robot.object_poses()), record_rate,
                                  _run_info(estd, engine, seed), _attachments(estd)) if record is not None else None
@@ -209,6 +224,7 @@ class Run:
                 self.notes.append(self.video.write())
             return outcome
         finally:
-            if self.recorder:
-                self.recorder.abandon()
+            for unfinished in (self.recorder, self.video):
+                if unfinished:
+                    unfinished.abandon()
             self.robot.close()

@@ -14,7 +14,7 @@ import jinja2
 import numpy as np
 
 from atd.model.frames import rpy_of as matrix_to_rpy
-from atd.sim.scene import TABLE_CENTRE, TABLE_HALF, Body, Scene
+from atd.sim.scene import COLOURS, TABLE_CENTRE, TABLE_HALF, Body, Scene
 from factories.description import FingerPad, Link, Origin, RobotDescription, Shape
 from factories.parts import PAD
 
@@ -218,6 +218,7 @@ def mjcf(d: RobotDescription, scene: Scene) -> str:
         key_ctrl=_fmt([home.get(name, 0.0) for name in list(d.arm_joints) + hand_joints]),
         robot_meshes=[g for b in _depth_first(root) for g in b.geoms if g.kind == "mesh"] + _visual_meshes(root),
         pad_contacts=PAD_CONTACTS,
+        colours={kind: _fmt(rgba) for kind, rgba in COLOURS.items()},
         fmt=_fmt,
     )
 

@@ -21,8 +21,10 @@ from atd.sim.scene import (
     CAMERA_DISTANCE,
     CAMERA_ELEVATION,
     CAMERA_TARGET,
+    COLOURS,
     TABLE_CENTRE,
     TABLE_HALF,
+    WORKSPACE_CAMERA,
     Body,
     Scene,
 )
@@ -41,6 +43,8 @@ COUPLING_ERP = 0.2
 #: The renderer's clipping planes, as fractions of a depth camera's near and multiples of its
 #: far limit: what lies nearer still hides what is behind it, as on a real camera.
 CLIP_NEAR, CLIP_FAR = 0.25, 1.5
+#: Towards the light in video frames: where the MuJoCo scene's one light shines from.
+LIGHT_DIRECTION = (0.1, -0.4, 1.0)
 
 
 def _xyzw(m: np.ndarray) -> list[float]:
@@ -154,20 +158,21 @@ class PybulletRobot(SimRobot):
         if scene.table:
             table = pb.createCollisionShape(pb.GEOM_BOX, halfExtents=TABLE_HALF, physicsClientId=c)
             self.table = pb.createMultiBody(0, table, basePosition=TABLE_CENTRE, physicsClientId=c)
+            pb.changeVisualShape(self.table, -1, rgbaColor=COLOURS["table"], physicsClientId=c)
             # A friction anchor pins a contact point, which a rolling ball's is not: anchored
             # (on either body), a ball rolling at 5 cm/s sped up to 17 cm/s in 2 s on a level
             # table, and balls the grasp had nudged rolled off it.
             rolls = any(body.rolls for body in scene.objects)
             pb.changeDynamics(self.table, -1, lateralFriction=1.0, frictionAnchor=int(not rolls), physicsClientId=c)
         for obstacle in scene.obstacles:
-            self._make(obstacle, fixed=True)
+            self._make(obstacle, fixed=True, colour=COLOURS["obstacle"])
         for container in scene.containers:
             for part in container.parts():
-                self._make(part, fixed=True)
-        self._objects = [self._make(body, fixed=False) for body in scene.objects]
+                self._make(part, fixed=True, colour=COLOURS["container"])
+        self._objects = [self._make(body, fixed=False, colour=COLOURS["object"]) for body in scene.objects]
         self.object = self._objects[0] if self._objects else -1
 
-    def _make(self, body: Body, fixed: bool) -> int:
+    def _make(self, body: Body, fixed: bool, colour: tuple[float, ...]) -> int:
         c = self.client
         half = body.half_extents
         if body.kind == "box":
@@ -184,6 +189,7 @@ class PybulletRobot(SimRobot):
         )
         pb.changeDynamics(uid, -1, lateralFriction=body.friction, frictionAnchor=int(not body.rolls),
                           physicsClientId=c)
+        pb.changeVisualShape(uid, -1, rgbaColor=colour, physicsClientId=c)
         if not fixed:
             pb.changeDynamics(
                 uid, -1, spinningFriction=0.01 * body.friction, rollingFriction=0.0001,
@@ -396,14 +402,19 @@ class PybulletRobot(SimRobot):
             for link in range(-1, pb.getNumJoints(self.body, physicsClientId=self.client)):
                 pb.setCollisionFilterPair(self.body, uid, link, -1, int(on), physicsClientId=self.client)
 
-    def _render_depth(self, camera: DepthCamera) -> np.ndarray:
+    def _camera_matrices(self, camera: DepthCamera, near: float, far: float, aspect: float) -> tuple[list, list]:
+        """PyBullet's view and projection matrices of a described camera, from where it truly stands."""
         pose = camera.origin.matrix()
         eye = pose[:3, 3]
         view = pb.computeViewMatrix(eye.tolist(), (eye + pose[:3, 2]).tolist(), (-pose[:3, 1]).tolist(),
                                     physicsClientId=self.client)
-        near, far = CLIP_NEAR * camera.near, CLIP_FAR * camera.far
-        projection = pb.computeProjectionMatrixFOV(camera.fovy, camera.width / camera.height, near, far,
+        projection = pb.computeProjectionMatrixFOV(camera.fovy, aspect, near, far,
                                                    physicsClientId=self.client)
+        return view, projection
+
+    def _render_depth(self, camera: DepthCamera) -> np.ndarray:
+        near, far = CLIP_NEAR * camera.near, CLIP_FAR * camera.far
+        view, projection = self._camera_matrices(camera, near, far, camera.width / camera.height)
         buffer = pb.getCameraImage(camera.width, camera.height, view, projection, renderer=pb.ER_TINY_RENDERER,
                                    physicsClientId=self.client)[3]
         # The depth buffer is non-linear in depth: 0 at the near plane, 1 at the far one.
@@ -418,15 +429,34 @@ class PybulletRobot(SimRobot):
         pb.resetBaseVelocity(self.object, [0, 0, 0], [0, 0, 0], physicsClientId=self.client)
         self._contact_cache = None
 
-    def render(self, width: int, height: int) -> np.ndarray:
-        """An RGB picture of the scene from the same viewpoint as MuJoCo's (software renderer)."""
-        az, el = np.radians(CAMERA_AZIMUTH), np.radians(CAMERA_ELEVATION)
-        forward = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
-        eye = np.asarray(CAMERA_TARGET) - CAMERA_DISTANCE * forward  # as MuJoCo places its free camera
-        view = pb.computeViewMatrix(eye.tolist(), CAMERA_TARGET, [0, 0, 1], physicsClientId=self.client)
-        projection = pb.computeProjectionMatrixFOV(45.0, width / height, 0.05, 5.0, physicsClientId=self.client)
-        image = pb.getCameraImage(width, height, view, projection, renderer=pb.ER_TINY_RENDERER, physicsClientId=self.client)[2]
+    def render(self, width: int, height: int, camera: str = WORKSPACE_CAMERA) -> np.ndarray:
+        """An RGB picture of the scene (software renderer), from the same viewpoints as MuJoCo's."""
+        if camera == WORKSPACE_CAMERA:
+            az, el = np.radians(CAMERA_AZIMUTH), np.radians(CAMERA_ELEVATION)
+            forward = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+            eye = np.asarray(CAMERA_TARGET) - CAMERA_DISTANCE * forward  # as MuJoCo places its free camera
+            view = pb.computeViewMatrix(eye.tolist(), CAMERA_TARGET, [0, 0, 1], physicsClientId=self.client)
+            projection = pb.computeProjectionMatrixFOV(45.0, width / height, 0.05, 5.0, physicsClientId=self.client)
+        elif camera in self._cameras:
+            view, projection = self._camera_matrices(self._cameras[camera], 0.05, 5.0, width / height)
+        else:
+            raise LookupError(f"{self.info.name} has no camera '{camera}'")
+        image = pb.getCameraImage(width, height, view, projection, renderer=pb.ER_TINY_RENDERER,
+                                  lightDirection=LIGHT_DIRECTION, lightAmbientCoeff=0.5, lightDiffuseCoeff=0.5,
+                                  physicsClientId=self.client)[2]
         return np.asarray(image, np.uint8).reshape(height, width, 4)[:, :, :3]
+
+    def scene_state(self) -> tuple[list[float], list[tuple]]:
+        c = self.client
+        joints = pb.getJointStates(self.body, range(pb.getNumJoints(self.body, physicsClientId=c)), physicsClientId=c)
+        return [j[0] for j in joints], [pb.getBasePositionAndOrientation(uid, physicsClientId=c) for uid in self._objects]
+
+    def set_scene_state(self, state: tuple[list[float], list[tuple]]) -> None:
+        joints, objects = state
+        for index, q in enumerate(joints):
+            pb.resetJointState(self.body, index, q, physicsClientId=self.client)
+        for uid, (position, orientation) in zip(self._objects, objects):
+            pb.resetBasePositionAndOrientation(uid, position, orientation, physicsClientId=self.client)
 
     def show(self) -> None:
         """PyBullet's window draws the physics server's state by itself."""

@@ -31,6 +31,10 @@ CAMERA_TARGET = (0.1, 0.0, 0.1)
 CAMERA_DISTANCE = 1.4
 CAMERA_AZIMUTH = 150.0  # degrees about z, from +x
 CAMERA_ELEVATION = -25.0  # degrees
+WORKSPACE_CAMERA = "workspace"  # that view's name among the cameras a video can be rendered from
+# What is not the robot, as both engines paint it (red, green, blue, opacity).
+COLOURS = {"table": (0.7, 0.55, 0.4, 1.0), "object": (0.2, 0.7, 0.3, 1.0), "obstacle": (0.4, 0.4, 0.8, 1.0),
+           "container": (0.8, 0.65, 0.45, 1.0)}
 
 
 class SceneError(ValueError):

@@ -14,7 +14,7 @@ from typing import Sequence
 
 import numpy as np
 
-from atd.sim.scene import Scene
+from atd.sim.scene import WORKSPACE_CAMERA, Scene
 from atd.sim.sensors import NoisySensors, TaxelImages
 from factories.description import DepthCamera, RobotDescription, SensorModel
 from primitives.robot import SENSORS, DepthImage, HandInfo, HandMode, PadInfo, Readings, Robot, RobotInfo
@@ -399,8 +399,19 @@ class SimRobot(Robot):
         """Teleport the object, at rest (moving it away removes it from the task)."""
 
     @abstractmethod
-    def render(self, width: int, height: int) -> np.ndarray:
-        """An RGB picture (height, width, 3) of the scene, for videos."""
+    def render(self, width: int, height: int, camera: str = WORKSPACE_CAMERA) -> np.ndarray:
+        """An RGB picture (height, width, 3) of the scene, for videos: from the free camera on the
+        work area, or from one of the robot's described cameras (LookupError for another name)."""
+
+    @abstractmethod
+    def scene_state(self) -> object:
+        """What a picture of the scene depends on (joint positions, object poses), small and
+        picklable: a copy of this robot made by fork renders it after `set_scene_state`."""
+
+    @abstractmethod
+    def set_scene_state(self, state: object) -> None:
+        """Pose the robot and the objects as `scene_state` found them, for a picture (the
+        physics is not stepped: this copy only renders)."""
 
     @abstractmethod
     def show(self) -> None:

@@ -17,6 +17,7 @@ from tests.conftest import REPO
     ("bench_robot_interface.py", ("--seconds", "0.05", "--repeat", "1"), "worst overhead ratio"),
     ("bench_campaign.py", ("--trials", "2", "--workers", "2", "--repeat", "1"), "speed-up, 2 workers over 1"),
     ("bench_record.py", ("--repeat", "1",), "recording at 100 Hz"),
+    ("bench_video.py", ("--repeat", "1", "--size", "320x240"), "ratio, wall"),
     ("bench_perception.py", ("--engine", "mujoco", "--methods", "vision"), "vision: corner"),
 ])
 def test_a_simulation_benchmark_prints_its_table(script: str, args: tuple[str, ...], row: str) -> None:

@@ -7,6 +7,7 @@ import subprocess
 import sys
 
 import click
+import pytest
 
 from atd.cli import main
 from tests.conftest import EXAMPLES
@@ -37,3 +38,25 @@ def test_validate_loads_no_engine_and_no_campaign_tool():
                             capture_output=True, text=True, timeout=120)
     assert result.returncode == 0, result.stderr
     assert result.stdout.splitlines()[-1] == "[]"
+
+
+def _help_loads(args: list[str]) -> tuple[str, list[str]]:
+    """What `atd ARGS --help` prints, and which heavy packages it imported doing so."""
+    probe = ("import sys\nfrom atd.cli import main\n"
+             "try:\n    main(sys.argv[1:])\nexcept SystemExit as done:\n    assert done.code == 0, done.code\n"
+             "print(sorted(m for m in ('mujoco', 'pybullet', 'matplotlib', 'numpy', 'pydantic', 'lxml', 'atd.model', "
+             "'atd.runtime', 'atd.campaign', 'atd.sim') if m in sys.modules))")
+    result = subprocess.run([sys.executable, "-c", probe, *args, "--help"], capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    *shown, loaded = result.stdout.splitlines()
+    return "\n".join(shown), loaded
+
+
+@pytest.mark.parametrize("group", [[], ["robots"], ["campaign"]])
+def test_help_lists_every_command_and_loads_neither_engines_nor_plots(group):
+    shown, loaded = _help_loads(group)
+    assert loaded == "[]"
+    command = main if not group else main.commands[group[0]]
+    for name, (_, line) in command.lazy.items():
+        assert f"  {name} " in shown and line in shown, name
+

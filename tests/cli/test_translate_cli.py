@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import subprocess
@@ -118,6 +119,35 @@ def test_check_prints_the_robot_matrix_with_reasons(tmp_path):
     assert any(line.startswith(str(EXAMPLES / "pick_and_place.xml")) and line.count("yes") == len(columns)
                for line in result.stdout.splitlines())
     assert "why not:" in result.stdout and "fig7_2.xml:14:3: error[TRN001]" in result.stdout
+
+
+def test_check_as_json_gives_each_task_and_robot_its_verdict_and_reasons(tmp_path):
+    broken = tmp_path / "broken.xml"
+    broken.write_text("<statemachine>")
+    seeds = REPO / "tests/data/seeds/fig7_2.xml"
+    result = atd("check", str(EXAMPLES / "pick_and_place.xml"), str(seeds), str(broken), "--format", "json")
+    assert result.returncode == 1  # one task is not a valid ATD, as in text
+    found = json.loads(result.stdout)
+    pick, fig, bad = found["tasks"]
+    assert "melfa" in found["robots"] and set(pick["robots"]) == set(found["robots"])
+    assert pick["valid"] and all(v["translatable"] and not v["errors"] for v in pick["robots"].values())
+    assert any(not v["translatable"] and any("fig7_2.xml:14:3: error[TRN001]" in e for e in v["errors"])
+               for v in fig["robots"].values())
+    assert not bad["valid"] and "error[ATD003]" in bad["errors"][0] and bad["robots"] == {}
+
+
+def test_robots_as_json_list_every_robot_and_show_its_sheet():
+    listed = json.loads(atd("robots", "--format", "json").stdout)
+    assert json.loads(atd("robots", "list", "--format", "json").stdout) == listed
+    melfa = next(r for r in listed if r["name"] == "melfa")
+    assert melfa["arms"] == ["main"] and "grasp" in melfa["primitives"] and "grasp_stable" in melfa["events"]
+    sheet = json.loads(atd("robots", "show", "melfa", "--format", "json").stdout)
+    assert sheet["arm"] == "main" and sheet["config"]["controllers"]["squeeze"]["grasp_force"] == 15.0
+    assert {"abstract", "concrete", "extra_parameters", "control_and_sensors"} <= set(sheet["primitives"][0])
+    assert any(e["event"] == "grasp_stable" and "tactile_force_above" in e["detected_by"] for e in sheet["events"])
+    misplaced = atd("robots", "--format", "json", "show", "melfa")
+    assert misplaced.returncode == 2 and misplaced.stderr.strip() == (
+        "error: give --format after the sub-command: atd robots show ... --format json")
 
 
 def test_robots_list_and_show():

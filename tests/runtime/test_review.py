@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 import re
 import subprocess
 import sys
@@ -104,6 +105,19 @@ def test_compare_aligns_two_runs_state_by_state(recordings, a, b, tmp_path) -> N
     if a == "melfa_mj":
         assert "(A 15" in rows["carry"], "A's pad force while carrying is the 15 N grasp force"
     assert etree.fromstring(plot.read_bytes()).tag.endswith("svg")
+
+
+def test_compare_as_json_gives_each_state_both_durations_and_each_signals_means(recordings, tmp_path) -> None:
+    result = _atd("compare", str(recordings["melfa_mj"]), str(recordings["melfa_pb"]), "--format", "json", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    found = json.loads(result.stdout)
+    assert (found["runs"]["a"]["engine"], found["runs"]["b"]["engine"]) == ("mujoco", "pybullet")
+    assert found["runs"]["a"]["path"] == str(recordings["melfa_mj"]) and found["plot"] is None
+    states = {row["state"]: row for row in found["states"]}
+    assert [r.state for r in load(recordings["melfa_mj"]).trace if r.type == "enter"] == list(states)
+    assert all(row["time_a"] > 0 and row["time_b"] > 0 for row in found["states"] if row["state"] != "done")
+    carry = states["carry"]["signals"]["pad force (N)"]
+    assert abs(carry["mean_a"] - 15) < 1.5 and abs(carry["difference"]) < 5  # the 15 N grasp in both engines
 
 
 def test_report_and_compare_refuse_what_is_not_a_recording(tmp_path) -> None:

@@ -94,17 +94,6 @@ def test_bad_input_gives_a_diagnostic_not_a_traceback(atd_file):
     assert unknown.returncode == 2 and "no robot 'r2d2' is installed" in unknown.stderr
 
 
-def test_video_is_an_animated_gif_of_the_run(tmp_path, atd_file):
-    path = atd_file(SHORT_MOVE)
-    gif = tmp_path / "run.gif"
-    result = atd("run", str(path), "--robot", "melfa", "--video", str(gif), "-q")
-    assert result.returncode == 0, result.stderr
-    data = gif.read_bytes()
-    assert data.startswith(b"GIF89a") and data.endswith(b"\x3b")
-    frames = data.count(b"\x21\xf9\x04")
-    assert f"video: {gif} ({frames} frames)" in result.stdout and frames >= 3
-
-
 def test_video_as_mp4_is_a_playable_h264_file(tmp_path, atd_file):
     import imageio_ffmpeg
 
@@ -113,7 +102,7 @@ def test_video_as_mp4_is_a_playable_h264_file(tmp_path, atd_file):
     result = atd("run", str(path), "--robot", "melfa", "--video", str(mp4), "-q")
     assert result.returncode == 0, result.stderr
     frames, seconds = imageio_ffmpeg.count_frames_and_secs(str(mp4))
-    assert f"video: {mp4} ({frames} frames)" in result.stdout and frames >= 3
+    assert f"video: {mp4} ({frames} frames, 640x480, workspace camera)" in result.stdout and frames >= 3
     assert abs(seconds - frames * 0.1) < 0.15  # one frame per 0.1 s of simulated time
     assert sorted(p.name for p in tmp_path.iterdir()) == ["run.mp4", "task.xml"]  # no temporary file left
 
@@ -122,7 +111,7 @@ def test_an_mp4_without_ffmpeg_is_refused_before_the_run(tmp_path, monkeypatch):
     from atd.sim import video
 
     monkeypatch.setattr(video, "mp4_encoder", lambda: None)
-    with pytest.raises(video.VideoError, match=r"MP4 needs ffmpeg.*pip install 'atd\[video\]', or name the file \*\.gif"):
+    with pytest.raises(video.VideoError, match=r"MP4 needs ffmpeg.*pip install 'atd-robotics\[video\]', or name the file \*\.gif"):
         video.check_video_path(tmp_path / "run.mp4")
 
 
