@@ -13,8 +13,10 @@ from __future__ import annotations
 import itertools
 import multiprocessing as mp
 import signal
+import socket
 import time
 from collections import deque
+from contextlib import contextmanager
 from multiprocessing.connection import Connection, wait
 from typing import Callable, Iterable, Iterator
 
@@ -42,30 +44,72 @@ def run_local(plans: Iterable[TrialPlan], workers: int, sink: Sink) -> None:
     _Pool(workers, sink).run(plans)
 
 
-def run_ray(plans: Iterable[TrialPlan], address: str | None, workers: int, sink: Sink) -> None:
-    """Run the plans as Ray tasks, on a local Ray instance or the cluster at `address`."""
+class RayError(RuntimeError):
+    """Ray cannot run the trials: nothing answers at the cluster's address, or Ray cannot join it."""
+
+
+@contextmanager
+def ray_joined(address: str | None, workers: int) -> Iterator[None]:
+    """Ray for the block: the cluster at `address` joined, or a local instance of `workers`
+    CPUs started; Ray that this process has already set up is used as it is. Before any
+    store is written, so a wrong address costs no `--resume`."""
     import ray
 
-    started_here = not ray.is_initialized()
-    if started_here:
-        options = {"address": address} if address else {"num_cpus": workers, "include_dashboard": False}
+    if ray.is_initialized():
+        yield
+        return
+    if address and (why := _unreachable(address)):
+        raise RayError(f"--ray {address}: nothing answers there ({why}); start the cluster's head with "
+                       f"`ray start --head --port=PORT` and give HOST:PORT as it prints it")
+    options = {"address": address} if address else {"num_cpus": workers, "include_dashboard": False}
+    try:
         ray.init(log_to_driver=False, configure_logging=False, **options)
+    except Exception as exc:  # noqa: BLE001 - ConnectionError, AuthenticationError, ValueError: all say "cannot join"
+        raise RayError(_join_failure(address, exc)) from exc
+    try:
+        yield
+    finally:
+        ray.shutdown()
+
+
+def _unreachable(address: str) -> str | None:
+    """Why nothing answers at HOST:PORT (Ray itself would retry for minutes); None when something
+    does, or the address is not HOST:PORT ("auto", "ray://...")."""
+    host, sep, port = address.rpartition(":")
+    if not sep or not port.isdigit() or "://" in address:
+        return None
+    try:
+        socket.create_connection((host.strip("[]"), int(port)), timeout=5).close()
+    except OSError as exc:
+        return exc.strerror or str(exc) or type(exc).__name__
+    return None
+
+
+def _join_failure(address: str | None, exc: Exception) -> str:
+    why = str(exc).splitlines()[0].split(". ")[0] if str(exc) else type(exc).__name__
+    if not address:
+        return f"--ray: Ray could not start a local instance ({why})"
+    return (f"--ray {address}: Ray could not join the cluster there ({why}); a cluster started with "
+            f"RAY_AUTH_MODE=token also needs RAY_AUTH_MODE=token and its token here "
+            f"(RAY_AUTH_TOKEN_PATH, or ~/.ray/auth_token)")
+
+
+def run_ray(plans: Iterable[TrialPlan], sink: Sink) -> None:
+    """Run the plans as Ray tasks on the Ray of `ray_joined`; each record goes to `sink`."""
+    import ray
+
     remote = ray.remote(max_retries=0)(run_trial)
     todo = iter(plans)
-    try:
-        pending = {remote.remote(plan): plan for plan in itertools.islice(todo, RAY_AHEAD)}
-        while pending:
-            done, _ = ray.wait(list(pending), num_returns=1)
-            plan = pending.pop(done[0])
-            pending.update((remote.remote(p), p) for p in itertools.islice(todo, 1))
-            try:
-                record = ray.get(done[0])
-            except Exception as exc:  # noqa: BLE001 - a worker that died is that trial's result
-                record = _crashed(plan, f"the Ray worker failed: {type(exc).__name__}: {str(exc).splitlines()[0]}")
-            sink(record)
-    finally:
-        if started_here:
-            ray.shutdown()
+    pending = {remote.remote(plan): plan for plan in itertools.islice(todo, RAY_AHEAD)}
+    while pending:
+        done, _ = ray.wait(list(pending), num_returns=1)
+        plan = pending.pop(done[0])
+        pending.update((remote.remote(p), p) for p in itertools.islice(todo, 1))
+        try:
+            record = ray.get(done[0])
+        except Exception as exc:  # noqa: BLE001 - a worker that died is that trial's result
+            record = _crashed(plan, f"the Ray worker failed: {type(exc).__name__}: {str(exc).splitlines()[0]}")
+        sink(record)
 
 
 class WorkerError(RuntimeError):
