@@ -138,7 +138,8 @@ def _run(chosen: Plans, store: Store, name: str, workers: int, ray_address: str 
     """Run the trials the store lacks, each stored as it ends; how many recordings were lost."""
     stored = store.counts(chosen.count)
     left = Counter({cell.key: chosen.count - stored.get(cell.key, 0) for cell, _ in chosen.cells})
-    todo = chosen.skipping(lambda cell: store.indices(cell, chosen.count) if stored.get(cell.key) else ())
+    todo = chosen.longest_first().skipping(
+        lambda cell: store.indices(cell, chosen.count) if stored.get(cell.key) else ())
     total = sum(left.values())
     where = f"Ray ({ray_address or 'local'})" if ray_address is not None else f"{workers} worker(s)"
     if not quiet:

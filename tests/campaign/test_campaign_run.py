@@ -152,8 +152,9 @@ def test_a_worker_killed_while_it_waits_for_its_next_plan_holds_up_no_other() ->
     """Each worker waits for its plans on its own pipe. With one queue shared by all, a
     worker killed while it waited for a plan could keep the queue's lock, and the others
     waited for it forever (seen once, the test above in a suite run beside a 36-minute
-    campaign: pytest idle for 35 minutes; the race did not come back on demand)."""
-    chosen = plans(_spec("small.toml"))
+    campaign: pytest idle for 35 minutes; the race did not come back on demand). Three trials
+    on two workers: none holds a next plan, so the one that sends the first record waits."""
+    chosen = plans(_spec("small.toml"), trials=3)
     records: list[TrialRecord] = []
 
     def sink(record: TrialRecord) -> None:
@@ -164,8 +165,29 @@ def test_a_worker_killed_while_it_waits_for_its_next_plan_holds_up_no_other() ->
 
     pool = _Pool(2, sink)
     pool.run(chosen)
-    assert sorted(r.index for r in records) == [0, 1, 2, 3]
+    assert sorted(r.index for r in records) == [0, 1, 2]
     assert sum(r.status == "error" for r in records) <= 1
+
+
+def test_a_plan_held_by_a_worker_that_dies_is_run_by_another() -> None:
+    """Eight trials on two workers: each holds the plan it runs and the next. One killed at the
+    first record loses the trial it ran, not the one it held."""
+    records: list[TrialRecord] = []
+    lost: dict[str, int] = {}
+
+    def sink(record: TrialRecord) -> None:
+        records.append(record)
+        if not lost:
+            pid = next(pid for pid, held in pool.queued.items() if held)
+            lost.update(ran=pool.running[pid][0].index, held=pool.queued[pid][0].index)
+            os.kill(pid, signal.SIGKILL)
+
+    pool = _Pool(2, sink)
+    pool.run(plans(_spec("small.toml"), trials=8))
+    assert sorted(r.index for r in records) == list(range(8))
+    status = {r.index: r.status for r in records}
+    # One error: the trial it ran (or, had it just sent that one's record, the next it started).
+    assert sum(s == "error" for s in status.values()) == 1 and "error" in (status[lost["ran"]], status[lost["held"]])
 
 
 def test_the_judge_catches_a_task_that_claims_a_success_that_did_not_happen(tmp_path: Path) -> None:
