@@ -27,9 +27,6 @@ from atd.campaign.store import Store
 from tests.campaign.conftest import outcomes
 from tests.conftest import REPO
 
-pytest.importorskip("ray", reason="the test extras install Ray")  # the local pool needs nothing extra
-psutil = pytest.importorskip("psutil", reason="Ray installs psutil")
-
 SPEC = REPO / "tests" / "data" / "campaign" / "small.toml"  # 4 trials of the Melfa in MuJoCo
 RAY = Path(sys.executable).parent / "ray"  # this venv's: its workers import this checkout's atd
 HOST = "127.0.0.1"  # the cluster stays on this machine's loopback
@@ -67,12 +64,14 @@ def _start_node(args: list[str], temp_dir: Path, env: dict[str, str], groups: li
 
 
 def _alive(groups: list[int]) -> bool:
-    for process in psutil.process_iter(["status"]):
+    """Whether a process of these groups is still running (a zombie waits for its parent only)."""
+    for stat in Path("/proc").glob("[0-9]*/stat"):
         try:
-            if os.getpgid(process.pid) in groups and process.info["status"] != psutil.STATUS_ZOMBIE:
-                return True
-        except (ProcessLookupError, psutil.Error):
-            pass
+            state, _, group = stat.read_text().rpartition(")")[2].split()[:3]
+        except (OSError, ValueError):  # it has just ended
+            continue
+        if int(group) in groups and state != "Z":
+            return True
     return False
 
 
