@@ -60,6 +60,7 @@ def main() -> int:
     parser.add_argument("--repeat", type=int, default=3, help="runs of each; the fastest counts")
     args = parser.parse_args()
     sizes = sorted({1, min(2, args.workers), args.workers})
+    load = os.getloadavg()[0]  # other jobs on the host: with more than the cores busy, efficiency means little
     timed(1, 1)  # warm up: imports, the first translation
     best: dict[int, tuple[float, list[TrialRecord]]] = {}
     for _ in range(args.repeat):
@@ -69,7 +70,7 @@ def main() -> int:
                 best[size] = run
     one = best[1][0]
     print(f"campaign: {SPEC.name}, {args.trials} grasp-and-lift trials (melfa, MuJoCo), fastest of {args.repeat} "
-          f"runs each, {os.cpu_count()} cores, load average before: {os.getloadavg()[0]:.1f}")
+          f"runs each, {os.cpu_count()} cores, load average before: {load:.1f}")
     print(f"{'workers':>8} {'wall s':>8} {'trials/s':>9} {'speed-up':>9} {'efficiency':>11} {'pool busy':>10} "
           f"{'mean trial s':>13}")
     for size in sizes:
