@@ -13,8 +13,10 @@ from __future__ import annotations
 import itertools
 import multiprocessing as mp
 import signal
+import socket
 import time
 from collections import deque
+from contextlib import contextmanager
 from multiprocessing.connection import Connection, wait
 from typing import Callable, Iterable, Iterator
 
@@ -31,6 +33,8 @@ HANG_FLOOR = 120.0  # s
 #: Ray tasks submitted ahead of those finished: enough to fill a cluster, few enough that a
 #: campaign of millions of trials is not all submitted (and held in memory) at once.
 RAY_AHEAD = 10_000
+#: Plans a local worker holds at once: the one it runs and the next (see `_Pool`).
+BATCH = 2
 
 
 def run_local(plans: Iterable[TrialPlan], workers: int, sink: Sink) -> None:
@@ -42,30 +46,72 @@ def run_local(plans: Iterable[TrialPlan], workers: int, sink: Sink) -> None:
     _Pool(workers, sink).run(plans)
 
 
-def run_ray(plans: Iterable[TrialPlan], address: str | None, workers: int, sink: Sink) -> None:
-    """Run the plans as Ray tasks, on a local Ray instance or the cluster at `address`."""
+class RayError(RuntimeError):
+    """Ray cannot run the trials: nothing answers at the cluster's address, or Ray cannot join it."""
+
+
+@contextmanager
+def ray_joined(address: str | None, workers: int) -> Iterator[None]:
+    """Ray for the block: the cluster at `address` joined, or a local instance of `workers`
+    CPUs started; Ray that this process has already set up is used as it is. Before any
+    store is written, so a wrong address costs no `--resume`."""
     import ray
 
-    started_here = not ray.is_initialized()
-    if started_here:
-        options = {"address": address} if address else {"num_cpus": workers, "include_dashboard": False}
+    if ray.is_initialized():
+        yield
+        return
+    if address and (why := _unreachable(address)):
+        raise RayError(f"--ray {address}: nothing answers there ({why}); start the cluster's head with "
+                       f"`ray start --head --port=PORT` and give HOST:PORT as it prints it")
+    options = {"address": address} if address else {"num_cpus": workers, "include_dashboard": False}
+    try:
         ray.init(log_to_driver=False, configure_logging=False, **options)
+    except Exception as exc:  # noqa: BLE001 - ConnectionError, AuthenticationError, ValueError: all say "cannot join"
+        raise RayError(_join_failure(address, exc)) from exc
+    try:
+        yield
+    finally:
+        ray.shutdown()
+
+
+def _unreachable(address: str) -> str | None:
+    """Why nothing answers at HOST:PORT (Ray itself would retry for minutes); None when something
+    does, or the address is not HOST:PORT ("auto", "ray://...")."""
+    host, sep, port = address.rpartition(":")
+    if not sep or not port.isdigit() or "://" in address:
+        return None
+    try:
+        socket.create_connection((host.strip("[]"), int(port)), timeout=5).close()
+    except OSError as exc:
+        return exc.strerror or str(exc) or type(exc).__name__
+    return None
+
+
+def _join_failure(address: str | None, exc: Exception) -> str:
+    why = str(exc).splitlines()[0].split(". ")[0] if str(exc) else type(exc).__name__
+    if not address:
+        return f"--ray: Ray could not start a local instance ({why})"
+    return (f"--ray {address}: Ray could not join the cluster there ({why}); a cluster started with "
+            f"RAY_AUTH_MODE=token also needs RAY_AUTH_MODE=token and its token here "
+            f"(RAY_AUTH_TOKEN_PATH, or ~/.ray/auth_token)")
+
+
+def run_ray(plans: Iterable[TrialPlan], sink: Sink) -> None:
+    """Run the plans as Ray tasks on the Ray of `ray_joined`; each record goes to `sink`."""
+    import ray
+
     remote = ray.remote(max_retries=0)(run_trial)
     todo = iter(plans)
-    try:
-        pending = {remote.remote(plan): plan for plan in itertools.islice(todo, RAY_AHEAD)}
-        while pending:
-            done, _ = ray.wait(list(pending), num_returns=1)
-            plan = pending.pop(done[0])
-            pending.update((remote.remote(p), p) for p in itertools.islice(todo, 1))
-            try:
-                record = ray.get(done[0])
-            except Exception as exc:  # noqa: BLE001 - a worker that died is that trial's result
-                record = _crashed(plan, f"the Ray worker failed: {type(exc).__name__}: {str(exc).splitlines()[0]}")
-            sink(record)
-    finally:
-        if started_here:
-            ray.shutdown()
+    pending = {remote.remote(plan): plan for plan in itertools.islice(todo, RAY_AHEAD)}
+    while pending:
+        done, _ = ray.wait(list(pending), num_returns=1)
+        plan = pending.pop(done[0])
+        pending.update((remote.remote(p), p) for p in itertools.islice(todo, 1))
+        try:
+            record = ray.get(done[0])
+        except Exception as exc:  # noqa: BLE001 - a worker that died is that trial's result
+            record = _crashed(plan, f"the Ray worker failed: {type(exc).__name__}: {str(exc).splitlines()[0]}")
+        sink(record)
 
 
 class WorkerError(RuntimeError):
@@ -100,9 +146,14 @@ def _worker_context() -> mp.context.BaseContext:
 
 
 class _Pool:
-    """Each worker has its own pipe: the parent hands a plan to an idle worker and reads its
-    record on that worker's connection. With one queue shared by all, a worker killed while
-    it waited for a plan kept the queue's lock, and every other worker waited for it forever."""
+    """Each worker has its own pipe: the parent hands plans to a worker and reads its records
+    on that worker's connection. With one queue shared by all, a worker killed while it
+    waited for a plan kept the queue's lock, and every other worker waited for it forever.
+
+    A worker holds up to BATCH plans: the one it runs and the next, which it starts as soon as
+    it has sent a record, without waiting for the parent to store that record and answer. A
+    next plan is handed out only while more plans are left than there are workers: near the
+    end a plan never waits behind another trial while some worker has nothing to do."""
 
     def __init__(self, workers: int, sink: Sink) -> None:
         self.size = workers
@@ -110,7 +161,8 @@ class _Pool:
         self.context = _worker_context()
         self.conns: dict[int, Connection] = {}  # pid -> the parent's end of its pipe
         self.workers: dict[int, mp.Process] = {}
-        self.running: dict[int, tuple[TrialPlan, float]] = {}  # pid -> (its plan, started)
+        self.running: dict[int, tuple[TrialPlan, float]] = {}  # pid -> (the plan it runs, since when)
+        self.queued: dict[int, deque[TrialPlan]] = {}  # pid -> plans it holds, to run after that one
         self.todo: Iterator[TrialPlan] = iter(())
         self.ahead: deque[TrialPlan] = deque()  # plans taken from `todo`, not yet handed out
         self.ready: set[int] = set()  # workers that have said they started
@@ -122,11 +174,12 @@ class _Pool:
         child.close()
         self.workers[process.pid] = process
         self.conns[process.pid] = parent
+        self.queued[process.pid] = deque()
 
     def run(self, plans: Iterable[TrialPlan]) -> None:
         self.todo = iter(plans)
-        self.ahead.extend(itertools.islice(self.todo, self.size))  # a worker each, no more than there are plans
-        for _ in range(len(self.ahead)):
+        self._left(self.size)
+        for _ in range(len(self.ahead)):  # a worker each, no more than there are plans
             self._start_worker()
         try:
             while self.workers:
@@ -152,39 +205,50 @@ class _Pool:
             self.ready.add(pid)
         else:
             self.running.pop(pid)
+            if self.queued[pid]:  # it has started its next plan on sending this record
+                self.running[pid] = (self.queued[pid].popleft(), time.monotonic())
             self.sink(message)
-        self._next(pid)
+        self._hand_out(pid)
 
-    def _left(self) -> bool:
-        """Whether a plan is left to hand out, taking the next one from `todo` to know."""
-        if not self.ahead:
-            self.ahead.extend(itertools.islice(self.todo, 1))
-        return bool(self.ahead)
+    def _left(self, count: int) -> bool:
+        """Whether `count` plans are left to hand out, taking them from `todo` to know."""
+        if len(self.ahead) < count:
+            self.ahead.extend(itertools.islice(self.todo, count - len(self.ahead)))
+        return len(self.ahead) >= count
 
-    def _next(self, pid: int) -> None:
-        """Give an idle worker the next plan, or tell it to stop (None)."""
-        plan = None
-        if self._left():
-            plan = self.ahead.popleft()
-            self.running[pid] = (plan, time.monotonic())
+    def _hand_out(self, pid: int) -> None:
+        """Fill a worker up to BATCH plans (a next one only while more plans are left than
+        workers), or tell an idle worker to stop (None) when none is left."""
+        if pid not in self.running:
+            if not self._left(1):
+                self._send(pid, None)
+                return
+            self.running[pid] = (self.ahead[0], time.monotonic())
+            self._send(pid, self.ahead.popleft())
+        while 1 + len(self.queued[pid]) < BATCH and self._left(self.size + 1):
+            self.queued[pid].append(self.ahead[0])
+            self._send(pid, self.ahead.popleft())
+
+    def _send(self, pid: int, plan: TrialPlan | None) -> None:
         try:
             self.conns[pid].send(plan)
-        except OSError:  # it has just died: its pipe reads EOF next, and `_ended` records its plan
+        except OSError:  # it has just died: its pipe reads EOF next, and `_ended` sees to its plans
             pass
 
     def _ended(self, pid: int, why: str | None = None) -> None:
-        """A worker is gone: its trial, if it had one, is an error trial; a new worker takes
-        over while plans are left."""
+        """A worker is gone: its trial, if it had one, is an error trial; the plans it held and
+        had not started go back to be handed out; a new worker takes over while plans are left."""
         process = self.workers.pop(pid)
         process.join()
         self.conns.pop(pid).close()
+        self.ahead.extendleft(reversed(self.queued.pop(pid)))
         if pid in self.running:
             plan, _ = self.running.pop(pid)
             self.sink(_crashed(plan, why or f"the worker process died ({_exit_reason(process.exitcode)})"))
         elif process.exitcode != 0 and pid not in self.ready:
             raise WorkerError(f"a worker process could not start ({_exit_reason(process.exitcode)}); "
                               f"run with --workers 1 to see why")
-        if self._left():
+        if self._left(1):
             self._start_worker()
 
     def _reap_hung(self) -> None:

@@ -5,16 +5,18 @@ from __future__ import annotations
 import os
 import signal
 from collections import Counter
+from contextlib import contextmanager
 from dataclasses import replace
 from importlib.util import find_spec
 from pathlib import Path
+from typing import Iterator
 
 import click
 
 from atd.campaign.cells import Plans, parse_only, plans
 from atd.campaign.progress import Progress
 from atd.campaign.record import TrialRecord
-from atd.campaign.runner import WorkerError, run_local, run_ray
+from atd.campaign.runner import RayError, WorkerError, ray_joined, run_local, run_ray
 from atd.campaign.spec import LoadedSpec, load_spec
 from atd.campaign.store import DamagedStore, Store, StoreError, new_campaign_id
 from atd.cli.app import EXIT_INVALID, EXIT_USAGE, OutputFile, Ranged, campaign, guard_outputs
@@ -69,9 +71,10 @@ def run_campaign(spec_file: Path, workers: int | None, ray_address: str | None, 
     store_path = store_path or Path.cwd() / f"{loaded.spec.name}.sqlite"
     guard_outputs({"--store": store_path}, [loaded.task_path(entry) for entry in loaded.spec.task_entries])
     tasks = loaded.task_digests()
-    with _open_store(store_path, loaded, resume, tasks, campaign_id) as store:
+    workers = workers or os.cpu_count() or 1
+    with _ray(ray_address, workers), _open_store(store_path, loaded, resume, tasks, campaign_id) as store:
         chosen = replace(chosen, campaign=f"{loaded.spec.name}-{store.campaign}")
-        lost = _run(chosen, store, spec_file.name, workers or os.cpu_count() or 1, ray_address, quiet)
+        lost = _run(chosen, store, spec_file.name, workers, ray_address, quiet)
         tally = _tally(chosen, store)
     click.echo(f"{tally['n']} trials in {store_path}: {tally['ok']} succeeded (judged by the simulator), "
                f"{tally['false']} false successes, {tally['error']} errors")
@@ -105,6 +108,19 @@ def _chosen(loaded: LoadedSpec, spec_file: Path, only: tuple[str, ...], trials: 
     return chosen
 
 
+@contextmanager
+def _ray(address: str | None, workers: int) -> Iterator[None]:
+    """Ray joined or started for --ray (None: not asked for), before the store is opened."""
+    if address is None:
+        yield
+        return
+    try:
+        with ray_joined(address or None, workers):
+            yield
+    except RayError as exc:
+        _fail(f"error: {exc}", EXIT_USAGE)
+
+
 def _open_store(path: Path, loaded: LoadedSpec, resume: bool, tasks: dict[str, str], campaign_id: str) -> Store:
     try:
         store = Store.create_or_resume(path, loaded.text, loaded.digest, resume, tasks, campaign_id)
@@ -122,7 +138,8 @@ def _run(chosen: Plans, store: Store, name: str, workers: int, ray_address: str 
     """Run the trials the store lacks, each stored as it ends; how many recordings were lost."""
     stored = store.counts(chosen.count)
     left = Counter({cell.key: chosen.count - stored.get(cell.key, 0) for cell, _ in chosen.cells})
-    todo = chosen.skipping(lambda cell: store.indices(cell, chosen.count) if stored.get(cell.key) else ())
+    todo = chosen.longest_first().skipping(
+        lambda cell: store.indices(cell, chosen.count) if stored.get(cell.key) else ())
     total = sum(left.values())
     where = f"Ray ({ray_address or 'local'})" if ray_address is not None else f"{workers} worker(s)"
     if not quiet:
@@ -143,7 +160,7 @@ def _run(chosen: Plans, store: Store, name: str, workers: int, ray_address: str 
     signal.signal(signal.SIGTERM, _stop)  # `kill`, a batch scheduler: stop as Ctrl-C does
     try:
         if ray_address is not None:
-            run_ray(todo, ray_address or None, workers, keep)
+            run_ray(todo, keep)
         else:
             run_local(todo, workers, keep)
     except (WorkerError, StoreError) as exc:

@@ -1,4 +1,5 @@
-"""Trial records made by hand, shaped like the stores a campaign writes: no simulation."""
+"""Trial records made by hand, shaped like the stores a campaign writes (no simulation), and
+how two runs' records are compared."""
 
 from __future__ import annotations
 
@@ -8,6 +9,13 @@ import pytest
 
 from atd.campaign.record import Cell, TrialRecord
 from atd.campaign.store import Store
+
+TIMES = ("wall_time", "setup_time")  # the only fields that may differ between two runs of a trial
+
+
+def outcomes(records: list[TrialRecord]) -> dict:
+    """Every field of every record but the wall-clock times, keyed by trial."""
+    return {(r.cell.key, r.index): {k: v for k, v in r.as_dict().items() if k not in TIMES} for r in records}
 
 
 def trial(index: int = 0, *, grasp: str = "naive", perturbation: str = "none", object: str = "mug",

@@ -21,19 +21,14 @@ from atd.campaign.record import TrialRecord
 from atd.campaign.runner import _Pool, run_local
 from atd.campaign.spec import load_spec
 from atd.campaign.store import Store
+from tests.campaign.conftest import outcomes
 from tests.conftest import REPO
 
 DATA = REPO / "tests" / "data" / "campaign"
-TIMES = ("wall_time", "setup_time")  # the only fields that may differ between two runs of a trial
 
 
 def _atd(*args: str, cwd: Path) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "atd", *args], cwd=cwd, capture_output=True, text=True, timeout=600)
-
-
-def _outcomes(records: list[TrialRecord]) -> dict:
-    """Every field of every record but the wall-clock times, keyed by trial."""
-    return {(r.cell.key, r.index): {k: v for k, v in r.as_dict().items() if k not in TIMES} for r in records}
 
 
 def _stored(store: Path) -> int:
@@ -61,7 +56,7 @@ def straight() -> dict:
     """The small campaign run straight through in this process: the reference."""
     records: list[TrialRecord] = []
     run_local(plans(_spec("small.toml")), 1, records.append)
-    return _outcomes(records)
+    return outcomes(records)
 
 
 def test_the_cli_writes_every_trial_to_the_store_and_resume_skips_finished_ones(tmp_path: Path) -> None:
@@ -108,13 +103,13 @@ def test_a_campaign_killed_midway_and_resumed_equals_one_run_straight_through(tm
                    cwd=tmp_path)
     assert resumed.returncode == 0, resumed.stderr
     with Store.open_read(store) as s:
-        assert _outcomes(s.records()) == straight
+        assert outcomes(s.records()) == straight
 
 
 def test_one_worker_two_workers_and_ray_give_identical_records(tmp_path: Path, straight) -> None:
     two: list[TrialRecord] = []
     run_local(plans(_spec("small.toml")), 2, two.append)
-    assert _outcomes(two) == straight
+    assert outcomes(two) == straight
     # Ray through the command line, in its own process: a Ray that cannot start fails the
     # test at the timeout instead of holding the suite.
     short = tempfile.mkdtemp(prefix="ray", dir="/tmp")  # Ray's socket paths must stay under 108 bytes
@@ -126,7 +121,7 @@ def test_one_worker_two_workers_and_ray_give_identical_records(tmp_path: Path, s
         shutil.rmtree(short, ignore_errors=True)
     assert result.returncode == 0, result.stderr
     with Store.open_read(tmp_path / "ray.sqlite") as s:
-        assert _outcomes(s.records()) == straight
+        assert outcomes(s.records()) == straight
     assert len({tuple(sorted(v["sampled"].items())) for v in straight.values()}) == 4, \
         "each trial samples its own approach error"
 
@@ -157,8 +152,9 @@ def test_a_worker_killed_while_it_waits_for_its_next_plan_holds_up_no_other() ->
     """Each worker waits for its plans on its own pipe. With one queue shared by all, a
     worker killed while it waited for a plan could keep the queue's lock, and the others
     waited for it forever (seen once, the test above in a suite run beside a 36-minute
-    campaign: pytest idle for 35 minutes; the race did not come back on demand)."""
-    chosen = plans(_spec("small.toml"))
+    campaign: pytest idle for 35 minutes; the race did not come back on demand). Three trials
+    on two workers: none holds a next plan, so the one that sends the first record waits."""
+    chosen = plans(_spec("small.toml"), trials=3)
     records: list[TrialRecord] = []
 
     def sink(record: TrialRecord) -> None:
@@ -169,8 +165,29 @@ def test_a_worker_killed_while_it_waits_for_its_next_plan_holds_up_no_other() ->
 
     pool = _Pool(2, sink)
     pool.run(chosen)
-    assert sorted(r.index for r in records) == [0, 1, 2, 3]
+    assert sorted(r.index for r in records) == [0, 1, 2]
     assert sum(r.status == "error" for r in records) <= 1
+
+
+def test_a_plan_held_by_a_worker_that_dies_is_run_by_another() -> None:
+    """Eight trials on two workers: each holds the plan it runs and the next. One killed at the
+    first record loses the trial it ran, not the one it held."""
+    records: list[TrialRecord] = []
+    lost: dict[str, int] = {}
+
+    def sink(record: TrialRecord) -> None:
+        records.append(record)
+        if not lost:
+            pid = next(pid for pid, held in pool.queued.items() if held)
+            lost.update(ran=pool.running[pid][0].index, held=pool.queued[pid][0].index)
+            os.kill(pid, signal.SIGKILL)
+
+    pool = _Pool(2, sink)
+    pool.run(plans(_spec("small.toml"), trials=8))
+    assert sorted(r.index for r in records) == list(range(8))
+    status = {r.index: r.status for r in records}
+    # One error: the trial it ran (or, had it just sent that one's record, the next it started).
+    assert sum(s == "error" for s in status.values()) == 1 and "error" in (status[lost["ran"]], status[lost["held"]])
 
 
 def test_the_judge_catches_a_task_that_claims_a_success_that_did_not_happen(tmp_path: Path) -> None:
@@ -277,7 +294,7 @@ def test_a_campaign_stopped_by_the_file_size_limit_and_resumed_equals_one_run_st
     resumed = _atd(*command, "--resume", cwd=tmp_path)
     assert resumed.returncode == 0, resumed.stderr
     with Store.open_read(store) as s:
-        assert _outcomes(s.records()) == straight
+        assert outcomes(s.records()) == straight
 
 
 def test_a_recording_that_cannot_be_written_costs_the_trial_nothing(tmp_path: Path) -> None:
@@ -307,5 +324,5 @@ def test_with_two_workers_a_lost_recording_leaves_the_records_as_they_are_withou
     run_local(chosen, 1, plain.append)
     recorded: list[TrialRecord] = []
     run_local(replace(chosen, recordings=tmp_path / "missing", campaign="c"), 2, recorded.append)
-    assert _outcomes(recorded) == _outcomes(plain)
+    assert outcomes(recorded) == outcomes(plain)
     assert all("cannot write" in r.recording_error and "missing" in r.recording_error for r in recorded)
