@@ -12,7 +12,7 @@ from atd.blas import pin_kernel
 pin_kernel()
 
 __version__ = "0.1.0"
-API = ("AtdError", "RunResult", "campaign", "load", "run", "translate", "validate")
+API = ("AtdError", "RunResult", "load", "run", "run_campaign", "translate", "validate")  # not "campaign": that is the package atd.campaign
 __all__ = ["API", "__version__", *API]
 
 

@@ -75,7 +75,7 @@ def run(task: Task | Estd | str | Path, robot: str | None = None, arm: str | Non
                      outcome.sim_time, session.object_positions)
 
 
-def campaign(spec: str | Path, only: dict[str, str] | None = None, trials: int | None = None) -> Iterator:
+def run_campaign(spec: str | Path, only: dict[str, str] | None = None, trials: int | None = None) -> Iterator:
     """The trials of a campaign spec, run one by one in this process and judged by the
     simulator, as `atd campaign run` runs them (same seeds, so the same records): yields each
     TrialRecord as it ends. `only` narrows the cells ({"robot": "melfa"}), `trials` takes the
