@@ -18,7 +18,7 @@ from atd.model.estd import Estd
 from atd.model.estd_xml import is_estd_file, read_estd
 from atd.runtime.executor import Outcome
 from atd.runtime.isolated import EngineCrash, in_child
-from atd.runtime.report import summary
+from atd.runtime.report import grasp_attempts, summary
 from atd.model.files import OutputError
 from atd.runtime.session import ENGINES, InvalidScene, InvalidWorld, Run, RunError, Unrunnable, world_scene
 from atd.sim.scene import Scene
@@ -72,8 +72,10 @@ def _world(estd: Estd, world_file: Path, seed: int) -> Scene:
         _fail(f"error: {exc}", EXIT_INVALID)
 
 
-def _where(positions: dict[str, tuple[float, float, float]], inside: dict[str, list[str]]) -> None:
-    """Where the objects came to rest, and what each container holds at the end."""
+def _where(positions: dict[str, tuple[float, float, float]], inside: dict[str, list[str]],
+           before: dict[str, list[str]]) -> None:
+    """Where the objects came to rest, and what each container holds at the end and what
+    was taken out of it."""
     if len(positions) == 1:
         x, y, z = next(iter(positions.values()))
         click.echo(f"the object rests at ({x:.3f}, {y:.3f}, {z:.3f})")
@@ -83,6 +85,10 @@ def _where(positions: dict[str, tuple[float, float, float]], inside: dict[str, l
     for container, names in inside.items():
         click.echo(f"in '{container}' at the end: {', '.join(names) or 'nothing'} "
                    f"({len(names)} of {len(positions)} objects)")
+        taken = [name for name in before.get(container, []) if name not in names]
+        if before.get(container):
+            click.echo(f"taken out of '{container}': {', '.join(taken) or 'nothing'} "
+                       f"({len(taken)} of the {len(before[container])} it held)")
 
 
 class _Progress:
@@ -113,6 +119,7 @@ class _Ran:
     records: list[dict]
     object_positions: dict[str, tuple[float, float, float]]
     inside: dict[str, list[str]]
+    inside_before: dict[str, list[str]]
     notes: list[str]
 
 
@@ -172,7 +179,8 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
         session = Run(estd, factory, engine=engine, seed=seed, trace_path=trace_path, realtime=realtime,
                       budget=budget, video=video, viewer=viewer, scene=truth, record=record, record_rate=record_rate)
         outcome = session.execute(_Progress(quiet))
-        return _Ran(outcome, session.trace.records, session.object_positions, session.inside, session.notes)
+        return _Ran(outcome, session.trace.records, session.object_positions, session.inside, session.inside_before,
+                    session.notes)
 
     try:
         ran = in_child(simulate)
@@ -189,7 +197,10 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
               f"try --engine {'pybullet' if engine == 'mujoco' else 'mujoco'}", EXIT_ENGINE_CRASHED)
     title = f"{task.name} on {estd.robot} ({estd.arm} arm) in {engine}, seed {seed}"
     click.echo(summary(ran.outcome, ran.records, title))
-    _where(ran.object_positions, ran.inside)
+    _where(ran.object_positions, ran.inside, ran.inside_before)
+    attempts = grasp_attempts(estd, ran.outcome.visits)
+    if attempts:
+        click.echo(f"grasp attempts: {attempts} in {ran.outcome.sim_time:.1f} s of simulated time")
     if trace_path:
         click.echo(f"trace: {trace_path}")
     if record:

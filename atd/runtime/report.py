@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from typing import Callable, TypeVar
 
+from atd.model.estd import Estd
+from atd.model.vocabulary import StateType
 from atd.runtime.executor import Outcome, Visit
 
 T = TypeVar("T")
@@ -67,3 +69,11 @@ def summary(outcome: Outcome, records: list[dict], title: str) -> str:
               f"simulated {outcome.sim_time:.2f} s in {outcome.wall_time:.2f} s of wall-clock time "
               f"({rtf:.1f}x real time)"]
     return "\n".join(lines)
+
+
+def grasp_attempts(estd: Estd, visits: list[Visit]) -> int:
+    """How many times a run entered a grasp state, in any (sub-)machine: thesis 3.4.3's
+    grasp attempts."""
+    grasps = {prefix + state.name for prefix, machine in estd.walk() for state in machine.states
+              if state.type is StateType.GRASP}
+    return sum(visit.path in grasps for visit in visits)
