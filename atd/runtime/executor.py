@@ -243,6 +243,12 @@ class Executor:
         self._still = np.zeros(robot.info.arm_dof)  # the arm's command when no controller moves it
         self._memory = base.memory
         self.command: RobotCommand | None = None  # the arbitrator's latest, for recordings
+        self.stopped: str | None = None  # why an observer stopped the run (`stop`)
+
+    def stop(self, why: str) -> None:
+        """End the run before its next tick, as a supervisor would (a campaign's judge that
+        sees the work done by a task that cannot know it is)."""
+        self.stopped = why
 
     def _apply(self, outputs: list[ControlData]) -> None:
         self.command = command = arbitrate(outputs, self._hand_dof)
@@ -268,6 +274,10 @@ class Executor:
             wall = wallclock.perf_counter() - started
             if readings.time >= self.budget or wall >= self.wall_budget:
                 verdict = self._watchdog(readings, wall)
+                break
+            if self.stopped:
+                verdict = f"stopped in '{self.machine.innermost().visit.path}': {self.stopped}"
+                self.trace.write("stopped", readings.time, state=self.machine.innermost().visit.path, why=self.stopped)
                 break
             self._apply(self.machine.tick(readings, dt))
             if self.machine.ended:

@@ -15,7 +15,7 @@ from atd.model.task import ContainerInfo, Environment, Value
 from atd.model.vocabulary import ValueKind
 from factories.registry import create
 from schemas import schema_path
-from tests.conftest import EXAMPLES, REPO
+from tests.conftest import EXAMPLES, KNOWN_BOX, REPO
 from tests.translator.helpers import every_factory
 from translator import translate
 
@@ -68,8 +68,8 @@ def test_values_and_inputs_read_back_from_both_estd_forms_and_satisfy_the_xsd():
 
 
 def test_a_sub_task_outcome_becomes_a_condition_on_the_end_state_it_names(tmp_path):
-    shutil.copy(EXAMPLES / "pick_one.xml", tmp_path)
-    text = (EXAMPLES / "empty_the_box.xml").read_text()
+    shutil.copy(KNOWN_BOX / "pick_one.xml", tmp_path)
+    text = (KNOWN_BOX / "empty_the_box.xml").read_text()
     (tmp_path / "empty.xml").write_text(text.replace("<error/>", '<outcome name="nothing_there"/>'))
     task, found = load_task(tmp_path / "empty.xml")
     assert found == []
