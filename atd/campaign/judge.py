@@ -8,7 +8,7 @@ disagreement shows an event that claimed what did not happen.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import Callable, Sequence
 
 import numpy as np
 
@@ -102,15 +102,27 @@ class BoxJudge:
         self.start = robot.objects_inside(container)
         self.stop = stop
         self.next_look = LOOK_EVERY
+        self.looks: list[tuple[float, int]] = [(0.0, len(self.start))]  # (s, objects in the box)
         self.verdict: Verdict | None = None
 
     def watch(self, sim_time: float) -> None:
-        """An observer of the run: every LOOK_EVERY s, stop it once the box is empty."""
-        if self.stop is None or sim_time < self.next_look:
+        """An observer of the run: every LOOK_EVERY s, count what is in the box (for
+        `by_remaining`), and stop the run once it is empty when told to."""
+        if sim_time < self.next_look:
             return
         self.next_look = sim_time + LOOK_EVERY
-        if not self.robot.objects_inside(self.container):
+        self.looks.append((sim_time, len(self.robot.objects_inside(self.container))))
+        if self.stop is not None and not self.looks[-1][1]:
             self.stop(f"the judge sees '{self.container}' empty")
+
+    def by_remaining(self, attempts: Sequence[float]) -> dict[str, float]:
+        """How many of the grasp attempts (the times they began) were made with k objects
+        in the box (the latest look before each), as `attempts_with_k_left` (thesis Fig. 3.27)."""
+        counts: dict[str, float] = {}
+        for began in attempts:
+            left = next(n for t, n in reversed(self.looks) if t <= began)
+            counts[f"attempts_with_{left}_left"] = counts.get(f"attempts_with_{left}_left", 0.0) + 1.0
+        return counts
 
     def __call__(self, robot: SimRobot) -> None:
         robot.hold_still(SETTLE)

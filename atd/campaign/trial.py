@@ -97,7 +97,8 @@ def _run(plan: TrialPlan, record: TrialRecord, started: float, recording: Path |
     outcome = run.execute(afterwards=judge)
     verdict = judge.verdict
     if isinstance(judge, BoxJudge):
-        verdict.measurements["attempts"] = float(grasp_attempts(belief, outcome.visits))
+        attempts = [visit.entered for visit in grasp_attempts(belief, outcome.visits)]
+        verdict.measurements.update(attempts=float(len(attempts)), **judge.by_remaining(attempts))
     record.task_succeeded = outcome.succeeded
     record.end_state = outcome.end_state
     record.summary = outcome.summary

@@ -198,7 +198,7 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
     title = f"{task.name} on {estd.robot} ({estd.arm} arm) in {engine}, seed {seed}"
     click.echo(summary(ran.outcome, ran.records, title))
     _where(ran.object_positions, ran.inside, ran.inside_before)
-    attempts = grasp_attempts(estd, ran.outcome.visits)
+    attempts = len(grasp_attempts(estd, ran.outcome.visits))
     if attempts:
         click.echo(f"grasp attempts: {attempts} in {ran.outcome.sim_time:.1f} s of simulated time")
     if trace_path:

@@ -71,9 +71,9 @@ def summary(outcome: Outcome, records: list[dict], title: str) -> str:
     return "\n".join(lines)
 
 
-def grasp_attempts(estd: Estd, visits: list[Visit]) -> int:
-    """How many times a run entered a grasp state, in any (sub-)machine: thesis 3.4.3's
-    grasp attempts."""
+def grasp_attempts(estd: Estd, visits: list[Visit]) -> list[Visit]:
+    """The visits of a run to a grasp state, in any (sub-)machine: thesis 3.4.3's grasp
+    attempts."""
     grasps = {prefix + state.name for prefix, machine in estd.walk() for state in machine.states
               if state.type is StateType.GRASP}
-    return sum(visit.path in grasps for visit in visits)
+    return [visit for visit in visits if visit.path in grasps]
