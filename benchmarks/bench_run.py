@@ -36,7 +36,7 @@ def main() -> None:
     parser.add_argument("--engine", choices=ENGINES, action="append", help="engines to measure (default: both)")
     args = parser.parse_args()
     task, _ = load_task(TASK)
-    scene = scene_from_task(Task(object=task.object, environment=task.environment), TASK)
+    scene = scene_from_task(Task(known_objects=task.known_objects, environment=task.environment), TASK)
     print(f"{'robot':<20} {'engine':<9} {'outcome':<8} {'sim s':>6} {'atd run x rt':>13} {'bare x rt':>10} {'ratio':>6}")
     for robot_name, arm in variants():
         factory = create(robot_name, arm)

@@ -80,7 +80,7 @@ def main() -> None:
     parser.add_argument("--robot", help="only this robot (default: every robot and arm)")
     args = parser.parse_args()
     task, _ = load_task(TASK)
-    scene = scene_from_task(Task(object=task.object, environment=task.environment), TASK)
+    scene = scene_from_task(Task(known_objects=task.known_objects, environment=task.environment), TASK)
     print(f"{'robot':<20} {'ticks':>6} {'bare':>14} {'interface':>14} {'empty executor':>15} {'atd run':>14} {'its physics':>14} "
           f"{'its executor':>14}   us/tick (x bare)")
     for robot_name, arm in variants():

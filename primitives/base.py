@@ -18,6 +18,7 @@ import numpy as np
 
 from atd.model.controllers import ParamValue
 from atd.model.task import Environment, ObjectInfo
+from primitives.blackboard import Blackboard
 from primitives.robot import DepthImage, HandMode, Readings, RobotInfo
 
 
@@ -67,7 +68,7 @@ class Context:
     params: Mapping[str, ParamValue]
     object: ObjectInfo | None = None
     environment: Environment | None = None
-    blackboard: dict[str, Any] = field(default_factory=dict)
+    blackboard: Blackboard = field(default_factory=Blackboard)
     # What the robot has learnt so far in this run, shared by every state (each state's
     # context is the run's with a fresh blackboard): see `primitives.blackboard.EMPTY_HAND`.
     memory: dict[str, Any] = field(default_factory=dict)

@@ -1,4 +1,5 @@
-"""The keys of `Context.blackboard`: how the arm and hand sides of one primitive talk.
+"""What the arm and hand sides of one primitive tell each other (`Blackboard`, a fresh one
+in `Context.blackboard` for each state), and the keys of `Context.memory`.
 
 D5 2.2.4 runs an arm controller and a hand controller side by side in one state; some
 primitives need them to coordinate (the robust grasp closes the fingers only once the
@@ -7,35 +8,65 @@ The executor runs the arm controller before the hand controller each tick, so a 
 the hand writes is read by the arm one tick (5 ms) later, and the reverse in the same tick.
 """
 
-ARM_NUDGE = "arm_nudge"
-"""Hand -> arm: (3,) world-frame TCP velocity, m/s, to add to the arm's own motion."""
+from __future__ import annotations
 
-CONTACT = "contact"
-"""Arm -> hand: True once the arm's approach has ended (object found, or nothing within
-reach): the hand may close."""
+from dataclasses import dataclass
 
-PRESHAPED = "preshaped"
-"""Hand -> arm: False from the start of a grasp until the hand has opened into its preshape;
-the arm approaches only then (unset: no hand that preshapes, the arm goes at once). Fingers
-still opening as the hand comes down at the approach velocity hit the object from above
-and knock it away (a ball pushed 11 cm aside by the Barrett, PyBullet)."""
+import numpy as np
 
-PRESSING = "pressing"
-"""Arm -> hand: True while the sliding grasp feels the closing fingers press on the surface
-it rides harder than it allows (Eq. 3.2 backing off): the fingers wait for the arm to rise."""
 
-FINGERS_STOPPED = "fingers_stopped"
-"""Hand -> arm: True once the fingers can close no further (object held, or limits)."""
+@dataclass(frozen=True, eq=False)
+class Shift:
+    """A move the hand asks the arm for: where the hand should close next, from where it is."""
 
-SHIFT = "shift"
-"""Hand -> arm: (4,) hand-frame displacement (m) and turn about the approach axis (rad)
-for the arm to make before the hand tries again (finger-lost correction, D5's position
-and orientation corrections); the arm sets it back to None when done."""
+    offset: np.ndarray  # (3,) m, hand frame
+    turn: float = 0.0  # rad about the approach axis
 
-WEIGH = "weigh"
-"""Hand -> arm: m for the arm to raise (+) or lower (-) the hand, holding, and then hold
-still there; the arm sets it back to None once it has, still for a moment. The robust
-grasp lifts what it holds off the table this way to feel where its weight hangs."""
+
+@dataclass(eq=False)
+class Blackboard:
+    """The messages between the arm and hand sides of one state's primitive; each field
+    says who writes it. A field left at its default is a message no controller sent."""
+
+    contact: bool | None = None
+    """Arm -> hand: True once the arm's approach has ended (object found, or nothing within
+    reach): the hand may close. None: the arm does not say when (a gripper closes at once)."""
+
+    preshaped: bool = True
+    """Hand -> arm: False from the start of a grasp until the hand has opened into its preshape;
+    the arm approaches only then (left True by a hand that does not preshape: the arm goes at
+    once). Fingers still opening as the hand comes down at the approach velocity hit the
+    object from above and knock it away (a ball pushed 11 cm aside by the Barrett, PyBullet)."""
+
+    pressing: bool = False
+    """Arm -> hand: True while the sliding grasp feels the closing fingers press on the surface
+    it rides harder than it allows (Eq. 3.2 backing off): the fingers wait for the arm to rise."""
+
+    fingers_stopped: bool = False
+    """Hand -> arm: True once the fingers can close no further (object held, or limits)."""
+
+    shift: Shift | None = None
+    """Hand -> arm: a move for the arm to make before the hand tries again (finger-lost
+    correction, D5's position and orientation corrections); the arm sets it back to None
+    when done."""
+
+    weigh: float | None = None
+    """Hand -> arm: m for the arm to raise (+) or lower (-) the hand, holding, and then hold
+    still there; the arm sets it back to None once it has, still for a moment. The robust
+    grasp lifts what it holds off the table this way to feel where its weight hangs."""
+
+    arm_nudge: np.ndarray | None = None
+    """Hand -> arm: (3,) world-frame TCP velocity, m/s, to add to the arm's own motion."""
+
+    jaws_empty: bool = False
+    """Hand -> arm: True from the moment a gripper's jaws closed on nothing until they are
+    open again, for an arm that looks for the object elsewhere."""
+
+    jaws_brushed: float | None = None
+    """Hand -> arm: with `jaws_empty`, where along the jaws' width (the hand's x, from -1 to 1
+    of a pad's half width) the pads last felt something while they closed on nothing, or
+    None: the object lies beyond that edge of the pads (pushed there by it)."""
+
 
 EMPTY_HAND = "empty_hand"
 """In `Context.memory`, not the blackboard: (3,) world-frame wrist force of the empty hand,
@@ -47,12 +78,3 @@ ARM_TWIST = "arm_twist"
 rad/s), kept by the executor. A motion that takes the arm over ramps from it: one that
 started from rest stopped a lifting SDH2 within a tick, and its wrist read the 10-15 N of
 that stop as a contact."""
-
-JAWS_EMPTY = "jaws_empty"
-"""Hand -> arm: True from the moment a gripper's jaws closed on nothing until they are
-open again, for an arm that looks for the object elsewhere."""
-
-JAWS_BRUSHED = "jaws_brushed"
-"""Hand -> arm: with JAWS_EMPTY, where along the jaws' width (the hand's x, from -1 to 1 of
-a pad's half width) the pads last felt something while they closed on nothing, or None:
-the object lies beyond that edge of the pads (pushed there by it)."""

@@ -16,9 +16,10 @@ from atd.model.controllers import ARM_CONTROLLERS, CONDITIONS, HAND_CONTROLLERS,
 from atd.model.estd import Condition as Leaf
 from atd.model.estd import Controller as Use
 from primitives.arm.explore import Explore
-from primitives.arm.grasp import NaiveGraspApproach, RobustGraspApproach
+from primitives.arm.grasp import NaiveGraspApproach
 from primitives.arm.jaw_grasp import JawGraspCorrection
 from primitives.arm.move import CartesianMove, Hold, Push
+from primitives.arm.robust_approach import RobustGraspApproach
 from primitives.arm.surface import Place, ReleaseRetreat, Slide
 from primitives.base import Condition, Context, Controller, Status
 from primitives.conditions import (
@@ -37,9 +38,10 @@ from primitives.conditions import (
     WristForceAbove,
 )
 from primitives.hands import hand_kind
-from primitives.hands.multi_finger import NaiveGraspHand, RobustGraspHand
+from primitives.hands.multi_finger import NaiveGraspHand
 from primitives.hands.parallel_jaw import CloseUntilForce, NaiveJawGrasp, Squeeze
 from primitives.hands.posture import HandShape, HoldPosition, OpenTo
+from primitives.hands.robust_grasp import RobustGraspHand
 from primitives.perception.perceive import perceive
 from primitives.values import Approach, NothingFound
 

@@ -22,7 +22,7 @@ from atd.runtime.arbitrator import RobotCommand, arbitrate
 from atd.runtime.trace import Trace
 from atd.runtime.values import arm_for, bind_inputs, targeted
 from primitives.base import Condition, Context, ControlData, Status, StateView
-from primitives.blackboard import ARM_TWIST
+from primitives.blackboard import ARM_TWIST, Blackboard
 from primitives.registry import BuildError, build_condition, build_controller
 from primitives.robot import Readings, Robot
 
@@ -97,7 +97,7 @@ class Machine:
         state = self.states[name]
         self.current = state
         self.entered = readings.time
-        ctx = replace(self.base, blackboard={})
+        ctx = replace(self.base, blackboard=Blackboard())
         arm = arm_for(state, self.base.memory)
         self.arm = build_controller(arm, "arm", ctx) if arm else None
         self.hand = build_controller(state.hand, "hand", ctx) if state.hand else None
@@ -208,7 +208,7 @@ def build_problems(estd: Estd, base: Context) -> list[str]:
     a sensor it lacks), found before the run starts rather than in the middle of it."""
     problems = []
     for prefix, machine in estd.walk():
-        ctx = replace(base, blackboard={})
+        ctx = replace(base, blackboard=Blackboard())
         for state in machine.states:
             # A target read at run time could be anywhere: any point shows the controller builds.
             arm = targeted(state.arm, (0.0, 0.0, 0.0)) if state.arm and state.target_from else state.arm

@@ -11,13 +11,13 @@ jaw is wide, and by half the last move when it goes back the way the last one ca
 that moves across bracket the object instead of swinging over it; rise, descend again),
 or under the middle or below the top (the support under both jaws, or the palm on the
 object: the jaws straddle its place, so close). The descent stops with the fingertips
-clear of the support. The jaws closing on nothing (JAWS_EMPTY) means the object lies
+clear of the support. The jaws closing on nothing (`jaws_empty`) means the object lies
 beyond the jaws' width, where closing does not sweep: the arm rises and goes where the
 palm's contact placed the object, or a step beyond the pads' edge that brushed it on the
-way (JAWS_BRUSHED), or else to the next point of a bounded search along
+way (`jaws_brushed`), or else to the next point of a bounded search along
 the jaws' width, alternating sides, around where the approach left it and the moves
-across have since taken it. While the jaws close it follows the hand's ARM_NUDGE
-(re-centring on the pads' contact) and ends once FINGERS_STOPPED.
+across have since taken it. While the jaws close it follows the hand's `arm_nudge`
+(re-centring on the pads' contact) and ends once `fingers_stopped`.
 """
 
 from __future__ import annotations
@@ -37,15 +37,7 @@ from primitives.arm.motion import (
 )
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
-from primitives.blackboard import (
-    ARM_NUDGE,
-    ARM_TWIST,
-    CONTACT,
-    EMPTY_HAND,
-    FINGERS_STOPPED,
-    JAWS_BRUSHED,
-    JAWS_EMPTY,
-)
+from primitives.blackboard import ARM_TWIST, EMPTY_HAND
 from primitives.filters import ContactWrench, contact_across, world_load
 from primitives.robot import Readings
 from primitives.search import search_offsets
@@ -111,7 +103,7 @@ class JawGraspCorrection(Controller):
         self.hint: np.ndarray | None = None  # where the last contact says the object is, world frame
         self.hinted = False  # a contact's hint has been followed: one is, once
         self.brushed = False  # a hint from the pads' brushing the object has been taken: one is, once
-        self.ctx.blackboard[CONTACT] = False
+        self.ctx.blackboard.contact = False
         self._rise(readings, np.zeros(3), self._above_object())
 
     def _object_top(self) -> float:
@@ -158,7 +150,7 @@ class JawGraspCorrection(Controller):
             relieved = self._relieve(readings, dt)
         if self.phase in ("close", "hold"):
             v = GAIN * (self.goal - position) + (v if self.phase == "close" else 0.0)
-        if self.phase == "close" and board.get(FINGERS_STOPPED) and relieved:
+        if self.phase == "close" and board.fingers_stopped and relieved:
             self.phase = "hold"
             self.finish(Status.DONE, f"the jaws hold the object after {self.shifts} moves across and "
                                      f"{self.searched + self.hinted} search points")
@@ -173,7 +165,7 @@ class JawGraspCorrection(Controller):
         if norm(goal - position) < ARRIVED and angle < ORIENTATION_TOLERANCE:
             self.route.pop(0)
             if not self.route:
-                if self.ctx.blackboard.get(JAWS_EMPTY):  # the jaws are still opening
+                if self.ctx.blackboard.jaws_empty:  # the jaws are still opening
                     self.route = [goal]
                     return np.zeros(3)
                 self._start_descent(readings)
@@ -253,7 +245,7 @@ class JawGraspCorrection(Controller):
         self.goal = readings.tcp[:3, 3] + back_off * UP
         self.phase = "close"
         self.risen = 0.0  # m the arm has risen in this close to take the hand off the support
-        self.ctx.blackboard[CONTACT] = True
+        self.ctx.blackboard.contact = True
 
     def _relieve(self, readings: Readings, dt: float) -> bool:
         """Rise while the wrist is pushed up beyond the empty hand's load: jaws squeezing a duck
@@ -271,7 +263,7 @@ class JawGraspCorrection(Controller):
 
     def _brushed_hint(self, readings: Readings, brushed: float | None) -> np.ndarray | None:
         """Where to look after jaws whose pads felt the object at their edge (`brushed`, from
-        JAWS_BRUSHED) closed past it: a search step beyond that edge. Once: where that leads
+        `jaws_brushed`) closed past it: a search step beyond that edge. Once: where that leads
         to nothing, the search goes on as planned."""
         if brushed is None or self.brushed:
             return None
@@ -280,10 +272,10 @@ class JawGraspCorrection(Controller):
 
     def _close(self, readings: Readings, dt: float) -> np.ndarray:
         board = self.ctx.blackboard
-        if board.get(JAWS_EMPTY):
-            board[CONTACT] = False
+        if board.jaws_empty:
+            board.contact = False
             if self.hint is None:
-                self.hint = self._brushed_hint(readings, board.get(JAWS_BRUSHED))
+                self.hint = self._brushed_hint(readings, board.jaws_brushed)
             if self.hint is not None:
                 point, self.hint, self.hinted = self.hint, None, True
             elif self.searched < len(self.offsets):
@@ -295,7 +287,7 @@ class JawGraspCorrection(Controller):
                 return np.zeros(3)
             self._rise(readings, point - readings.tcp[:3, 3], self._above_object())
             return np.zeros(3)
-        nudge = board.get(ARM_NUDGE)
+        nudge = board.arm_nudge
         if nudge is None:
             return np.zeros(3)
         self.goal = self.goal + np.asarray(nudge, float) * dt

@@ -22,7 +22,7 @@ from primitives.arm.motion import (
     top_down,
 )
 from primitives.base import ArmCommand, Context, ControlData, Controller, Status
-from primitives.blackboard import ARM_NUDGE, ARM_TWIST
+from primitives.blackboard import ARM_TWIST
 from primitives.filters import ContactWrench, LowPass
 from primitives.robot import Readings
 
@@ -46,7 +46,7 @@ def arm_output(twist: np.ndarray) -> ControlData:
 
 class Hold(Controller):
     """Keep the TCP where it was when the state began (D5 2.2.4: the arm idles while the
-    hand works). Done at once. Follows the hand side's ARM_NUDGE, so a gripper can
+    hand works). Done at once. Follows the hand side's `arm_nudge`, so a gripper can
     re-centre itself on the object by moving the arm."""
 
     def start(self, readings: Readings) -> None:
@@ -55,7 +55,7 @@ class Hold(Controller):
         self.finish(Status.DONE, "holding the pose")
 
     def update(self, readings: Readings, dt: float) -> ControlData:
-        nudge = self.ctx.blackboard.get(ARM_NUDGE)
+        nudge = self.ctx.blackboard.arm_nudge
         v = np.zeros(3)
         if nudge is not None:
             v = np.asarray(nudge, float)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
-from primitives.blackboard import ARM_NUDGE, CONTACT, EMPTY_HAND, FINGERS_STOPPED, JAWS_BRUSHED, JAWS_EMPTY
+from primitives.blackboard import EMPTY_HAND
 from primitives.filters import world_load
 from primitives.hands.posture import position_command
 from primitives.robot import HandMode, Readings
@@ -82,9 +82,9 @@ class CloseUntilForce(Controller):
     towards the touching pad as fast as that jaw closes, so the touching pad stands still
     on the object while the other comes to meet it.
 
-    With an arm that corrects the approach (it raises CONTACT when the jaws may close)
-    the jaws wait for CONTACT; closing on nothing is then no error: they say JAWS_EMPTY,
-    reopen, and close again on the arm's next CONTACT. They also stop closing while the
+    With an arm that corrects the approach (it raises `contact` when the jaws may close)
+    the jaws wait for `contact`; closing on nothing is then no error: they say `jaws_empty`,
+    reopen, and close again on the arm's next `contact`. They also stop closing while the
     pads feel the object off their middle along the jaws' width, and ask the arm to move
     that way first: a pad's rim closing on a round object pushes it aside. That move stops
     after `max_recentre`: a contact still off-centre by then moves with the pad (a slanted
@@ -105,35 +105,35 @@ class CloseUntilForce(Controller):
         self.recentred = 0.0  # m the arm has followed a contact along the jaws' width in this close
         self.brushed: float | None = None  # where along the jaws' width the pads last felt something in this close
         self.ctx.memory[EMPTY_HAND] = world_load(readings)  # a grasp begins empty-handed
-        self.guided = CONTACT in self.ctx.blackboard  # the arm says when to close
+        self.guided = self.ctx.blackboard.contact is not None  # the arm says when to close
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         board = self.ctx.blackboard
-        if self.guided and not self.pressing and not board.get(CONTACT):
+        if self.guided and not self.pressing and not board.contact:
             return self._reopen(dt)
         if self.status is Status.RUNNING:
             force = self.jaws.force(readings)
             if self.jaws.empty(readings):  # a motor pressing on its end stop feels force too
                 self.pressing = False
                 if self.guided:
-                    board[JAWS_EMPTY] = True
-                    board[JAWS_BRUSHED] = self.brushed
+                    board.jaws_empty = True
+                    board.jaws_brushed = self.brushed
                 else:
                     self.finish(Status.ERROR, "the jaws closed on nothing")
             elif self.pressing and abs(float(readings.hand_dq[0])) < STILL and self._gripped(force):
-                board[FINGERS_STOPPED] = True
+                board.fingers_stopped = True
                 limit = ", the squeeze at its limit" if force < CONFIRM * self.grasp_force else ""
                 self.finish(Status.DONE, f"grip force {force:.1f} N (asked {self.grasp_force:g} N{limit})")
             elif not self.pressing and (self.jaws.both_touch(readings, self.grasp_force) or self._blocked(readings)):
                 self.pressing = True
                 self.squeeze.reset()  # each press starts from the grasp force
-        if board.get(JAWS_EMPTY):
+        if board.jaws_empty:
             return self._reopen(dt)
         if self.pressing:
-            board[ARM_NUDGE] = None
+            board.arm_nudge = None
             return self.squeeze.update(readings, dt)
         if self.status is Status.ERROR:
-            board[ARM_NUDGE] = None
+            board.arm_nudge = None
             return position_command(np.array([self.reference]))
         across = self._across_pads(readings)
         if across != 0.0:
@@ -141,7 +141,7 @@ class CloseUntilForce(Controller):
         off_centre = across if self.guided and self.recentred < self.max_recentre else 0.0
         self.recentred += abs(off_centre) * self.speed * dt
         closing = abs(off_centre) <= ALIGNED  # closing on a pad's rim pushes the object along the jaws' width
-        board[ARM_NUDGE] = self._nudge(readings, off_centre, closing)
+        board.arm_nudge = self._nudge(readings, off_centre, closing)
         if closing:
             self.reference += self.jaws.closing * self.speed * dt
         return position_command(np.array([self.reference]))
@@ -164,16 +164,16 @@ class CloseUntilForce(Controller):
 
     def _reopen(self, dt: float) -> ControlData:
         """Back to the opening the grasp began with, at full speed (nothing is in the way);
-        JAWS_EMPTY holds until it is reached."""
+        `jaws_empty` holds until it is reached."""
         board = self.ctx.blackboard
-        board[ARM_NUDGE] = None
-        if board.get(JAWS_EMPTY):
+        board.arm_nudge = None
+        if board.jaws_empty:
             self.reference -= self.jaws.closing * float(self.ctx.info.hand.velocity_limit[0]) * dt
             if self.jaws.closing * (self.reference - self.opened) <= 0.0:
                 self.reference = self.opened
                 self.recentred = 0.0
                 self.brushed = None
-                board[JAWS_EMPTY] = False
+                board.jaws_empty = False
         return position_command(np.array([self.reference]))
 
     def _nudge(self, readings: Readings, off_centre: float, closing: bool) -> np.ndarray | None:
@@ -241,7 +241,7 @@ class Squeeze(Controller):
 
 
 class NaiveJawGrasp(Controller):
-    """The naive grasp of thesis 3.4.1 on a gripper: once the arm has stopped (CONTACT),
+    """The naive grasp of thesis 3.4.1 on a gripper: once the arm has stopped (`contact`),
     close until the jaw motor meets the object, then press with `grasp_force` (the robust
     grasp's), or `squeeze` of its effort limit without one. No tactile sensing, no
     re-centring, no force check: the baseline."""
@@ -262,7 +262,7 @@ class NaiveJawGrasp(Controller):
     def update(self, readings: Readings, dt: float) -> ControlData:
         if self.status is Status.DONE:
             return self.jaws.command(self.force)
-        if self.status is Status.RUNNING and self.ctx.blackboard.get(CONTACT):
+        if self.status is Status.RUNNING and self.ctx.blackboard.contact:
             # Held back too: the Melfa's arm stopping on the box shook its open jaws' servo
             # past the touch force, and the grasp said it had closed with the jaws wide open.
             if self.jaws.both_touch(readings, self.force) and self.jaws.held(readings, self.reference):

@@ -8,7 +8,7 @@ import pytest
 
 from atd.model.vocabulary import EventType
 from atd.sim.scene import box_scene
-from primitives.hands.multi_finger import SETTLE_LIMIT
+from primitives.hands.robust_grasp import SETTLE_LIMIT
 from tests.primitives.conftest import (
     EXAMPLES,
     Stage,

@@ -1,0 +1,378 @@
+"""The hand side of the robust grasp (thesis 3.3.1; D5 appendix) for any three-finger hand:
+preshape, wait for the arm to find the object (`contact`), close every grasping finger
+until it can close no further, then judge the close by the pads (`_judge`): hold and
+adapt the force, or correct and close again. Its phases, the corrections and the trials
+behind each constant are in docs/robust-grasp.md.
+
+All corrections share one budget (RETRIES); once it is spent the grasp ends in an error
+saying what went wrong last, with the pad forces where they matter.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from atd.model.frames import GRAVITY
+from primitives.arm.motion import SUPPORT_BAND
+from primitives.base import Context, Status
+from primitives.blackboard import EMPTY_HAND, Shift
+from primitives.filters import LowPass, held_wrench, world_load
+from primitives.hands.extension import ExtensionGauge, contact_points
+from primitives.hands.grasp_phases import Closing, Corrections, Holding, Phase, Weighing
+from primitives.hands.multi_finger import CLOSING_SPEED, REACHED, FingerGrasp
+from primitives.hands.pinch_search import PinchSearch
+from primitives.robot import Readings
+
+OPENING_SPEED = 1.0  # of each DOF's speed limit: reopening at the closing speed left time for only two closes
+TOUCH_EFFORT = 0.05  # of the effort limit: a light touch, the least force adaptation starts from
+SETTLE_TIME = 0.1  # s every pad must feel the grasp force (HELD) before the object counts as held
+ADAPT_GAIN = 0.05  # effort (fraction of the limit) per N of missing pad force, per s
+HELD = 0.9  # the squeeze within 10 % of the grasp force: the object is held
+FELT_TIME = SETTLE_TIME  # s the pad forces are averaged over: a pad on a tilted object swings about a steady mean
+SETTLE_LIMIT = 4.0  # s a hold may take to settle: 1.5 times the slowest measured; one unsettled then never will
+RETRIES = 5  # corrections of any kind per grasp: room for a search and a regrasp within a task's 20 s
+LOST_TIME = 0.5  # s a grasping pad may feel nothing while another presses before the finger counts as lost
+PINCHED = 2.0  # times the grasp force on every grasping pad: closed on the object; closing on pushes a ball up
+PASSED = 0.5  # of the object's least width: pads this near each other touching nothing have nothing between them
+FREE_RISE = 0.02  # m the arm rises to free a preshape blocked on the table: clear of a fingertip's press
+JAM_MARGIN = 0.005  # m beyond the object's widest that stopped fingers may stand apart on it
+FELT_OFF_LINE = 0.003  # m off the pinch line the pads must last have felt the object to say which side it went
+WEIGH_LIFT = 0.015  # m the pinch lifts what it holds to feel where its weight hangs: clear of the table
+WEIGH_TIME = 0.2  # s it feels it there: the swing of the lift's stop dies down first
+OFF_CENTRE = 0.015  # m the weight may hang off the pinch line: further, it turned out of the hand
+RIM_CONTACT = 0.0015  # m over which a pad's contact on a curved face carries friction against the turn
+GAP_CHECK = 0.05  # s between looks at the pads' gap: a look (forward kinematics) costs 0.3-0.5 ms
+
+
+class RobustGraspHand(FingerGrasp):
+    """The robust grasp's hand side, for any three-finger hand."""
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        self.base = {pad.name: np.array(pad.base) for pad in ctx.info.hand.pads}
+        self.grasp_force = float(self.params["grasp_force"])
+        self.correct = bool(self.params["finger_lost_correction"])
+        self.finger_lost_shift = float(self.params["finger_lost_shift"])
+        self.extension_correction = bool(self.params["extension_correction"])
+        self.stable_quality = float(self.params["stable_quality"])
+        self.alpha_threshold = np.radians(float(self.params["alpha_threshold"]))
+
+    def start(self, readings: Readings) -> None:
+        super().start(readings)
+        self.corrections = Corrections()
+        self.closing = Closing()
+        if self.fingers:
+            hand = self.ctx.info.hand
+            self.gauge = ExtensionGauge(hand, [self.pad_of[f] for f in self.fingers], self.pre)
+            self.search = PinchSearch(self._normal() if self.pinch else None, float(self.params["search_step"]),
+                                      float(self.params["object_lost_step"]),
+                                      max(hand.pads[self.pad_of[f]].half_size[1] for f in self.fingers))
+
+    # -- phases: one tick each ------------------------------------------------------------
+    def _free(self, readings: Readings, dt: float) -> None:
+        """Risen: preshape again, in free air, once the arm has made the rise."""
+        if self.ctx.blackboard.shift is None:
+            self.phase = Phase.PRESHAPE
+            self.stillness.seconds[:] = 0.0
+            self.ctx.memory[EMPTY_HAND] = world_load(readings)
+
+    def _close(self, readings: Readings, dt: float) -> None:
+        touching = self._touching(readings)
+        self.closing.brushed.update(touching)
+        if touching and self.pinch:
+            self._feel_across(readings, touching)
+        if self._closed(readings, dt) or self._pinching(readings, dt) or self._passed(readings):
+            self.corrections.jammed = self._jammed(readings)
+            self.ctx.blackboard.fingers_stopped = True
+            self.effort = self._starting_effort(readings)
+            self._judge(readings)
+
+    def _reopen(self, readings: Readings, dt: float) -> None:
+        """Back to the preshape, fast; then the arm is asked for the correction's move."""
+        if self._ramp(self.pre, dt, readings.hand_q, OPENING_SPEED / CLOSING_SPEED) or self._blocked(readings, dt):
+            self.ctx.blackboard.shift = self.corrections.shift
+            self.phase = Phase.SHIFT
+
+    def _shift(self, readings: Readings, dt: float) -> None:
+        if self.ctx.blackboard.shift is None:  # the arm has made the move
+            self.corrections.retries += 1
+            self._begin_closing()
+
+    def _hold(self, readings: Readings, dt: float) -> None:
+        """Force adaptation until the squeeze settles at the grasp force (within 1 - HELD,
+        averaged over FELT_TIME, and not only passing through the band) for SETTLE_TIME;
+        then a pinch weighs what it holds, other grasps are done. Unsettled after
+        SETTLE_LIMIT: an error naming the pads."""
+        averaged = self._squeeze(readings, dt)
+        if averaged is None:
+            return
+        held = self.held
+        squeeze = float(averaged.mean() if self.pinch else averaged.min())
+        band = (1.0 - HELD) * self.grasp_force
+        if abs(squeeze - self.grasp_force) > band or abs(squeeze - held.entered) > band:
+            held.entered, held.settled = squeeze, 0.0  # out of the band, or only passing through it
+        else:
+            held.settled += dt
+        held.holding += dt
+        if self.status is not Status.RUNNING:
+            return
+        if held.settled >= SETTLE_TIME and self._corrects_pinch():
+            self.phase, self.weighing = Phase.WEIGH, Weighing()  # lift it, to feel where its weight hangs
+            self.ctx.blackboard.weigh = WEIGH_LIFT
+        elif held.settled >= SETTLE_TIME:
+            self.finish(Status.DONE, f"object held after {self.corrections.retries} corrections: "
+                                     f"{self._forces(readings.pad_force)}")
+        elif held.holding > SETTLE_LIMIT:
+            what = (f"pads never settled at {self.grasp_force:.1f} N within {SETTLE_LIMIT:.0f} s "
+                    f"({self._forces(readings.pad_force)})")
+            self._fail(what)
+
+    def _weigh(self, readings: Readings, dt: float) -> None:
+        """Lifted WEIGH_LIFT by the arm, the wrist feels the held weight for WEIGH_TIME. More
+        than OFF_CENTRE off the pinch line, and turning the object harder than friction
+        over RIM_CONTACT carries, the arm sets it down (SET_DOWN) to grasp it again that
+        far across; otherwise it is held, lifted."""
+        if self._squeeze(readings, dt) is None or self.ctx.blackboard.weigh is not None:
+            return  # dropped, or the arm is still raising the hand
+        weighing = self.weighing
+        weighing.weights.append(held_wrench(self.ctx.info.hand, readings))
+        if len(weighing.weights) * self.ctx.info.control_period < WEIGH_TIME:
+            return
+        offset, torque = self._weight_off_line(readings, np.mean(weighing.weights, axis=0))
+        squeeze = float(sum(readings.pad_force[self.pad_of[f]] for f in self.fingers))
+        if abs(offset) <= OFF_CENTRE or abs(torque) <= (self.ctx.object.friction or 0.0) * squeeze * RIM_CONTACT:
+            self.phase = Phase.HOLD
+            self.finish(Status.DONE, f"object held after {self.corrections.retries} corrections, its weight "
+                                     f"{abs(offset) * 100:.1f} cm off the pinch line: {self._forces(readings.pad_force)}")
+            return
+        weighing.off_line = f"its weight hung {abs(offset) * 100:.1f} cm off the pinch line"
+        weighing.regrasp = self.search.look(self.search.across + offset)
+        self.phase = Phase.SET_DOWN
+        self.ctx.blackboard.weigh = -WEIGH_LIFT
+
+    def _set_down(self, readings: Readings, dt: float) -> None:
+        """Once the arm has set the object down: grasp it again across its centre of mass."""
+        if self._squeeze(readings, dt) is not None and self.ctx.blackboard.weigh is None:
+            self._try_again(self.weighing.regrasp, self.weighing.off_line)
+
+    # -- closing ------------------------------------------------------------------------
+    def _free_fingers(self) -> bool:
+        """Once per grasp: a preshape blocked short (fingertips pressed on the table as the
+        spread turns) is made again FREE_RISE higher, where its fingers face each other."""
+        if self.corrections.freed:
+            return False
+        self.corrections.freed = True
+        self.ctx.blackboard.shift = Shift(np.array([0.0, 0.0, -FREE_RISE]))
+        self.phase = Phase.FREE
+        return True
+
+    def _begin_closing(self) -> None:
+        super()._begin_closing()
+        self.closing = Closing()
+
+    def _pinching(self, readings: Readings, dt: float) -> bool:
+        """Every grasping pad has pressed on the object with PINCHED times the grasp force
+        for SETTLE_TIME: the fingers have closed on it, though they could still creep on;
+        closing on squeezes a round object low on its side up out of the hand. Not while
+        the arm backs off the surface: fingertips pressed on the table read the same."""
+        pads = readings.pad_force
+        pressed = all(pads[self.pad_of[f]] >= PINCHED * self.grasp_force for f in self.fingers)
+        self.closing.pinched = self.closing.pinched + dt if pressed and not self.ctx.blackboard.pressing else 0.0
+        return self.closing.pinched >= SETTLE_TIME
+
+    def _passed(self, readings: Readings) -> bool:
+        """The pads have closed past the object's least width (PASSED of it) and touch
+        nothing: there is nothing between the fingers, whatever is left of the close."""
+        if self._touching(readings) or self.ctx.object is None or readings.time - self.closing.looked < GAP_CHECK:
+            return False
+        self.closing.looked = readings.time
+        return self.gauge.gap(readings.hand_q) < PASSED * self.ctx.object.least_width
+
+    def _jammed(self, readings: Readings) -> bool:
+        """The fingers stopped short of their limits as far apart as the object is wide, and
+        no pad feels anything: they stand on it beside their pads (a flat finger touches a
+        cylinder at the foot of its axis, on the bare face beside its pad)."""
+        hand, q = self.ctx.info.hand, readings.hand_q
+        short = np.abs(q - hand.closed) >= REACHED * self.range
+        if self._touching(readings) or self.ctx.object is None or not short[self.moving].all():
+            return False
+        return PASSED * self.ctx.object.least_width <= self.gauge.gap(q) <= self.ctx.object.widest + JAM_MARGIN
+
+    def _starting_effort(self, readings: Readings) -> np.ndarray:
+        """Where force adaptation starts: at rest a pad's force grows with the effort behind
+        it, so each stopped finger's effort scaled to the grasp force is close to the one
+        that holds it; from a light touch the integrator took seconds to climb back. Every
+        finger starts from the least of these: opposed fingers pressing unequally push the
+        object aside."""
+        hand = self.ctx.info.hand
+        pads, pressed = readings.pad_force, np.maximum(0.0, hand.closing * readings.hand_effort)
+        touch = TOUCH_EFFORT * hand.effort_limit
+        scaled = [pressed[i] * self.grasp_force / pads[self.pad_of[f]] / hand.effort_limit[i]
+                  for i in np.flatnonzero(self.moving)
+                  if (f := self.finger_of_dof[i]) and pads[self.pad_of[f]] >= self.touch]
+        share = min(scaled, default=0.0)  # of each DOF's effort limit
+        return np.where(self.moving, np.clip(share * hand.effort_limit, touch, hand.effort_limit), 0.0)
+
+    def _feel_across(self, readings: Readings, touching: list[str]) -> None:
+        """Where the touching pads feel something above the table, across the pinch line
+        (m, hand frame, from the line through the fingers): each pad's centre of pressure,
+        weighted by its force. Fingertips on the table say nothing of the object."""
+        pads = [self.pad_of[f] for f in touching]
+        points = contact_points(self.ctx.info.hand, readings, pads)
+        heights = points @ readings.tcp[2, :3] + readings.tcp[2, 3]  # world z
+        above = heights >= SUPPORT_BAND
+        if not above.any():
+            return
+        self.closing.felt_by.update(f for f, up in zip(touching, above) if up)
+        weights = readings.pad_force[pads] * above
+        across = (points[:, :2] - self.base[self.fingers[0]]) @ self.search.normal
+        self.closing.felt_at = float(weights @ across) / float(weights.sum())
+
+    # -- judging a close ----------------------------------------------------------------
+    def _judge(self, readings: Readings) -> None:
+        """Every grasping finger on the object: hold it. Otherwise correct, towards the
+        fingers that touch it; when none does, towards those that touched something on the
+        way and lost it (the object pushed aside by the finger that met it first), as long
+        as some did not: that side is where the object went."""
+        search = self.search
+        heading, search.heading = search.heading, 0.0
+        touching = self._touching(readings)
+        if not touching and set(self.fingers) - self.closing.brushed:
+            touching = [f for f in self.fingers if f in self.closing.brushed]
+        lost = [f for f in self.fingers if f not in touching]
+        if not lost and self._uneven(readings):
+            return
+        if not lost:
+            self.phase, self.held = Phase.HOLD, Holding(LowPass(FELT_TIME))
+            return
+        what = f"finger {', '.join(lost)} missed the object" if touching else "nothing between the fingers"
+        if self._nudging(readings):
+            self._try_again(search.nudge(), "the fingers stopped on something their pads do not feel")
+        elif touching and not self.correct:
+            self._fail(what)
+        elif touching and heading and self.pinch:  # a search step's close met the object's edge: further that way
+            self._try_again(search.next(beyond=heading), what)
+        elif touching:  # finger lost: shift towards the fingers that touched
+            toward = np.mean([self.base[f] for f in touching], axis=0) - np.mean([self.base[f] for f in lost], axis=0)
+            shift = np.array([*toward / np.linalg.norm(toward), 0.0]) * self.finger_lost_shift
+            if float(shift @ self.corrections.lost_shift) < 0.0:
+                # Back the way the last one came: the fingers take turns on the object's
+                # edge, so it lies off the line between them: look across that line instead.
+                shift = search.next()
+            self.corrections.lost_shift = shift
+            self._try_again(shift, what)
+        elif self._pushed_aside():
+            self._try_again(self._after_pushed(), "the fingers pushed the object off their line")
+        else:
+            self._try_again(search.next(), what)
+
+    def _uneven(self, readings: Readings) -> bool:
+        """D5 3.3.3: every finger is on the object, but unevenly: correct, true if a
+        correction is under way. The position correction only while each makes the grasp
+        more even (Q falls): fingers that push the object as they close undo every move.
+        With no correction left to make, or the budget spent, the grasp holds what it has
+        and the lift's events judge it."""
+        corrections = self.corrections
+        if not self.extension_correction or corrections.retries >= RETRIES:
+            return False
+        check = self.gauge.check(readings)
+        turn = check.turn if abs(check.turn) >= self.alpha_threshold else 0.0
+        move = self.stable_quality <= check.quality < corrections.quality
+        corrections.quality = check.quality
+        if not move and turn == 0.0:
+            return False
+        shift = check.shift if move else np.zeros(3)
+        what = f"uneven grasp (Q {check.quality:.3f}, alpha {np.degrees(turn):.1f} deg)"
+        self._try_again(shift, what, turn)
+        return True
+
+    def _pushed_aside(self) -> bool:
+        """Both pinching fingers felt the object on the way, then closed on nothing, where
+        they last felt it off the pinch line: they pushed it out sideways."""
+        closing = self.closing
+        return self._corrects_pinch() and set(self.fingers) <= closing.felt_by and abs(closing.felt_at) >= FELT_OFF_LINE
+
+    def _after_pushed(self) -> np.ndarray:
+        """The shift (hand frame) that closes next with the pinch line through the pushed
+        object: beyond where the pads last felt it by half its footprint's length (pushed
+        until it cleared the fingers, it reaches back to where they last touched it)."""
+        felt_at = self.closing.felt_at
+        side = float(np.sign(felt_at))
+        return self.search.look(self.search.across + felt_at + side * self.ctx.object.footprint_length / 2.0)
+
+    def _corrects_pinch(self) -> bool:
+        """Two fingers pinch, corrections are on, and the task describes the object: what
+        the corrections that reason from the object's size and weight need."""
+        return self.pinch and self.correct and self.ctx.object is not None
+
+    def _normal(self) -> np.ndarray:
+        """The unit vector across the pinch line (hand frame x, y), the way a search step moves."""
+        line = self.base[self.fingers[1]] - self.base[self.fingers[0]]
+        return np.array([-line[1], line[0]]) / np.linalg.norm(line)
+
+    def _nudging(self, readings: Readings) -> bool:
+        """No pad touches, and the pinch jammed (with neither side of it looked at yet) or
+        its first nudge found nothing: look on (the other side)."""
+        pending = self.search.nudge_pending(self.corrections.jammed)
+        return self.pinch and self.correct and pending and not self._touching(readings)
+
+    def _try_again(self, shift: np.ndarray, what: str, turn: float = 0.0) -> None:
+        """A failed attempt: reopen, have the arm make `shift` (hand frame) and `turn`
+        (about the approach axis), close again; once RETRIES are spent, fail saying `what`
+        went wrong this last time."""
+        if self.corrections.retries >= RETRIES:
+            self._fail(what)
+            return
+        self.corrections.shift = Shift(np.array(shift, float), float(turn))
+        self.effort[:] = 0.0
+        self.stillness.seconds[:] = 0.0
+        self.phase = Phase.REOPEN
+
+    def _fail(self, what: str) -> None:
+        self.finish(Status.ERROR, f"{what} after {self.corrections.retries} corrections")
+        self.phase = Phase.FAILED
+
+    # -- holding ------------------------------------------------------------------------
+    def _squeeze(self, readings: Readings, dt: float) -> np.ndarray | None:
+        """One tick of force adaptation, in every holding phase: from a light touch, each
+        grasping finger's effort rises until its pad feels the grasp force; the two fingers
+        of a pinch share one squeeze, driven by their pads' mean (each finger's own loop
+        pushed the object along the pinch line). The pad forces averaged over FELT_TIME;
+        None once a grasping pad has felt nothing for LOST_TIME while another pressed (a
+        finger off the object, or every one: knocked away), the close judged again."""
+        hand = self.ctx.info.hand
+        pads = readings.pad_force
+        touching = self._touching(readings)
+        held = self.held
+        held.lost_for = held.lost_for + dt if self.correct and len(touching) < len(self.fingers) else 0.0
+        if held.lost_for >= LOST_TIME and self.status is Status.RUNNING:
+            self.ctx.blackboard.weigh = None  # dropped while weighed: no more weighing
+            self._judge(readings)
+            return None
+        grasping = np.flatnonzero(self.moving)
+        felt = np.array([pads[self.pad_of[f]] if (f := self.finger_of_dof[i]) else self.grasp_force for i in grasping])
+        pressed = np.full_like(felt, felt.mean()) if self.pinch else felt
+        limit = hand.effort_limit[grasping]
+        self.effort[grasping] = np.clip(self.effort[grasping] + ADAPT_GAIN * limit * (self.grasp_force - pressed) * dt,
+                                        0.0, limit)
+        return held.felt(felt, dt)
+
+    def _weight_off_line(self, readings: Readings, load: np.ndarray) -> tuple[float, float]:
+        """How far across the pinch line (m, along `_normal`) the held load's weight acts,
+        and its torque (N m) about the line through the two pads' contacts. 0, 0 when the
+        wrist feels less than half the object's weight (the table still carries it)."""
+        hand = self.ctx.info.hand
+        ends = contact_points(hand, readings, [self.pad_of[f] for f in self.fingers])
+        line = ends[1] - ends[0]
+        line /= max(float(np.linalg.norm(line)), 1e-9)
+        down = readings.tcp[2, :3] * -1.0  # the world's down, in the hand frame
+        weight = float(load[:3] @ down)
+        if weight <= 0.5 * GRAVITY * (self.ctx.object.weight or 0.0):
+            return 0.0, 0.0
+        torque = float(line @ (load[3:] + np.cross(hand.wrist - ends[0], load[:3])))
+        across = np.cross(down, line)  # a weight this way of the line turns it positively
+        return torque / weight * float(across[:2] @ self.search.normal), torque
+
+    def _forces(self, pads: np.ndarray) -> str:
+        """The grasping pads' forces, for a reason a user reads."""
+        return ", ".join(f"{f} {pads[self.pad_of[f]]:.1f} N" for f in self.fingers)
