@@ -27,7 +27,8 @@ from atd.model.estd import Condition, ConditionGroup, Controller
 from atd.model.frames import GRAVITY, rpy_of
 from atd.model.ranges import FORCE, TILT, WEIGHT
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
-from atd.model.vocabulary import FIRED_BY, PERCEPTUAL_PRIMITIVES, EventType, HandShape, Movement, StateType
+from atd.model.vocabulary import (FIRED_BY, PERCEPTUAL_PRIMITIVES, EventType, HandShape, Movement, PerceptionMethod,
+                                  StateType, ValueKind)
 from factories.beside import description_module, shipped_config
 from factories.config import RobotConfig, load_config
 from factories.description import RobotDescription
@@ -180,6 +181,14 @@ class NodeMapping:
     """Warnings for the user (a hand-shape fallback)."""
 
 
+# What every factory's mapping table says of the perceptual primitives (docs/perception.md).
+PERCEPTION_ROWS = (
+    MappingRow("explore", "explore", "direction, contact force", "arm control, FT and tactile sensors"),
+    MappingRow("perceive", "perceive", "container, hand reach and radius",
+               "depth camera (vision), FT and tactile sensors (blind exploration)"),
+)
+
+
 class Factory(ABC):
     """Base of every robot factory. Subclasses set the class attributes and the mapping."""
 
@@ -224,10 +233,8 @@ class Factory(ABC):
             raise Unmappable(f"the {self.name} has no {state.type.value} primitive: no controller of its runs "
                              f"'{state.type.value}' yet", "translate the task for a robot that lists it "
                              "(`atd robots list`: primitives)")
-        if state.target_from is not None:
-            raise Unmappable(f"its target is the value '{state.target_from}', known only at run time, and the "
-                             f"{self.name}'s {state.type.value} primitive takes a target fixed at translation",
-                             "give the state a <path> for now")
+        if state.type in PERCEPTUAL_PRIMITIVES:
+            return self.perceptual(state, context)
         mapping = self.map_node(state, context)
         if self.grasp != "naive" or state.type is not StateType.GRASP:
             return mapping
@@ -238,6 +245,32 @@ class Factory(ABC):
                            self.controller("naive_grasp_hand", preshape=hand.get("preshape"),
                                            grasp_shape=hand.get("grasp_shape"), grasp_force=grip),
                            mapping.notes)
+
+    def perceptual(self, state: State, context: MappingContext) -> NodeMapping:
+        """explore and perceive: the same controllers on every robot (docs/perception.md),
+        given this robot's own geometry; refused where the robot cannot do what they need."""
+        if state.type is StateType.EXPLORE:
+            arm = self.controller("explore", direction=state.direction, force_threshold=state.contact_force,
+                                  max_distance=state.max_distance, writes=written(state, ValueKind.POINT))
+            return NodeMapping("explore", arm, *self.hand_for_motion(state))
+        # The hand perceives in the state's shape, closed by default: the narrowest sweep.
+        made, notes = self.shape(state.hand_shape or HandShape.CLOSED)
+        posture = self.posture(made, state)
+        radius, reach = self.robot.hand_radius(posture), self.robot.hand_reach(posture)
+        container = {c.name: c for c in context.environment.containers}[state.container]  # validated
+        method = state.method.value
+        inside = min(container.inner_size[:2])
+        if state.method is PerceptionMethod.BLIND_EXPLORATION and radius >= inside / 2:
+            raise Unmappable(f"the {self.arm.hand.name} reaches {radius * 100:.1f} cm sideways in its '{posture}' "
+                             f"posture: sweeping the '{container.name}' container ({inside * 100:.1f} cm across "
+                             f"inside) it could not tell a wall from an object",
+                             "use another method, a wider container, or a hand shape that keeps the hand narrower")
+        if state.method is PerceptionMethod.VISION and not self.robot.cameras:
+            raise Unmappable(f"the {self.name} has no depth camera to look with", "use a blind method")
+        arm = self.controller("perceive", method=method, writes=written(state, ValueKind.POSE),
+                              container_pose=container.pose.matrix, container_size=container.size,
+                              container_wall=container.wall, hand_reach=round(reach, 6), hand_radius=round(radius, 6))
+        return NodeMapping("perceive", arm, self.controller("hand_shape", shape=posture), notes)
 
     @abstractmethod
     def map_node(self, state: State, context: MappingContext) -> NodeMapping:
@@ -263,6 +296,10 @@ class Factory(ABC):
                           self.map_event(EventType.GRASP_STABLE, None, transition, context))
         if event_type is EventType.SUCCESS:
             return self.success(origin)
+        if event_type in (EventType.OBJECT_FOUND, EventType.NOTHING_FOUND):
+            return self.condition(event_type, event_type.value, value=written(origin, ValueKind.POSE))
+        if event_type in (EventType.CONTACT, EventType.NO_CONTACT):  # explore's own verdict
+            return self.condition(event_type, "arm_done" if event_type is EventType.CONTACT else "arm_error")
         if event_type in self.undetectable_events:
             raise Unmappable(f"the {self.name} has no sensor to detect '{event_type.value}'")
         sensed = self.sensed_event(event_type, origin)
@@ -429,9 +466,13 @@ class Factory(ABC):
     def _reach(self) -> Reach:
         return Reach(self.robot)
 
-    def motion(self, state: State, context: MappingContext) -> tuple[Vec3, tuple[Vec3, ...]]:
+    def motion(self, state: State, context: MappingContext) -> tuple[Vec3 | None, tuple[Vec3, ...]]:
         """Target and via points of an arm primitive: the path, or derived from the object,
-        for the point the state's hand shape acts at (`shape_offset`), turned into TCP points."""
+        for the point the state's hand shape acts at (`shape_offset`), turned into TCP points.
+        None for a target read from a named value: the run sets it as the state starts
+        (`atd.runtime.values`), a TCP position as the perceptual primitive wrote it."""
+        if state.target_from is not None:
+            return None, ()
         turn = target_turn(state)
         offset = np.asarray(self.shape_offset(state), float)
         dx, dy, dz = offset if turn is None else turn @ offset
@@ -491,6 +532,12 @@ class Factory(ABC):
         x /= np.linalg.norm(x)
         z = np.array([0.0, 0.0, -1.0])
         return np.column_stack([x, np.cross(z, x), z])
+
+
+def written(state: State, kind: ValueKind) -> str:
+    """The name a perceptual state writes its value of `kind` under: its `<writes>`, or the
+    state's own name when it names none (the controller and its events must agree)."""
+    return next((v.name for v in state.writes if v.kind is kind), state.name)
 
 
 def derived_target(state: State, obj: ObjectInfo | None) -> Vec3:

@@ -20,7 +20,7 @@ from typing import ClassVar
 from atd.model.controllers import SensorKind
 from atd.model.task import State
 from atd.model.vocabulary import EventType, HandShape, StateType
-from factories.base import (ConditionNode, Factory, MappingContext, MappingRow, NodeMapping, Unmappable,
+from factories.base import (PERCEPTION_ROWS, ConditionNode, Factory, MappingContext, MappingRow, NodeMapping, Unmappable,
                             grasp_width, holding_force, obstacle_params, refuse_uncarriable)
 
 # The grasp a hand closes into when the task names none, and the preshape that precedes each grasp.
@@ -41,7 +41,8 @@ class ParallelJawFactory(Factory):
     """A parallel-jaw robot as in thesis Table 7.4; its tactile sensors are the two jaws' pads."""
 
     primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
-                            StateType.PLACE, StateType.RELEASE})
+                            StateType.PLACE, StateType.RELEASE,
+                            StateType.EXPLORE, StateType.PERCEIVE})
     node_table = (  # thesis Table 7.4
         MappingRow("grasp", "grasp", "grasp force", "arm control, tactile sensors"),
         MappingRow("move", "move", "-", "arm control"),
@@ -50,6 +51,7 @@ class ParallelJawFactory(Factory):
         MappingRow("place", "transport", "motion constraints", "arm control, tactile"),
         MappingRow("slide", "-", "-", "-"),
         MappingRow("release", "release", "hand position", "arm control"),
+        *PERCEPTION_ROWS,
     )
 
     def map_node(self, state: State, context: MappingContext) -> NodeMapping:
@@ -88,7 +90,8 @@ class MultiFingerFactory(Factory):
     `holding_pads` press (a palm pad may touch without holding); any pad is a contact."""
 
     primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
-                            StateType.PLACE, StateType.SLIDE, StateType.RELEASE})
+                            StateType.PLACE, StateType.SLIDE, StateType.RELEASE,
+                            StateType.EXPLORE, StateType.PERCEIVE})
     node_table = (  # thesis Table 7.3
         MappingRow("grasp", "robust_grasp", "pregrasp size", "arm control, FT and tactile sensors"),
         MappingRow("move", "transport", "-", "arm control"),
@@ -97,6 +100,7 @@ class MultiFingerFactory(Factory):
         MappingRow("place", "place", "contact threshold", "arm control, force-torque sensor"),
         MappingRow("slide", "slide", "slide force threshold", "arm control, force-torque sensor"),
         MappingRow("release", "release", "hand position", "arm control"),
+        *PERCEPTION_ROWS,
     )
     holding_pads: ClassVar[tuple[str, ...]] = ()  # empty: every tactile sensor holds
     refused_grasp_hint: ClassVar[str] = "use another grasp shape"

@@ -16,6 +16,8 @@ from atd.model import Diagnostic, load_task
 
 REPO = Path(__file__).resolve().parents[1]
 EXAMPLES = REPO / "examples"
+# A box the robot knows the object in, walls as obstacles: the translation checks of issue 12
+KNOWN_BOX = REPO / "tests" / "data" / "known_box"
 SEEDS = REPO / "tests" / "data" / "seeds"
 
 

@@ -14,7 +14,7 @@ from typing import Callable, Collection, Iterator
 import numpy as np
 
 from atd.campaign.record import DIMENSIONS, Cell
-from atd.campaign.spec import LoadedSpec, Perturbation, TaskEntry
+from atd.campaign.spec import LoadedSpec, Perturbation, TaskEntry, WorldDraw
 from atd.model.files import output_problem
 from factories.registry import factory_class
 
@@ -31,6 +31,7 @@ class TrialPlan:
     perturbation: Perturbation
     budget: float  # simulated seconds before the watchdog
     recording: str | None = None  # where to record the trial (MCAP) if the judge fails it
+    world: WorldDraw | None = None  # the world drawn for the trial, if the spec draws one
 
 
 def recording_name(campaign: str, cell: Cell, index: int) -> str:
@@ -128,7 +129,7 @@ class Plans:
                 recording = self.recordings / recording_name(self.campaign, cell, index) if self.recordings else None
                 yield TrialPlan(cell, index, trial_seed(spec.base_seed, cell, index), task_file, task.judge,
                                 spec.perturbations[cell.perturbation], spec.budget,
-                                str(recording) if recording else None)
+                                str(recording) if recording else None, spec.world)
 
     def recording_problem(self) -> str | None:
         """Why some trial's recording could not be written into `recordings` (checked before

@@ -37,6 +37,9 @@ def render(report: Report, fmt: str) -> str:
         parts += ["per condition, all objects pooled:", draw(*_group_table(report.conditions, CONDITION))]
     if report.thesis:
         parts += [f"thesis Table 3.3 ({THESIS_ATTEMPTS} attempts per row) beside ours:", draw(*_thesis_table(report))]
+    if report.boxes:
+        parts += ["thesis Table 3.6 (five objects; attempts and time are means, time simulated) beside ours:",
+                  draw(*_box_table(report))]
     return "\n\n".join(parts) + "\n"
 
 
@@ -76,6 +79,19 @@ def _thesis_table(report: Report) -> tuple[list[str], list[list[str]]]:
     return header, rows
 
 
+def _box_table(report: Report) -> tuple[list[str], list[list[str]]]:
+    header = [*_THESIS_CONDITION, "method", "attempts thesis", "ours", "time thesis", "ours", "success thesis",
+              "ours", "ours 95%", "n", "false empties"]
+    rows = []
+    for r in report.boxes:
+        attempts, time, rate = (f"{r.thesis[0]:.1f}", f"{r.thesis[1]:.0f} s", _percent(r.thesis[2])) if r.thesis \
+            else ("-", "-", "-")
+        rows.append([r.ours.value(d) for d in _THESIS_CONDITION]
+                    + [r.method, attempts, f"{r.attempts:.1f}", time, f"{r.time:.0f} s", rate, _percent(r.ours.rate),
+                       _interval(*r.ours.interval), str(r.ours.n), str(r.ours.false_successes)])
+    return header, rows
+
+
 def _numeric(text: str) -> bool:
     return text[:1].isdigit() or text[:1] in "[-"
 
@@ -107,5 +123,11 @@ def _as_json(report: Report) -> dict[str, Any]:
                         "low": r.thesis_interval[0], "high": r.thesis_interval[1]},
              "ours": r.ours.as_dict()}
             for r in report.thesis
+        ],
+        "table_3_6": [
+            {**{d: r.ours.value(d) for d in _THESIS_CONDITION}, "method": r.method,
+             "thesis": dict(zip(("attempts", "time", "rate"), r.thesis)) if r.thesis else None,
+             "ours": {"attempts": r.attempts, "time": r.time, **r.ours.as_dict()}}
+            for r in report.boxes
         ],
     }

@@ -8,6 +8,7 @@ disagreement shows an event that claimed what did not happen.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Callable, Sequence
 
 import numpy as np
 
@@ -83,3 +84,52 @@ class PlaceJudge:
         else:
             self.verdict = Verdict(True, f"rests {off * 100:.1f} cm from the target", m)
 
+
+
+#: s of simulated time between two looks of a box judge that may stop the run
+LOOK_EVERY = 1.0
+
+
+class BoxJudge:
+    """Emptying a box (thesis 3.4.3): the box is empty at the end, every object that was in
+    it now outside. A task that reached success with an object left made a false "empty"
+    (the trial's false success). With `stop`, it also stops a run (the thesis's supervisor)
+    as soon as the box is empty: for a task that cannot know it (random blind)."""
+
+    def __init__(self, robot: SimRobot, container: str, stop: Callable[[str], None] | None = None) -> None:
+        self.robot = robot
+        self.container = container
+        self.start = robot.objects_inside(container)
+        self.stop = stop
+        self.next_look = LOOK_EVERY
+        self.looks: list[tuple[float, int]] = [(0.0, len(self.start))]  # (s, objects in the box)
+        self.verdict: Verdict | None = None
+
+    def watch(self, sim_time: float) -> None:
+        """An observer of the run: every LOOK_EVERY s, count what is in the box (for
+        `by_remaining`), and stop the run once it is empty when told to."""
+        if sim_time < self.next_look:
+            return
+        self.next_look = sim_time + LOOK_EVERY
+        self.looks.append((sim_time, len(self.robot.objects_inside(self.container))))
+        if self.stop is not None and not self.looks[-1][1]:
+            self.stop(f"the judge sees '{self.container}' empty")
+
+    def by_remaining(self, attempts: Sequence[float]) -> dict[str, float]:
+        """How many of the grasp attempts (the times they began) were made with k objects
+        in the box (the latest look before each), as `attempts_with_k_left` (thesis Fig. 3.27)."""
+        counts: dict[str, float] = {}
+        for began in attempts:
+            left = next(n for t, n in reversed(self.looks) if t <= began)
+            counts[f"attempts_with_{left}_left"] = counts.get(f"attempts_with_{left}_left", 0.0) + 1.0
+        return counts
+
+    def __call__(self, robot: SimRobot) -> None:
+        robot.hold_still(SETTLE)
+        left = robot.objects_inside(self.container)
+        m = {"objects": float(len(self.start)), "remaining": float(len(left))}
+        if left:
+            self.verdict = Verdict(False, f"{len(left)} of {len(self.start)} objects left in '{self.container}': "
+                                          f"{', '.join(left)}", m)
+        else:
+            self.verdict = Verdict(True, f"'{self.container}' emptied of {len(self.start)} objects", m)

@@ -17,7 +17,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from atd.campaign.record import DIMENSIONS, TrialRecord
-from atd.campaign.report import Group, group
+from atd.campaign.report import Group, emptied_a_box, group
 
 #: The approach error's magnitudes, as the perturbation records them: (key, axis label, scale to the axis unit).
 APPROACH_MEASURES = (("translation", "approach translation error (cm)", 100.0),
@@ -49,13 +49,29 @@ def approach_bins(records: Sequence[TrialRecord], measure: str, count: int = 5) 
     return bins
 
 
+def attempts_by_remaining(records: Sequence[TrialRecord]) -> dict[str, dict[int, float]]:
+    """Per task, the mean grasp attempts made with k objects in the box, over its trials
+    (thesis Fig. 3.27), from the box judge's `attempts_with_k_left`."""
+    found: dict[str, dict[int, float]] = {}
+    for task in sorted({r.cell.task for r in records}):
+        trials = [r for r in records if r.cell.task == task and r.status == "ok" and emptied_a_box(r)]
+        counts = {int(key.split("_")[2]) for r in trials for key in r.measurements if key.startswith("attempts_with_")}
+        if trials and counts:
+            found[task] = {k: sum(r.measurements.get(f"attempts_with_{k}_left", 0.0) for r in trials) / len(trials)
+                           for k in sorted(counts, reverse=True)}
+    return found
+
+
 def draw_report(records: Sequence[TrialRecord], groups: Sequence[Group], fmt: str) -> bytes:
     """The picture, as PNG or SVG bytes (`fmt` "png" or "svg")."""
     perturbed = any(measure in r.perturbation for r in records for measure, _, _ in APPROACH_MEASURES)
-    panels = 1 + perturbed * len(APPROACH_MEASURES)
+    boxes = attempts_by_remaining(records)
+    panels = 1 + perturbed * len(APPROACH_MEASURES) + bool(boxes)
     figure = Figure(figsize=(6.5 * panels, max(3.5, 0.9 + 0.28 * len(groups))), layout="constrained")
     axes = figure.subplots(1, panels, squeeze=False)[0]
     _rates(axes[0], groups)
+    if boxes:
+        _attempts(axes[-1], boxes)
     if perturbed:
         for ax, (measure, label, scale) in zip(axes[1:], APPROACH_MEASURES):
             _against_error(ax, approach_bins(records, measure), label, scale)
@@ -95,6 +111,17 @@ def _rates(ax: Axes, groups: Sequence[Group]) -> None:
     ax.grid(axis="x", alpha=0.3)
     if measured:
         ax.legend(title="grasp")
+
+
+def _attempts(ax: Axes, by_task: dict[str, dict[int, float]]) -> None:
+    for task, means in by_task.items():
+        ax.plot(list(means), list(means.values()), marker="o", label=task.rsplit("_", 1)[-1])
+    ax.invert_xaxis()
+    ax.set_xlabel("objects in the box")
+    ax.set_ylabel("grasp attempts (mean per trial)")
+    ax.set_title("attempts against objects remaining (thesis Fig. 3.27)")
+    ax.grid(alpha=0.3)
+    ax.legend(title="method")
 
 
 def _against_error(ax: Axes, bins: Sequence[ErrorBin], label: str, scale: float) -> None:

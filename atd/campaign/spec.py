@@ -28,7 +28,7 @@ from atd.model.task import Location
 from atd.model.toml_lines import TomlLines
 
 GRASP_MODES = ("naive", "robust")
-JUDGES = ("lift", "place")
+JUDGES = ("lift", "place", "box")
 SPEC_CAP = 1 << 20  # bytes: a spec is a page of TOML
 
 # The ranges of the spec's own numbers (its scale ranges are in atd.model.ranges).
@@ -61,7 +61,7 @@ def _within(allowed: ranges.Range) -> AfterValidator:
 
 class TaskEntry(_Strict):
     file: str
-    judge: Literal["lift", "place"] | None = None  # None: chosen from the task's states
+    judge: Literal["lift", "place", "box"] | None = None  # None: chosen from the task's states and the spec
 
 
 class RobotEntry(_Strict):
@@ -94,6 +94,29 @@ class Perturbation(_Strict):
         return value
 
 
+class WorldDraw(_Strict):
+    """A world drawn afresh for every trial (thesis 3.4.3): `objects` library objects, drawn
+    from `from` (each once while there are enough), dropped at random poses into the task's
+    container `into` and settled by the physics; seeded by the trial."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
+
+    objects: Count = Field(ge=1, le=20, description="how many objects")
+    into: str = Field(pattern=f"^{PLAIN_NAME.pattern}$", description="the task's container they are dropped into")
+    from_: tuple[str, ...] = Field(alias="from", min_length=1, description="the library objects to draw from")
+
+    @field_validator("from_")
+    @classmethod
+    def _known(cls, names: tuple[str, ...]) -> tuple[str, ...]:
+        from atd.sim.library import library
+
+        known = library()
+        unknown = [n for n in names if n not in known]
+        if unknown:
+            raise ValueError(f"no object '{unknown[0]}' in the library; library objects: {', '.join(known)}")
+        return names
+
+
 class CampaignSpec(_Strict):
     name: str = Field(pattern=f"^{PLAIN_NAME.pattern}$")
     base_seed: Count = Field(0, ge=0, lt=2**63)
@@ -106,6 +129,7 @@ class CampaignSpec(_Strict):
     grasps: tuple[Literal["naive", "robust"], ...] = Field(("robust",), min_length=1)
     objects: tuple[str, ...] = Field((TASK_OBJECT,), min_length=1)
     perturbations: dict[str, Perturbation] = Field(default_factory=lambda: {"none": Perturbation(model="none")})
+    world: WorldDraw | None = None  # None: the task's own objects (with the cell's object)
 
     @property
     def task_entries(self) -> tuple[TaskEntry, ...]:
@@ -183,6 +207,8 @@ def _allowed_keys(parent: tuple) -> list[str]:
         return sorted(TaskEntry.model_fields)
     if parent[0] == "robots":
         return sorted(RobotEntry.model_fields)
+    if parent[0] == "world":
+        return sorted(f.alias or n for n, f in WorldDraw.model_fields.items())
     return []
 
 
@@ -198,4 +224,4 @@ def _hint(loc: tuple) -> str | None:
 
 
 __all__ = ["DIMENSIONS", "GRASP_MODES", "JUDGES", "TASK_OBJECT", "CampaignSpec", "LoadedSpec", "Perturbation",
-           "load_spec"]
+           "WorldDraw", "load_spec"]

@@ -17,15 +17,20 @@ from pathlib import Path
 import numpy as np
 
 from atd.campaign.cells import TrialPlan
-from atd.campaign.judge import LiftJudge, PlaceJudge
+from atd.campaign.judge import BoxJudge, LiftJudge, PlaceJudge
 from atd.campaign.perturbation import approach_taken, sample, true_robot, true_scene
 from atd.campaign.record import TASK_OBJECT, TrialRecord
 from atd.model import has_errors, load_task
 from atd.model.diagnostics import render_all
 from atd.model.estd import Estd
 from atd.model.files import OutputError
+from atd.model.task import Location
 from atd.model.vocabulary import StateType
+from atd.runtime.report import grasp_attempts
 from atd.runtime.session import Run, belief_scene
+from atd.sim.library import get as get_library
+from atd.sim.scene import Scene
+from atd.sim.world import Drop, World, WorldError
 from factories.base import Factory
 from factories.registry import create
 from translator import translate
@@ -79,8 +84,8 @@ def _run(plan: TrialPlan, record: TrialRecord, started: float, recording: Path |
     model = plan.perturbation.model
     values = sample(plan.perturbation, np.random.default_rng([plan.seed, 1]))
     record.perturbation = values
-    scene = belief_scene(belief)
-    if cell.object != TASK_OBJECT and scene.object is not None:
+    scene = drawn_world(plan, belief) if plan.world else belief_scene(belief)
+    if cell.object != TASK_OBJECT and scene.object is not None and not plan.world:
         from atd.campaign.objects import get
 
         scene = replace(scene, object=get(cell.object).realize(scene.object))
@@ -91,6 +96,9 @@ def _run(plan: TrialPlan, record: TrialRecord, started: float, recording: Path |
     record.setup_time = time.perf_counter() - started
     outcome = run.execute(afterwards=judge)
     verdict = judge.verdict
+    if isinstance(judge, BoxJudge):
+        attempts = [visit.entered for visit in grasp_attempts(belief, outcome.visits)]
+        verdict.measurements.update(attempts=float(len(attempts)), **judge.by_remaining(attempts))
     record.task_succeeded = outcome.succeeded
     record.end_state = outcome.end_state
     record.summary = outcome.summary
@@ -102,9 +110,30 @@ def _run(plan: TrialPlan, record: TrialRecord, started: float, recording: Path |
     record.measurements = verdict.measurements
 
 
-def _judge(plan: TrialPlan, belief: Estd, run: Run) -> LiftJudge | PlaceJudge:
-    """The judge the spec names, or the one the task's states call for: a task that
-    places something is judged by where it rests, any other by whether it was lifted."""
+def drawn_world(plan: TrialPlan, belief: Estd) -> Scene:
+    """The trial's world as the spec's `world` draws it: its objects chosen from the pool by
+    the trial's seed (each once while the pool has enough), dropped into the container and
+    left to settle."""
+    draw = plan.world
+    assert draw is not None
+    pool = draw.from_
+    rng = np.random.default_rng([plan.seed, 3])
+    chosen = [pool[i] for i in rng.choice(len(pool), draw.objects, replace=draw.objects > len(pool))]
+    named = [name if not chosen[:i].count(name) else f"{name}_{chosen[:i].count(name) + 1}"
+             for i, name in enumerate(chosen)]
+    drop = Drop(tuple((n, get_library(c)) for n, c in zip(named, chosen)), draw.into, Location(plan.task_file, 0))
+    try:
+        return World(objects=(), drops=(drop,), containers=()).scene(belief_scene(belief), plan.seed)
+    except WorldError as exc:
+        raise TrialError(f"the spec's world cannot be built around {Path(plan.task_file).name}: {exc}") from None
+
+
+def _judge(plan: TrialPlan, belief: Estd, run: Run) -> LiftJudge | PlaceJudge | BoxJudge:
+    """The judge the spec names, or the one the task's states call for: a world drawn into
+    a container is judged by what is left in it, a task that places something by where it
+    rests, any other by whether it was lifted."""
+    if plan.judge == "box" or (plan.judge is None and plan.world):
+        return _box_judge(plan, belief, run)
     places = [s for s in belief.states if s.type is StateType.PLACE and s.arm is not None
               and "target" in s.arm.params]
     kind = plan.judge or ("place" if places else "lift")
@@ -113,6 +142,21 @@ def _judge(plan: TrialPlan, belief: Estd, run: Run) -> LiftJudge | PlaceJudge:
             raise TrialError(f"{plan.task_file}: the place judge needs a place state with a target")
         return PlaceJudge(run.robot, tuple(places[-1].arm.params["target"]))
     return LiftJudge(run.robot)
+
+
+def _box_judge(plan: TrialPlan, belief: Estd, run: Run) -> BoxJudge:
+    """The box judge, on the container the world is drawn into (or the task's first); it
+    stops a run whose task cannot know the box is empty (every perceive is random blind,
+    which never finds nothing) once it is."""
+    containers = belief.environment.containers if belief.environment else ()
+    name = plan.world.into if plan.world else (containers[0].name if containers else None)
+    if name is None:
+        raise TrialError(f"{plan.task_file}: the box judge needs a container")
+    knows_empty = any(s.type is StateType.PERCEIVE and s.arm is not None and s.arm.params["method"] != "random_blind"
+                      for _, machine in belief.walk() for s in machine.states)
+    judge = BoxJudge(run.robot, name, None if knows_empty else run.executor.stop)
+    run.observers.append(judge.watch)
+    return judge
 
 
 def _describe(exc: BaseException) -> str:

@@ -19,7 +19,7 @@ from atd.model.estd import Estd
 from atd.model.estd_xml import is_estd_file, read_estd
 from atd.runtime.executor import Outcome
 from atd.runtime.isolated import EngineCrash, in_child
-from atd.runtime.report import summary
+from atd.runtime.report import grasp_attempts, summary
 from atd.model.files import OutputError
 from atd.runtime.session import ENGINES, InvalidScene, InvalidWorld, Run, RunError, Unrunnable, world_scene
 from atd.sim.scene import WORKSPACE_CAMERA, Scene
@@ -82,6 +82,7 @@ class _Ran:
     records: list[dict]
     object_positions: dict[str, tuple[float, float, float]]
     inside: dict[str, list[str]]
+    inside_before: dict[str, list[str]]
     notes: list[str]
 
 
@@ -178,7 +179,8 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
                       budget=budget, video=video, video_size=video_size, camera=camera, viewer=viewer, scene=truth,
                       record=record, record_rate=record_rate)
         outcome = session.execute(progress)
-        return _Ran(outcome, session.trace.records, session.object_positions, session.inside, session.notes)
+        return _Ran(outcome, session.trace.records, session.object_positions, session.inside, session.inside_before,
+                    session.notes)
 
     progress = Progress(quiet)
     try:
@@ -202,8 +204,11 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
         raise SystemExit(EXIT_OK if ran.outcome.succeeded else EXIT_TASK_FAILED)
     title = f"{task.name} on {estd.robot} ({estd.arm} arm) in {engine}, seed {seed}"
     click.echo(summary(ran.outcome, ran.records, title))
-    for line in where(ran.object_positions, ran.inside):
+    for line in where(ran.object_positions, ran.inside, ran.inside_before):
         click.echo(line)
+    attempts = len(grasp_attempts(estd, ran.outcome.visits))
+    if attempts:
+        click.echo(f"grasp attempts: {attempts} in {ran.outcome.sim_time:.1f} s of simulated time")
     if trace_path:
         click.echo(f"trace: {trace_path}")
     if record:

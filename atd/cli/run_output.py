@@ -42,8 +42,10 @@ class Progress:
             click.echo(f"\r{CLEAR_LINE}", err=True, nl=False)
 
 
-def where(positions: dict[str, tuple[float, float, float]], inside: dict[str, list[str]]) -> list[str]:
-    """Where the objects came to rest, and what each container holds at the end."""
+def where(positions: dict[str, tuple[float, float, float]], inside: dict[str, list[str]],
+          before: dict[str, list[str]]) -> list[str]:
+    """Where the objects came to rest, what each container holds at the end, and what was
+    taken out of it (`before`: what it held when the run began)."""
     lines = []
     if len(positions) == 1:
         x, y, z = next(iter(positions.values()))
@@ -51,8 +53,14 @@ def where(positions: dict[str, tuple[float, float, float]], inside: dict[str, li
     elif positions:
         lines.append("the objects rest at: " + ", ".join(f"{name} ({x:.3f}, {y:.3f}, {z:.3f})"
                                                          for name, (x, y, z) in positions.items()))
-    lines += [f"in '{container}' at the end: {', '.join(names) or 'nothing'} ({len(names)} of {len(positions)} objects)"
-              for container, names in inside.items()]
+    for container, names in inside.items():
+        lines.append(f"in '{container}' at the end: {', '.join(names) or 'nothing'} "
+                     f"({len(names)} of {len(positions)} objects)")
+        held = before.get(container, [])
+        if held:
+            taken = [name for name in held if name not in names]
+            lines.append(f"taken out of '{container}': {', '.join(taken) or 'nothing'} "
+                         f"({len(taken)} of the {len(held)} it held)")
     return lines
 
 

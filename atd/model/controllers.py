@@ -654,11 +654,13 @@ def _number_in_range(spec: ParamSpec, value: object) -> float:
     return float(_in_range(spec, value))
 
 
-def check_params(where: str, specs: Mapping[str, ParamSpec], params: Mapping[str, object]) -> list[str]:
-    """Problems with a parameter set: unknown names, missing required ones, wrong types."""
+def check_params(where: str, specs: Mapping[str, ParamSpec], params: Mapping[str, object],
+                 at_run_time: frozenset[str] = frozenset()) -> list[str]:
+    """Problems with a parameter set: unknown names, missing required ones (but those the run
+    supplies, `at_run_time`: a target read from a named value), wrong types."""
     problems = [f"{where}: unknown parameter '{name}'" for name in params if name not in specs]
     problems += [f"{where}: missing required parameter '{name}'"
-                 for name, spec in specs.items() if spec.required and name not in params]
+                 for name, spec in specs.items() if spec.required and name not in params and name not in at_run_time]
     for name, value in params.items():
         if name in specs:
             try:

@@ -174,7 +174,9 @@ def validate_vocabulary(estd: Estd) -> list[str]:
                 if spec is None:
                     problems.append(f"{where}: unknown {role} controller '{controller.name}'")
                 else:
-                    problems += check_params(f"{where} {role} '{controller.name}'", spec.params, controller.params)
+                    supplied = frozenset({"target"} if role == "arm" and state.target_from else ())
+                    problems += check_params(f"{where} {role} '{controller.name}'", spec.params, controller.params,
+                                             supplied)
         for transition in machine.transitions:
             for event in transition.events:
                 for leaf in leaves(event.condition):

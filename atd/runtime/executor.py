@@ -20,6 +20,7 @@ from atd.model.estd import ConditionGroup, Estd, EstdEvent, EstdState, EstdTrans
 from atd.model.vocabulary import StateType
 from atd.runtime.arbitrator import RobotCommand, arbitrate
 from atd.runtime.trace import Trace
+from atd.runtime.values import arm_for, bind_inputs, targeted
 from primitives.base import Condition, Context, ControlData, Status, StateView
 from primitives.blackboard import ARM_TWIST, Blackboard
 from primitives.registry import BuildError, build_condition, build_controller
@@ -97,7 +98,8 @@ class Machine:
         self.current = state
         self.entered = readings.time
         ctx = replace(self.base, blackboard=Blackboard())
-        self.arm = build_controller(state.arm, "arm", ctx) if state.arm else None
+        arm = arm_for(state, self.base.memory)
+        self.arm = build_controller(arm, "arm", ctx) if arm else None
         self.hand = build_controller(state.hand, "hand", ctx) if state.hand else None
         self.edges = [
             Edge(t, [(e, ConditionTree(e.condition, ctx)) for e in t.events])
@@ -115,6 +117,7 @@ class Machine:
         self.sub = Machine(state.machine, f"{self.visit.path}/", self.base, self.trace, self.visits) \
             if state.machine is not None else None
         if self.sub:
+            bind_inputs(state, self.base.memory)
             self.sub.enter(state.machine.initial, readings)
         if state.type.is_end:
             self.ended = state
@@ -207,7 +210,9 @@ def build_problems(estd: Estd, base: Context) -> list[str]:
     for prefix, machine in estd.walk():
         ctx = replace(base, blackboard=Blackboard())
         for state in machine.states:
-            for role, use in (("arm", state.arm), ("hand", state.hand)):
+            # A target read at run time could be anywhere: any point shows the controller builds.
+            arm = targeted(state.arm, (0.0, 0.0, 0.0)) if state.arm and state.target_from else state.arm
+            for role, use in (("arm", arm), ("hand", state.hand)):
                 if use is not None:
                     try:
                         build_controller(use, role, ctx)
@@ -238,6 +243,12 @@ class Executor:
         self._still = np.zeros(robot.info.arm_dof)  # the arm's command when no controller moves it
         self._memory = base.memory
         self.command: RobotCommand | None = None  # the arbitrator's latest, for recordings
+        self.stopped: str | None = None  # why an observer stopped the run (`stop`)
+
+    def stop(self, why: str) -> None:
+        """End the run before its next tick, as a supervisor would (a campaign's judge that
+        sees the work done by a task that cannot know it is)."""
+        self.stopped = why
 
     def _apply(self, outputs: list[ControlData]) -> None:
         self.command = command = arbitrate(outputs, self._hand_dof)
@@ -263,6 +274,10 @@ class Executor:
             wall = wallclock.perf_counter() - started
             if readings.time >= self.budget or wall >= self.wall_budget:
                 verdict = self._watchdog(readings, wall)
+                break
+            if self.stopped:
+                verdict = f"stopped in '{self.machine.innermost().visit.path}': {self.stopped}"
+                self.trace.write("stopped", readings.time, state=self.machine.innermost().visit.path, why=self.stopped)
                 break
             self._apply(self.machine.tick(readings, dt))
             if self.machine.ended:

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from typing import Callable, TypeVar
 
+from atd.model.estd import Estd
+from atd.model.vocabulary import StateType
 from atd.runtime.executor import Outcome, Visit
 
 T = TypeVar("T")
@@ -83,3 +85,11 @@ def outcome_document(outcome: Outcome, records: list[dict]) -> dict:
                  for v in outcome.visits],
         "events": [{k: v for k, v in r.items() if k != "type"} for r in records if r["type"] == "event"],
     }
+
+
+def grasp_attempts(estd: Estd, visits: list[Visit]) -> list[Visit]:
+    """The visits of a run to a grasp state, in any (sub-)machine: thesis 3.4.3's grasp
+    attempts."""
+    grasps = {prefix + state.name for prefix, machine in estd.walk() for state in machine.states
+              if state.type is StateType.GRASP}
+    return [visit for visit in visits if visit.path in grasps]

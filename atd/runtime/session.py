@@ -182,6 +182,7 @@ class Run:
                 filming.abandon()
             raise InvalidScene(str(exc)) from None
         self.notes: list[str] = [str(self.robot.settling)] if self.robot.settling else []  # for the user
+        self.inside_before = {c.name: self.robot.objects_inside(c.name) for c in self.robot.scene.containers}
         context = Context(info=self.robot.info, params={}, object=estd.object, environment=estd.environment,
                           rng=np.random.default_rng(seed), camera=self.robot.capture)
         problems = build_problems(estd, context)
@@ -205,7 +206,7 @@ class Run:
                 afterwards: Callable[[SimRobot], None] | None = None) -> Outcome:
         """Run to the end; afterwards `object_positions` is where each object came to rest,
         `object_position` the first's (None when there is none), and `inside` which objects
-        each container holds. `afterwards` gets the robot once the task has ended, before it
+        each container holds (`inside_before`: as the run began). `afterwards` gets the robot once the task has ended, before it
         is released: a campaign's judge looks at the world there. The trace and video are
         written last; OutputError when one cannot be."""
         try:

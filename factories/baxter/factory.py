@@ -15,6 +15,7 @@ from atd.model.controllers import SensorKind
 from atd.model.task import State
 from atd.model.vocabulary import EventType, HandShape, StateType
 from factories.base import (
+    PERCEPTION_ROWS,
     Arm,
     ConditionNode,
     Factory,
@@ -49,7 +50,8 @@ class BaxterFactory(Factory):
                    "force-torque sensor, IR range sensor in the hand; no tactile pads (thesis A.4)")
     arms = (_arm("right"), _arm("left"))
     primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
-                            StateType.PLACE, StateType.SLIDE, StateType.RELEASE})
+                            StateType.PLACE, StateType.SLIDE, StateType.RELEASE,
+                            StateType.EXPLORE, StateType.PERCEIVE})
     node_table = (
         MappingRow("grasp", "grasp", "grasp force", "arm control, gripper force and opening"),
         MappingRow("move", "move", "-", "arm control, filtered virtual F/T"),
@@ -58,6 +60,7 @@ class BaxterFactory(Factory):
         MappingRow("place", "place", "contact threshold (raised, filtered)", "arm control, virtual F/T"),
         MappingRow("slide", "slide", "slide force thresholds (raised, filtered)", "arm control, virtual F/T"),
         MappingRow("release", "release", "hand position", "arm control, virtual F/T"),
+        *PERCEPTION_ROWS,
     )
 
     def map_node(self, state: State, context: MappingContext) -> NodeMapping:

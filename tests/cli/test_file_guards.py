@@ -19,6 +19,7 @@ from atd.campaign.store import Store
 from atd.cli import main
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+KNOWN_BOX = EXAMPLES.parent / "tests" / "data" / "known_box"
 CAMPAIGN_SPEC = EXAMPLES.parent / "tests" / "data" / "campaign" / "small.toml"
 PR_CAPBSET_DROP, CAP_DAC_OVERRIDE, CAP_DAC_READ_SEARCH = 24, 1, 2  # linux/prctl.h, linux/capability.h
 
@@ -184,7 +185,7 @@ def test_unknown_robot_for_robots_test_is_a_usage_error() -> None:
 
 def test_a_sub_task_or_mesh_of_the_task_is_never_an_output(tmp_path: Path) -> None:
     for name in ("empty_the_box.xml", "pick_one.xml"):
-        shutil.copy(EXAMPLES / name, tmp_path)
+        shutil.copy(KNOWN_BOX / name, tmp_path)
     sub = tmp_path / "pick_one.xml"
     before = sub.read_bytes()
     task = str(tmp_path / "empty_the_box.xml")
@@ -316,8 +317,8 @@ def test_each_output_problem_is_said_once_and_in_its_own_words(task: Path) -> No
 
 
 def test_a_sub_task_or_mesh_that_is_no_file_is_named_for_what_it_is(tmp_path: Path) -> None:
-    for name in ("empty_the_box.xml", "simple_move.xml"):
-        shutil.copy(EXAMPLES / name, tmp_path)
+    shutil.copy(KNOWN_BOX / "empty_the_box.xml", tmp_path)
+    shutil.copy(EXAMPLES / "simple_move.xml", tmp_path)
     (tmp_path / "folder.xml").mkdir()
     os.mkfifo(tmp_path / "pipe.obj")
     task = tmp_path / "empty_the_box.xml"

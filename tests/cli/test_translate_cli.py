@@ -52,15 +52,19 @@ def test_untranslatable_exits_4_and_writes_nothing(tmp_path):
     assert list(tmp_path.iterdir()) == [task]
 
 
-def test_perception_no_robot_maps_yet_exits_4_naming_why(tmp_path):
-    """Issue 31: the thesis's box-emptying task validates, and each robot says what it cannot do yet."""
+def test_perception_translates_and_a_hand_too_wide_to_sweep_the_box_exits_4_naming_why(tmp_path):
+    """Issue 31: the thesis's box-emptying task translates; the spread Barrett cannot sweep the box."""
     task = REPO / "tests" / "data" / "empty_the_box" / "empty_the_box.xml"
-    result = atd("translate", str(task), "--robot", "baxter", "-o", str(tmp_path / "out.estd.xml"))
+    assert atd("translate", str(task), "--robot", "baxter", "-o", str(tmp_path / "out.estd.xml")).returncode == 0
+    spread = tmp_path / "spread.xml"
+    spread.write_text((REPO / "examples" / "empty_the_box_exploration.xml").read_text().replace(
+        "<method>blind_exploration</method>", "<method>blind_exploration</method><hand_shape>open</hand_shape>"))
+    shutil.copy(REPO / "examples" / "pick_one.xml", tmp_path)
+    result = atd("translate", str(spread), "--robot", "tombatossals", "--arm", "right", "-o", str(tmp_path / "x.xml"))
     assert result.returncode == 4 and "Traceback" not in result.stderr
-    assert (f"{task}:18:3: error[TRN001]: baxter (right arm): cannot map perceive state 'look': the baxter has no "
-            "perceive primitive") in result.stderr
-    assert "cannot map explore state 'feel'" in result.stderr and "no mapping for event 'contact'" in result.stderr
-    assert list(tmp_path.iterdir()) == []
+    assert (f"{spread}:27:3: error[TRN001]: tombatossals (right arm): cannot map perceive state 'look': the Barrett "
+            "BH8-280 reaches 15.9 cm sideways in its 'open' posture") in result.stderr
+    assert "it could not tell a wall from an object" in result.stderr and not (tmp_path / "x.xml").exists()
 
 
 def test_invalid_atd_exits_1(tmp_path):

@@ -8,6 +8,8 @@ import pytest
 from atd.model.controllers import SensorKind
 
 from atd.model import Environment, HandShape, Movement, Obstacle, State, StateType
+from atd.model.task import ContainerInfo, Pose
+from atd.model.vocabulary import PerceptionMethod
 from atd.model.estd import describe
 from factories.base import MappingContext, Unmappable
 from factories.registry import create
@@ -214,15 +216,23 @@ def test_hardware_failure_is_arm_or_hand_failure_on_every_robot():
         assert describe(node) == "any(arm_fault, hand_fault, simulation_unstable)"
 
 
+# The perceptual primitives' states need what they act on: a container, a method, a direction.
+PERCEIVING = {StateType.PERCEIVE: {"container": "box", "method": PerceptionMethod.VISION},
+              StateType.EXPLORE: {"direction": (0.0, 0.0, -1.0)}}
+BOX_KNOWN = Environment(containers=(ContainerInfo(name="box", pose=Pose.from_position((0.1, -0.08, 0.0)),
+                                                  size=(0.3, 0.25, 0.1)),))
+
+
 def test_each_mapping_table_row_says_what_the_factory_does():
     for factory in every_factory():
         for row in factory.node_table:
-            state = _state(StateType(row.abstract))
+            state = _state(StateType(row.abstract), **PERCEIVING.get(StateType(row.abstract), {}))
+            context = MappingContext(one_state_task(state).model_copy(update={"environment": BOX_KNOWN}))
             if row.concrete == "-":
                 with pytest.raises(Unmappable):
-                    factory.map_node(state, MappingContext(one_state_task(state)))
+                    factory.map_state(state, context)
             else:
-                assert factory.map_node(state, MappingContext(one_state_task(state))).primitive == row.concrete
+                assert factory.map_state(state, context).primitive == row.concrete
         assert {StateType(r.abstract) for r in factory.node_table if r.concrete != "-"} == factory.primitives
 
 

@@ -15,7 +15,7 @@ from lxml import etree
 from atd.cli import main
 from benchmarks.bench_validate import generate
 from atd.graph.source import read_graph
-from tests.conftest import EXAMPLES
+from tests.conftest import EXAMPLES, KNOWN_BOX
 from tests.graph.test_render import SVG, png_image
 
 
@@ -63,7 +63,7 @@ def test_an_estd_is_drawn_without_graphviz_with_every_state_and_event_shown(tmp_
 
 def test_draws_a_translated_estd_with_its_subtask(tmp_path):
     for name in ("empty_the_box.xml", "pick_one.xml"):
-        shutil.copy(EXAMPLES / name, tmp_path / name)
+        shutil.copy(KNOWN_BOX / name, tmp_path / name)
     estd = tmp_path / "box.estd.xml"
     assert atd("translate", str(tmp_path / "empty_the_box.xml"), "-r", "melfa", "-o", str(estd), "-q").exit_code == 0
     result = atd("graph", str(estd), "-o", str(tmp_path / "box.dot"), "--conditions")

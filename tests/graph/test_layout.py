@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 from hypothesis import given, settings
 
@@ -9,14 +11,14 @@ from atd.graph.layout import MAX_ELEMENTS, Layout, PictureTooBig, Rect, layout
 from atd.graph.model import Edge, Graph, Node, NodeKind, from_task
 from atd.graph.text import text_size
 from atd.model import load_task
-from tests.conftest import EXAMPLES
+from tests.conftest import EXAMPLES, KNOWN_BOX
 from tests.model.strategies import tasks
 
 EPS = 1e-6
 
 
-def example_graph(name: str) -> Graph:
-    task, found = load_task(EXAMPLES / name)
+def example_graph(name: str, folder: Path = EXAMPLES) -> Graph:
+    task, found = load_task(folder / name)
     assert task is not None, found
     return from_task(task, name)
 
@@ -98,7 +100,7 @@ def test_retry_loops_run_upwards_into_their_target():
 
 
 def test_self_loop_sits_beside_its_state():
-    drawing = assert_readable(example_graph("empty_the_box.xml"))
+    drawing = assert_readable(example_graph("empty_the_box.xml", KNOWN_BOX))
     loop = next(r for r in drawing.routes if r.loop)
     box = drawing.boxes["pick_one"]
     assert loop.edge.id == "pick_one->pick_one"

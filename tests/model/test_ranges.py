@@ -167,7 +167,7 @@ def test_an_estd_in_json_is_checked_as_its_xml_form_is(field: str, value: str, s
     from factories.registry import create
     from translator import translate
 
-    task, _ = load_task(EXAMPLE.parent / "pick_one.xml")
+    task, _ = load_task(EXAMPLE.parents[1] / "tests" / "data" / "known_box" / "pick_one.xml")
     text = json.dumps(json.loads(estd_to_json(translate(task, create("melfa")).estd)))
     assert parse_estd_json(text.encode(), "e.json")[1] == []
     assert field in text

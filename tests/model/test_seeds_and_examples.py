@@ -44,8 +44,13 @@ def test_every_example_is_clean(path):
     assert task is not None and found == []
 
 
-def test_empty_the_box_loops_over_its_sub_task():
-    task, _ = load_task(EXAMPLES / "empty_the_box.xml")
-    loop = task.states_by_name["pick_one"]
-    assert loop.type is StateType.TASK and loop.file == "pick_one.xml"
-    assert any(t.origin == t.destination == "pick_one" for t in task.transitions)
+@pytest.mark.parametrize("method", ["vision", "exploration", "random"])
+def test_empty_the_box_loops_perceive_and_a_pick_one_round_until_nothing_is_found(method):
+    """Thesis Fig. 3.24: each round perceives, then takes one object out with the sub-task,
+    which takes the approach as its input; the loop ends only on nothing_found."""
+    task, _ = load_task(EXAMPLES / f"empty_the_box_{method}.xml")
+    take = task.states_by_name["take_one_out"]
+    assert take.type is StateType.TASK and take.file == "pick_one.xml" and take.inputs == {"approach": "approach"}
+    into_success = [t for t in task.transitions if t.destination == "box_empty"]
+    assert [e.type.value for t in into_success for e in t.events] == ["nothing_found"]
+    assert {t.destination for t in task.transitions if t.origin == "take_one_out" and t.events[0].name} == {"aside"}

@@ -9,7 +9,7 @@ import sys
 
 import pytest
 
-from tests.conftest import EXAMPLES
+from tests.conftest import EXAMPLES, KNOWN_BOX
 
 PICK_AND_PLACE = str(EXAMPLES / "pick_and_place.xml")
 SHORT_MOVE = """
@@ -130,7 +130,7 @@ def test_video_and_viewer_refusals_are_clear(tmp_path, monkeypatch):
 def test_empty_the_box_loops_over_its_sub_task_until_nothing_is_left(tmp_path):
     """Thesis 3.4.3: pick-and-place rounds as a sub-task; the round that finds nothing ends the loop."""
     trace = tmp_path / "t.jsonl"
-    result = atd("run", str(EXAMPLES / "empty_the_box.xml"), "--robot", "melfa", "--trace", str(trace), "-q")
+    result = atd("run", str(KNOWN_BOX / "empty_the_box.xml"), "--robot", "melfa", "--trace", str(trace), "-q")
     assert result.returncode == 0, result.stdout
     assert "outcome: succeeded: reached 'box_empty'" in result.stdout
     records = [json.loads(line) for line in trace.read_text().splitlines()]
@@ -147,8 +147,8 @@ def test_empty_the_box_loops_over_its_sub_task_until_nothing_is_left(tmp_path):
 
 def test_the_sub_task_outcome_it_names_reaches_the_parent(tmp_path):
     """Issue 31: the parent branches on which end state the round reached, `<outcome name="..."/>`."""
-    shutil.copy(EXAMPLES / "pick_one.xml", tmp_path)
-    text = (EXAMPLES / "empty_the_box.xml").read_text()
+    shutil.copy(KNOWN_BOX / "pick_one.xml", tmp_path)
+    text = (KNOWN_BOX / "empty_the_box.xml").read_text()
     task = tmp_path / "empty.xml"
     task.write_text(text.replace("<success/></transition>", '<outcome name="placed"/></transition>')
                     .replace("<error/>", '<outcome name="nothing_there"/>'))
@@ -164,7 +164,7 @@ def test_the_sub_task_outcome_it_names_reaches_the_parent(tmp_path):
 def test_the_barrett_is_refused_the_box_its_pinch_cannot_reach_into():
     """Its pinch knuckles stand where the walls are: it closed on the walls, reported the
     object held and lifted against them until the watchdog; now refused up front."""
-    result = atd("run", str(EXAMPLES / "empty_the_box.xml"), "--robot", "tombatossals", "--arm", "right", "-q")
+    result = atd("run", str(KNOWN_BOX / "empty_the_box.xml"), "--robot", "tombatossals", "--arm", "right", "-q")
     assert result.returncode == 4, result.stdout
     assert "pick_one.xml" in result.stderr and "would come within 1 cm of the obstacles at (0.02, -0.08, 0.03)" in result.stderr
     assert "Traceback" not in result.stderr
@@ -172,7 +172,7 @@ def test_the_barrett_is_refused_the_box_its_pinch_cannot_reach_into():
 
 def test_the_barrett_takes_the_object_out_where_the_box_would_be_in_one_round():
     """pick_one.xml alone, without the walls: grasp, lift, carry, put down at y = 0.10."""
-    result = atd("run", str(EXAMPLES / "pick_one.xml"), "--robot", "tombatossals", "--arm", "right", "-q")
+    result = atd("run", str(KNOWN_BOX / "pick_one.xml"), "--robot", "tombatossals", "--arm", "right", "-q")
     assert result.returncode == 0 and "outcome: succeeded: reached 'placed'" in result.stdout, result.stdout
     rests = next(line for line in result.stdout.splitlines() if line.startswith("the object rests at"))
     x, y, z = (float(v) for v in rests.split("(")[1].rstrip(")").split(","))

@@ -15,7 +15,7 @@ from click.testing import CliRunner
 from atd.cli import main
 from atd.model.meshcheck import read_mesh
 from atd.sim import load_description
-from tests.conftest import EXAMPLES
+from tests.conftest import EXAMPLES, KNOWN_BOX
 
 MESHES = Path(pybullet_data.getDataPath()) / "franka_panda" / "meshes"
 
@@ -80,6 +80,6 @@ def test_the_panda_is_refused_the_walled_box_by_the_margin_not_by_its_walls(tmp_
     grown = [(centre, tuple(v + 0.02 for v in size)) for centre, size in walls]  # 1 cm all round
     assert d.hand_in_boxes("open", tcp, grown) == {0: ["panda_hand", "panda_rightfinger"],
                                                     1: ["panda_hand", "panda_leftfinger"]}
-    result = CliRunner().invoke(main, ["translate", str(EXAMPLES / "empty_the_box.xml"), "--robot", "panda",
+    result = CliRunner().invoke(main, ["translate", str(KNOWN_BOX / "empty_the_box.xml"), "--robot", "panda",
                                        "-o", str(tmp_path / "box.estd.xml")])
     assert result.exit_code == 4 and "with its panda_hand, panda_leftfinger and panda_rightfinger" in result.output

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from atd.model import Environment, Obstacle, Pose, State, StateType, load_task
 from factories.registry import create
-from tests.conftest import EXAMPLES
+from tests.conftest import KNOWN_BOX
 from tests.translator.helpers import BOX, one_state_task
 from translator import translate
 
@@ -53,12 +53,12 @@ def test_a_hand_must_keep_a_centimetre_from_the_walls():
 
 
 def test_a_sub_task_is_mapped_in_the_world_of_the_task_around_it():
-    task, _ = load_task(EXAMPLES / "empty_the_box.xml")
+    task, _ = load_task(KNOWN_BOX / "empty_the_box.xml")
     refused = translate(task, create("tombatossals", "right"))
     assert refused.estd is None
     assert [d.loc.file.rsplit("/", 1)[-1] for d in refused.diagnostics] == ["pick_one.xml"]
     estd = translate(task, create("baxter")).estd
     lift = next(s for s in next(s for s in estd.states if s.name == "pick_one").machine.states if s.name == "lift_out")
     assert len(lift.arm.params["obstacles"]) == len(task.environment.obstacles)
-    alone, _ = load_task(EXAMPLES / "pick_one.xml")  # the round on its own has no walls around it
+    alone, _ = load_task(KNOWN_BOX / "pick_one.xml")  # the round on its own has no walls around it
     assert translate(alone, create("tombatossals", "right")).estd is not None

@@ -15,7 +15,7 @@ from atd.model.task import ContainerInfo, Environment, Value
 from atd.model.vocabulary import ValueKind
 from factories.registry import create
 from schemas import schema_path
-from tests.conftest import EXAMPLES, REPO
+from tests.conftest import EXAMPLES, KNOWN_BOX, REPO
 from tests.translator.helpers import every_factory
 from translator import translate
 
@@ -68,8 +68,8 @@ def test_values_and_inputs_read_back_from_both_estd_forms_and_satisfy_the_xsd():
 
 
 def test_a_sub_task_outcome_becomes_a_condition_on_the_end_state_it_names(tmp_path):
-    shutil.copy(EXAMPLES / "pick_one.xml", tmp_path)
-    text = (EXAMPLES / "empty_the_box.xml").read_text()
+    shutil.copy(KNOWN_BOX / "pick_one.xml", tmp_path)
+    text = (KNOWN_BOX / "empty_the_box.xml").read_text()
     (tmp_path / "empty.xml").write_text(text.replace("<error/>", '<outcome name="nothing_there"/>'))
     task, found = load_task(tmp_path / "empty.xml")
     assert found == []
@@ -81,24 +81,31 @@ def test_a_sub_task_outcome_becomes_a_condition_on_the_end_state_it_names(tmp_pa
     assert parse_estd(estd_to_xml(estd), "x.xml") == (estd, [])
 
 
-def test_perception_no_robot_maps_yet_is_refused_naming_why():
+def test_every_robot_maps_perception_with_its_own_hand_and_reads_targets_at_run_time():
     task, found = load_task(THESIS / "empty_the_box.xml")
     assert found == []
     for factory in every_factory():
-        result = translate(task, factory)
-        assert result.estd is None
-        reasons = {(d.code, d.message.split(": ", 2)[-1]) for d in result.diagnostics}
-        assert ("TRN001", f"the {factory.name} has no perceive primitive: no controller of its runs 'perceive' yet") \
-            in reasons
-        assert ("TRN002", "no mapping for event 'object_found'") in reasons
-        assert any(code == "TRN001" and "its target is the value 'approach', known only at run time" in text
-                   for code, text in reasons)
+        estd = translate(task, factory).estd
+        assert estd is not None, factory.name
+        look = estd.states_by_name["look"]
+        assert look.arm.name == "perceive" and look.arm.params["method"] == "vision"
+        assert look.arm.params["hand_radius"] == round(factory.robot.hand_radius("closed"), 6)
+        assert look.arm.params["container_size"] == (0.30, 0.25, 0.10)
+        found_it = next(t for t in estd.transitions if t.atd == "look->take_one_out").events[0].condition
+        assert (found_it.kind, found_it.params) == ("object_found", {"value": "approach"})
+        inner = estd.states_by_name["take_one_out"].machine
+        reach = inner.states_by_name["reach"]
+        assert reach.target_from == "approach" and "target" not in reach.arm.params
+        feel = inner.states_by_name["feel"]
+        assert feel.arm.name == "explore" and feel.arm.params["writes"] == "touched"
+        contact = next(t for t in inner.transitions if t.atd == "feel->grasp").events[0].condition
+        assert contact.kind == "arm_done"
 
 
-def test_robots_do_not_claim_perception_events_they_cannot_map():
+def test_robots_claim_the_perception_events_they_map():
     for factory in every_factory():
         events = factory.capabilities.events
-        assert EventType.OBJECT_FOUND not in events and EventType.CONTACT not in events
+        assert {EventType.OBJECT_FOUND, EventType.NOTHING_FOUND, EventType.CONTACT, EventType.NO_CONTACT} <= events
         assert EventType.OUTCOME in events  # the executor's, every robot's
 
 

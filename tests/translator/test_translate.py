@@ -10,7 +10,7 @@ from factories.base import NodeMapping
 from factories.registry import create
 from factories.melfa.factory import MelfaFactory
 from schemas import schema_path
-from tests.conftest import EXAMPLES
+from tests.conftest import EXAMPLES, KNOWN_BOX
 from tests.translator.helpers import BOX, at, every_factory, one_state_task
 from translator import translate
 
@@ -48,7 +48,7 @@ def test_every_element_points_back_to_its_atd_line():
 
 
 def test_sub_tasks_are_translated_recursively_with_the_same_factory():
-    task, _ = load_task(EXAMPLES / "empty_the_box.xml")
+    task, _ = load_task(KNOWN_BOX / "empty_the_box.xml")
     estd = translate(task, create("baxter")).estd
     sub = next(s for s in estd.states if s.name == "pick_one")
     assert sub.machine is not None and sub.machine.robot == "baxter"

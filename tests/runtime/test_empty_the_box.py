@@ -1,0 +1,66 @@
+"""Issue 31, thesis 3.4.3: the box-emptying examples run end to end on the robot's own
+sensors, with values passed from perceive to the pick-and-place round."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from atd.model.estd import Controller, EstdState
+from atd.model.vocabulary import StateType
+from atd.runtime.values import MissingValue, arm_for, bind_inputs
+from primitives.values import Approach, Contact, NothingFound
+from tests.conftest import EXAMPLES, REPO
+from tests.runtime.test_run_cli import atd
+
+TWO_OBJECTS = REPO / "tests" / "data" / "empty_the_box" / "two_objects.toml"
+
+
+def test_vision_empties_a_box_of_two_objects_on_the_melfa_and_says_what_it_took_out(tmp_path):
+    trace = tmp_path / "t.jsonl"
+    result = atd("run", str(EXAMPLES / "empty_the_box_vision.xml"), "--robot", "melfa", "--world", str(TWO_OBJECTS),
+                 "--trace", str(trace), "-q")
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert "outcome: succeeded: reached 'box_empty'" in result.stdout
+    assert "in 'box' at the end: nothing (0 of 2 objects)" in result.stdout
+    assert "taken out of 'box': ball, tape (2 of the 2 it held)" in result.stdout
+    assert "grasp attempts: 2 in " in result.stdout
+    records = [json.loads(line) for line in trace.read_text().splitlines()]
+    # Each round's outcome reached the parent, which branched on it by name.
+    outcomes = [r["atd"] for r in records if r["type"] == "event" and r["event"] == "outcome"]
+    assert outcomes == ["take_one_out->aside#1/outcome"] * 2
+    # The round's first move went where perceive found the object: its input, read at run time.
+    found = [r["conditions"][0]["point"] for r in records if r["type"] == "event" and r["event"] == "object_found"]
+    assert len(found) == 2 and all(-0.05 < p[0] < 0.25 and -0.2 < p[1] < 0.04 for p in found)
+
+
+def test_an_empty_box_ends_in_success_on_nothing_found_with_no_grasp(tmp_path):
+    trace = tmp_path / "t.jsonl"
+    result = atd("run", str(EXAMPLES / "empty_the_box_vision.xml"), "--robot", "melfa", "--trace", str(trace), "-q")
+    assert result.returncode == 0 and "outcome: succeeded: reached 'box_empty'" in result.stdout
+    entered = [r["state"] for r in json.loads("[" + ",".join(trace.read_text().splitlines()) + "]")
+               if r["type"] == "enter"]
+    assert entered == ["aside", "look", "box_empty"] and "grasp attempts" not in result.stdout
+
+
+MOVE = Controller(name="cartesian_move", params={"max_speed": 0.15})
+REACH = EstdState(name="reach", type=StateType.MOVE, atd="reach", arm=MOVE, target_from="approach")
+
+
+def test_a_target_from_a_value_is_its_tcp_position_read_as_the_state_starts():
+    pose = np.eye(4)
+    pose[:3, 3] = (0.1, -0.05, 0.2)
+    approach = Approach(pose, np.array([0.1, -0.05, 0.04]), "vision", 2)
+    assert arm_for(REACH, {"approach": approach}).params == {"max_speed": 0.15, "target": (0.1, -0.05, 0.2)}
+    touched = Contact(np.array([0.2, 0.0, 0.06]), "wrist", 4.0, np.array([0.0, 0.0, -1.0]), 3.0)
+    assert arm_for(REACH, {"approach": touched}).params["target"] == (0.2, 0.0, 0.06)
+    with pytest.raises(MissingValue, match="state 'reach' takes its target from 'approach': it holds NothingFound"):
+        arm_for(REACH, {"approach": NothingFound("vision", "empty")})
+
+
+def test_a_sub_task_input_takes_the_parent_s_value_by_its_own_name():
+    memory = {"found": "the approach"}
+    bind_inputs(EstdState(name="take", type=StateType.TASK, atd="take", inputs={"approach": "found"}), memory)
+    assert memory == {"found": "the approach", "approach": "the approach"}
