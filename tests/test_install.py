@@ -14,7 +14,7 @@ from tests.conftest import REPO
 
 
 def test_only_the_test_extra_names_this_clones_panda_package():
-    [panda] = [r for r in map(Requirement, requires("atd") or []) if r.name == "atd-panda"]
+    [panda] = [r for r in map(Requirement, requires("atd-robotics") or []) if r.name == "atd-panda"]
     assert panda.url == (REPO / "plugins" / "panda").as_uri()
     assert panda.marker.evaluate({"extra": "test"})
     assert not panda.marker.evaluate({"extra": ""})
