@@ -9,6 +9,7 @@ from __future__ import annotations
 import os
 import tempfile
 from contextlib import contextmanager
+from enum import Enum
 from pathlib import Path
 from typing import Callable, Iterator
 
@@ -24,6 +25,16 @@ def _number(value: float) -> str:
 
 def _numbers(values: tuple[float, ...]) -> str:
     return " ".join(map(_number, values))
+
+
+def _optional(node: etree._Element, state: State, *tags: str) -> None:
+    """One element per field of the state that is set, named as the field, in the order given:
+    a word (an enum's value), numbers, or one number as repr writes it (read back exactly)."""
+    for tag in tags:
+        value = getattr(state, tag)
+        if value is not None:
+            text = value.value if isinstance(value, Enum) else _numbers(value) if isinstance(value, tuple) else repr(value)
+            _child(node, tag, text)
 
 
 def _child(parent: etree._Element, tag: str, text: str | None = None, **attrib: str) -> etree._Element:
@@ -75,30 +86,15 @@ def _state(parent: etree._Element, state: State) -> None:
         if getattr(state, key) is not None:
             attrib[key] = getattr(state, key)
     node = _child(parent, "state", **attrib)
-    if state.movement is not None:
-        _child(node, "movement", state.movement.value)
-    if state.hand_shape is not None:
-        _child(node, "hand_shape", state.hand_shape.value)
+    _optional(node, state, "movement", "hand_shape")
     if state.path:
         path = _child(node, "path")
         for point in state.path:
             _child(path, point.kind, _numbers(point.values))
-    if state.preshape is not None:
-        _child(node, "preshape", state.preshape.value)
-    if state.object_size is not None:
-        _child(node, "object_size", repr(state.object_size))
-    if state.hand_opening is not None:
-        _child(node, "hand_opening", repr(state.hand_opening))
+    _optional(node, state, "preshape", "object_size", "hand_opening")
     if state.target_from is not None:
         _child(node, "target", **{"from": state.target_from})
-    if state.method is not None:
-        _child(node, "method", state.method.value)
-    if state.direction is not None:
-        _child(node, "direction", _numbers(state.direction))
-    if state.contact_force is not None:
-        _child(node, "contact_force", repr(state.contact_force))
-    if state.max_distance is not None:
-        _child(node, "max_distance", repr(state.max_distance))
+    _optional(node, state, "method", "direction", "contact_force", "max_distance")
     for name, value in state.parameters.items():
         _child(node, "parameter", value, name=name)
     for value in state.writes:
