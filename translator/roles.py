@@ -21,9 +21,9 @@ def bind_roles(task: Task, factory: Factory, wanted: Mapping[str, str] | None = 
     """Each role of `task` (None for a task that declares none) -> the factory on its arm;
     or the diagnostics saying why the robot cannot give the task its arms."""
     wanted = dict(wanted or {})
-    if not task.roles:
-        return {None: factory}, _unknown_roles(task, factory, wanted)
     problems = _unknown_roles(task, factory, wanted)
+    if problems or not task.roles:
+        return {None: factory}, problems
     arms = [factory.arm.name] + [a.name for a in factory.arms if a is not factory.arm]
     free = [a for a in arms if a not in wanted.values()]
     binding: dict[str | None, Factory] = {}

@@ -193,7 +193,7 @@ class Run:
         except ValueError as exc:  # an engine that cannot build several arms
             raise RunError(str(exc)) from None
         self.robot = robots[0]
-        others = dict(zip(arms[1:], robots[1:]))
+        self.others = others = dict(zip(arms[1:], robots[1:]))  # the robot's other arms the task uses, by name
         self.notes: list[str] = [str(self.robot.settling)] if self.robot.settling else []  # for the user
         self.inside_before = {c.name: self.robot.objects_inside(c.name) for c in self.robot.scene.containers}
         context = Context(info=self.robot.info, params={}, object=estd.object, environment=estd.environment,
