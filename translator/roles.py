@@ -19,14 +19,16 @@ from factories.base import Factory
 def bind_roles(task: Task, factory: Factory, wanted: Mapping[str, str] | None = None
                ) -> tuple[dict[str | None, Factory], list[Diagnostic]]:
     """Each role of `task` (None for a task that declares none) -> the factory on its arm;
-    or the diagnostics saying why the robot cannot give the task its arms."""
+    or the diagnostics saying why the robot cannot give the task its arms. ValueError when
+    `wanted` binds a role the task lacks, an arm the robot lacks, or one arm twice."""
     wanted = dict(wanted or {})
-    problems = _unknown_roles(task, factory, wanted)
-    if problems or not task.roles:
-        return {None: factory}, problems
+    _check_wanted(task, factory, wanted)
+    if not task.roles:
+        return {None: factory}, []
     arms = [factory.arm.name] + [a.name for a in factory.arms if a is not factory.arm]
     free = [a for a in arms if a not in wanted.values()]
     binding: dict[str | None, Factory] = {}
+    problems = []
     for role in task.roles:
         if role.name in binding:
             continue
@@ -44,20 +46,18 @@ def bind_roles(task: Task, factory: Factory, wanted: Mapping[str, str] | None = 
     return binding, problems
 
 
-def _unknown_roles(task: Task, factory: Factory, wanted: dict[str, str]) -> list[Diagnostic]:
-    """A `--role` naming a role the task lacks, or an arm the robot lacks, or one arm twice."""
+def _check_wanted(task: Task, factory: Factory, wanted: dict[str, str]) -> None:
+    """A binding asked for names a role of the task and an arm of the robot, each arm once."""
     roles = [r.name for r in task.roles]
     arms = [a.name for a in factory.arms]
-    problems = []
     for role, arm in wanted.items():
         if role not in roles:
-            problems.append(error("TRN006", f"--role {role}={arm}: the task has no role '{role}'", task.loc,
-                                  f"its roles: {', '.join(roles) or 'none (it uses one arm: choose it with --arm)'}"))
-        elif arm not in arms:
-            problems.append(error("TRN006", f"--role {role}={arm}: the {factory.name} has no arm '{arm}'", task.loc,
-                                  f"its arms: {', '.join(arms)}"))
-    doubled = {arm for arm in wanted.values() if list(wanted.values()).count(arm) > 1}
-    for arm in sorted(doubled):
-        problems.append(error("TRN006", f"--role binds several roles to the {factory.name}'s arm '{arm}'", task.loc,
-                              "one arm per role"))
-    return problems
+            raise ValueError(f"role binding {role}={arm}: the task has no role '{role}' (its roles: "
+                             f"{', '.join(roles) or 'none; it uses one arm, chosen with --arm'})")
+        if arm not in arms:
+            raise ValueError(f"role binding {role}={arm}: the {factory.name} has no arm '{arm}' (its arms: "
+                             f"{', '.join(arms)})")
+    doubled = sorted({arm for arm in wanted.values() if list(wanted.values()).count(arm) > 1})
+    if doubled:
+        raise ValueError(f"role bindings give the {factory.name}'s arm '{doubled[0]}' to several roles; one arm "
+                         "per role")

@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
 from click.testing import CliRunner
 
 from atd.cli import main
@@ -64,11 +65,23 @@ def test_a_one_arm_robot_is_refused_at_the_role_it_has_no_arm_for() -> None:
         assert "needs 2 (holder, worker)" in problem.message and "2 arms" in problem.hint
 
 
-def test_a_binding_asked_for_a_role_or_arm_that_is_not_there_is_refused() -> None:
+def test_a_binding_asked_for_a_role_or_arm_that_is_not_there_is_a_usage_error(tmp_path: Path) -> None:
     task, _ = load_task(EXAMPLE)
-    assert [d.code for d in translate(task, create("baxter"), roles={"helper": "left"}).diagnostics] == ["TRN006"]
-    [problem] = translate(task, create("baxter"), roles={"worker": "middle"}).diagnostics
-    assert "no arm 'middle'" in problem.message and "right, left" in problem.hint
+    with pytest.raises(ValueError, match="the task has no role 'helper'"):
+        translate(task, create("baxter"), roles={"helper": "left"})
+    result = CliRunner().invoke(main, ["translate", str(EXAMPLE), "-r", "baxter", "--role", "worker=middle",
+                                       "-o", str(tmp_path / "t.xml")])
+    assert result.exit_code == 2 and not (tmp_path / "t.xml").exists()
+    assert result.output.strip() == ("error: --role: role binding worker=middle: the baxter has no arm 'middle' "
+                                     "(its arms: right, left)")
+
+
+def test_atd_translate_binds_a_role_as_asked_and_says_so(tmp_path: Path) -> None:
+    out = tmp_path / "t.xml"
+    result = CliRunner().invoke(main, ["translate", str(EXAMPLE), "-r", "tombatossals", "--role", "holder=left",
+                                       "-q", "-o", str(out)])
+    assert result.exit_code == 0
+    assert result.output.strip() == f"wrote {out} (tombatossals, holder on left, worker on right)"
 
 
 def test_atd_translate_for_melfa_exits_4_and_writes_nothing(tmp_path: Path) -> None:
