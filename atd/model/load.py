@@ -131,6 +131,10 @@ def _subtask_roles(task: Task, state: State, sub: Task) -> list[Diagnostic]:
     """A sub-task's roles are the including task's, by name; a sub-task that declares none
     runs on the arm of the role its `task` state names."""
     if not sub.roles:
+        if state.role is None and len(task.roles) > 1:
+            return [error("ATD227", f"state '{state.name}' does not say which role does sub-task '{state.file}', "
+                                    "and the task declares several", state.loc,
+                          f"add role=\"...\", one of: {', '.join(r.name for r in task.roles)}")]
         return []
     if state.role is not None:
         return [error("ATD103", f"state '{state.name}' gives sub-task '{state.file}' the role '{state.role}', but the "

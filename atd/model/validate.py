@@ -177,12 +177,12 @@ def _roles(task: Task) -> list[Diagnostic]:
             if state.role not in first:
                 found.append(error("ATD226", f"state '{state.name}' is done by role '{state.role}', which the task "
                                              "does not declare", state.loc, _role_hint(state.role, first)))
-        elif len(first) > 1 and not state.type.is_end:
+        elif len(first) > 1 and not state.type.is_end and state.type is not StateType.TASK:  # a sub-task: load.py
             found.append(error("ATD227", f"{state.type.value} state '{state.name}' does not say which role does it, "
                                          "and the task declares several", state.loc,
                                f"add role=\"...\", one of: {', '.join(first)}"))
-    if len(first) == 1:
-        used.update(first)  # the only role does every state that names none
+    if len(first) == 1 or any(s.type is StateType.TASK and s.role is None for s in task.states):
+        used.update(first)  # the only role does every state that names none; a sub-task's own roles are unseen here
     for name, loc in first.items():
         if name not in used:
             found.append(warning("ATD228", f"role '{name}' does nothing: no state names it", loc,

@@ -107,3 +107,24 @@ def test_atd_validate_reports_an_undeclared_role_in_one_located_line_and_exits_1
     assert result.exit_code == 1
     assert f"{path}:5:1: error[ATD226]: state 'work' is done by role 'helper'" in result.output
     assert "Traceback" not in result.output
+
+
+def test_a_subtask_runs_on_the_role_its_state_names_or_on_the_roles_it_names_itself(tmp_path: Path) -> None:
+    _task(tmp_path, TWO_ROLES.format(worker="worker"), "both.xml")
+    _task(tmp_path, """<state name="go" type="move"><path><position>0.1 0 0.2</position></path></state>
+<state name="done" type="success"/>
+<transition origin="go" destination="done"><success/></transition>""", "one.xml")
+    parent = """<role name="holder"/>
+<role name="worker"/>
+<state name="first" type="task" file="both.xml"/>
+<state name="then" type="task" file="one.xml"{role}/>
+<state name="done" type="success"/>
+<transition origin="first" destination="then"><success/></transition>
+<transition origin="then" destination="done"><success/></transition>"""
+    _, found = load_task(_task(tmp_path, parent.format(role=' role="worker"')))
+    assert found == []
+    _, found = load_task(_task(tmp_path, parent.format(role="")))
+    assert [(d.code, d.loc.line) for d in found] == [("ATD227", 5)]
+    _, found = load_task(_task(tmp_path, parent.format(role=' role="worker"').replace(
+        'file="both.xml"', 'file="both.xml" role="holder"')))
+    assert [(d.code, d.loc.line) for d in found] == [("ATD103", 4)]

@@ -99,3 +99,26 @@ def test_atd_check_says_which_robots_have_the_arms_and_why_the_others_not() -> N
     assert {label for label, cell in columns.items() if cell["translatable"]} == {
         "baxter:right", "baxter:left", "tombatossals:right", "tombatossals:left"}
     assert "the melfa has 1 arm (main)" in columns["melfa"]["errors"][0]
+
+
+def test_a_subtask_is_mapped_on_the_arm_of_its_role(tmp_path: Path) -> None:
+    (tmp_path / "one.xml").write_text("""<statemachine>
+<state name="go" type="move"><path><position>0.1 0.15 0.2</position></path></state>
+<state name="done" type="success"/>
+<transition origin="go" destination="done"><success/></transition>
+</statemachine>""")
+    (tmp_path / "task.xml").write_text("""<statemachine>
+<role name="holder"/>
+<role name="worker"/>
+<state name="hold" type="move" role="holder"><path><position>0.1 0 0.2</position></path></state>
+<state name="then" type="task" file="one.xml" role="worker"/>
+<state name="done" type="success"/>
+<transition origin="hold" destination="then"><success/></transition>
+<transition origin="then" destination="done"><success/></transition>
+</statemachine>""")
+    task, found = load_task(tmp_path / "task.xml")
+    assert found == []
+    estd = translate(task, create("baxter")).estd
+    sub = estd.states_by_name["then"].machine
+    assert sub.states_by_name["go"].robot_arm == "left" and estd.states_by_name["hold"].robot_arm == "right"
+    assert estd.arms == ("right", "left")
