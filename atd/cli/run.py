@@ -10,7 +10,7 @@ from typing import Callable, NoReturn
 import click
 
 from atd.cli.run_output import Progress, document, next_step, where
-from atd.cli.translate import GRASP_OPTION, ROLE_OPTION, arms_text
+from atd.cli.translate import GRASP_OPTION, ROLE_OPTION
 from atd.cli.app import (EXIT_ENGINE_CRASHED, EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, EXIT_UNTRANSLATABLE,
                          EXIT_USAGE, OutputFile, Ranged, guard_outputs, main, usage_error)
 from atd.model import has_errors, load_task, ranges
@@ -207,7 +207,7 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
         click.echo(json.dumps(document(about, ran.outcome, ran.records, ran.object_positions, ran.inside, outputs,
                                        ran.notes), indent=2))
         raise SystemExit(EXIT_OK if ran.outcome.succeeded else EXIT_TASK_FAILED)
-    title = f"{task.name} on {estd.robot} ({arms_text(estd)}) in {engine}, seed {seed}"
+    title = f"{task.name} on {estd.robot} ({estd.arm_text}) in {engine}, seed {seed}"
     click.echo(summary(ran.outcome, ran.records, title))
     for line in where(ran.object_positions, ran.inside, ran.inside_before):
         click.echo(line)

@@ -40,13 +40,6 @@ ROLE_OPTION = click.option(
          "the robot's other arms)")
 
 
-def arms_text(estd: Estd) -> str:
-    """Which arm does the work: `right arm`, or each role's, `holder on right, worker on left`."""
-    if not estd.roles:
-        return f"{estd.arm} arm"
-    return ", ".join(f"{role} on {arm}" for role, arm in estd.roles.items())
-
-
 def make_factory(robot: str, arm: str | None, config: Path | None, grasp: str = "robust") -> Factory:
     """The factory, or a clean exit naming what is wrong with the robot, arm or config."""
     try:
@@ -130,5 +123,5 @@ def translate(task: Path, robot: str, arm: str | None, config: Path | None, outp
     if not quiet:
         click.echo(summary(result.estd))
         click.echo("")
-    click.echo(f"wrote {target} ({factory.name}, {arms_text(result.estd)})")
+    click.echo(f"wrote {target} ({factory.name}, {result.estd.arm_text})")
     raise SystemExit(EXIT_OK)

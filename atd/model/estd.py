@@ -151,6 +151,13 @@ class Estd(EstdElement, KnowsObjects):
         used = [self.arm] + [s.robot_arm for _, m in self.walk() for s in m.states if s.robot_arm]
         return tuple(dict.fromkeys(used))
 
+    @property
+    def arm_text(self) -> str:
+        """Which arm does the work, for people: `right arm`, or each role's, `holder on right, worker on left`."""
+        if not self.roles:
+            return f"{self.arm} arm"
+        return ", ".join(f"{role} on {arm}" for role, arm in self.roles.items())
+
     def files(self) -> list[Path]:
         """Every file this ESTD was made from (each machine's ATD, the object's mesh): the
         files a command that writes must never overwrite."""

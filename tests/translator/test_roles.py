@@ -122,3 +122,14 @@ def test_a_subtask_is_mapped_on_the_arm_of_its_role(tmp_path: Path) -> None:
     sub = estd.states_by_name["then"].machine
     assert sub.states_by_name["go"].robot_arm == "left" and estd.states_by_name["hold"].robot_arm == "right"
     assert estd.arms == ("right", "left")
+
+
+def test_the_task_drawings_say_which_role_and_arm_does_each_state() -> None:
+    from atd.graph.model import from_estd, from_task
+
+    task, _ = load_task(EXAMPLE)
+    boxes = {n.id: n.lines for n in from_task(task, str(EXAMPLE)).nodes}
+    assert "role: worker" in boxes["come_beside"] and "role: holder" in boxes["grasp_object"]
+    drawn = from_estd(translate(task, create("baxter")).estd, "t.estd.xml")
+    assert "holder on right, worker on left" in drawn.title
+    assert "worker on the left arm" in {n.id: n.lines for n in drawn.nodes}["come_beside"]
