@@ -32,13 +32,18 @@ def load(path: str | Path) -> Task:
     return task
 
 
-def translate(task: Task | str | Path, robot: str, arm: str | None = None, grasp: str = "robust") -> Estd:
-    """The ESTD of `task` for `robot` (its `arm`); AtdError with the reasons when it cannot do it."""
+def translate(task: Task | str | Path, robot: str, arm: str | None = None, grasp: str = "robust",
+              roles: dict[str, str] | None = None) -> Estd:
+    """The ESTD of `task` for `robot` (its `arm`; a task with roles: `roles` binds some to arms
+    by name, as `--role` does); AtdError with the reasons when it cannot do it."""
     from factories.registry import create
     from translator import translate as translated
 
     task = task if isinstance(task, Task) else load(task)
-    result = translated(task, create(robot, arm=arm, grasp=grasp))
+    try:
+        result = translated(task, create(robot, arm=arm, grasp=grasp), roles=roles)
+    except ValueError as exc:  # a binding naming a role or an arm that is not there
+        raise AtdError(str(exc)) from None
     if result.estd is None:
         raise AtdError(render_all(result.diagnostics) + f"\n{robot} cannot do this task")
     return result.estd
@@ -57,12 +62,14 @@ class RunResult:
 
 
 def run(task: Task | Estd | str | Path, robot: str | None = None, arm: str | None = None, engine: str = "mujoco",
-        seed: int = 0, world: str | Path | None = None, record: str | Path | None = None) -> RunResult:
-    """Run an ATD (translated for `robot`) or an ESTD headless, as `atd run` does."""
+        seed: int = 0, world: str | Path | None = None, record: str | Path | None = None,
+        roles: dict[str, str] | None = None) -> RunResult:
+    """Run an ATD (translated for `robot`, its `roles` bound as `translate` binds them) or an
+    ESTD headless, as `atd run` does."""
     from atd.runtime.session import Run, RunError, world_scene
     from factories.registry import create
 
-    estd = task if isinstance(task, Estd) else translate(task, _named(robot), arm)
+    estd = task if isinstance(task, Estd) else translate(task, _named(robot), arm, roles=roles)
     factory = create(estd.robot, arm=estd.arm)
     try:
         scene = world_scene(estd, Path(world), seed) if world is not None else None

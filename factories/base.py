@@ -14,6 +14,7 @@ same way (timeout, success, error, hardware failure).
 
 from __future__ import annotations
 
+import copy
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field, replace
 from functools import cached_property
@@ -210,6 +211,20 @@ class Factory(ABC):
         self.config = load_config(shipped, self.name) if shipped else RobotConfig()
         if config is not None:
             self.config = load_config(config, self.name).over(self.config)
+
+    def on_arm(self, name: str) -> Factory:
+        """This factory, with its config and grasp, for another of the robot's arms: a task
+        that names roles maps each state on the arm its role is bound to."""
+        if name == self.arm.name:
+            return self
+        names = [a.name for a in self.arms]
+        if name not in names:
+            raise ValueError(f"robot '{self.name}' has no arm '{name}'; choose one of: {', '.join(names)}")
+        other = copy.copy(self)
+        per_arm = {k for klass in type(self).__mro__ for k, v in vars(klass).items() if isinstance(v, cached_property)}
+        other.__dict__ = {k: v for k, v in self.__dict__.items() if k not in per_arm}
+        other.arm = self.arms[names.index(name)]
+        return other
 
     # -- what the robot is ----------------------------------------------------------------
     @property

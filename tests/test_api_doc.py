@@ -28,6 +28,7 @@ def test_the_api_page_runs_as_written() -> None:
     assert scope["problems"] == [] and scope["result"].succeeded
     assert scope["result"].path[0] == "approach" and "object" in scope["result"].object_positions
     assert "examples/no_such_task.xml" in printed.getvalue()
+    assert scope["two"].roles == {"holder": "left", "worker": "right"}
     assert len(scope["records"]) == 2 and all(r.cell.robot == "melfa" for r in scope["records"])
 
 

@@ -10,7 +10,7 @@ from typing import Callable, NoReturn
 import click
 
 from atd.cli.run_output import Progress, document, next_step, where
-from atd.cli.translate import GRASP_OPTION
+from atd.cli.translate import GRASP_OPTION, ROLE_OPTION
 from atd.cli.app import (EXIT_ENGINE_CRASHED, EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, EXIT_UNTRANSLATABLE,
                          EXIT_USAGE, OutputFile, Ranged, guard_outputs, main, usage_error)
 from atd.model import has_errors, load_task, ranges
@@ -42,7 +42,8 @@ def _factory(robot: str, arm: str | None, grasp: str = "robust") -> Factory:
         raise
 
 
-def _load(task: Path, robot: str | None, arm: str | None, grasp: str) -> tuple[Estd, Factory]:
+def _load(task: Path, robot: str | None, arm: str | None, grasp: str,
+          roles: dict[str, str]) -> tuple[Estd, Factory]:
     """The ESTD to run and its robot's factory: read as is, or translated from an ATD."""
     if is_estd_file(task):
         estd, found = read_estd(task)
@@ -58,7 +59,10 @@ def _load(task: Path, robot: str | None, arm: str | None, grasp: str) -> tuple[E
     if robot is None:
         _fail(f"error: {task} is an ATD; say which robot runs it with --robot (see `atd robots list`)", EXIT_USAGE)
     factory = _factory(robot, arm, grasp)
-    result = translate(atd_task, factory)
+    try:
+        result = translate(atd_task, factory, roles=roles)
+    except ValueError as exc:  # a --role naming what is not there
+        usage_error(f"--role: {exc}")
     if result.estd is None:
         _fail(render_all(result.diagnostics) + f"\n{task}: {robot} cannot do this task", EXIT_UNTRANSLATABLE)
     return result.estd, factory
@@ -148,13 +152,14 @@ class RecordRate(click.ParamType):
               help="what is truly on the table, whatever the task believes: placed objects, objects dropped "
                    "into a container (seeded by --seed), containers (see docs/worlds.md)")
 @GRASP_OPTION
+@ROLE_OPTION
 @click.option("--quiet", "-q", is_flag=True, help="no live progress")
 @click.option("--format", "fmt", type=click.Choice(["text", "json"]), default="text", show_default=True,
               help="the outcome as text, or as one JSON document (state path, events with their readings)")
 def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, trace_path: Path | None,
         video: Path | None, video_size: tuple[int, int], camera: str, record: Path | None,
         record_rate: float | None, viewer: bool, realtime: bool, budget: float, world_file: Path | None, grasp: str,
-        quiet: bool, fmt: str) -> None:
+        roles: dict[str, str], quiet: bool, fmt: str) -> None:
     """Run TASK (an ATD, translated on the fly, or an ESTD) on a simulated robot.
 
     Exit status: 0 the task ended in a success state, 3 in a failure state (or the watchdog
@@ -170,7 +175,7 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
     guard_outputs({"--trace": trace_path, "--video": video, "--record": record}, inputs)
     if record is not None and record.suffix.lower() != ".mcap":
         usage_error(f"{record}: --record writes MCAP; give a file name ending in .mcap")
-    estd, factory = _load(task, robot, arm, grasp)
+    estd, factory = _load(task, robot, arm, grasp, roles)
     guard_outputs({"--trace": trace_path, "--video": video, "--record": record}, [*inputs, *estd.files()])
     truth = _world(estd, world_file, seed) if world_file else None
 
@@ -202,7 +207,7 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
         click.echo(json.dumps(document(about, ran.outcome, ran.records, ran.object_positions, ran.inside, outputs,
                                        ran.notes), indent=2))
         raise SystemExit(EXIT_OK if ran.outcome.succeeded else EXIT_TASK_FAILED)
-    title = f"{task.name} on {estd.robot} ({estd.arm} arm) in {engine}, seed {seed}"
+    title = f"{task.name} on {estd.robot} ({estd.arm_text}) in {engine}, seed {seed}"
     click.echo(summary(ran.outcome, ran.records, title))
     for line in where(ran.object_positions, ran.inside, ran.inside_before):
         click.echo(line)

@@ -6,7 +6,8 @@ from pathlib import Path
 
 import click
 
-from atd.cli.app import EXIT_INVALID, EXIT_OK, EXIT_UNTRANSLATABLE, EXIT_USAGE, OutputFile, guard_outputs, main, write_or_exit
+from atd.cli.app import (EXIT_INVALID, EXIT_OK, EXIT_UNTRANSLATABLE, EXIT_USAGE, OutputFile, guard_outputs, main,
+                         usage_error, write_or_exit)
 from atd.model import load_task
 from atd.model.diagnostics import Diagnostic, Severity, has_errors, render_all
 from atd.model.estd import Estd, describe
@@ -20,6 +21,23 @@ from translator import translate as translate_task
 GRASP_OPTION = click.option(
     "--grasp", type=click.Choice(GRASPS), default="robust", show_default=True,
     help="robust: each robot's sensor-based grasp; naive: the thesis 3.4.1 baseline (close, squeeze)")
+
+
+def _roles(ctx: click.Context, param: click.Parameter, values: tuple[str, ...]) -> dict[str, str]:
+    """`--role holder=left`, any number of times: a role of the task -> an arm of the robot."""
+    bound: dict[str, str] = {}
+    for value in values:
+        role, _, arm = value.partition("=")
+        if not role or not arm:
+            raise click.BadParameter(f"'{value}': give ROLE=ARM, e.g. --role holder=left")
+        bound[role] = arm
+    return bound
+
+
+ROLE_OPTION = click.option(
+    "--role", "roles", multiple=True, callback=_roles, metavar="ROLE=ARM",
+    help="bind a role of a task for several arms to an arm (default: the roles in file order on --arm, then "
+         "the robot's other arms)")
 
 
 def make_factory(robot: str, arm: str | None, config: Path | None, grasp: str = "robust") -> Factory:
@@ -74,9 +92,10 @@ def _report(diagnostics: list[Diagnostic]) -> None:
               help="where to write the ESTD (default: TASK.<robot>.estd.xml beside the task)")
 @click.option("--format", "fmt", type=click.Choice(["xml", "json"]), default="xml", show_default=True)
 @GRASP_OPTION
+@ROLE_OPTION
 @click.option("--quiet", "-q", is_flag=True, help="no summary table")
 def translate(task: Path, robot: str, arm: str | None, config: Path | None, output: Path | None, fmt: str,
-              grasp: str, quiet: bool) -> None:
+              grasp: str, roles: dict[str, str], quiet: bool) -> None:
     """Translate the ATD in TASK into an ESTD for ROBOT.
 
     Exit status: 0 written, 1 the ATD is invalid, 2 usage error, 4 the robot cannot do the
@@ -89,7 +108,10 @@ def translate(task: Path, robot: str, arm: str | None, config: Path | None, outp
         raise SystemExit(EXIT_INVALID)
     target = output or default_output(task, factory, fmt)  # named after a file now read: never '.' or '/'
     guard_outputs({"-o": target}, [task, *([config] if config else [])])
-    result = translate_task(atd_task, factory)
+    try:
+        result = translate_task(atd_task, factory, roles=roles)
+    except ValueError as exc:  # a --role naming what is not there
+        usage_error(f"--role: {exc}")
     warnings = [d for d in found if d.severity is Severity.WARNING] + result.diagnostics
     if result.estd is None:
         _report(warnings)
@@ -101,5 +123,5 @@ def translate(task: Path, robot: str, arm: str | None, config: Path | None, outp
     if not quiet:
         click.echo(summary(result.estd))
         click.echo("")
-    click.echo(f"wrote {target} ({factory.name}, {factory.arm.name} arm)")
+    click.echo(f"wrote {target} ({factory.name}, {result.estd.arm_text})")
     raise SystemExit(EXIT_OK)

@@ -69,6 +69,8 @@ def _atd_lines(state: State) -> list[str]:
     """Type and the parameters that tell states apart: where to, with which hand shape."""
     head = state.type.value + (f", {state.movement.value}" if state.movement else "")
     lines = [state.name, head]
+    if state.role is not None:
+        lines.append(f"role: {state.role}")
     if state.type is StateType.TASK:
         lines.append(f"file: {state.file}")
     if state.preshape:
@@ -111,6 +113,9 @@ def _estd_lines(state: EstdState, all_params: bool) -> list[str]:
         lines.append(state.type.value)
     else:
         lines.append(f"{state.type.value} as {state.primitive}")
+    if state.robot_arm is not None:
+        who = f"{state.role} " if state.role else ""
+        lines.append(f"{who}on the {state.robot_arm} arm")
     for role, controller in (("arm", state.arm), ("hand", state.hand)):
         if controller is not None:
             lines += _controller_lines(role, controller, all_params)
@@ -137,7 +142,7 @@ def from_estd(estd: Estd, file: str, conditions: bool = False, all_params: bool 
     Arrows carry the abstract events; with `conditions`, each event also shows the concrete
     condition tree (with thresholds) the robot checks for it.
     """
-    graph = Graph(title=f"{Path(file).name}  (ESTD for {estd.robot}, {estd.arm} arm, initial state: {estd.initial})")
+    graph = Graph(title=f"{Path(file).name}  (ESTD for {estd.robot}, {estd.arm_text}, initial state: {estd.initial})")
     for state in estd.states:
         graph.nodes.append(Node(state.name, tuple(_estd_lines(state, all_params)), _kind(state.type),
                                 state.name == estd.initial))

@@ -103,6 +103,8 @@ class EstdState(EstdElement):
     writes: tuple[Value, ...] = ()  # the values it writes when it leaves on its finding event
     target_from: str | None = None  # the value its target is read from when it starts
     inputs: dict[str, str] = Field(default_factory=dict)  # sub-task input -> this machine's value
+    role: str | None = None  # the ATD role doing it, in a task that names roles
+    robot_arm: str | None = None  # the robot's arm that runs it, where the task names roles; None: `Estd.arm`
 
 
 class EstdTransition(EstdElement):
@@ -124,6 +126,7 @@ class Estd(EstdElement, KnowsObjects):
     initial: str
     environment: Environment | None = None
     inputs: tuple[Value, ...] = ()  # a sub-machine's values its parent gives it
+    roles: dict[str, str] = Field(default_factory=dict)  # the task's roles -> the robot's arms bound to them
     states: tuple[EstdState, ...]
     transitions: tuple[EstdTransition, ...] = ()
     version: int = FORMAT_VERSION
@@ -140,6 +143,20 @@ class Estd(EstdElement, KnowsObjects):
         for t in self.transitions:
             out.setdefault(t.origin, []).append(t)
         return {origin: tuple(ts) for origin, ts in out.items()}
+
+    @cached_property
+    def arms(self) -> tuple[str, ...]:
+        """Every arm of the robot some state of this machine or its sub-machines runs on, the
+        ESTD's own first: the arms a run must simulate."""
+        used = [self.arm] + [s.robot_arm for _, m in self.walk() for s in m.states if s.robot_arm]
+        return tuple(dict.fromkeys(used))
+
+    @property
+    def arm_text(self) -> str:
+        """Which arm does the work, for people: `right arm`, or each role's, `holder on right, worker on left`."""
+        if not self.roles:
+            return f"{self.arm} arm"
+        return ", ".join(f"{role} on {arm}" for role, arm in self.roles.items())
 
     def files(self) -> list[Path]:
         """Every file this ESTD was made from (each machine's ATD, the object's mesh): the

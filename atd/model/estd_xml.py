@@ -71,10 +71,12 @@ def _machine(parent: etree._Element | None, estd: Estd) -> etree._Element:
         environment_element(root, estd.environment, format_number)
     for value in estd.inputs:
         value_element(root, "input", value)
+    for role, arm in estd.roles.items():
+        etree.SubElement(root, "role", name=role, arm=arm)
     for state in estd.states:
         node = etree.SubElement(root, "state", _attrs(
             name=state.name, type=state.type.value, atd=state.atd, loc=state.loc, primitive=state.primitive,
-            object=state.object))
+            object=state.object, role=state.role, robot_arm=state.robot_arm))
         for role, controller in (("arm", state.arm), ("hand", state.hand)):
             if controller is not None:
                 _params(etree.SubElement(node, role, controller=controller.name), controller.params)
@@ -152,9 +154,11 @@ def _read_machine(node: etree._Element, doc: ParsedXml) -> Estd:
     reader = TaskReader(doc)
     fields: dict = {k: node.get(k) for k in ("robot", "arm", "source", "initial") if node.get(k) is not None}
     fields["version"] = int(node.get("version", "1"))
-    states, transitions, objects, inputs = [], [], [], []
-    for child in node.iterchildren("object", "environment", "input", "state", "transition"):
-        if child.tag == "object":
+    states, transitions, objects, inputs, roles = [], [], [], [], {}
+    for child in node.iterchildren("object", "environment", "input", "role", "state", "transition"):
+        if child.tag == "role":
+            roles[child.get("name")] = child.get("arm")
+        elif child.tag == "object":
             objects.append(reader.object(child))
         elif child.tag == "environment":
             fields["environment"] = reader.environment(child)
@@ -164,7 +168,8 @@ def _read_machine(node: etree._Element, doc: ParsedXml) -> Estd:
             arm, hand, sub, target = child.find("arm"), child.find("hand"), child.find(ROOT), child.find("target")
             states.append(EstdState(
                 name=child.get("name"), type=child.get("type"), atd=child.get("atd"), loc=child.get("loc"),
-                primitive=child.get("primitive"), object=child.get("object"),
+                primitive=child.get("primitive"), object=child.get("object"), role=child.get("role"),
+                robot_arm=child.get("robot_arm"),
                 arm=_read_controller(arm) if arm is not None else None,
                 hand=_read_controller(hand) if hand is not None else None,
                 machine=_read_machine(sub, doc) if sub is not None else None,
@@ -181,7 +186,7 @@ def _read_machine(node: etree._Element, doc: ParsedXml) -> Estd:
         first = reader.diagnostics[0]
         raise _Problem(first.message, node)
     return Estd(states=tuple(states), transitions=tuple(transitions), known_objects=tuple(objects),
-                inputs=tuple(inputs), **fields)
+                inputs=tuple(inputs), roles=roles, **fields)
 
 
 def parse_estd(data: bytes, file: str) -> tuple[Estd | None, list[Diagnostic]]:

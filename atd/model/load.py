@@ -87,6 +87,7 @@ def _check_subtasks(task: Task, including: tuple[Path, ...], seen: Loaded) -> li
             found += _unsimulated_object(task, state, sub_task)
             if sub_task is not None:
                 found += _outcomes(task, state, sub_task) + _inputs(task, state, sub_task)
+                found += _subtask_roles(task, state, sub_task)
     return found
 
 
@@ -124,6 +125,25 @@ def _inputs(task: Task, state: State, sub: Task) -> list[Diagnostic]:
                                          f"value '{source}', a {kind.value} ({by})", state.loc,
                                f"give it a {declared[name].value}"))
     return found
+
+
+def _subtask_roles(task: Task, state: State, sub: Task) -> list[Diagnostic]:
+    """A sub-task's roles are the including task's, by name; a sub-task that declares none
+    runs on the arm of the role its `task` state names."""
+    if not sub.roles:
+        if state.role is None and len(task.roles) > 1:
+            return [error("ATD227", f"state '{state.name}' does not say which role does sub-task '{state.file}', "
+                                    "and the task declares several", state.loc,
+                          f"add role=\"...\", one of: {', '.join(r.name for r in task.roles)}")]
+        return []
+    if state.role is not None:
+        return [error("ATD103", f"state '{state.name}' gives sub-task '{state.file}' the role '{state.role}', but the "
+                                f"sub-task names its own roles ({', '.join(r.name for r in sub.roles)})", state.loc,
+                      'remove role="..."; the sub-task\'s roles are bound to this task\'s roles of the same name')]
+    declared = {r.name for r in task.roles}
+    return [error("ATD226", f"sub-task '{state.file}' of state '{state.name}' needs role '{r.name}', which this task "
+                            "does not declare", state.loc, f'add <role name="{r.name}"/> to this task')
+            for r in sub.roles if r.name not in declared]
 
 
 def _unsimulated_object(task: Task, state: State, sub: Task | None) -> list[Diagnostic]:

@@ -27,6 +27,7 @@ from atd.model.task import (
     ObjectInfo,
     Obstacle,
     Pose,
+    Role,
     Task,
     Value,
 )
@@ -51,7 +52,7 @@ E = TypeVar("E", bound=StrEnum)
 Fields = dict[str, object]
 
 ROOT = "statemachine"
-TASK_CHILDREN = ("object", "environment", "input", "state", "transition")
+TASK_CHILDREN = ("object", "environment", "input", "role", "state", "transition")
 OBJECT_CHILDREN = ("pose", "weight", "inertia", "shape", "friction", "class", "size")
 ENVIRONMENT_CHILDREN = ("obstacle", "container")
 CONTAINER_CHILDREN = ("pose", "size", "wall")
@@ -59,7 +60,7 @@ STATE_CHILDREN = (
     "movement", "hand_shape", "path", "trajectory", "preshape", "object_size", "hand_opening", "parameter",
     "method", "direction", "contact_force", "max_distance", "writes", "target", "input",
 )
-STATE_ATTRIBUTES = ("name", "type", "file", "object", "container")
+STATE_ATTRIBUTES = ("name", "type", "file", "object", "container", "role")
 IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 UNIT_TOLERANCE = 1e-3  # how far from 1 the length of a direction may be
 WAYPOINTS = ("position", "pose", "point")
@@ -243,6 +244,7 @@ class TaskReader:
         env = None
         objects: list[ObjectInfo] = []
         inputs: list[Value] = []
+        roles: list[Role] = []
         states: list[Fields] = []
         transitions: list[Fields] = []
         for node in _elements(root):
@@ -252,6 +254,10 @@ class TaskReader:
                 value = self.value_declaration(node, "input")
                 if value is not None:
                     inputs.append(value)
+            elif node.tag == "role":
+                role = self.role(node)
+                if role is not None:
+                    roles.append(role)
             elif node.tag == "environment" and self._single(seen, node, ROOT):
                 env = self.environment(node)
             elif node.tag == "state":
@@ -269,6 +275,7 @@ class TaskReader:
             "known_objects": objects,
             "environment": env,
             "inputs": inputs,
+            "roles": roles,
             "states": states,
             "transitions": transitions,
             "source": self.doc.file,
@@ -309,6 +316,17 @@ class TaskReader:
         if "size" in seen:
             fields["size"] = self._size(seen["size"], fields.get("object_class"))
         return ObjectInfo(**{k: v for k, v in fields.items() if v is not None}, loc=self.doc.loc(node))
+
+    def role(self, node: etree._Element) -> Role | None:
+        """`<role name="holder"/>`: an arm the task needs, named for its part in the task."""
+        self._check_attributes(node, ("name",))
+        self._no_children(node)
+        name = node.get("name")
+        if not name:
+            self._error("ATD102", "<role> has no name", node,
+                        'add name="...", the arm\'s part in the task (e.g. holder, worker); states say role="..."')
+            return None
+        return Role(name=name, loc=self.doc.loc(node)) if self._identifier(node, name, "role name") else None
 
     def _size(self, node: etree._Element, kind: ObjectClass | None) -> tuple[float, ...] | None:
         layout = SIZE_LAYOUT[kind or ObjectClass.BOX]
@@ -401,7 +419,7 @@ class TaskReader:
                 self.dropped_states.add(name)
             return None
         fields.update(name=name, type=kind, file=file if kind is StateType.TASK else None, loc=self.doc.loc(node))
-        for attribute in ("object", "container"):
+        for attribute in ("object", "container", "role"):
             if node.get(attribute) is not None:
                 fields[attribute] = node.get(attribute)
         return fields
@@ -435,6 +453,9 @@ class TaskReader:
             fine = False
         if node.get("object") is not None and (kind.is_end or kind is StateType.TASK):
             self._error("ATD103", f"a {kind.value} state acts on no object", node, 'remove object="..."')
+            fine = False
+        if node.get("role") is not None and kind.is_end:
+            self._error("ATD103", f"a {kind.value} state ends the task and uses no arm", node, 'remove role="..."')
             fine = False
         if "target_from" in fields and not kind.moves_arm:
             self._error("ATD103", f"<target> is for arm primitives, not type=\"{kind.value}\"", node,

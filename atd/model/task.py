@@ -222,6 +222,7 @@ class State(AtdElement):
     writes: tuple[Value, ...] = ()  # perceptual primitives: the values it produces
     target_from: str | None = None  # arm primitives: the named value that is its target
     inputs: dict[str, str] = Field(default_factory=dict)  # task: sub-task input -> this task's value
+    role: str | None = None  # which of the task's arm roles does it; None: the task's only role
 
     @property
     def target(self) -> Waypoint | None:
@@ -233,6 +234,13 @@ class State(AtdElement):
         """The named values the state needs when it starts: its target's, its sub-task's inputs'."""
         named = (self.target_from,) if self.target_from else ()
         return named + tuple(self.inputs.values())
+
+
+class Role(AtdElement):
+    """An arm's part in a task (`holder`, `worker`): the task names the work, never a robot's
+    side; the robot's factory binds each role to one of its arms."""
+
+    name: str
 
 
 class Event(AtdElement):
@@ -302,6 +310,7 @@ class Task(AtdElement, KnowsObjects):
     initial: str | None = None
     environment: Environment | None = None
     inputs: tuple[Value, ...] = ()  # a sub-task's values the including task gives it
+    roles: tuple[Role, ...] = ()  # the arms it needs, by role; none: one arm, the robot's chosen one
     states: tuple[State, ...] = ()
     transitions: tuple[Transition, ...] = ()
     source: str | None = Field(default=None, exclude=True, repr=False)
@@ -316,6 +325,15 @@ class Task(AtdElement, KnowsObjects):
     @cached_property
     def states_by_name(self) -> dict[str, State]:
         return {s.name: s for s in self.states}
+
+    @property
+    def role_names(self) -> tuple[str, ...]:
+        """The roles in file order; a task that declares none has one, unnamed (None)."""
+        return tuple(r.name for r in self.roles) or (None,)
+
+    def role_of(self, state: State) -> str | None:
+        """The role doing `state`: its own, or the task's first (its only one, where it says none)."""
+        return state.role or self.role_names[0]
 
     @cached_property
     def containers(self) -> dict[str, ContainerInfo]:

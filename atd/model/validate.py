@@ -29,6 +29,7 @@ def check_task(task: Task, unreadable_states: frozenset[str] = frozenset(), read
     found += _ambiguity(task)
     found += _objects(task)
     found += _containers(task)
+    found += _roles(task)
     found += _events(task)
     found += _kinds(task)
     found += _targets(task)
@@ -157,6 +158,44 @@ def _containers(task: Task) -> list[Diagnostic]:
             found.append(error("ATD219", f"state '{state.name}' looks in container '{state.container}', which the "
                                          "task does not know", state.loc, _known(state.container, first, "container")))
     return found
+
+
+def _roles(task: Task) -> list[Diagnostic]:
+    """Each role a state names is declared, once; with several, every state that uses an arm
+    says which; a role no state uses would still ask the robot for an arm."""
+    found = []
+    first: dict[str, Location | None] = {}
+    for role in task.roles:
+        if role.name in first:
+            found.append(error("ATD218", f"two roles are called '{role.name}'", role.loc,
+                               f"the first is at line {_line(first[role.name])}; rename one of them"))
+        first.setdefault(role.name, role.loc)
+    used: set[str] = set()
+    for state in task.states:
+        if state.role is not None:
+            used.add(state.role)
+            if state.role not in first:
+                found.append(error("ATD226", f"state '{state.name}' is done by role '{state.role}', which the task "
+                                             "does not declare", state.loc, _role_hint(state.role, first)))
+        elif len(first) > 1 and not state.type.is_end and state.type is not StateType.TASK:  # a sub-task: load.py
+            found.append(error("ATD227", f"{state.type.value} state '{state.name}' does not say which role does it, "
+                                         "and the task declares several", state.loc,
+                               f"add role=\"...\", one of: {', '.join(first)}"))
+    if len(first) == 1 or any(s.type is StateType.TASK and s.role is None for s in task.states):
+        used.update(first)  # the only role does every state that names none; a sub-task's own roles are unseen here
+    for name, loc in first.items():
+        if name not in used:
+            found.append(warning("ATD228", f"role '{name}' does nothing: no state names it", loc,
+                                 "remove it (each role asks the robot for one more arm), or give it a state"))
+    return found
+
+
+def _role_hint(word: str, declared: dict) -> str:
+    if not declared:
+        return (f'declare it: <role name="{word}"/> in the <statemachine> (and one <role> per arm the task '
+                "needs), or remove role=\"...\" to use the robot's one chosen arm")
+    return did_you_mean(word, declared) or (f"the task's roles: {', '.join(declared)}; or declare "
+                                            f'<role name="{word}"/>')
 
 
 def _known(word: str, names: dict, what: str) -> str:

@@ -82,7 +82,7 @@ def value_element(parent: etree._Element, tag: str, value: Value) -> None:
 
 def _state(parent: etree._Element, state: State) -> None:
     attrib = {"name": state.name, "type": state.type.value}
-    for key in ("file", "object", "container"):
+    for key in ("file", "object", "container", "role"):
         if getattr(state, key) is not None:
             attrib[key] = getattr(state, key)
     node = _child(parent, "state", **attrib)
@@ -118,6 +118,8 @@ def task_to_xml(task: Task) -> bytes:
         environment_element(root, task.environment)
     for value in task.inputs:
         value_element(root, "input", value)
+    for role in task.roles:
+        _child(root, "role", name=role.name)
     for state in task.states:
         _state(root, state)
     for transition in task.transitions:

@@ -5,13 +5,18 @@ document order, the first whose events all hold is taken); run the state's arm a
 controllers; merge their outputs in the arbitrator; send one command; step the robot.
 A sub-task state runs its own machine inside it. A watchdog ends any run that outlives
 its time budget, so nothing hangs.
+
+A task that names roles may run states on another arm of the robot than the ESTD's own:
+one state runs at a time, on its arm, and every arm without a state holds its last
+command, its joints still and its hand as last commanded (a grasp keeps its grip while
+the other arm works; docs/runtime.md, *Two arms*).
 """
 
 from __future__ import annotations
 
 import time as wallclock
 from dataclasses import dataclass, field, replace
-from typing import Callable
+from typing import Callable, Mapping
 
 import numpy as np
 
@@ -20,7 +25,7 @@ from atd.model.estd import ConditionGroup, Estd, EstdEvent, EstdState, EstdTrans
 from atd.model.vocabulary import StateType
 from atd.runtime.arbitrator import RobotCommand, arbitrate
 from atd.runtime.trace import Trace
-from atd.runtime.values import arm_for, bind_inputs, targeted
+from atd.runtime.values import ArmMemory, arm_for, bind_inputs, targeted
 from primitives.base import Condition, Context, ControlData, Status, StateView
 from primitives.blackboard import ARM_TWIST, Blackboard
 from primitives.registry import BuildError, build_condition, build_controller
@@ -60,6 +65,18 @@ class ConditionTree:
         return [item for child in self.children for item in child.evidence()]
 
 
+@dataclass(frozen=True)
+class OtherArm:
+    """An arm of the robot besides the ESTD's own: the context its controllers are built with
+    and its robot interface, read when one of its states runs."""
+
+    context: Context
+    robot: Robot
+
+
+Output = tuple[str | None, ControlData]  # the arm a controller drives (None: the ESTD's own) and its output
+
+
 @dataclass
 class Edge:
     transition: EstdTransition
@@ -81,8 +98,10 @@ class Visit:
 class Machine:
     """One (sub-)machine being run: its current state and what runs in it."""
 
-    def __init__(self, estd: Estd, prefix: str, base: Context, trace: Trace, visits: list[Visit]) -> None:
+    def __init__(self, estd: Estd, prefix: str, base: Context, trace: Trace, visits: list[Visit],
+                 others: Mapping[str, OtherArm] | None = None) -> None:
         self.estd = estd
+        self.others = others or {}
         self.prefix = prefix
         self.base = base
         self.trace = trace
@@ -94,11 +113,17 @@ class Machine:
 
     # -- entering a state ---------------------------------------------------------------
     def enter(self, name: str, readings: Readings) -> None:
+        """Enter state `name`; `readings` are the ESTD's own arm's (a state on another arm
+        reads its own)."""
         state = self.states[name]
         self.current = state
+        self.on = self.others.get(state.robot_arm) if state.robot_arm else None
+        self.driven = state.robot_arm if self.on else None
+        base = self.on.context if self.on else self.base
+        outer, readings = readings, self._mine(readings)
         self.entered = readings.time
-        ctx = replace(self.base, blackboard=Blackboard())
-        arm = arm_for(state, self.base.memory)
+        ctx = replace(base, blackboard=Blackboard())
+        arm = arm_for(state, base.memory)
         self.arm = build_controller(arm, "arm", ctx) if arm else None
         self.hand = build_controller(state.hand, "hand", ctx) if state.hand else None
         self.edges = [
@@ -114,16 +139,20 @@ class Machine:
         for edge in self.edges:
             for _, tree in edge.events:
                 tree.start(readings)
-        self.sub = Machine(state.machine, f"{self.visit.path}/", self.base, self.trace, self.visits) \
+        self.sub = Machine(state.machine, f"{self.visit.path}/", self.base, self.trace, self.visits, self.others) \
             if state.machine is not None else None
         if self.sub:
             bind_inputs(state, self.base.memory)
-            self.sub.enter(state.machine.initial, readings)
+            self.sub.enter(state.machine.initial, outer)
         if state.type.is_end:
             self.ended = state
             self.trace.write("end", readings.time, state=self.visit.path, atd=state.atd, outcome=state.type.value)
 
     # -- one tick -------------------------------------------------------------------------
+    def _mine(self, readings: Readings) -> Readings:
+        """The readings of the current state's arm, given the ESTD's own arm's."""
+        return self.on.robot.read() if self.on else readings
+
     def _view(self, readings: Readings) -> StateView:
         sub = end = None
         if self.sub and self.sub.ended:
@@ -147,23 +176,25 @@ class Machine:
                 fired = edge
         return fired
 
-    def tick(self, readings: Readings, dt: float) -> list[ControlData]:
-        """Take a transition if one fires, then return the current state's control outputs."""
+    def tick(self, readings: Readings, dt: float) -> list[Output]:
+        """Take a transition if one fires, then return the current state's control outputs,
+        each with the arm it drives; `readings` are the ESTD's own arm's."""
         if self.ended:
             return []
         if self.sub and not self.sub.ended:
             outputs = self.sub.tick(readings, dt)
         else:
             outputs = []
-        edge = self._fired(readings, dt)
+        edge = self._fired(self._mine(readings), dt)
         if edge is not None:
             self._take(edge, readings)
             if self.ended:
                 return []
             outputs = self.sub.tick(readings, dt) if self.sub else []
+        mine = self._mine(readings)
         for controller in (self.arm, self.hand):
             if controller:
-                outputs.append(controller.update(readings, dt))
+                outputs.append((self.driven, controller.update(mine, dt)))
         return outputs
 
     def _take(self, edge: Edge, readings: Readings) -> None:
@@ -203,13 +234,16 @@ Progress = Callable[[str, float, float], None]  # (current state path, sim time,
 Observer = Callable[[float], None]  # called after every control step with the simulated time
 
 
-def build_problems(estd: Estd, base: Context) -> list[str]:
+def build_problems(estd: Estd, base: Context, others: Mapping[str, Context] | None = None) -> list[str]:
     """Everything in the ESTD this robot cannot build (a controller its hand does not have,
-    a sensor it lacks), found before the run starts rather than in the middle of it."""
+    a sensor it lacks), found before the run starts rather than in the middle of it; a state
+    on another arm is built with that arm's context (`others`, by arm name)."""
     problems = []
+    contexts = {name: replace(c, blackboard=Blackboard()) for name, c in (others or {}).items()}
     for prefix, machine in estd.walk():
-        ctx = replace(base, blackboard=Blackboard())
+        own = replace(base, blackboard=Blackboard())
         for state in machine.states:
+            ctx = contexts.get(state.robot_arm or "", own)
             # A target read at run time could be anywhere: any point shows the controller builds.
             arm = targeted(state.arm, (0.0, 0.0, 0.0)) if state.arm and state.target_from else state.arm
             for role, use in (("arm", arm), ("hand", state.hand)):
@@ -219,6 +253,8 @@ def build_problems(estd: Estd, base: Context) -> list[str]:
                     except BuildError as exc:
                         problems.append(f"state '{prefix}{state.name}': {exc}")
         for transition in machine.transitions:
+            origin = machine.states_by_name.get(transition.origin)
+            ctx = contexts.get(origin.robot_arm or "", own) if origin else own
             for event in transition.events:
                 try:
                     ConditionTree(event.condition, ctx)
@@ -231,17 +267,26 @@ class Executor:
     """Runs one ESTD on one robot until an end state, or the watchdog, stops it."""
 
     def __init__(self, estd: Estd, robot: Robot, base: Context, trace: Trace | None = None,
-                 budget: float = 300.0, wall_budget: float = 600.0) -> None:
+                 budget: float = 300.0, wall_budget: float = 600.0, others: Mapping[str, Robot] | None = None) -> None:
+        """`others`: the robot's other arms by name, for a task that names roles; they share
+        `robot`'s world, and `robot.step()` moves them all."""
         self.estd = estd
         self.robot = robot
         self.trace = trace or Trace()
         self.visits: list[Visit] = []
-        self.machine = Machine(estd, "", base, self.trace, self.visits)
+        arms: dict[str, OtherArm] = {}
+        if others:  # each arm learns of itself on its own; named values are the run's
+            shared = base.memory
+            base = replace(base, memory=ArmMemory(shared))
+            arms = {name: OtherArm(replace(base, info=r.info, camera=r.capture, memory=ArmMemory(shared)), r)
+                    for name, r in others.items()}
+        self.machine = Machine(estd, "", base, self.trace, self.visits, arms)
         self.budget = budget
         self.wall_budget = wall_budget
-        self._hand_dof = len(robot.info.hand.dofs)
-        self._still = np.zeros(robot.info.arm_dof)  # the arm's command when no controller moves it
-        self._memory = base.memory
+        self._arms: dict[str | None, tuple[Robot, Context]] = {None: (robot, base)}
+        self._arms |= {name: (arm.robot, arm.context) for name, arm in arms.items()}
+        # Per arm: its hand's DOF count, and its command when no controller moves it.
+        self._idle = {name: (len(r.info.hand.dofs), np.zeros(r.info.arm_dof)) for name, (r, _) in self._arms.items()}
         self.command: RobotCommand | None = None  # the arbitrator's latest, for recordings
         self.stopped: str | None = None  # why an observer stopped the run (`stop`)
 
@@ -250,15 +295,20 @@ class Executor:
         sees the work done by a task that cannot know it is)."""
         self.stopped = why
 
-    def _apply(self, outputs: list[ControlData]) -> None:
-        self.command = command = arbitrate(outputs, self._hand_dof)
-        dq = self._still if command.joint_velocity is None else command.joint_velocity
-        if command.twist is not None and command.twist.any():
-            dq = dq + self.robot.twist_velocities(command.twist)
-        self._memory[ARM_TWIST] = command.twist
-        self.robot.command_arm_velocity(dq)
-        if command.hand_values is not None:
-            self.robot.command_hand(command.hand_values, command.hand_modes)
+    def _apply(self, outputs: list[Output]) -> None:
+        """One command per arm: its controllers' outputs merged, or none, and it holds."""
+        for name, (robot, ctx) in self._arms.items():
+            hand_dof, still = self._idle[name]
+            command = arbitrate([out for on, out in outputs if on == name], hand_dof)
+            if name is None:
+                self.command = command
+            dq = still if command.joint_velocity is None else command.joint_velocity
+            if command.twist is not None and command.twist.any():
+                dq = dq + robot.twist_velocities(command.twist)
+            ctx.memory[ARM_TWIST] = command.twist
+            robot.command_arm_velocity(dq)
+            if command.hand_values is not None:
+                robot.command_hand(command.hand_values, command.hand_modes)
 
     def run(self, progress: Progress | None = None, every: int = 200,
             observers: tuple[Observer, ...] = ()) -> Outcome:
@@ -271,6 +321,8 @@ class Executor:
         verdict: str | None = None
         while not self.machine.ended:
             readings = self.robot.read()
+            for other, _ in list(self._arms.values())[1:]:
+                other.read()  # every arm's sensors sampled each tick, as the ESTD's own
             wall = wallclock.perf_counter() - started
             if readings.time >= self.budget or wall >= self.wall_budget:
                 verdict = self._watchdog(readings, wall)

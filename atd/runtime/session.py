@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 import os
 import time
+from dataclasses import replace
 from pathlib import Path
 from typing import Callable
 
@@ -20,7 +21,7 @@ from atd.model.xmlsafe import MAX_BYTES
 from atd.runtime.executor import Executor, Observer, Outcome, Progress, build_problems
 from atd.runtime.recording import DEFAULT_RATE, RECORDING_FORMAT, Recording
 from atd.runtime.trace import Trace
-from atd.sim import ENGINES, make_robot
+from atd.sim import ENGINES, make_arms
 from atd.sim.scene import WORKSPACE_CAMERA, Scene, SceneError, scene_from_task
 from atd.sim.simrobot import SimRobot
 from atd.sim.video import DEFAULT_SIZE, VideoError, check_camera, check_video_path
@@ -161,7 +162,13 @@ class Run:
         believe (a campaign's perturbed trial): by default the world is built from the ESTD's
         object and environment, and the robot is the factory's. `record` writes the run's
         signals to MCAP at `record_rate` Hz of simulated time (None: every tick); `video` is
-        rendered at `video_size` (width, height) from `camera` (see `atd.sim.video.cameras`)."""
+        rendered at `video_size` (width, height) from `camera` (see `atd.sim.video.cameras`).
+        An ESTD whose states run on several arms (a task that names roles) gets them all in one
+        world; `robot` is then the truth of the ESTD's own arm."""
+        arms = (factory.arm.name,) + tuple(a for a in estd.arms if a != factory.arm.name)
+        if len(arms) > 1 and video is not None:
+            raise RunError(f"--video films one arm's run; this task uses {len(arms)} arms ({', '.join(arms)}): "
+                           "run it without --video, or --record it")
         if video is not None:
             try:
                 check_video_path(video)
@@ -175,17 +182,24 @@ class Run:
         filming = Recorder(video, video_size, camera) if video is not None else None
         if filming:  # it builds its copy of the robot while this process builds the run
             filming.start(robot or factory.robot, scene, engine)
+        beliefs = tuple(factory.on_arm(a).robot for a in arms)
         try:
-            self.robot = make_robot(robot or factory.robot, scene, engine, seed, window=viewer, belief=factory.robot)
+            robots = make_arms((robot or factory.robot,) + beliefs[1:], scene, engine, seed, window=viewer,
+                               beliefs=beliefs)
         except SceneError as exc:
             if filming:
                 filming.abandon()
             raise InvalidScene(str(exc)) from None
+        except ValueError as exc:  # an engine that cannot build several arms
+            raise RunError(str(exc)) from None
+        self.robot = robots[0]
+        self.others = others = dict(zip(arms[1:], robots[1:]))  # the robot's other arms the task uses, by name
         self.notes: list[str] = [str(self.robot.settling)] if self.robot.settling else []  # for the user
         self.inside_before = {c.name: self.robot.objects_inside(c.name) for c in self.robot.scene.containers}
         context = Context(info=self.robot.info, params={}, object=estd.object, environment=estd.environment,
                           rng=np.random.default_rng(seed), camera=self.robot.capture)
-        problems = build_problems(estd, context)
+        problems = build_problems(estd, context, {name: replace(context, info=r.info, camera=r.capture)
+                                                  for name, r in others.items()})
         if problems:
             self.robot.close()
             if filming:
@@ -193,7 +207,7 @@ class Run:
             raise Unrunnable(problems)
         self.trace = Trace()
         self.trace_path = trace_path
-        self.executor = Executor(estd, self.robot, context, self.trace, budget=budget)
+        self.executor = Executor(estd, self.robot, context, self.trace, budget=budget, others=others)
         self.video = _Video(self.robot, self.executor, filming) if filming else None
         self.viewer = _Viewer(self.robot) if viewer else None
         self.recorder = Recording(record, self.robot, self.executor, self.trace, tuple(self.robot.object_poses()), record_rate,

@@ -5,9 +5,10 @@ controller's target is that position, whatever the robot."""
 
 from __future__ import annotations
 
-from typing import Any, Mapping, MutableMapping
+from typing import Any, Iterator, Mapping, MutableMapping
 
 from atd.model.estd import Controller, EstdState
+from primitives.blackboard import ARM_KEYS
 from primitives.values import Approach, Contact
 
 
@@ -50,3 +51,32 @@ def bind_inputs(state: EstdState, memory: MutableMapping[str, Any]) -> None:
     names (`<input name="i" from="v"/>`), by the sub-task's own name."""
     for name, source in state.inputs.items():
         memory[name] = memory.get(source)
+
+
+class ArmMemory(MutableMapping[str, Any]):
+    """One arm's view of a two-arm run's memory: what it learnt of itself (`ARM_KEYS`: its
+    empty hand's load, its last twist) its own, the named values shared with the other arm
+    (a value one role writes, the other may read)."""
+
+    def __init__(self, shared: MutableMapping[str, Any]) -> None:
+        self.shared = shared
+        self.own: dict[str, Any] = {}
+
+    def _store(self, key: str) -> MutableMapping[str, Any]:
+        return self.own if key in ARM_KEYS else self.shared
+
+    def __getitem__(self, key: str) -> Any:
+        return self._store(key)[key]
+
+    def __setitem__(self, key: str, value: Any) -> None:
+        self._store(key)[key] = value
+
+    def __delitem__(self, key: str) -> None:
+        del self._store(key)[key]
+
+    def __iter__(self) -> Iterator[str]:
+        yield from self.own
+        yield from (k for k in self.shared if k not in ARM_KEYS)
+
+    def __len__(self) -> int:
+        return sum(1 for _ in self)

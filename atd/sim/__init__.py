@@ -13,7 +13,7 @@ from atd.sim.simrobot import SimRobot
 from factories.description import RobotDescription
 from factories.registry import UnknownRobot, create, installed
 
-__all__ = ["ENGINES", "UnknownRobot", "load_description", "make_robot", "variants"]
+__all__ = ["ENGINES", "UnknownRobot", "load_description", "make_arms", "make_robot", "variants"]
 
 ENGINES = ("mujoco", "pybullet")
 
@@ -54,3 +54,33 @@ def make_robot(description: RobotDescription, scene: Scene | None = None, engine
             robot.close()
             raise
     return robot
+
+
+def make_arms(descriptions: tuple[RobotDescription, ...], scene: Scene | None = None, engine: str = "mujoco",
+              seed: int = 0, window: bool = False, beliefs: tuple[RobotDescription | None, ...] | None = None
+              ) -> tuple[SimRobot, ...]:
+    """Several arms of one robot (a description each, as its factory gives them) in one world,
+    each behind its own robot interface; stepping the first steps them all. The first arm
+    starts at its home, the others `parked` beside the work area; the k-th arm's sensor noise
+    is drawn from `seed + k`. Only MuJoCo builds such a world (ValueError otherwise)."""
+    beliefs = beliefs or (None,) * len(descriptions)
+    if len(descriptions) == 1:
+        return (make_robot(descriptions[0], scene, engine, seed, window, beliefs[0]),)
+    if engine != "mujoco":
+        raise ValueError(f"a task for {len(descriptions)} arms runs on the mujoco engine only; "
+                         f"{engine} simulates one arm of a robot")
+    from atd.sim.mujoco_engine import MujocoRobot
+    from atd.sim.two_arms import parked
+
+    scene = scene if scene is not None else box_scene()
+    descriptions = (descriptions[0],) + tuple(parked(d, descriptions[0]) for d in descriptions[1:])
+    beliefs = (beliefs[0],) + tuple(parked(b, descriptions[0]) if b else None for b in beliefs[1:])
+    first = MujocoRobot(descriptions[0], scene, seed, window, beliefs[0], others=descriptions[1:])
+    arms = (first,) + tuple(first.arm(d, seed + k, b) for k, (d, b) in enumerate(zip(descriptions[1:], beliefs[1:]), 1))
+    if scene.settle:
+        try:
+            first.settle()
+        except BaseException:
+            first.close()
+            raise
+    return arms

@@ -15,6 +15,7 @@ from atd.sim.models import mjcf, object_name, visual_meshes
 from atd.sim.scene import (CAMERA_AZIMUTH, CAMERA_DISTANCE, CAMERA_ELEVATION, CAMERA_TARGET, WORKSPACE_CAMERA, Scene,
                            SceneError)
 from atd.sim.simrobot import SimRobot
+from atd.sim.two_arms import arm_prefix, arms_mjcf
 from factories.description import DepthCamera, RobotDescription
 
 
@@ -48,15 +49,17 @@ def _id(m: mujoco.MjModel, kind: mujoco.mjtObj, name: str) -> int:
     return mujoco.mj_name2id(m, kind, name)
 
 
-def compile_mjcf(xml: str, description: RobotDescription) -> mujoco.MjModel:
-    """The model of `mjcf(description, ...)`: what `MjModel.from_xml_string` makes of it, with the
-    visual meshes given as the triangles of every object of their files."""
+def compile_mjcf(xml: str, description: RobotDescription, others: tuple[RobotDescription, ...] = ()) -> mujoco.MjModel:
+    """The model of `mjcf(description, ...)` (or `arms_mjcf` with `others`): what
+    `MjModel.from_xml_string` makes of it, with the visual meshes given as the triangles of
+    every object of their files."""
     spec = mujoco.MjSpec.from_string(xml)
-    for name, shape in visual_meshes(description).items():
-        vertices, faces = read_mesh(shape.mesh, shape.size)  # type: ignore[arg-type]
-        mesh = spec.mesh(name)
-        mesh.file, mesh.scale = "", [1.0, 1.0, 1.0]
-        mesh.uservert, mesh.userface = vertices.ravel(), faces.ravel()
+    for d, prefix in [(description, "")] + [(o, arm_prefix(o.arm)) for o in others]:
+        for name, shape in visual_meshes(d).items():
+            vertices, faces = read_mesh(shape.mesh, shape.size)  # type: ignore[arg-type]
+            mesh = spec.mesh(prefix + name)
+            mesh.file, mesh.scale = "", [1.0, 1.0, 1.0]
+            mesh.uservert, mesh.userface = vertices.ravel(), faces.ravel()
     return spec.compile()
 
 
@@ -64,67 +67,88 @@ class MujocoRobot(SimRobot):
     engine = "mujoco"
 
     def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0, window: bool = False,
-                 belief: RobotDescription | None = None):
+                 belief: RobotDescription | None = None, others: tuple[RobotDescription, ...] = ()):
+        """`others`: further arms of the robot in the same world (`atd.sim.two_arms`); each is
+        driven through its own `MujocoRobot`, made with `arm`, and stepped by this one."""
         super().__init__(description, scene, seed, belief)
         d = description
-        self.xml = mjcf(d, scene)
+        self.xml = arms_mjcf(d, others, scene) if others else mjcf(d, scene)
         try:
-            self.model = m = compile_mjcf(self.xml, d)
+            self.model = m = compile_mjcf(self.xml, d, others)
         except ValueError as exc:  # its compiler refuses what it cannot simulate, e.g. a body of almost no inertia
             raise SceneError(f"MuJoCo cannot simulate this world: {' '.join(str(exc).split())}") from None
         self.data = mujoco.MjData(m)
         mujoco.mj_resetDataKeyframe(m, self.data, 0)
         mujoco.mj_forward(m, self.data)
+        self._bind(m, self.data, "", 0)
+        self._window = self._open_window() if window else None
+        self._apply_arm(self._q_ref, self._dq_cmd)
+
+    def arm(self, description: RobotDescription, seed: int, belief: RobotDescription | None = None) -> MujocoRobot:
+        """The robot interface of another arm in this world (one of `others`), which this
+        robot's `step` moves with its own."""
+        other = MujocoRobot.__new__(MujocoRobot)
+        SimRobot.__init__(other, description, self.scene, seed, belief)
+        before = sum(len(p.description.arm_joints) + len(p.hand_joints) for p in (self, *self._partners))
+        other._bind(self.model, self.data, arm_prefix(description.arm), before)
+        other._window = None
+        other._apply_arm(other._q_ref, other._dq_cmd)
+        self._partners.append(other)
+        return other
+
+    def _bind(self, m: mujoco.MjModel, data: mujoco.MjData, prefix: str, first_actuator: int) -> None:
+        """Find this arm's joints, actuators, sites and sensors in the model, by their names
+        with `prefix`; its actuators start at `first_actuator`."""
+        d = self.description
+        self.model, self.data = m, data
         # Views of the data read each tick (fetching them anew from MjData costs more than the read).
-        data = self.data
         self._qpos, self._qvel, self._qfrc_actuator, self._ctrl = data.qpos, data.qvel, data.qfrc_actuator, data.ctrl
         self._sensordata, self._site_xpos, self._site_xmat = data.sensordata, data.site_xpos, data.site_xmat
         self._geom_xpos, self._geom_xmat = data.geom_xpos.reshape(-1), data.geom_xmat.reshape(-1)
 
         joints = list(d.arm_joints) + list(self.hand_joints)
-        jid = [_id(m, mujoco.mjtObj.mjOBJ_JOINT, n) for n in joints]
+        jid = [_id(m, mujoco.mjtObj.mjOBJ_JOINT, prefix + n) for n in joints]
         self._qadr = np.array([m.jnt_qposadr[j] for j in jid], np.intp)  # intp: numpy's fast index type
         self._vadr = np.array([m.jnt_dofadr[j] for j in jid], np.intp)
         self._arm_vadr = self._vadr[: len(d.arm_joints)]
         n_arm = len(d.arm_joints)
-        self._arm_act = slice(0, n_arm)
-        self._hand_act = np.arange(n_arm, n_arm + len(self.hand_joints))
+        self._arm_act = slice(first_actuator, first_actuator + n_arm)
+        self._hand_act = np.arange(first_actuator + n_arm, first_actuator + n_arm + len(self.hand_joints))
         # Velocity feed-forward through the position servo: kp (ref + kv/kp dq) - kp q - kv dq.
         self._kv_over_kp = np.array([d.joints[n].servo.kv / d.joints[n].servo.kp for n in d.arm_joints])
         self._hand_kp = np.array([d.joints[n].servo.kp for n in self.hand_joints])
         self._hand_force = np.zeros(len(self.hand_joints), bool)
 
-        self._tcp_site = _id(m, mujoco.mjtObj.mjOBJ_SITE, d.tcp.name)
+        self._tcp_site = _id(m, mujoco.mjtObj.mjOBJ_SITE, prefix + d.tcp.name)
         self._identity = np.eye(4)
         self._jacp = np.zeros((3, m.nv))
         self._jacr = np.zeros((3, m.nv))
-        force_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "wrist_force")]
-        torque_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "wrist_torque")]
+        force_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, prefix + "wrist_force")]
+        torque_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, prefix + "wrist_torque")]
         self._wrench_idx = np.r_[force_adr : force_adr + 3, torque_adr : torque_adr + 3]
         # Each pad's contact sensor: slots of (force in the contact frame, world point), empty
         # ones all zero. Flat indices gather a tick's slots, pad centres and pad axes at once.
-        contacts = [_id(m, mujoco.mjtObj.mjOBJ_SENSOR, f"{p.name}_contacts") for p in d.hand.pads]
+        contacts = [_id(m, mujoco.mjtObj.mjOBJ_SENSOR, f"{prefix}{p.name}_contacts") for p in d.hand.pads]
         slots = int(m.sensor_dim[contacts[0]]) // 6 if contacts else 0
         slot = np.array([m.sensor_adr[c] + 6 * np.arange(slots) for c in contacts], np.intp).reshape(-1, slots, 1)
         self._slot_pad = np.repeat(np.arange(len(contacts)), slots)
         self._slot_force = slot.ravel()  # the normal force comes first
         self._slot_point = slot + np.arange(3, 6)
-        pad_geom = np.array([_id(m, mujoco.mjtObj.mjOBJ_GEOM, p.name) for p in d.hand.pads], np.intp).reshape(-1, 1, 1)
+        pad_geom = np.array([_id(m, mujoco.mjtObj.mjOBJ_GEOM, prefix + p.name) for p in d.hand.pads],
+                            np.intp).reshape(-1, 1, 1)
         self._slot_centre = np.broadcast_to(3 * pad_geom + np.arange(3), self._slot_point.shape).copy()
         self._pad_axes = 9 * pad_geom + 3 * np.arange(3)[:, None] + np.arange(2)  # x and y columns of each pad's rotation
-        self._range_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, "range")] if d.range_sensor else -1
-        self._object_bodies = [_id(m, mujoco.mjtObj.mjOBJ_BODY, object_name(b)) for b in scene.objects]
+        self._range_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, prefix + "range")] if d.range_sensor else -1
+        self._object_bodies = [_id(m, mujoco.mjtObj.mjOBJ_BODY, object_name(b)) for b in self.scene.objects]
         self._object_qadr = [m.jnt_qposadr[m.body_jntadr[b]] for b in self._object_bodies]
         self._object_dofs = np.array([m.jnt_dofadr[m.body_jntadr[b]] + np.arange(6) for b in self._object_bodies],
                                      np.intp).reshape(-1, 6)
-        robot_root = _id(m, mujoco.mjtObj.mjOBJ_BODY, f"world_{d.name}")
+        robot_root = _id(m, mujoco.mjtObj.mjOBJ_BODY, f"{prefix}world_{d.name}")
         self._robot_geoms = np.flatnonzero(m.body_rootid[m.geom_bodyid] == robot_root)
         self._robot_contype = m.geom_contype[self._robot_geoms].copy()
         self._renderer: mujoco.Renderer | None = None
         self._depth_renderers: dict[str, mujoco.Renderer] = {}
         self._arm_from: np.ndarray | None = None  # where the arm's reference ramps from; None: hold it
-        self._window = self._open_window() if window else None
-        self._apply_arm(self._q_ref, self._dq_cmd)
 
     # ---- engine part ------------------------------------------------------------------
     def _apply_arm(self, q_ref: np.ndarray, dq_ff: np.ndarray) -> None:
@@ -157,12 +181,15 @@ class MujocoRobot(SimRobot):
         # hold), as a servo drive interpolates its setpoints: held as a step, it left the servo a
         # growing error each period, and the wrist, sampled at the period's end, read a hand
         # going down 0.5 N heavier than at rest.
-        start = self._arm_to if self._arm_from is None else self._arm_from
-        change = self._arm_to - start
+        arms = (self, *self._partners)
+        ramps = [(r._arm_act, r._arm_to if r._arm_from is None else r._arm_from) for r in arms]
+        ramps = [(act, start, r._arm_to - start) for r, (act, start) in zip(arms, ramps)]
         for k in range(1, self.substeps + 1):
-            self._ctrl[self._arm_act] = start + change * (k / self.substeps)
+            for act, start, change in ramps:
+                self._ctrl[act] = start + change * (k / self.substeps)
             mujoco.mj_step(self.model, self.data)
-        self._arm_from = self._arm_to
+        for r in arms:
+            r._arm_from = r._arm_to
 
     def jacobian(self) -> np.ndarray:
         mujoco.mj_jacSite(self.model, self.data, self._jacp, self._jacr, self._tcp_site)
@@ -206,7 +233,8 @@ class MujocoRobot(SimRobot):
         return np.linalg.norm(velocity[:, :3], axis=1), np.linalg.norm(velocity[:, 3:], axis=1)
 
     def _robot_collides(self, on: bool) -> None:
-        self.model.geom_contype[self._robot_geoms] = self._robot_contype if on else 0
+        for r in (self, *self._partners):
+            self.model.geom_contype[r._robot_geoms] = r._robot_contype if on else 0
 
     def _render_depth(self, camera: DepthCamera) -> np.ndarray:
         renderer = self._depth_renderers.get(camera.name)

@@ -229,6 +229,7 @@ class SimRobot(Robot):
         self._two_accel = 2 * limit / RAMP_TIME
         self._zero, self._period, self._leash = np.zeros(n_arm), np.full(n_arm, d.control_period), np.full(n_arm, REFERENCE_LEASH)
         self._last: Readings | None = None
+        self._partners: list[SimRobot] = []  # other arms in this world, which `step` moves too
 
     # ---- the robot interface -------------------------------------------------------
     def read(self) -> Readings:
@@ -271,6 +272,21 @@ class SimRobot(Robot):
         self._hand_changes = True
 
     def step(self) -> None:
+        """One control period: this arm's commands, and those of the other arms in its world
+        (`_partners`), applied; the physics advanced; this arm's sensors sampled, the others'
+        when they are read next."""
+        for partner in self._partners:
+            partner._command()
+        self._command()
+        self._advance()
+        for partner in self._partners:
+            partner._time += partner.info.control_period
+            partner._last = None
+        self._time += self.info.control_period
+        self._last = self._sample()
+
+    def _command(self) -> None:
+        """The arm's servo references for the coming period, and the hand's joint commands."""
         q = self.read().arm_q
         lower, upper, q_ref, dq_ref = self.info.arm_lower, self.info.arm_upper, self._q_ref, self._dq_ref
         # This tick's speed: within the acceleration ramp, and slow enough to stop at a limit.
@@ -285,9 +301,6 @@ class SimRobot(Robot):
         self._apply_arm(self._q_ref, dq)
         if self._hand_changes:
             self._update_hand()
-        self._advance()
-        self._time += self.info.control_period
-        self._last = self._sample()
 
     def _update_hand(self) -> None:
         """Turn the DOF commands into joint commands; needed each tick only while a target

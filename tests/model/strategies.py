@@ -15,6 +15,7 @@ from atd.model import (
     ObjectInfo,
     Obstacle,
     Pose,
+    Role,
     State,
     StateType,
     Task,
@@ -104,6 +105,10 @@ def tasks(draw, max_states: int = 8, **state_kinds) -> Task:
     state_names = draw(st.lists(names, min_size=count, max_size=count, unique=True).filter(
         lambda ns: not {"done", "failed"} & set(ns)))
     states = [draw(primitive_states(n, **state_kinds)) for n in state_names]
+    roles = draw(st.sampled_from([(), ("holder",), ("holder", "worker")]))  # none: every older file
+    if roles:  # with several roles each state names one; with one it may leave it out
+        states = [s.model_copy(update={"role": draw(st.sampled_from(roles) if len(roles) > 1
+                                                    else st.none() | st.just(roles[0]))}) for s in states]
     chain = state_names + ["done"]
     transitions = [Transition(origin=a, destination=b, events=(Event(type=EventType.SUCCESS),))
                    for a, b in zip(chain, chain[1:])]
@@ -123,6 +128,7 @@ def tasks(draw, max_states: int = 8, **state_kinds) -> Task:
             st.lists(st.builds(lambda p, s: Obstacle(position=p, size=s),
                                st.tuples(coordinate, coordinate, coordinate),
                                st.none() | st.tuples(positive, positive, positive)), max_size=3))),
+        roles=tuple(Role(name=r) for r in roles),
         states=tuple(states) + (State(name="done", type=StateType.SUCCESS), State(name="failed", type=StateType.FAILURE)),
         transitions=tuple(transitions),
     )

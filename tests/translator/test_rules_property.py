@@ -56,13 +56,20 @@ def test_rules_and_traceability_hold_or_translation_is_refused_with_reasons(task
     for factory in FACTORIES:
         result = translate(task, factory)
         errors = [d for d in result.diagnostics if d.severity is Severity.ERROR]
-        if plain:  # nothing left that any robot should refuse
+        arms_enough = len(task.roles) <= len(factory.arms)
+        if plain and arms_enough:  # nothing left that any robot should refuse
             assert result.ok, (factory.name, factory.arm.name, [d.render() for d in errors])
+        if not arms_enough:  # refused for its arms alone, at the role without one
+            assert [d.code for d in errors] == ["TRN005"] and "'worker'" in errors[0].message
         if not result.ok:
-            assert errors and all(d.code in {"TRN001", "TRN002", "TRN004"} and factory.name in d.message
+            assert errors and all(d.code in {"TRN001", "TRN002", "TRN004", "TRN005"} and factory.name in d.message
                                   for d in errors)
             continue
         estd = result.estd
+        assert sorted(estd.roles) == sorted(r.name for r in task.roles)  # roles: each bound, each on its own arm
+        assert len(set(estd.roles.values())) == len(estd.roles)
+        assert all(s.robot_arm == estd.roles[task.role_of(task.states_by_name[s.name])]
+                   for s in estd.states if not s.type.is_end and task.roles)
         assert check_rules(task, estd) == []
         assert [s.atd for s in estd.states] == [s.name for s in task.states]  # rule 1
         assert [t.atd for t in estd.transitions] == list(task.transition_ids)  # rule 2

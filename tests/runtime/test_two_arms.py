@@ -1,0 +1,53 @@
+"""A two-arm task on Baxter in MuJoCo: the holder lifts the cylinder and keeps holding it,
+still, while the worker brings its hand beside it; the simulator's truth says it stayed up."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from atd.model import load_task
+from atd.runtime.session import Run, RunError
+from factories.registry import create
+from translator import translate
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "two_arm_hold_and_move.xml"
+
+
+def _estd(robot: str = "baxter"):
+    task, _ = load_task(EXAMPLE)
+    return translate(task, create(robot)).estd
+
+
+def test_the_holder_keeps_the_object_lifted_and_still_while_the_worker_moves() -> None:
+    factory = create("baxter")
+    run = Run(_estd(), factory, engine="mujoco", seed=0)
+    left = run.others["left"]
+    assert left.true_tcp()[1, 3] > 0.29  # the added arm starts parked on its own side, out of the way
+    during: list[tuple[np.ndarray, np.ndarray]] = []  # (holder's TCP, object) while the worker moves
+
+    def watch(_: float) -> None:
+        if run.executor.machine.innermost().visit.path == "come_beside":
+            during.append((run.robot.true_tcp()[:3, 3].copy(), run.robot.object_pose()[:3, 3].copy()))
+
+    run.observers.append(watch)
+    worker_from = left.true_tcp()[:3, 3].copy()
+    outcome = run.execute()
+    assert outcome.succeeded, outcome.summary
+    assert [v.path for v in outcome.visits][-2:] == ["come_beside", "success_end"]
+    tcp, obj = (np.array(x) for x in zip(*during))
+    assert len(during) > 100  # the worker moved for more than half a second
+    assert np.ptp(tcp, axis=0).max() < 0.005  # the holder's hand held its pose (m)
+    assert obj[:, 2].min() > 0.12  # lifted from 4 cm to 16 cm, and kept there (truth)
+    assert run.object_position[2] > 0.12
+    worker_to = left.true_tcp()[:3, 3]
+    assert np.linalg.norm(worker_to - (0.10, 0.16, 0.16)) < 0.01 < np.linalg.norm(worker_from - worker_to)
+
+
+def test_a_two_arm_run_on_pybullet_or_on_video_is_refused_with_the_reason(tmp_path: Path) -> None:
+    with pytest.raises(RunError, match="mujoco engine only"):
+        Run(_estd(), create("baxter"), engine="pybullet")
+    with pytest.raises(RunError, match="uses 2 arms"):
+        Run(_estd(), create("baxter"), video=tmp_path / "run.gif")
