@@ -47,8 +47,8 @@ COUPLING_ERP = 0.2
 #: far limit: what lies nearer still hides what is behind it, as on a real camera.
 CLIP_NEAR, CLIP_FAR = 0.25, 1.5
 #: A thread (atd/sim/thread.py) is two links of the object: its rise's mass (taken from the
-#: object's) and inertia, and an inertia added to the cap's turn as MuJoCo's armature (resisting
-#: a cap's accelerations with under 1 mN, 1 mN m): constraints on almost no inertia hold loosely.
+#: object's) and inertia, and an inertia added to the cap's turn as MuJoCo's armature (1 mN m at
+#: 10 rad/s2): a motor on almost no inertia holds loosely.
 NUT_MASS = 0.001  # kg, the rising link (the turning one is the cap)
 NUT_INERTIA = (1e-6, 1e-6, 1e-6)  # kg m^2, the rising link's
 NUT_TURN_INERTIA = 1e-4  # kg m^2 added to the cap's about its axis while on the thread
