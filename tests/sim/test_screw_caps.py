@@ -5,16 +5,18 @@ judge's truth (`SimRobot.caps`) says how far it turned, whether it is free and w
 
 from __future__ import annotations
 
-import dataclasses
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+from atd.campaign.spec import WorldDraw
 from atd.sim.library import get, library
 from atd.sim.scene import Scene
 from atd.sim.simrobot import SimRobot
 from atd.sim.thread import CapState, Thread, resting_place
+from atd.sim.world import load_world
 
 SCREW_CAPPED = [name for name, o in library().items() if o.thread is not None]
 GRAVITY = 9.81
@@ -22,11 +24,10 @@ GRAVITY = 9.81
 
 def _in_fixture(name: str, xy: tuple[float, float] = (0.15, 0.2)) -> Scene:
     """The library object, held upright in a fixture on the table at `xy`."""
-    found = get(name)
+    found = get(name).in_fixture()
     pose = np.eye(4)
     pose[:3, 3] = (*xy, found.size[-1] / 2)
-    body = found.body(name, pose)
-    return Scene(dataclasses.replace(body, thread=dataclasses.replace(body.thread, fixture=True)))
+    return Scene(found.body(name, pose))
 
 
 def _cap(robot: SimRobot, name: str) -> CapState:
@@ -137,3 +138,49 @@ def test_a_cap_resting_on_the_neck_rim_is_on_the_bottle_and_one_beside_it_is_not
     assert resting_place(thread, height, bottle, lying, free=True, touches_robot=False) == "table"
     assert resting_place(thread, height, bottle, lying, free=True, touches_robot=True) == "held"
     assert CapState(math.pi, True, lying, "table").turns == pytest.approx(0.5)
+
+
+def _world(folder: Path, text: str):
+    path = folder / "world.toml"
+    path.write_text(text)
+    return load_world(path)
+
+
+def test_a_world_file_stands_a_bottle_in_a_fixture_and_drops_jars_into_a_box(robot_of, melfa, engine, tmp_path) -> None:
+    world, found = _world(tmp_path, """
+[[object]]
+library = "water_bottle"
+position = [0.15, 0.2]
+fixture = true
+
+[[container]]
+name = "box"
+position = [0.3, -0.15]
+size = [0.30, 0.25, 0.12]
+
+[[drop]]
+objects = ["jam_jar", "spice_jar"]
+into = "box"
+""")
+    assert world is not None and found == []
+    scene = world.scene(Scene(), seed=0)
+    assert [b.thread.fixture for b in scene.objects] == [True, False, False]
+    robot = robot_of(melfa, engine, scene)
+    assert robot.settling.moving == () and robot.objects_inside("box") == ["jam_jar", "spice_jar"]
+    caps = robot.caps()
+    assert list(caps) == ["water_bottle", "jam_jar", "spice_jar"]
+    assert all(not c.free and c.rests == "bottle" and abs(c.turned) < 0.01 for c in caps.values())
+    # A campaign's world draws from the same library.
+    assert WorldDraw(objects=2, into="box", **{"from": ["jam_jar", "water_bottle"]}).from_ == ("jam_jar", "water_bottle")
+
+
+@pytest.mark.parametrize("line, message, hint", [
+    ('library = "duck"\nfixture = true', "'duck' has no screw cap: only a bottle or jar with one stands in a fixture",
+     "jam_jar"),
+    ('library = "jam_jar"\nfixture = "yes"', "'fixture' must be true or false, not 'yes'", "fixture = true"),
+    ('shape = "box"\nsize = [0.05, 0.05, 0.05]\nfixture = true', "only a bottle or jar with a screw cap stands", "jam_jar"),
+])
+def test_a_fixture_for_what_has_no_screw_cap_is_a_located_error(tmp_path, line, message, hint) -> None:
+    world, found = _world(tmp_path, f"[[object]]\nposition = [0.1, 0.0]\n{line}\n")
+    assert world is None and [d.code for d in found] == ["WLD012"]
+    assert message in found[0].message and found[0].loc.line >= 3 and hint in found[0].hint
