@@ -601,21 +601,34 @@ class PybulletRobot(SimRobot):
                                   physicsClientId=self.client)[2]
         return np.asarray(image, np.uint8).reshape(height, width, 4)[:, :, :3]
 
-    def scene_state(self) -> tuple[list[float], list[tuple]]:
+    def scene_state(self) -> tuple[list[float], list[tuple], list[tuple]]:
+        """Robot joints, object poses, and per thread its rise, its turn and the free cap's pose (None on the thread)."""
         c = self.client
         joints = pb.getJointStates(self.body, range(pb.getNumJoints(self.body, physicsClientId=c)), physicsClientId=c)
-        return [j[0] for j in joints], [pb.getBasePositionAndOrientation(uid, physicsClientId=c) for uid in self._movable_bodies()]
+        caps = [(*(s[0] for s in pb.getJointStates(t.object, (0, 1), physicsClientId=c)),
+                 None if t.free is None else pb.getBasePositionAndOrientation(t.free, physicsClientId=c))
+                for t in self._threads]
+        return [j[0] for j in joints], [pb.getBasePositionAndOrientation(uid, physicsClientId=c) for uid in self._objects], caps
 
     def _movable_bodies(self) -> list[int]:
         """The objects, then the caps the threads let go."""
         return self._objects + [thread.free for thread in self._threads if thread.free is not None]
 
-    def set_scene_state(self, state: tuple[list[float], list[tuple]]) -> None:
-        joints, objects = state
+    def set_scene_state(self, state: tuple[list[float], list[tuple], list[tuple]]) -> None:
+        joints, objects, caps = state
+        c = self.client
         for index, q in enumerate(joints):
-            pb.resetJointState(self.body, index, q, physicsClientId=self.client)
-        for uid, (position, orientation) in zip(self._movable_bodies(), objects):
-            pb.resetBasePositionAndOrientation(uid, position, orientation, physicsClientId=self.client)
+            pb.resetJointState(self.body, index, q, physicsClientId=c)
+        for uid, (position, orientation) in zip(self._objects, objects):
+            pb.resetBasePositionAndOrientation(uid, position, orientation, physicsClientId=c)
+        for thread, (rise, turn, free) in zip(self._threads, caps):
+            pb.resetJointState(thread.object, 0, rise, physicsClientId=c)
+            pb.resetJointState(thread.object, 1, turn, physicsClientId=c)
+            if free is not None:
+                if thread.free is None:  # this copy's cap comes off where the recorded one did
+                    self._let_go(thread)
+                assert thread.free is not None
+                pb.resetBasePositionAndOrientation(thread.free, *free, physicsClientId=c)
 
     def show(self) -> None:
         """PyBullet's window draws the physics server's state by itself."""

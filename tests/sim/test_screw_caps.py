@@ -184,3 +184,19 @@ def test_a_fixture_for_what_has_no_screw_cap_is_a_located_error(tmp_path, line, 
     world, found = _world(tmp_path, f"[[object]]\nposition = [0.1, 0.0]\n{line}\n")
     assert world is None and [d.code for d in found] == ["WLD012"]
     assert message in found[0].message and found[0].loc.line >= 3 and hint in found[0].hint
+
+
+def test_a_copy_posed_from_the_scene_state_shows_the_cap_on_its_thread_and_off_it(robot_of, melfa, engine) -> None:
+    """What a video's renderer does: a fresh copy of the scene, posed as the run's was."""
+    thread = get("vitamin_jar").thread
+    run, copy = (robot_of(melfa, engine, _in_fixture("vitamin_jar")) for _ in range(2))
+    for free in (False, True):
+        if free:
+            _turn_until_free(run, "vitamin_jar", 1.5 * thread.torque)
+            run.push_cap("vitamin_jar", force=(0.0, 0.0, 2 * thread.cap_mass * GRAVITY))
+        else:
+            run.push_cap("vitamin_jar", 1.5 * thread.torque)
+        run.hold_still(0.1)
+        copy.set_scene_state(run.scene_state())
+        # MuJoCo reports poses from the start of the last physics step, the copy's from its end.
+        np.testing.assert_allclose(copy.caps()["vitamin_jar"].pose[:3, 3], run.caps()["vitamin_jar"].pose[:3, 3], atol=3e-3)
