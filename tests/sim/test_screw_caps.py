@@ -5,7 +5,10 @@ judge's truth (`SimRobot.caps`) says how far it turned, whether it is free and w
 
 from __future__ import annotations
 
+import json
 import math
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -17,6 +20,7 @@ from atd.sim.scene import Scene
 from atd.sim.simrobot import SimRobot
 from atd.sim.thread import CapState, Thread, resting_place
 from atd.sim.world import load_world
+from tests.conftest import EXAMPLES
 
 SCREW_CAPPED = [name for name, o in library().items() if o.thread is not None]
 GRAVITY = 9.81
@@ -200,3 +204,16 @@ def test_a_copy_posed_from_the_scene_state_shows_the_cap_on_its_thread_and_off_i
         copy.set_scene_state(run.scene_state())
         # MuJoCo reports poses from the start of the last physics step, the copy's from its end.
         np.testing.assert_allclose(copy.caps()["vitamin_jar"].pose[:3, 3], run.caps()["vitamin_jar"].pose[:3, 3], atol=3e-3)
+
+
+def test_atd_run_says_where_each_cap_is(tmp_path) -> None:
+    world = tmp_path / "world.toml"
+    world.write_text('[[object]]\nlibrary = "jam_jar"\nposition = [0.15, 0.2]\nfixture = true\n')
+    run = [sys.executable, "-m", "atd", "run", str(EXAMPLES / "simple_move.xml"), "--robot", "melfa", "--world", str(world), "-q"]
+    text = subprocess.run(run, capture_output=True, text=True, timeout=300)
+    assert text.returncode == 0, text.stderr
+    assert "the cap of 'jam_jar': turned 0.00 turns, on its thread, on its bottle" in text.stdout.splitlines()
+    found = json.loads(subprocess.run([*run, "--format", "json"], capture_output=True, text=True, timeout=300).stdout)
+    cap = found["caps"]["jam_jar"]
+    assert abs(cap["turns"]) < 1e-3 and (cap["free"], cap["rests"]) == (False, "bottle")
+    assert cap["position"] == pytest.approx([0.15, 0.2, 0.105 - 0.006], abs=1e-3)  # on top of the jar
