@@ -217,3 +217,16 @@ def test_atd_run_says_where_each_cap_is(tmp_path) -> None:
     cap = found["caps"]["jam_jar"]
     assert abs(cap["turns"]) < 1e-3 and (cap["free"], cap["rests"]) == (False, "bottle")
     assert cap["position"] == pytest.approx([0.15, 0.2, 0.105 - 0.006], abs=1e-3)  # on top of the jar
+
+
+def test_a_bottle_placed_elsewhere_takes_its_cap_along(robot_of, melfa, engine) -> None:
+    found = get("juice_bottle")
+    pose = np.eye(4)
+    pose[:3, 3] = (0.15, 0.2, found.size[-1] / 2)
+    robot = robot_of(melfa, engine, Scene(found.body("juice_bottle", pose)))
+    pose[:3, 3] = (0.2, -0.25, found.size[-1] / 2)
+    robot.place_object(pose)
+    robot.hold_still(0.3)
+    cap = robot.caps()["juice_bottle"]
+    assert cap.rests == "bottle" and not cap.free
+    np.testing.assert_allclose(cap.pose[:3, 3], found.thread.closed_cap(pose, found.size[-1])[:3, 3], atol=1e-3)
