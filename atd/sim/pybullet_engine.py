@@ -251,7 +251,7 @@ class PybulletRobot(SimRobot):
 
     def _threaded(self, body: Body, colour: tuple[float, ...]) -> int:
         """A threaded object: main part and neck, then two links on top, the thread's rise
-        (prismatic, massless) and its turn (revolute), which carries the cap while it is
+        (prismatic, 1 g) and its turn (revolute), which carries the cap while it is
         on the thread (atd/sim/thread.py). Bullet's gear does not tie a prismatic joint to
         a revolute one (tried: it locked the turn and let the rise slide), so the rise follows
         the turn through a stiff position motor, every physics step (`_follow_threads`)."""

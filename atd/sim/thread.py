@@ -118,12 +118,14 @@ class CapState:
 
 def resting_place(thread: Thread, height: float, bottle: np.ndarray, cap: np.ndarray, free: bool,
                   touches_robot: bool) -> Rest:
-    """Where a cap at pose `cap` rests: on its bottle (threaded, or free with its underside on
-    the neck's rim and its centre over the neck), held by the robot (touching it and not
-    resting on the bottle or table), on the table (its lowest point near the table top), or
-    elsewhere (on another object, falling)."""
+    """Where a cap at pose `cap` rests: on its bottle while threaded; once free, held by the
+    robot (touching it: a cap pinched just over the neck is held, not left on the bottle), on
+    its bottle (its underside on the neck's rim, its centre over the neck), on the table (its
+    lowest point near the table top), or elsewhere (on another object, falling)."""
     if not free:
         return "bottle"
+    if touches_robot:
+        return "held"
     local = np.linalg.solve(bottle, cap)
     underside = local[2, 3] - thread.cap_height / 2
     over_neck = math.hypot(local[0, 3], local[1, 3]) <= thread.neck_radius
@@ -132,8 +134,4 @@ def resting_place(thread: Thread, height: float, bottle: np.ndarray, cap: np.nda
     # Lowest point of a cylinder turned any way: its centre minus the reach of its rim and ends along z.
     axis_z = abs(cap[2, 2])
     lowest = cap[2, 3] - thread.cap_radius * math.sqrt(max(0.0, 1 - axis_z * axis_z)) - thread.cap_height / 2 * axis_z
-    if touches_robot:
-        return "held"
-    if lowest <= RESTING:
-        return "table"
-    return "elsewhere"
+    return "table" if lowest <= RESTING else "elsewhere"

@@ -130,7 +130,7 @@ def test_the_judge_says_a_cap_thrown_off_beside_the_bottle_rests_on_the_table(ro
     assert cap.pose[1, 3] > 0.2 + 0.05  # beside the jar, not on it
 
 
-def test_a_cap_resting_on_the_neck_rim_is_on_the_bottle_and_one_beside_it_is_not() -> None:
+def test_a_free_cap_is_held_where_the_robot_touches_it_else_on_the_rim_or_the_table() -> None:
     thread = Thread(0.0125, 0.012, 0.015, 0.017, 0.0025, 0.004, 1.0, 0.04)
     height = 0.2
     bottle = np.eye(4)
@@ -138,6 +138,7 @@ def test_a_cap_resting_on_the_neck_rim_is_on_the_bottle_and_one_beside_it_is_not
     on_rim = thread.closed_cap(bottle, height)
     assert resting_place(thread, height, bottle, on_rim, free=False, touches_robot=True) == "bottle"
     assert resting_place(thread, height, bottle, on_rim, free=True, touches_robot=False) == "bottle"
+    assert resting_place(thread, height, bottle, on_rim, free=True, touches_robot=True) == "held"
     lying = np.array([[1.0, 0, 0, 0.1], [0, 0, -1, 0], [0, 1, 0, thread.cap_radius], [0, 0, 0, 1]])  # on its side
     assert resting_place(thread, height, bottle, lying, free=True, touches_robot=False) == "table"
     assert resting_place(thread, height, bottle, lying, free=True, touches_robot=True) == "held"
