@@ -5,6 +5,7 @@ judge's truth (`SimRobot.caps`) says how far it turned, whether it is free and w
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import subprocess
@@ -20,6 +21,7 @@ from atd.sim.scene import Scene
 from atd.sim.simrobot import SimRobot
 from atd.sim.thread import CapState, Thread, resting_place
 from atd.sim.world import load_world
+from primitives.robot import HandMode
 from tests.conftest import EXAMPLES
 
 SCREW_CAPPED = [name for name, o in library().items() if o.thread is not None]
@@ -231,3 +233,28 @@ def test_a_bottle_placed_elsewhere_takes_its_cap_along(robot_of, melfa, engine) 
     cap = robot.caps()["juice_bottle"]
     assert cap.rests == "bottle" and not cap.free
     np.testing.assert_allclose(cap.pose[:3, 3], found.thread.closed_cap(pose, found.size[-1])[:3, 3], atol=1e-3)
+
+
+def test_a_pinch_and_a_wrist_turn_unscrew_the_cap(robot_of, melfa, engine) -> None:
+    """The fingers' contacts drive the thread: the Melfa pinches the cap with 10 N per pad
+    and turns its wrist counter-clockwise seen from above (negative about its downward tool axis)."""
+    thread = get("water_bottle").thread
+    height = 0.144  # the cap, 17 mm tall, within the pads (24 mm either side of the TCP, 0.15 m high), the neck below them
+    pose = np.eye(4)
+    pose[:3, 3] = (0.125, 0.0, height / 2)
+    bottle = dataclasses.replace(get("water_bottle").in_fixture().body("bottle", pose), size=(0.032, height))
+    robot = robot_of(melfa, engine, Scene(bottle))
+    hand = robot.info.hand
+    robot.command_hand(hand.closing * 10.0, [HandMode.FORCE] * len(hand.dofs))
+    robot.hold_still(1.0)
+    assert (robot.read().pad_force > 5.0).all()  # more than the thesis's FINGER_GRASPING_FORCE
+    turn = np.zeros(len(robot.info.arm_joints))
+    turn[-1] = -0.5  # rad/s
+    robot.command_arm_velocity(turn)
+    for _ in range(round(2.0 / robot.info.control_period)):
+        robot.step()
+    cap = robot.caps()["bottle"]
+    # The wrist turned 1 rad; the cap as far, or a little less where the pads slip (MuJoCo: 0.75 rad).
+    assert 0.6 < cap.turned < 1.05 and not cap.free
+    rise = cap.pose[2, 3] - thread.closed_cap(pose, height)[2, 3]
+    assert rise == pytest.approx(thread.pitch * cap.turned / (2 * math.pi), abs=2e-4)
