@@ -3,10 +3,11 @@
 A threaded object is one `Body` (its `size` and `pose` are the whole object's: the box or
 cylinder around bottle and cap, so resting, dropping and the robot's belief treat it as
 any other object) with a `Thread`: a main part, a neck on top of it, and the cap sitting
-on the neck. Both engines build the cap as a free body held on the thread by a weld to a
-massless "nut" that turns and rises on the neck, the rise tied to the turn (pitch per
-turn) and the turn resisted by a dry friction torque. When the nut reaches the end of the
-thread the weld is let go: from then on only contacts hold the cap, so it is lifted off,
+on the neck. On the thread the cap turns and rises on the neck, the rise tied to the turn
+(pitch per turn), the turn resisted by a dry friction torque: in MuJoCo the cap is a free
+body welded to a "nut" that does so, in PyBullet it is the object's link that does. At the
+thread's end the weld is let go (MuJoCo) or the cap goes on as a free body with the link's
+pose and velocity (PyBullet): from then on only contacts hold it, so it is lifted off,
 dropped or left on the neck by the physics alone.
 """
 
@@ -113,6 +114,7 @@ class CapState:
 
     @property
     def turns(self) -> float:
+        """How far it was turned open, in turns."""
         return self.turned / (2 * math.pi)
 
 
