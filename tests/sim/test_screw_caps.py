@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from mcap.reader import make_reader
 
 from atd.campaign.spec import WorldDraw
 from atd.sim.library import get, library
@@ -209,13 +210,17 @@ def test_a_copy_posed_from_the_scene_state_shows_the_cap_on_its_thread_and_off_i
         np.testing.assert_allclose(copy.caps()["vitamin_jar"].pose[:3, 3], run.caps()["vitamin_jar"].pose[:3, 3], atol=3e-3)
 
 
-def test_atd_run_says_where_each_cap_is(tmp_path) -> None:
-    world = tmp_path / "world.toml"
+def test_atd_run_says_where_each_cap_is_and_records_it(tmp_path) -> None:
+    world, recording = tmp_path / "world.toml", tmp_path / "run.mcap"
     world.write_text('[[object]]\nlibrary = "jam_jar"\nposition = [0.15, 0.2]\nfixture = true\n')
     run = [sys.executable, "-m", "atd", "run", str(EXAMPLES / "simple_move.xml"), "--robot", "melfa", "--world", str(world), "-q"]
-    text = subprocess.run(run, capture_output=True, text=True, timeout=300)
+    text = subprocess.run([*run, "--record", str(recording)], capture_output=True, text=True, timeout=300)
     assert text.returncode == 0, text.stderr
     assert "the cap of 'jam_jar': turned 0.00 turns, on its thread, on its bottle" in text.stdout.splitlines()
+    with recording.open("rb") as f:
+        truth = [json.loads(m.data) for _, channel, m in make_reader(f).iter_messages() if channel.topic == "/truth"]
+    assert list(truth[-1]["objects"]) == ["jam_jar", "jam_jar:cap"]
+    assert truth[-1]["objects"]["jam_jar:cap"]["position"] == pytest.approx({"x": 0.15, "y": 0.2, "z": 0.099}, abs=1e-3)
     found = json.loads(subprocess.run([*run, "--format", "json"], capture_output=True, text=True, timeout=300).stdout)
     cap = found["caps"]["jam_jar"]
     assert abs(cap["turns"]) < 1e-3 and (cap["free"], cap["rests"]) == (False, "bottle")
