@@ -210,7 +210,7 @@ class Run:
         self.executor = Executor(estd, self.robot, context, self.trace, budget=budget, others=others)
         self.video = _Video(self.robot, self.executor, filming) if filming else None
         self.viewer = _Viewer(self.robot) if viewer else None
-        self.recorder = Recording(record, self.robot, self.executor, self.trace, tuple(self.robot.object_poses()), record_rate,
+        self.recorder = Recording(record, self.robot, self.executor, self.trace, tuple(self.robot.recorded_poses()), record_rate,
                                  _run_info(estd, engine, seed), _attachments(estd)) if record is not None else None
         self.observers: list[Observer] = [o for o in (self.video, self.viewer, self.recorder) if o]
         if realtime or viewer:
@@ -219,8 +219,9 @@ class Run:
     def execute(self, progress: Progress | None = None,
                 afterwards: Callable[[SimRobot], None] | None = None) -> Outcome:
         """Run to the end; afterwards `object_positions` is where each object came to rest,
-        `object_position` the first's (None when there is none), and `inside` which objects
-        each container holds (`inside_before`: as the run began). `afterwards` gets the robot once the task has ended, before it
+        `object_position` the first's (None when there is none), `inside` which objects
+        each container holds (`inside_before`: as the run began), and `caps` the truth about
+        each screw cap (`SimRobot.caps`). `afterwards` gets the robot once the task has ended, before it
         is released: a campaign's judge looks at the world there. The trace and video are
         written last; OutputError when one cannot be."""
         try:
@@ -231,6 +232,7 @@ class Run:
                                      for name, pose in self.robot.object_poses().items()}
             self.object_position = next(iter(self.object_positions.values()), None)
             self.inside = {c.name: self.robot.objects_inside(c.name) for c in self.robot.scene.containers}
+            self.caps = self.robot.caps()
             if self.trace_path:
                 self.trace.save(self.trace_path)
             if self.recorder:
