@@ -47,4 +47,5 @@ def scale_range(allowed: ranges.Range) -> AfterValidator:
 
 
 Scales = Annotated[tuple[Number, Number], scale_range(ranges.SCALE)]
-MassScales = Annotated[tuple[Number, Number], scale_range(ranges.MASS_SCALE)]
+# Factors that must keep a quantity above nothing: a mass, a servo's gain (no engine simulates either at 0).
+PositiveScales = Annotated[tuple[Number, Number], scale_range(ranges.MASS_SCALE)]

@@ -25,7 +25,7 @@ from typing import Annotated, Literal, Union
 import numpy as np
 from pydantic import Field
 
-from atd.campaign.fields import MassScales, Number, Scales, StrictTable, within
+from atd.campaign.fields import Number, PositiveScales, Scales, StrictTable, within
 from atd.model import ranges
 from atd.model.estd import Estd, EstdState
 from atd.model.frames import rotation_angle, rotation_rpy
@@ -115,7 +115,7 @@ class ObjectPhysics(PerturbationModel):
     """The object's mass and friction are scaled."""
 
     model: Literal["object_physics"]
-    mass: MassScales = Field((0.5, 2.0), description="mass scale range")
+    mass: PositiveScales = Field((0.5, 2.0), description="mass scale range")
     friction: Scales = Field((0.5, 1.5), description="friction scale range")
 
     def draw(self, rng: np.random.Generator) -> dict[str, float]:
@@ -152,8 +152,8 @@ class HandPhysics(PerturbationModel):
     gravity compensation and grip-force estimates use the described one."""
 
     model: Literal["hand_physics"]
-    mass: MassScales = Field((0.8, 1.25), description="hand mass scale range")
-    servo: MassScales = Field((0.8, 1.25), description="finger servo gain (stiffness and damping) scale range")
+    mass: PositiveScales = Field((0.8, 1.25), description="hand mass scale range")
+    servo: PositiveScales = Field((0.8, 1.25), description="finger servo gain (stiffness and damping) scale range")
 
     def draw(self, rng: np.random.Generator) -> dict[str, float]:
         return {"hand_mass_scale": float(rng.uniform(*self.mass)), "servo_scale": float(rng.uniform(*self.servo))}
