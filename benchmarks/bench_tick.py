@@ -98,7 +98,7 @@ def main() -> None:
         empty = []
         for _ in range(args.repeat):
             robot = make_robot(factory.robot, scene)
-            context = Context(info=robot.info, params={})
+            context = Context(info=factory.info, params={})
             empty.append(Executor(idle_machine(ticks * robot.info.control_period), robot, context).run().wall_time)
             robot.close()
         cells = [f"{t / ticks * 1e6:6.1f} ({t / bare:4.2f})"

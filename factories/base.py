@@ -34,6 +34,8 @@ from factories.beside import description_module, shipped_config
 from factories.config import RobotConfig, load_config
 from factories.description import RobotDescription
 from factories.reach import Reach
+from factories.robot_info import robot_info
+from primitives.robot import RobotInfo
 
 ConditionNode = Condition | ConditionGroup
 
@@ -393,6 +395,13 @@ class Factory(ABC):
         module of the factory it extends; for this arm."""
         arm = self.arm.name if len(self.arms) > 1 else None
         return description_module(type(self)).description(arm)
+
+    @cached_property
+    def info(self) -> RobotInfo:
+        """What the robot's controllers know of it (limits, hand, pads, the hand's mass and
+        centre of mass behind the wrist sensor): from this description, the belief, whatever
+        the simulator that runs them is built from."""
+        return robot_info(self.robot)
 
     def check_object_reach(self, context: MappingContext, *postures: str) -> None:
         """A grasp happens where the object is: refuse it when the arm cannot get there, or

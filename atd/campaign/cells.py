@@ -13,8 +13,9 @@ from typing import Callable, Collection, Iterator
 
 import numpy as np
 
+from atd.campaign.perturbation import PerturbationModel
 from atd.campaign.record import DIMENSIONS, Cell
-from atd.campaign.spec import LoadedSpec, Perturbation, TaskEntry, WorldDraw
+from atd.campaign.spec import LoadedSpec, TaskEntry, WorldDraw
 from atd.model.files import output_problem
 from factories.registry import factory_class
 
@@ -28,7 +29,7 @@ class TrialPlan:
     seed: int
     task_file: str  # absolute path of the ATD
     judge: str | None  # "lift", "place", or None: chosen from the task's states
-    perturbation: Perturbation
+    perturbation: PerturbationModel
     budget: float  # simulated seconds before the watchdog
     recording: str | None = None  # where to record the trial (MCAP) if the judge fails it
     world: WorldDraw | None = None  # the world drawn for the trial, if the spec draws one

@@ -1,10 +1,15 @@
 """Perturbations: what is true differs from what the robot believes.
 
-The ATD is the robot's belief and the factory is told nothing else. A perturbation
-samples values from a trial's own generator and changes only the truth: the world the
-simulator builds (object pose, mass, friction), the robot's sensors, or the approach the
-robot takes to its grasp (thesis 3.4.1: the approach vector off by up to 5 cm and 15°
-per axis). Every sampled value is returned by name, to be stored with the trial.
+The ATD is the robot's belief and the factory is told nothing else. A perturbation model
+draws values from a trial's own generator and changes only the truth: the world the
+simulator builds (object pose, mass, friction), the robot the simulator builds (its hand's
+mass and servos, its sensors), or the approach the robot takes to its grasp (thesis 3.4.1:
+the approach vector off by up to 5 cm and 15° per axis). Every drawn value is returned by
+name, to be stored with the trial. The controllers' model of their robot is the factory's
+(`Factory.info`), so a perturbed robot never reaches them.
+
+Each model is its own type with its own parameters, so a spec that gives a model another
+model's parameter is refused; `MODELS` names them all.
 
 Signs: each component is drawn uniformly from [-m, +m] for a magnitude m, so the seeds'
 U(0, 5) cm and U(0, 15)° are the sizes of the errors and either direction is equally likely.
@@ -13,73 +18,171 @@ U(0, 5) cm and U(0, 15)° are the sizes of the errors and either direction is eq
 from __future__ import annotations
 
 import math
-from dataclasses import replace
-from typing import TYPE_CHECKING
+import typing
+from dataclasses import dataclass, replace
+from typing import Annotated, Literal, Union
 
 import numpy as np
+from pydantic import Field
 
+from atd.campaign.fields import Number, PositiveScales, Scales, StrictTable, within
+from atd.model import ranges
 from atd.model.estd import Estd, EstdState
-from atd.sim.scene import Scene
 from atd.model.frames import rotation_angle, rotation_rpy
-from factories.description import RobotDescription, SensorModel
+from atd.sim.scene import Scene
+from factories.description import Link, RobotDescription, SensorModel, Servo
 
-if TYPE_CHECKING:
-    from atd.campaign.spec import Perturbation
-
-PERTURBATIONS = ("none", "approach", "object_pose", "object_physics", "sensors")
 APPROACH_MOVES = ("cartesian_move",)  # arm controllers that bring the hand to a grasp
 
+# The ranges of the models' own numbers (their scale ranges are in atd.model.ranges).
+SHIFT = ranges.Range(0.0, 0.2, "m")  # an approach or object-pose error per axis: a hand's width
+TILT = ranges.Range(0.0, 90.0, "deg")  # an approach error about each axis
+TURN = ranges.Range(0.0, 180.0, "deg")  # an object turned about z: either way round
 
-def sample(model: Perturbation, rng: np.random.Generator) -> dict[str, float]:
-    """Every value this trial's truth differs by, named (metres, degrees, scale factors)."""
-    if model.model == "approach":
-        t, r = model.translation, model.rotation
+
+@dataclass(frozen=True)
+class Truth:
+    """What a trial really runs: the ESTD the robot executes (its plan, but for an approach
+    that goes astray), the world the simulator builds, and the robot it builds."""
+
+    estd: Estd
+    scene: Scene
+    robot: RobotDescription
+
+
+class PerturbationModel(StrictTable):
+    """A model with its parameters: `draw` the values a trial's truth differs by, `apply`
+    them to the truth. The base changes nothing."""
+
+    def draw(self, rng: np.random.Generator) -> dict[str, float]:
+        """Every value this trial's truth differs by, named (metres, degrees, scale factors)."""
+        return {}
+
+    def apply(self, truth: Truth, values: dict[str, float]) -> Truth:
+        """The truth with the drawn `values` in it."""
+        return truth
+
+
+class NoPerturbation(PerturbationModel):
+    """What the ATD says is true."""
+
+    model: Literal["none"]
+
+
+class ApproachError(PerturbationModel):
+    """The hand arrives at the grasp off by a rigid error (thesis 3.4.1)."""
+
+    model: Literal["approach"]
+    translation: Annotated[Number, within(SHIFT)] = Field(0.05, description="± m per axis")
+    rotation: Annotated[Number, within(TILT)] = Field(15.0, description="± degrees about each axis")
+
+    def draw(self, rng: np.random.Generator) -> dict[str, float]:
+        t, r = self.translation, self.rotation
         dx, dy, dz = (float(v) for v in rng.uniform(-t, t, 3))
         roll, pitch, yaw = (float(v) for v in rng.uniform(-r, r, 3))
         return {"dx": dx, "dy": dy, "dz": dz, "roll": roll, "pitch": pitch, "yaw": yaw,
                 "translation": math.sqrt(dx * dx + dy * dy + dz * dz),
                 "rotation": rotation_angle(rotation_rpy(np.radians((roll, pitch, yaw))))}
-    if model.model == "object_pose":
-        return {"dx": float(rng.uniform(-model.x, model.x)), "dy": float(rng.uniform(-model.y, model.y)),
-                "yaw": float(rng.uniform(-model.yaw, model.yaw))}
-    if model.model == "object_physics":
-        return {"mass_scale": float(rng.uniform(*model.mass)), "friction_scale": float(rng.uniform(*model.friction))}
-    if model.model == "sensors":
-        return {"noise_scale": float(rng.uniform(*model.noise)), "bias_scale": float(rng.uniform(*model.bias))}
-    return {}
+
+    def apply(self, truth: Truth, values: dict[str, float]) -> Truth:
+        return replace(truth, estd=approach_taken(truth.estd, values))
 
 
-def true_scene(scene: Scene, model: str, values: dict[str, float]) -> Scene:
-    """The world as it really is, from the world the robot believes in."""
-    body = scene.object
-    if body is None:
-        return scene
-    if model == "object_pose":
+class ObjectPose(PerturbationModel):
+    """The object stands elsewhere on the table than the ATD says."""
+
+    model: Literal["object_pose"]
+    x: Annotated[Number, within(SHIFT)] = Field(0.03, description="± m along x")
+    y: Annotated[Number, within(SHIFT)] = Field(0.03, description="± m along y")
+    yaw: Annotated[Number, within(TURN)] = Field(20.0, description="± degrees about z")
+
+    def draw(self, rng: np.random.Generator) -> dict[str, float]:
+        return {"dx": float(rng.uniform(-self.x, self.x)), "dy": float(rng.uniform(-self.y, self.y)),
+                "yaw": float(rng.uniform(-self.yaw, self.yaw))}
+
+    def apply(self, truth: Truth, values: dict[str, float]) -> Truth:
+        body = truth.scene.object
+        if body is None:
+            return truth
         turn = np.eye(4)
         turn[:3, :3] = rotation_rpy((0.0, 0.0, math.radians(values["yaw"])))
         pose = turn @ body.pose
         pose[:3, 3] = body.pose[:3, 3] + (values["dx"], values["dy"], 0.0)
-        return replace(scene, object=replace(body, pose=pose))
-    if model == "object_physics":
-        return replace(scene, object=replace(body, mass=body.mass * values["mass_scale"],
-                                             friction=body.friction * values["friction_scale"]))
-    return scene
+        return replace(truth, scene=replace(truth.scene, object=replace(body, pose=pose)))
 
 
-def true_robot(robot: RobotDescription, model: str, values: dict[str, float]) -> RobotDescription:
-    """The robot with its real sensors: noise and bias scaled (an ideal sensor stays ideal)."""
-    if model != "sensors":
-        return robot
-    scaled = {name: _scaled(sensor, values["noise_scale"], values["bias_scale"])
-              for name, sensor in robot.sensors.items()}
-    return replace(robot, sensors=scaled)
+class ObjectPhysics(PerturbationModel):
+    """The object's mass and friction are scaled."""
+
+    model: Literal["object_physics"]
+    mass: PositiveScales = Field((0.5, 2.0), description="mass scale range")
+    friction: Scales = Field((0.5, 1.5), description="friction scale range")
+
+    def draw(self, rng: np.random.Generator) -> dict[str, float]:
+        return {"mass_scale": float(rng.uniform(*self.mass)), "friction_scale": float(rng.uniform(*self.friction))}
+
+    def apply(self, truth: Truth, values: dict[str, float]) -> Truth:
+        body = truth.scene.object
+        if body is None:
+            return truth
+        body = replace(body, mass=body.mass * values["mass_scale"], friction=body.friction * values["friction_scale"])
+        return replace(truth, scene=replace(truth.scene, object=body))
 
 
-def approach_taken(estd: Estd, model: str, values: dict[str, float]) -> Estd:
+class SensorError(PerturbationModel):
+    """Each sensor's noise and bias are scaled (an ideal sensor stays ideal)."""
+
+    model: Literal["sensors"]
+    noise: Scales = Field((1.0, 3.0), description="noise scale range")
+    bias: Scales = Field((0.0, 2.0), description="bias scale range")
+
+    def draw(self, rng: np.random.Generator) -> dict[str, float]:
+        return {"noise_scale": float(rng.uniform(*self.noise)), "bias_scale": float(rng.uniform(*self.bias))}
+
+    def apply(self, truth: Truth, values: dict[str, float]) -> Truth:
+        scaled = {name: _scaled(sensor, values["noise_scale"], values["bias_scale"])
+                  for name, sensor in truth.robot.sensors.items()}
+        return replace(truth, robot=replace(truth.robot, sensors=scaled))
+
+
+class HandPhysics(PerturbationModel):
+    """The hand is not as its description says: every hand link's mass (and inertia) is
+    scaled, as cables and adapters make a real hand heavier than its datasheet, and so are
+    the gains of its finger servos. The wrist sensor weighs the true hand; the controllers'
+    gravity compensation and grip-force estimates use the described one."""
+
+    model: Literal["hand_physics"]
+    mass: PositiveScales = Field((0.8, 1.25), description="hand mass scale range")
+    servo: PositiveScales = Field((0.8, 1.25), description="finger servo gain (stiffness and damping) scale range")
+
+    def draw(self, rng: np.random.Generator) -> dict[str, float]:
+        return {"hand_mass_scale": float(rng.uniform(*self.mass)), "servo_scale": float(rng.uniform(*self.servo))}
+
+    def apply(self, truth: Truth, values: dict[str, float]) -> Truth:
+        robot = truth.robot
+        hand = set(robot.hand_links)
+        links = tuple(_scaled_link(link, values["hand_mass_scale"], values["servo_scale"]) if link.name in hand else link
+                      for link in robot.links)
+        return replace(truth, robot=replace(robot, links=links))
+
+
+def _model_name(model: type[PerturbationModel]) -> str:
+    return typing.get_args(model.model_fields["model"].annotation)[0]
+
+
+MODELS: dict[str, type[PerturbationModel]] = {
+    _model_name(m): m for m in (NoPerturbation, ApproachError, ObjectPose, ObjectPhysics, SensorError, HandPhysics)}
+"""Every perturbation model by the name a spec gives it as `model`."""
+
+Perturbation = Annotated[Union[tuple(MODELS.values())], Field(discriminator="model")]
+"""A spec's perturbation table, read as the model its `model` names."""
+
+
+def approach_taken(estd: Estd, values: dict[str, float]) -> Estd:
     """The ESTD with the approach error in it: every move that brings the hand to the first
     grasp is moved and turned by the error, about the point the robot believes it grasps
-    (the object's centre), so the hand arrives off by exactly the sampled error."""
-    if model != "approach" or estd.object is None or estd.object.pose is None:
+    (the object's centre), so the hand arrives off by exactly the drawn error."""
+    if estd.object is None or estd.object.pose is None:
         return estd
     centre = np.array(estd.object.pose.as_array()[:3, 3])
     turn = rotation_rpy(np.radians((values["roll"], values["pitch"], values["yaw"])))
@@ -128,3 +231,10 @@ def _scaled(sensor: SensorModel, noise: float, bias: float) -> SensorModel:
 
     return replace(sensor, noise_std=times(sensor.noise_std, noise), bias=times(sensor.bias, bias))
 
+
+def _scaled_link(link: Link, mass: float, servo: float) -> Link:
+    """A hand link `mass` times as heavy (its inertia with it), its joint's servo gains `servo` times."""
+    joint = link.joint and replace(link.joint, servo=Servo(link.joint.servo.kp * servo, link.joint.servo.kv * servo))
+    inertia = link.inertia and tuple(v * mass for v in link.inertia)
+    return replace(link, mass=link.mass * mass, inertia=inertia,
+                   inertia_products=tuple(v * mass for v in link.inertia_products), joint=joint)

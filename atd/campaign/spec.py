@@ -14,11 +14,11 @@ import tomllib
 from pathlib import Path
 from typing import Annotated, Literal, Union
 
-from pydantic import (AfterValidator, BaseModel, ConfigDict, Field, Strict, ValidationError, ValidationInfo,
-                      field_validator)
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_validator
 
 from atd.campaign.checks import PLAIN_NAME, check_entries
-from atd.campaign.perturbation import PERTURBATIONS
+from atd.campaign.fields import Count, Number, StrictTable, within
+from atd.campaign.perturbation import MODELS, NoPerturbation, Perturbation
 from atd.campaign.record import DIMENSIONS, TASK_OBJECT
 from atd.campaign.sources import digests
 from atd.model import ranges
@@ -31,70 +31,20 @@ GRASP_MODES = ("naive", "robust")
 JUDGES = ("lift", "place", "box")
 SPEC_CAP = 1 << 20  # bytes: a spec is a page of TOML
 
-# The ranges of the spec's own numbers (its scale ranges are in atd.model.ranges).
-SHIFT = ranges.Range(0.0, 0.2, "m")  # an approach or object-pose error per axis: a hand's width
-TILT = ranges.Range(0.0, 90.0, "deg")  # an approach error about each axis
-TURN = ranges.Range(0.0, 180.0, "deg")  # an object turned about z: either way round
 TRIAL_BUDGET = ranges.Range(0.0, 3600.0, "s", low_open=True)
 
 
-class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
-
-
-# Numbers as TOML writes them: an integer may stand for a float, but `true` is not 1 and 2.0 is not a count.
-Number = Annotated[float, Strict()]
-Count = Annotated[int, Strict()]
-
-
-def _within(allowed: ranges.Range) -> AfterValidator:
-    """A number checked against its declared range, in its words: NaN (TOML's `nan`) is not a
-    number in any range, where pydantic's own bounds said "should be <= 0.2"."""
-    def check(value: float) -> float:
-        problem = allowed.problem(value)
-        if problem:
-            raise ValueError(problem)
-        return value
-
-    return AfterValidator(check)
-
-
-class TaskEntry(_Strict):
+class TaskEntry(StrictTable):
     file: str
     judge: Literal["lift", "place", "box"] | None = None  # None: chosen from the task's states and the spec
 
 
-class RobotEntry(_Strict):
+class RobotEntry(StrictTable):
     name: str
     arms: tuple[str, ...] = ()  # empty: the robot's default arm
 
 
-class Perturbation(_Strict):
-    """One named perturbation model with its parameters; see `atd.campaign.perturbation`."""
-
-    model: Literal["none", "approach", "object_pose", "object_physics", "sensors"]
-    translation: Annotated[Number, _within(SHIFT)] = Field(0.05, description="approach: ± m per axis")
-    rotation: Annotated[Number, _within(TILT)] = Field(15.0, description="approach: ± degrees about each axis")
-    x: Annotated[Number, _within(SHIFT)] = Field(0.03, description="object_pose: ± m along x")
-    y: Annotated[Number, _within(SHIFT)] = Field(0.03, description="object_pose: ± m along y")
-    yaw: Annotated[Number, _within(TURN)] = Field(20.0, description="object_pose: ± degrees about z")
-    mass: tuple[Number, Number] = Field((0.5, 2.0), description="object_physics: mass scale range")
-    friction: tuple[Number, Number] = Field((0.5, 1.5), description="object_physics: friction scale range")
-    noise: tuple[Number, Number] = Field((1.0, 3.0), description="sensors: noise scale range")
-    bias: tuple[Number, Number] = Field((0.0, 2.0), description="sensors: bias scale range")
-
-    @field_validator("mass", "friction", "noise", "bias")
-    @classmethod
-    def _range(cls, value: tuple[float, float], info: ValidationInfo) -> tuple[float, float]:
-        allowed = ranges.MASS_SCALE if info.field_name == "mass" else ranges.SCALE
-        low, high = value
-        problem = allowed.first_problem(value)
-        if problem or low > high:
-            raise ValueError(f"give [low, high] with low <= high, each in {allowed}: {problem or f'{low:g} > {high:g}'}")
-        return value
-
-
-class WorldDraw(_Strict):
+class WorldDraw(StrictTable):
     """A world drawn afresh for every trial (thesis 3.4.3): `objects` library objects, drawn
     from `from` (each once while there are enough), dropped at random poses into the task's
     container `into` and settled by the physics; seeded by the trial."""
@@ -117,18 +67,18 @@ class WorldDraw(_Strict):
         return names
 
 
-class CampaignSpec(_Strict):
+class CampaignSpec(StrictTable):
     name: str = Field(pattern=f"^{PLAIN_NAME.pattern}$")
     base_seed: Count = Field(0, ge=0, lt=2**63)
     trials: Count = Field(10, ge=ranges.TRIALS.low, le=ranges.TRIALS.high, description="trials per cell")
-    budget: Annotated[Number, _within(TRIAL_BUDGET)] = Field(
+    budget: Annotated[Number, within(TRIAL_BUDGET)] = Field(
         120.0, description="simulated seconds before the watchdog stops a trial")
     tasks: tuple[Union[str, TaskEntry], ...] = Field(min_length=1)
     robots: tuple[Union[str, RobotEntry], ...] = Field(min_length=1)
     engines: tuple[Literal["mujoco", "pybullet"], ...] = Field(("mujoco",), min_length=1)
     grasps: tuple[Literal["naive", "robust"], ...] = Field(("robust",), min_length=1)
     objects: tuple[str, ...] = Field((TASK_OBJECT,), min_length=1)
-    perturbations: dict[str, Perturbation] = Field(default_factory=lambda: {"none": Perturbation(model="none")})
+    perturbations: dict[str, Perturbation] = Field(default_factory=lambda: {"none": NoPerturbation(model="none")})
     world: WorldDraw | None = None  # None: the task's own objects (with the cell's object)
 
     @property
@@ -187,6 +137,8 @@ def load_spec(path: Path) -> tuple[LoadedSpec | None, list[Diagnostic]]:
 
 def _diagnostic(e: dict, where: str, lines: TomlLines) -> Diagnostic:
     loc = tuple(p for p in e["loc"] if p not in ("str", "TaskEntry", "RobotEntry"))
+    if loc[:1] == ("perturbations",) and len(loc) > 1:
+        return _perturbation_diagnostic(e, loc, where, lines)
     dotted = ".".join(str(p) for p in loc)
     message = e["msg"].removeprefix("Value error, ")
     if e["type"] == "extra_forbidden":
@@ -198,11 +150,36 @@ def _diagnostic(e: dict, where: str, lines: TomlLines) -> Diagnostic:
     return error("CMP012", f"{dotted}: {message}", lines.find(loc, where), _hint(loc))
 
 
+def _perturbation_diagnostic(e: dict, loc: tuple, where: str, lines: TomlLines) -> Diagnostic:
+    """A perturbation table's problem, in terms of its model: pydantic puts the model's name
+    in the location (`perturbations.p.approach.x`), and a parameter the model does not have
+    is answered with the ones it has."""
+    table = loc[:2]
+    models = ", ".join(MODELS)
+    if e["type"] == "union_tag_not_found":
+        return error("CMP011", f"'{'.'.join(table)}.model' is required", lines.find(table, where),
+                     f"add model = ..., one of {models}")
+    if e["type"] == "union_tag_invalid":
+        tag = str(e["ctx"]["tag"])
+        return error("CMP012", f"{'.'.join(table)}.model: no perturbation model '{tag}'",
+                     lines.find((*table, "model"), where), did_you_mean(tag, MODELS) or f"perturbation models: {models}")
+    model = loc[2] if len(loc) > 2 and loc[2] in MODELS else None
+    loc = table + loc[3:] if model else loc
+    dotted = ".".join(str(p) for p in loc)
+    if model and e["type"] == "extra_forbidden":
+        key = str(loc[-1])
+        params = [n for n in MODELS[model].model_fields if n != "model"]
+        owners = [m for m, kind in MODELS.items() if key in kind.model_fields and key != "model"]
+        hint = f"the '{model}' model's parameters: {', '.join(params) or 'none'}" + (
+            f" ('{key}' belongs to {', '.join(repr(m) for m in owners)})" if owners else "")
+        return error("CMP010", f"unknown key '{dotted}': perturbation model '{model}' has no parameter '{key}'",
+                     lines.find(loc, where), hint)
+    return error("CMP012", f"{dotted}: {e['msg'].removeprefix('Value error, ')}", lines.find(loc, where), None)
+
+
 def _allowed_keys(parent: tuple) -> list[str]:
     if not parent:
         return sorted(CampaignSpec.model_fields)
-    if parent[0] == "perturbations":
-        return sorted(Perturbation.model_fields)
     if parent[0] == "tasks":
         return sorted(TaskEntry.model_fields)
     if parent[0] == "robots":
@@ -213,15 +190,11 @@ def _allowed_keys(parent: tuple) -> list[str]:
 
 
 def _hint(loc: tuple) -> str | None:
-    field = str(loc[-1]) if loc else ""
     if loc and loc[0] == "engines":
         return "engines are 'mujoco' and 'pybullet'"
     if loc and loc[0] == "grasps":
         return "grasp modes are 'naive' and 'robust'"
-    if field == "model":
-        return f"perturbation models: {', '.join(PERTURBATIONS)}"
     return None
 
 
-__all__ = ["DIMENSIONS", "GRASP_MODES", "JUDGES", "TASK_OBJECT", "CampaignSpec", "LoadedSpec", "Perturbation",
-           "WorldDraw", "load_spec"]
+__all__ = ["DIMENSIONS", "GRASP_MODES", "JUDGES", "TASK_OBJECT", "CampaignSpec", "LoadedSpec", "WorldDraw", "load_spec"]

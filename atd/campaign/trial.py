@@ -18,7 +18,7 @@ import numpy as np
 
 from atd.campaign.cells import TrialPlan
 from atd.campaign.judge import BoxJudge, LiftJudge, PlaceJudge
-from atd.campaign.perturbation import approach_taken, sample, true_robot, true_scene
+from atd.campaign.perturbation import Truth
 from atd.campaign.record import TASK_OBJECT, TrialRecord
 from atd.model import has_errors, load_task
 from atd.model.diagnostics import render_all
@@ -78,20 +78,28 @@ def run_trial(plan: TrialPlan) -> TrialRecord:
     return record
 
 
-def _run(plan: TrialPlan, record: TrialRecord, started: float, recording: Path | None = None) -> None:
+def trial_run(plan: TrialPlan, record: TrialRecord, recording: Path | None = None) -> tuple[Run, Estd]:
+    """The trial's run, built as it will execute, and the ESTD the robot believes in; the
+    values its perturbation drew are in `record` (before the run is built, which may fail).
+    The perturbation changes the truth only (the world, the robot the simulator builds, the
+    approach taken); the controllers know their robot from the factory's description (`Run`),
+    so a perturbed hand never reaches them."""
     cell = plan.cell
     belief, factory = believed(plan.task_file, cell.robot, cell.arm, cell.grasp, cell.object)
-    model = plan.perturbation.model
-    values = sample(plan.perturbation, np.random.default_rng([plan.seed, 1]))
-    record.perturbation = values
+    values = record.perturbation = plan.perturbation.draw(np.random.default_rng([plan.seed, 1]))
     scene = drawn_world(plan, belief) if plan.world else belief_scene(belief)
     if cell.object != TASK_OBJECT and scene.object is not None and not plan.world:
         from atd.campaign.objects import get
 
         scene = replace(scene, object=get(cell.object).realize(scene.object))
-    run = Run(approach_taken(belief, model, values), factory, engine=cell.engine, seed=plan.seed,
-              budget=plan.budget, scene=true_scene(scene, model, values),
-              robot=true_robot(factory.robot, model, values), record=recording)
+    truth = plan.perturbation.apply(Truth(belief, scene, factory.robot), values)
+    run = Run(truth.estd, factory, engine=cell.engine, seed=plan.seed, budget=plan.budget, scene=truth.scene,
+              robot=truth.robot, record=recording)
+    return run, belief
+
+
+def _run(plan: TrialPlan, record: TrialRecord, started: float, recording: Path | None = None) -> None:
+    run, belief = trial_run(plan, record, recording)
     judge = _judge(plan, belief, run)
     record.setup_time = time.perf_counter() - started
     outcome = run.execute(afterwards=judge)

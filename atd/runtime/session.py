@@ -157,10 +157,11 @@ class Run:
                  robot: RobotDescription | None = None, record: Path | None = None,
                  record_rate: float | None = DEFAULT_RATE, video_size: tuple[int, int] = DEFAULT_SIZE,
                  camera: str = WORKSPACE_CAMERA) -> None:
-        """`factory` is the robot's factory: it knows the physical robot the ESTD was made for.
+        """`factory` is the robot's factory: it knows the physical robot the ESTD was made for,
+        and its description is all the controllers know of their robot (`context.info`).
         `scene` and `robot` are the truth where it differs from what the ESTD and the factory
         believe (a campaign's perturbed trial): by default the world is built from the ESTD's
-        object and environment, and the robot is the factory's. `record` writes the run's
+        object and environment, and the robot is the factory's; the simulator alone sees them. `record` writes the run's
         signals to MCAP at `record_rate` Hz of simulated time (None: every tick); `video` is
         rendered at `video_size` (width, height) from `camera` (see `atd.sim.video.cameras`).
         An ESTD whose states run on several arms (a task that names roles) gets them all in one
@@ -196,10 +197,12 @@ class Run:
         self.others = others = dict(zip(arms[1:], robots[1:]))  # the robot's other arms the task uses, by name
         self.notes: list[str] = [str(self.robot.settling)] if self.robot.settling else []  # for the user
         self.inside_before = {c.name: self.robot.objects_inside(c.name) for c in self.robot.scene.containers}
-        context = Context(info=self.robot.info, params={}, object=estd.object, environment=estd.environment,
-                          rng=np.random.default_rng(seed), camera=self.robot.capture)
-        problems = build_problems(estd, context, {name: replace(context, info=r.info, camera=r.capture)
-                                                  for name, r in others.items()})
+        # The controllers' model of their robot is the factory's (the belief), never the simulated truth's.
+        self.context = context = Context(info=factory.info, params={}, object=estd.object,
+                                         environment=estd.environment, rng=np.random.default_rng(seed),
+                                         camera=self.robot.capture)
+        problems = build_problems(estd, context, {name: replace(context, info=factory.on_arm(name).info,
+                                                                camera=r.capture) for name, r in others.items()})
         if problems:
             self.robot.close()
             if filming:

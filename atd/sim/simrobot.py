@@ -18,7 +18,8 @@ from atd.sim.scene import WORKSPACE_CAMERA, Scene
 from atd.sim.sensors import NoisySensors, TaxelImages
 from atd.sim.thread import CapState, resting_place
 from factories.description import DepthCamera, RobotDescription, SensorModel
-from primitives.robot import SENSORS, DepthImage, HandInfo, HandMode, PadInfo, Readings, Robot, RobotInfo
+from factories.robot_info import robot_info
+from primitives.robot import SENSORS, DepthImage, HandMode, Readings, Robot
 
 #: How far (rad or m) an arm servo reference may run ahead of the joint: a blocked arm
 #: pushes with a bounded force instead of winding up without end.
@@ -35,105 +36,6 @@ SETTLED_SPIN = 0.1  # rad/s: 1.5 mm/s at the rim of a 3 cm object
 SETTLED_FOR = 0.2  # s
 SETTLE_LIMIT = 5.0  # s of simulated time
 _MODE_CODE = {HandMode.POSITION: POSITION, HandMode.VELOCITY: VELOCITY, HandMode.FORCE: FORCE}
-
-
-def _moving_dofs(d: RobotDescription, link: str) -> tuple[int, ...]:
-    """The hand DOFs with a joint between the hand root and `link`."""
-    joints = set()
-    while link and link != d.hand_root:
-        body = d.links_by_name[link]
-        if body.joint is not None:
-            joints.add(body.joint.name)
-        link = body.parent
-    return tuple(k for k, dof in enumerate(d.hand.dofs) if any(j in joints for j, _ in dof.joints))
-
-
-def _tcp_pose(d: RobotDescription, poses: dict[str, np.ndarray]) -> np.ndarray:
-    """The TCP's pose among link `poses` from the description's forward kinematics."""
-    return poses[d.tcp.link] @ d.tcp.origin.matrix()
-
-
-def _finger_base(d: RobotDescription, link: str, poses: dict[str, np.ndarray]) -> tuple[float, float]:
-    """Where the finger carrying `link` stands on the palm: its first link's origin, (x, y)
-    in the hand (TCP) frame; the palm's own pads stand where they are."""
-    while link != d.hand_root and d.links_by_name[link].parent != d.hand_root:
-        link = d.links_by_name[link].parent
-    tcp = _tcp_pose(d, poses)
-    x, y, _ = tcp[:3, :3].T @ (poses[link][:3, 3] - tcp[:3, 3])
-    return (float(x), float(y))
-
-
-def _pad_surfaces(d: RobotDescription):
-    """The hand's forward kinematics for its pads: DOF values -> each sensing surface's
-    pose in the TCP frame (only the hand's joints move one against the other)."""
-
-    def surfaces(q: np.ndarray) -> np.ndarray:
-        poses = d.link_poses(d.hand_joint_targets(q))
-        to_hand = np.linalg.inv(_tcp_pose(d, poses))
-        return np.array([to_hand @ poses[p.link] @ p.origin.matrix() for p in d.hand.pads])
-
-    return surfaces
-
-
-def _centre_of_mass(d: RobotDescription):
-    """The hand's model behind the wrist sensor: DOF values -> its centre of mass, TCP frame."""
-    links = [d.links_by_name[n] for n in d.hand_links]
-    masses = np.array([link.mass for link in links])
-
-    def centre(q: np.ndarray) -> np.ndarray:
-        poses = d.link_poses(d.hand_joint_targets(q))
-        points = np.array([poses[link.name] @ np.array([*link.centre_of_mass, 1.0]) for link in links])
-        return (np.linalg.inv(_tcp_pose(d, poses)) @ (masses @ points / masses.sum()))[:3]
-
-    return centre
-
-
-def _wrist(d: RobotDescription, poses: dict[str, np.ndarray]) -> np.ndarray:
-    """The wrist sensor's origin in the TCP frame (both ride on the palm)."""
-    return (np.linalg.inv(_tcp_pose(d, poses)) @ poses[d.wrist_sensor.link] @ d.wrist_sensor.origin.matrix())[:3, 3]
-
-
-def robot_info(d: RobotDescription) -> RobotInfo:
-    """The static facts a primitive needs, taken from the description."""
-    arm = [d.joints[n] for n in d.arm_joints]
-    hand_limits = [d.joints[dof.joints[0][0]] for dof in d.hand.dofs]
-    ratios = np.array([abs(dof.joints[0][1]) for dof in d.hand.dofs])
-    open_hand = d.link_poses(d.hand_joint_targets(np.array([dof.open for dof in d.hand.dofs])))
-    lower = np.array([min(j.lower / r, j.upper / r) for j, r in zip(hand_limits, ratios)])
-    upper = np.array([max(j.lower / r, j.upper / r) for j, r in zip(hand_limits, ratios)])
-    hand = HandInfo(
-        dofs=tuple(dof.name for dof in d.hand.dofs),
-        lower=lower,
-        upper=upper,
-        velocity_limit=np.array([j.velocity for j in hand_limits]) / ratios,
-        effort_limit=np.array([j.effort for j in hand_limits]) * ratios,
-        closing=np.array([dof.closing for dof in d.hand.dofs], float),
-        open=np.array([dof.open for dof in d.hand.dofs]),
-        closed=np.array([dof.closed for dof in d.hand.dofs]),
-        postures={name: np.array(v) for name, v in d.hand.postures.items()},
-        pads=tuple(PadInfo(p.name, p.taxels, _moving_dofs(d, p.link), _finger_base(d, p.link, open_hand), p.half_size)
-                   for p in d.hand.pads),
-        stiffness=np.array([j.servo.kp for j in hand_limits]) * ratios**2,
-        self_locking=np.array([j.friction > 0 for j in hand_limits]),
-        pad_surfaces=_pad_surfaces(d),
-        mass=d.hand_mass,
-        centre_of_mass=_centre_of_mass(d),
-        wrist=_wrist(d, open_hand),
-    )
-    return RobotInfo(
-        name=d.label,
-        control_period=d.control_period,
-        arm_joints=d.arm_joints,
-        arm_lower=np.array([j.lower for j in arm]),
-        arm_upper=np.array([j.upper for j in arm]),
-        arm_velocity_limit=np.array([j.velocity for j in arm]),
-        arm_effort_limit=np.array([j.effort for j in arm]),
-        home=np.array(d.home, float),
-        hand=hand,
-        has_range=d.range_sensor is not None,
-        range_limits=d.range_limits,
-        cameras=tuple(c.name for c in d.cameras),
-    )
 
 
 @dataclass(frozen=True)
@@ -158,13 +60,15 @@ class SimRobot(Robot):
 
     def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0,
                  belief: RobotDescription | None = None):
-        """`description` is the robot as it truly is; `belief` what it knows of itself (its
-        factory's description, by default the same): `info` and the camera poses that
-        pictures report come from the belief."""
+        """`description` is the robot as it truly is, and what the simulation runs on: its
+        `info` (limits, servos, hand) is the truth's, for this driver alone; the controllers
+        know their robot from the factory (`Factory.info`), never from here. `belief` is its
+        factory's description (by default the same): the camera poses that pictures report,
+        as calibrated, come from it."""
         d = description
         self.description = d
         self.scene = scene
-        self.info = robot_info(belief or d)
+        self.info = robot_info(d)
         self._cameras = {c.name: c for c in d.cameras}
         self._believed_cameras = {c.name: c for c in (belief or d).cameras}
         self._camera_noise = np.random.default_rng([seed, 3])

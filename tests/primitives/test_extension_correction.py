@@ -59,7 +59,7 @@ def _box_in_a_cylindrical_grasp(tmp_path: Path, engine: str, yaw: float) -> Run:
     factory = create("tombatossals", arm="right")
     estd = translate(task, factory).estd
     error = {"dx": 0.0, "dy": 0.0, "dz": 0.0, "roll": 0.0, "pitch": 0.0, "yaw": yaw}
-    return Run(approach_taken(estd, "approach", error), factory, engine=engine)
+    return Run(approach_taken(estd, error), factory, engine=engine)
 
 
 @pytest.mark.parametrize("engine", ["mujoco", "pybullet"])

@@ -26,7 +26,7 @@ def _lift_with_error(arm: str, engine: str, **error: float) -> tuple[Run, object
     factory = create("tombatossals", arm=arm)
     estd = translate(task, factory).estd
     values = {"dx": 0.0, "dy": 0.0, "dz": 0.0, "roll": 0.0, "pitch": 0.0, "yaw": 0.0, **error}
-    run = Run(approach_taken(estd, "approach", values), factory, engine=engine)
+    run = Run(approach_taken(estd, values), factory, engine=engine)
     outcome = run.execute()
     assert outcome.succeeded and run.object_position[2] > LIFTED, (outcome.summary, run.object_position)
     return run, outcome

@@ -35,7 +35,7 @@ def _grasp_with_error(robot: str, engine: str, obj: str | None = None, **error: 
     if obj is not None:
         scene = replace(scene, object=get(obj).realize(scene.object))
     values = {"dx": 0.0, "dy": 0.0, "dz": 0.0, "roll": 0.0, "pitch": 0.0, "yaw": 0.0, **error}
-    run = Run(approach_taken(estd, "approach", values), factory, engine=engine, scene=scene)
+    run = Run(approach_taken(estd, values), factory, engine=engine, scene=scene)
     outcome = run.execute()
     grasp = [r for r in run.trace.records if r["type"] == "event" and r["transition"] == "grasp_object->lift_object"]
     reasons = [c.get("reason", "") for c in grasp[0]["conditions"] if c.get("kind") == "arm_done"] if grasp else []
