@@ -29,7 +29,7 @@ from atd.runtime.values import ArmMemory, arm_for, bind_inputs, targeted
 from primitives.base import Condition, Context, ControlData, Status, StateView
 from primitives.blackboard import ARM_TWIST, Blackboard
 from primitives.registry import BuildError, build_condition, build_controller
-from primitives.robot import Readings, Robot
+from primitives.robot import Readings, Robot, RobotInfo
 
 
 class ConditionTree:
@@ -267,9 +267,11 @@ class Executor:
     """Runs one ESTD on one robot until an end state, or the watchdog, stops it."""
 
     def __init__(self, estd: Estd, robot: Robot, base: Context, trace: Trace | None = None,
-                 budget: float = 300.0, wall_budget: float = 600.0, others: Mapping[str, Robot] | None = None) -> None:
-        """`others`: the robot's other arms by name, for a task that names roles; they share
-        `robot`'s world, and `robot.step()` moves them all."""
+                 budget: float = 300.0, wall_budget: float = 600.0,
+                 others: Mapping[str, tuple[Robot, RobotInfo]] | None = None) -> None:
+        """`others`: the robot's other arms by name, for a task that names roles, each with what
+        its controllers know of it (its factory's description); they share `robot`'s world, and
+        `robot.step()` moves them all."""
         self.estd = estd
         self.robot = robot
         self.trace = trace or Trace()
@@ -278,8 +280,8 @@ class Executor:
         if others:  # each arm learns of itself on its own; named values are the run's
             shared = base.memory
             base = replace(base, memory=ArmMemory(shared))
-            arms = {name: OtherArm(replace(base, info=r.info, camera=r.capture, memory=ArmMemory(shared)), r)
-                    for name, r in others.items()}
+            arms = {name: OtherArm(replace(base, info=info, camera=r.capture, memory=ArmMemory(shared)), r)
+                    for name, (r, info) in others.items()}
         self.machine = Machine(estd, "", base, self.trace, self.visits, arms)
         self.budget = budget
         self.wall_budget = wall_budget

@@ -201,8 +201,9 @@ class Run:
         self.context = context = Context(info=factory.info, params={}, object=estd.object,
                                          environment=estd.environment, rng=np.random.default_rng(seed),
                                          camera=self.robot.capture)
-        problems = build_problems(estd, context, {name: replace(context, info=factory.on_arm(name).info,
-                                                                camera=r.capture) for name, r in others.items()})
+        known = {name: factory.on_arm(name).info for name in others}
+        problems = build_problems(estd, context, {name: replace(context, info=known[name], camera=r.capture)
+                                                  for name, r in others.items()})
         if problems:
             self.robot.close()
             if filming:
@@ -210,7 +211,8 @@ class Run:
             raise Unrunnable(problems)
         self.trace = Trace()
         self.trace_path = trace_path
-        self.executor = Executor(estd, self.robot, context, self.trace, budget=budget, others=others)
+        self.executor = Executor(estd, self.robot, context, self.trace, budget=budget,
+                                 others={name: (r, known[name]) for name, r in others.items()})
         self.video = _Video(self.robot, self.executor, filming) if filming else None
         self.viewer = _Viewer(self.robot) if viewer else None
         self.recorder = Recording(record, self.robot, self.executor, self.trace, tuple(self.robot.recorded_poses()), record_rate,
