@@ -52,6 +52,7 @@ class ParallelJawFactory(Factory):
         MappingRow("slide", "-", "-", "-"),
         MappingRow("release", "release", "hand position", "arm control"),
         *PERCEPTION_ROWS,
+        MappingRow("unscrew", "-", "-", "-"),
     )
 
     def map_node(self, state: State, context: MappingContext) -> NodeMapping:
