@@ -28,6 +28,7 @@ from atd.model import ObjectClass, ObjectInfo, Pose
 from atd.model.meshcheck import mesh_points
 from atd.sim.convex import convex_parts
 from atd.sim.scene import Body, bounding_box
+from atd.sim.thread import Thread
 
 # Quarter turns that stand a mesh file up in the world frame (table z = 0, z up).
 _AS_IS = np.eye(3)
@@ -43,7 +44,9 @@ class UnknownObject(LookupError):
 class LibraryObject:
     """One everyday object. `size` follows `atd.model.vocabulary.SIZE_LAYOUT` for `shape`;
     `mesh` is a file inside the installed `pybullet_data`, stood up by `turn` (a signed
-    permutation); `concave` meshes collide as their convex parts."""
+    permutation); `concave` meshes collide as their convex parts. A `thread` makes it a
+    bottle or jar with a screw cap (atd/sim/thread.py): `size` is then the whole object's,
+    cap included, and `mass` includes the cap's."""
 
     name: str
     description: str
@@ -55,6 +58,7 @@ class LibraryObject:
     mesh: str | None = None
     turn: np.ndarray = dataclasses.field(default_factory=lambda: _AS_IS, compare=False, repr=False)
     concave: bool = False
+    thread: Thread | None = None
 
     def object_info(self, x: float, y: float) -> ObjectInfo:
         """What the robot believes: the object resting on the table at (x, y)."""
@@ -69,7 +73,9 @@ class LibraryObject:
         """The simulator's truth for a belief `body`: same name, pose, mass and friction;
         the mesh, scaled per axis and centred so that the bounding box of what collides
         (the mesh's hull, or its convex parts, which V-HACD makes up to 2% larger) is the
-        body's."""
+        body's. A threaded object gets its thread."""
+        if self.thread is not None:
+            return dataclasses.replace(body, thread=self.thread)
         if self.mesh is None:
             return body
         source = mesh_file(self.mesh)
@@ -99,8 +105,9 @@ def mesh_file(relative: str) -> Path:
 
 
 def library() -> dict[str, LibraryObject]:
-    """Every object, by name (a fresh dict: the caller may narrow it)."""
-    return {o.name: o for o in _objects()}
+    """Every object, by name (a fresh dict: the caller may narrow it): the everyday objects,
+    then the bottles and jars with screw caps."""
+    return {o.name: o for o in (*_objects(), *_screw_capped())}
 
 
 @cache
@@ -141,6 +148,56 @@ def _objects() -> tuple[LibraryObject, ...]:
                       "typical pocket speaker figures, assumed; rubberised housing"),
         LibraryObject("weight", "steel weight, 35 mm across, 45 mm tall", cyl, (0.0175, 0.045), 0.34, 0.5,
                       "mass: 43.3 cm^3 of steel at 7.85 g/cm^3; friction of smooth steel, assumed"),
+    )
+
+
+#: Rise per turn of the SPI/GPI continuous-thread finishes from 28 to 66 mm: 6 threads per inch.
+SIX_TPI = 0.0254 / 6
+
+
+@cache
+def _screw_capped() -> tuple[LibraryObject, ...]:
+    """Eight bottles and jars with screw caps (thesis 3.4.2, Fig. 3.17: different shapes,
+    weights, caps and threads). Size: the whole object, cap included; mass: contents,
+    container and cap. A finish `D-400` has one turn of thread, `-410` one and a half,
+    `-415` two (SPI/GPI finish series); a lug (twist-off) cap a quarter turn. A cap's outer
+    diameter is the finish's plus 2-4 mm; thread torques are those of a cap closed by hand
+    after a first opening (assumed), a fraction of a factory closure's."""
+    cyl, box = ObjectClass.CYLINDER, ObjectClass.BOX
+
+    def screw(name: str, description: str, shape: ObjectClass, size: tuple[float, ...], mass: float, friction: float,
+              source: str, neck: tuple[float, float], cap: tuple[float, float, float], pitch: float, turns: float,
+              torque: float) -> LibraryObject:
+        thread = Thread(neck[0], neck[1], cap[0], cap[1], cap[2], pitch, turns, torque)
+        return LibraryObject(name, description, shape, size, mass, friction, source, thread=thread)
+
+    return (
+        screw("water_bottle", "half-full 0.5 l PET water bottle, 64 mm across, 205 mm tall, 28 mm cap", cyl,
+              (0.032, 0.205), 0.27, 0.7, "250 ml of water and a 20 g bottle; 28-410 finish (6 TPI, 1.5 turns)",
+              (0.0125, 0.012), (0.015, 0.017, 0.0025), SIX_TPI, 1.5, 0.04),
+        screw("juice_bottle", "0.25 l glass juice bottle, 60 mm across, 170 mm tall, 38 mm metal cap", cyl,
+              (0.030, 0.17), 0.36, 0.6, "200 g of glass and 150 ml of juice; 38-400 finish (6 TPI, 1 turn)",
+              (0.018, 0.012), (0.020, 0.014, 0.005), SIX_TPI, 1.0, 0.06),
+        screw("shampoo_bottle", "flat 250 ml shampoo bottle, 65 x 45 mm, 190 mm tall, 28 mm flip-top cap", box,
+              (0.065, 0.045, 0.19), 0.30, 0.5, "about 250 g of shampoo in a 30 g bottle; 28-415 finish (6 TPI, 2 turns)",
+              (0.0125, 0.010), (0.015, 0.020, 0.004), SIX_TPI, 2.0, 0.04),
+        screw("vitamin_jar", "wide-mouth plastic pill jar, 60 mm across, 100 mm tall, 45 mm cap", cyl,
+              (0.030, 0.10), 0.08, 0.6, "60 tablets and a 25 g jar; 45-400 finish (6 TPI, 1 turn)",
+              (0.022, 0.010), (0.024, 0.016, 0.006), SIX_TPI, 1.0, 0.06),
+        screw("jam_jar", "glass jam jar, 66 mm across, 105 mm tall, 58 mm twist-off lug cap", cyl,
+              (0.033, 0.105), 0.35, 0.6,
+              "150 g of glass, 200 g of jam; lug finish: a quarter turn, rising about 2.5 mm (assumed)",
+              (0.028, 0.008), (0.030, 0.012, 0.012), 0.010, 0.25, 0.12),
+        screw("coffee_jar", "square plastic instant-coffee jar, 60 x 60 mm, 130 mm tall, 53 mm cap", box,
+              (0.06, 0.06, 0.13), 0.25, 0.6, "200 g of coffee, a 40 g jar; 53-400 finish (6 TPI, 1 turn)",
+              (0.025, 0.010), (0.0275, 0.015, 0.010), SIX_TPI, 1.0, 0.10),
+        screw("spice_jar", "glass spice jar, 45 mm across, 100 mm tall, cap as wide as the jar", cyl,
+              (0.0225, 0.10), 0.12, 0.6, "80 g of glass, 40 g of spice; 43-400 finish (6 TPI, 1 turn)",
+              (0.0205, 0.008), (0.0225, 0.014, 0.004), SIX_TPI, 1.0, 0.05),
+        screw("syrup_bottle", "amber glass syrup bottle, 54 mm across, 130 mm tall, 28 mm cap with a fine thread", cyl,
+              (0.027, 0.13), 0.25, 0.6,
+              "120 g of glass, 100 ml of syrup; a pharmacy cap with a 3 mm pitch, 2.5 turns (assumed)",
+              (0.0125, 0.014), (0.015, 0.016, 0.003), 0.003, 2.5, 0.04),
     )
 
 

@@ -14,7 +14,8 @@ import jinja2
 import numpy as np
 
 from atd.model.frames import rpy_of as matrix_to_rpy
-from atd.sim.scene import COLOURS, TABLE_CENTRE, TABLE_HALF, Body, Scene
+from atd.sim.scene import COLOURS, TABLE_CENTRE, TABLE_HALF, Body, Scene, bounding_box
+from atd.sim.thread import jaws
 from factories.description import FingerPad, Link, Origin, RobotDescription, Shape
 from factories.parts import PAD
 
@@ -173,13 +174,34 @@ def _body(body: Body, name: str | None = None) -> dict:
     """A body ready for the template; `name` names its MJCF elements (default: the body's)."""
     name = name or body.name
     return {"body": body, "name": name, "at": Placed.of(body.pose), "size": _fmt(body.half_extents),
-            "inertia": _fmt(body.inertia()), "meshes": _meshes(body, name)}
+            "inertia": _fmt(body.inertia()), "meshes": _meshes(body, name), "thread": _thread(body)}
+
+
+def _thread(body: Body) -> dict | None:
+    """A threaded body's parts for the template (atd/sim/thread.py): main part and neck as
+    (centre, MJCF size), where its nut starts and where its cap stands, in the world."""
+    t = body.thread
+    if t is None:
+        return None
+    height = body.size[-1]
+    main_z, neck_z, cap_z = t.parts(height)
+    main = (*body.half_extents[:-1], t.main_height(height) / 2)
+    return {"t": t, "main": (_fmt((0, 0, main_z)), _fmt(main)), "neck": (_fmt((0, 0, neck_z)), _fmt((t.neck_radius, t.neck_height / 2))),
+            "nut": _fmt((0, 0, cap_z)), "cap": Placed.of(t.closed_cap(body.pose, height)), "cap_size": _fmt((t.cap_radius, t.cap_height / 2)),
+            "cap_inertia": _fmt(t.cap_inertia()), "coupling": _fmt((0, t.pitch / (2 * math.pi), 0, 0, 0)),
+            "jaws": [{"at": Placed.of(pose), "size": _fmt(s / 2 for s in size)}
+                     for pose, size in (jaws(body.pose, bounding_box(body.kind, body.size)[:2], height) if t.fixture else [])]}
 
 
 def object_name(body: Body) -> str:
     """A free object's MJCF name: apart from the robot's links, the table and the obstacles,
     whatever the world file calls it."""
     return f"object:{body.name}"
+
+
+def thread_names(body: Body) -> dict[str, str]:
+    """The MJCF names of a threaded object's cap body, nut joints, thread weld and fixture weld."""
+    return {part: f"{part}:{body.name}" for part in ("cap", "lift", "turn", "thread", "fixture")}
 
 
 def _visual_meshes(root: BodyView) -> list[GeomView]:
@@ -201,8 +223,11 @@ def mjcf(d: RobotDescription, scene: Scene) -> str:
     home = dict(zip(d.arm_joints, d.home)) | hand_home
     root = body_tree(d)
     qpos = [home.get(b.link.joint.name, 0.0) for b in _depth_first(root) if b.link.joint]
-    for o in scene.objects:
+    for o in scene.objects:  # in the order of the MJCF: the object, its nut's lift and turn, its cap
         qpos += list(o.pose[:3, 3]) + list(matrix_to_quat(o.pose[:3, :3]))
+        if o.thread is not None:
+            cap = o.thread.closed_cap(o.pose, o.size[-1])
+            qpos += [0.0, 0.0] + list(cap[:3, 3]) + list(matrix_to_quat(cap[:3, :3]))
     cameras = [{"camera": c, "at": Placed.of(c.origin.matrix() @ _MUJOCO_VIEW)} for c in d.cameras]
     return _ENV.get_template("scene.mjcf.j2").render(
         d=d,

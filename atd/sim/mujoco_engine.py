@@ -11,10 +11,11 @@ import mujoco
 import numpy as np
 
 from atd.model.meshcheck import read_mesh
-from atd.sim.models import mjcf, object_name, visual_meshes
+from atd.sim.models import mjcf, object_name, thread_names, visual_meshes
 from atd.sim.scene import (CAMERA_AZIMUTH, CAMERA_DISTANCE, CAMERA_ELEVATION, CAMERA_TARGET, WORKSPACE_CAMERA, Scene,
                            SceneError)
 from atd.sim.simrobot import SimRobot
+from atd.sim.thread import END_SLACK
 from factories.description import DepthCamera, RobotDescription
 
 
@@ -119,6 +120,18 @@ class MujocoRobot(SimRobot):
                                      np.intp).reshape(-1, 6)
         robot_root = _id(m, mujoco.mjtObj.mjOBJ_BODY, f"world_{d.name}")
         self._robot_geoms = np.flatnonzero(m.body_rootid[m.geom_bodyid] == robot_root)
+        self._robot_geom_set = frozenset(self._robot_geoms.tolist())
+        # Each threaded object's thread: its nut's turn (qpos index), the weld holding the cap,
+        # the cap's body, its free joint (qpos index) and geom, and the turn where the thread ends.
+        self._threads = []
+        for body in scene.objects:
+            if body.thread is not None:
+                names = thread_names(body)
+                cap = _id(m, mujoco.mjtObj.mjOBJ_BODY, names["cap"])
+                self._threads.append((m.jnt_qposadr[_id(m, mujoco.mjtObj.mjOBJ_JOINT, names["turn"])],
+                                      _id(m, mujoco.mjtObj.mjOBJ_EQUALITY, names["thread"]), cap,
+                                      m.jnt_qposadr[m.body_jntadr[cap]], _id(m, mujoco.mjtObj.mjOBJ_GEOM, names["cap"]),
+                                      body.thread.end_angle - 2 * np.pi * END_SLACK))
         self._robot_contype = m.geom_contype[self._robot_geoms].copy()
         self._renderer: mujoco.Renderer | None = None
         self._depth_renderers: dict[str, mujoco.Renderer] = {}
@@ -163,6 +176,10 @@ class MujocoRobot(SimRobot):
             self._ctrl[self._arm_act] = start + change * (k / self.substeps)
             mujoco.mj_step(self.model, self.data)
         self._arm_from = self._arm_to
+        for turn, weld, cap, _, _, end in self._threads:  # a cap at the thread's end is let go
+            if self.data.eq_active[weld] and self._qpos[turn] >= end:
+                self.data.eq_active[weld] = 0
+                self.data.xfrc_applied[cap, 3:] = 0.0  # a test's push on it turns it no further
 
     def jacobian(self) -> np.ndarray:
         mujoco.mj_jacSite(self.model, self.data, self._jacp, self._jacr, self._tcp_site)
@@ -201,6 +218,18 @@ class MujocoRobot(SimRobot):
             poses.append(pose)
         return poses
 
+    def _caps(self) -> list[tuple[float, bool, np.ndarray, bool]]:
+        d = self.data
+        pairs = d.contact.geom[: d.ncon]
+        found = []
+        for turn, weld, cap, _, geom, _ in self._threads:
+            pose = np.eye(4)
+            pose[:3, :3] = d.xmat[cap].reshape(3, 3)
+            pose[:3, 3] = d.xpos[cap]
+            touching = any(g in self._robot_geom_set for a, b in pairs if geom in (a, b) for g in (a, b))
+            found.append((float(self._qpos[turn]), not d.eq_active[weld], pose, touching))
+        return found
+
     def _object_speeds(self) -> tuple[np.ndarray, np.ndarray]:
         velocity = self._qvel[self._object_dofs]  # free joints: linear (world), then angular (body)
         return np.linalg.norm(velocity[:, :3], axis=1), np.linalg.norm(velocity[:, 3:], axis=1)
@@ -222,10 +251,20 @@ class MujocoRobot(SimRobot):
             raise LookupError("the scene has no object")
         quat = np.zeros(4)
         mujoco.mju_mat2Quat(quat, np.ascontiguousarray(pose[:3, :3]).ravel())
+        threaded = self.scene.objects[0].thread is not None  # then its cap, the first, goes with it
+        relative = np.linalg.solve(self._object_poses()[0], self._caps()[0][2]) if threaded else None
         a = self._object_qadr[0]
         self.data.qpos[a : a + 7] = np.concatenate([pose[:3, 3], quat])
         self.data.qvel[self._object_dofs[0]] = 0.0
+        if relative is not None:
+            cap, adr = pose @ relative, self._threads[0][3]
+            mujoco.mju_mat2Quat(quat, np.ascontiguousarray(cap[:3, :3]).ravel())
+            self.data.qpos[adr : adr + 7] = np.concatenate([cap[:3, 3], quat])
+            self.data.qvel[self.model.jnt_dofadr[self.model.body_jntadr[self._threads[0][2]]] + np.arange(6)] = 0.0
         mujoco.mj_forward(self.model, self.data)
+
+    def _push_cap(self, k: int, wrench: np.ndarray) -> None:
+        self.data.xfrc_applied[self._threads[k][2]] = wrench
 
     def render(self, width: int, height: int, camera: str = WORKSPACE_CAMERA) -> np.ndarray:
         """An RGB picture of the scene (needs an OpenGL backend, e.g. MUJOCO_GL=egl)."""

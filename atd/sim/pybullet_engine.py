@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 import tempfile
+from dataclasses import dataclass
 
 import numpy as np
 import pybullet as pb
@@ -27,8 +28,10 @@ from atd.sim.scene import (
     WORKSPACE_CAMERA,
     Body,
     Scene,
+    bounding_box,
 )
 from atd.sim.simrobot import SimRobot
+from atd.sim.thread import END_SLACK, Thread, jaws
 from factories.description import DepthCamera, RobotDescription
 
 SOLVER_ITERATIONS = 50
@@ -43,8 +46,36 @@ COUPLING_ERP = 0.2
 #: The renderer's clipping planes, as fractions of a depth camera's near and multiples of its
 #: far limit: what lies nearer still hides what is behind it, as on a real camera.
 CLIP_NEAR, CLIP_FAR = 0.25, 1.5
+#: A thread (atd/sim/thread.py) is two links of the object: its rise's mass (taken from the
+#: object's) and inertia, and an inertia added to the cap's turn as MuJoCo's armature (resisting
+#: a cap's accelerations with under 1 mN, 1 mN m): constraints on almost no inertia hold loosely.
+NUT_MASS = 0.001  # kg, the rising link (the turning one is the cap)
+NUT_INERTIA = (1e-6, 1e-6, 1e-6)  # kg m^2, the rising link's
+NUT_TURN_INERTIA = 1e-4  # kg m^2 added to the cap's about its axis while on the thread
+#: The most a thread's rise, and a fixture's clamp, resist with (N or N m): far more than a
+#: hand pulls or pushes with.
+THREAD_FORCE = 1000.0
 #: Towards the light in video frames: where the MuJoCo scene's one light shines from.
 LIGHT_DIRECTION = (0.1, -0.4, 1.0)
+
+
+@dataclass
+class _Thread:
+    """A threaded object's thread in Bullet: the object, the rise per radian turned, the turn
+    at which the cap comes free, the free cap once it has (None before), a test's push."""
+
+    object: int
+    thread: Thread
+    free: int | None = None
+    push: np.ndarray | None = None
+
+    @property
+    def rise(self) -> float:
+        return self.thread.pitch / (2 * np.pi)
+
+    @property
+    def end(self) -> float:
+        return self.thread.end_angle - 2 * np.pi * END_SLACK
 
 
 def _xyzw(m: np.ndarray) -> list[float]:
@@ -171,10 +202,31 @@ class PybulletRobot(SimRobot):
                 self._make(part, fixed=True, colour=COLOURS["container"])
         self._objects = [self._make(body, fixed=False, colour=COLOURS["object"]) for body in scene.objects]
         self.object = self._objects[0] if self._objects else -1
+        self._threads = [_Thread(uid, body.thread) for uid, body in zip(self._objects, scene.objects) if body.thread]
+        for thread, body in zip(self._threads, [b for b in scene.objects if b.thread]):
+            self._hold(thread, body)
+        self._pushed = False  # whether a test pushes a cap (`push_cap`)
+
+    def _hold(self, thread: _Thread, body: Body) -> None:
+        """Hold a threaded object's cap on its thread: its turn held by a motor with the thread's
+        torque as its most (dry friction), its rise following the turn (`_follow_threads`);
+        stand the object in its fixture, if it has one."""
+        c, t, uid = self.client, thread.thread, thread.object
+        pb.setJointMotorControl2(uid, 1, pb.VELOCITY_CONTROL, targetVelocity=0.0, force=t.torque, physicsClientId=c)
+        if t.fixture:
+            clamp = pb.createConstraint(uid, -1, -1, -1, pb.JOINT_FIXED, (0, 0, 0), (0, 0, 0),
+                                        body.pose[:3, 3].tolist(), childFrameOrientation=_xyzw(body.pose),
+                                        physicsClientId=c)
+            pb.changeConstraint(clamp, maxForce=THREAD_FORCE, physicsClientId=c)
+            for k, (pose, size) in enumerate(jaws(body.pose, bounding_box(body.kind, body.size)[:2], body.size[-1])):
+                self._make(Body(f"jaw{k}:{body.name}", "box", size, pose, 1.0, 1.0), fixed=True,
+                           colour=COLOURS["obstacle"])
 
     def _make(self, body: Body, fixed: bool, colour: tuple[float, ...]) -> int:
         c = self.client
         half = body.half_extents
+        if body.thread is not None:
+            return self._threaded(body, colour)
         if body.kind == "box":
             shape = pb.createCollisionShape(pb.GEOM_BOX, halfExtents=half, physicsClientId=c)
         elif body.kind == "cylinder":
@@ -195,6 +247,43 @@ class PybulletRobot(SimRobot):
                 uid, -1, spinningFriction=0.01 * body.friction, rollingFriction=0.0001,
                 localInertiaDiagonal=body.inertia(), physicsClientId=c,
             )
+        return uid
+
+    def _threaded(self, body: Body, colour: tuple[float, ...]) -> int:
+        """A threaded object: main part and neck, then two links on top, the thread's rise
+        (prismatic, massless) and its turn (revolute), which carries the cap while it is
+        on the thread (atd/sim/thread.py). Bullet's gear does not tie a prismatic joint to
+        a revolute one (tried: it locked the turn and let the rise slide), so the rise follows
+        the turn through a stiff position motor, every physics step (`_follow_threads`)."""
+        c, t = self.client, body.thread
+        assert t is not None
+        height = body.size[-1]
+        main_z, neck_z, cap_z = t.parts(height)
+        main = (*body.half_extents[:-1], t.main_height(height) / 2)
+        if body.kind == "box":
+            kinds, sizes = [pb.GEOM_BOX, pb.GEOM_CYLINDER], dict(halfExtents=[main, [0, 0, 0]])
+        else:
+            kinds, sizes = [pb.GEOM_CYLINDER, pb.GEOM_CYLINDER], {}
+        shape = pb.createCollisionShapeArray(
+            kinds, radii=[main[0], t.neck_radius], lengths=[2 * main[-1], t.neck_height],
+            collisionFramePositions=[[0, 0, main_z], [0, 0, neck_z]], **sizes, physicsClientId=c)
+        cap = pb.createCollisionShape(pb.GEOM_CYLINDER, radius=t.cap_radius, height=t.cap_height, physicsClientId=c)
+        uid = pb.createMultiBody(
+            body.own_mass - NUT_MASS, shape, basePosition=body.pose[:3, 3].tolist(), baseOrientation=_xyzw(body.pose),
+            linkMasses=[NUT_MASS, t.cap_mass], linkCollisionShapeIndices=[-1, cap], linkVisualShapeIndices=[-1, -1],
+            linkPositions=[[0, 0, cap_z], [0, 0, 0]], linkOrientations=[[0, 0, 0, 1]] * 2,
+            linkInertialFramePositions=[[0, 0, 0]] * 2, linkInertialFrameOrientations=[[0, 0, 0, 1]] * 2,
+            linkParentIndices=[0, 1], linkJointTypes=[pb.JOINT_PRISMATIC, pb.JOINT_REVOLUTE],
+            linkJointAxis=[[0, 0, 1]] * 2, physicsClientId=c)
+        pb.changeDynamics(uid, -1, lateralFriction=body.friction, frictionAnchor=1, spinningFriction=0.01 * body.friction,
+                          rollingFriction=0.0001, localInertiaDiagonal=body.inertia(), physicsClientId=c)
+        pb.changeDynamics(uid, 0, localInertiaDiagonal=NUT_INERTIA, jointLowerLimit=0.0, jointUpperLimit=t.travel,
+                          physicsClientId=c)
+        inertia = np.add(t.cap_inertia(), (0.0, 0.0, NUT_TURN_INERTIA))
+        pb.changeDynamics(uid, 1, lateralFriction=body.friction, frictionAnchor=1, localInertiaDiagonal=inertia.tolist(),
+                          jointLowerLimit=0.0, jointUpperLimit=t.end_angle, physicsClientId=c)
+        pb.changeVisualShape(uid, -1, rgbaColor=colour, physicsClientId=c)
+        pb.changeVisualShape(uid, 1, rgbaColor=COLOURS["cap"], physicsClientId=c)
         return uid
 
     def _mesh_shape(self, body: Body) -> int:
@@ -303,7 +392,72 @@ class PybulletRobot(SimRobot):
                                          physicsClientId=self.client)
             if driven:
                 self._drive_hand()
+            if self._threads:
+                self._follow_threads()
+            if self._pushed:
+                self._push_caps()
             pb.stepSimulation(physicsClientId=self.client)
+        for thread in self._threads:  # a cap at the thread's end is let go
+            if thread.free is None and pb.getJointState(thread.object, 1, physicsClientId=self.client)[0] >= thread.end:
+                self._let_go(thread)
+
+    def _follow_threads(self) -> None:
+        """Each cap on its thread rises with its turn: pitch per turn, whatever pulls or pushes it."""
+        c = self.client
+        for thread in self._threads:
+            if thread.free is None:
+                turn, speed = pb.getJointState(thread.object, 1, physicsClientId=c)[:2]
+                pb.setJointMotorControl2(thread.object, 0, pb.POSITION_CONTROL, targetPosition=thread.rise * turn,
+                                         targetVelocity=thread.rise * speed, force=THREAD_FORCE, physicsClientId=c)
+
+    def _let_go(self, thread: _Thread) -> None:
+        """The thread's end: the cap goes on as a free body, where it was and as it moved; the
+        link that carried it no longer touches anything, is not drawn and stops turning."""
+        c, uid, t = self.client, thread.object, thread.thread
+        state = pb.getLinkState(uid, 1, computeLinkVelocity=1, computeForwardKinematics=1, physicsClientId=c)
+        shape = pb.createCollisionShape(pb.GEOM_CYLINDER, radius=t.cap_radius, height=t.cap_height, physicsClientId=c)
+        cap = pb.createMultiBody(t.cap_mass, shape, basePosition=state[0], baseOrientation=state[1], physicsClientId=c)
+        friction = pb.getDynamicsInfo(uid, 1, physicsClientId=c)[1]
+        pb.changeDynamics(cap, -1, lateralFriction=friction, frictionAnchor=1, spinningFriction=0.01 * friction,
+                          rollingFriction=0.0001, localInertiaDiagonal=t.cap_inertia(), physicsClientId=c)
+        pb.resetBaseVelocity(cap, state[6], state[7], physicsClientId=c)
+        pb.changeVisualShape(cap, -1, rgbaColor=COLOURS["cap"], physicsClientId=c)
+        pb.setCollisionFilterGroupMask(uid, 1, 0, 0, physicsClientId=c)
+        pb.changeVisualShape(uid, 1, rgbaColor=(0, 0, 0, 0), physicsClientId=c)
+        pb.setJointMotorControl2(uid, 1, pb.VELOCITY_CONTROL, targetVelocity=0.0, force=THREAD_FORCE, physicsClientId=c)
+        thread.free = cap
+        if thread.push is not None:  # a test's push on it turns it no further
+            thread.push = np.concatenate([thread.push[:3], np.zeros(3)])
+
+    def _push_caps(self) -> None:
+        """Bullet clears external forces every step: a test's pushes on caps, applied again."""
+        c = self.client
+        for thread in self._threads:
+            if thread.push is not None:
+                uid, link = (thread.object, 1) if thread.free is None else (thread.free, -1)
+                centre = pb.getLinkState(uid, 1, physicsClientId=c)[0] if link == 1 else \
+                    pb.getBasePositionAndOrientation(uid, physicsClientId=c)[0]
+                pb.applyExternalForce(uid, link, thread.push[:3].tolist(), centre, pb.WORLD_FRAME, physicsClientId=c)
+                pb.applyExternalTorque(uid, link, thread.push[3:].tolist(), pb.WORLD_FRAME, physicsClientId=c)
+
+    def _push_cap(self, k: int, wrench: np.ndarray) -> None:
+        self._threads[k].push = wrench
+        self._pushed = True
+
+    def _caps(self) -> list[tuple[float, bool, np.ndarray, bool]]:
+        c = self.client
+        found = []
+        for thread in self._threads:
+            turn = pb.getJointState(thread.object, 1, physicsClientId=c)[0]
+            if thread.free is None:
+                link = pb.getLinkState(thread.object, 1, computeForwardKinematics=1, physicsClientId=c)
+                pose = _matrix(link[4], link[5])
+                touching = pb.getContactPoints(thread.object, self.body, linkIndexA=1, physicsClientId=c)
+            else:
+                pose = _matrix(*pb.getBasePositionAndOrientation(thread.free, physicsClientId=c))
+                touching = pb.getContactPoints(thread.free, self.body, physicsClientId=c)
+            found.append((turn, thread.free is not None, pose, bool(touching)))
+        return found
 
     def jacobian(self) -> np.ndarray:
         q = [s[0] for s in pb.getJointStates(self.body, self._movable, physicsClientId=self.client)]
@@ -398,9 +552,10 @@ class PybulletRobot(SimRobot):
         return np.linalg.norm(velocities[:, 0], axis=1), np.linalg.norm(velocities[:, 1], axis=1)
 
     def _robot_collides(self, on: bool) -> None:
-        for uid in self._objects:
+        parts = [(uid, -1) for uid in self._movable_bodies()] + [(t.object, 1) for t in self._threads if t.free is None]
+        for uid, part in parts:
             for link in range(-1, pb.getNumJoints(self.body, physicsClientId=self.client)):
-                pb.setCollisionFilterPair(self.body, uid, link, -1, int(on), physicsClientId=self.client)
+                pb.setCollisionFilterPair(self.body, uid, link, part, int(on), physicsClientId=self.client)
 
     def _camera_matrices(self, camera: DepthCamera, near: float, far: float, aspect: float) -> tuple[list, list]:
         """PyBullet's view and projection matrices of a described camera, from where it truly stands."""
@@ -449,13 +604,17 @@ class PybulletRobot(SimRobot):
     def scene_state(self) -> tuple[list[float], list[tuple]]:
         c = self.client
         joints = pb.getJointStates(self.body, range(pb.getNumJoints(self.body, physicsClientId=c)), physicsClientId=c)
-        return [j[0] for j in joints], [pb.getBasePositionAndOrientation(uid, physicsClientId=c) for uid in self._objects]
+        return [j[0] for j in joints], [pb.getBasePositionAndOrientation(uid, physicsClientId=c) for uid in self._movable_bodies()]
+
+    def _movable_bodies(self) -> list[int]:
+        """The objects, then the caps the threads let go."""
+        return self._objects + [thread.free for thread in self._threads if thread.free is not None]
 
     def set_scene_state(self, state: tuple[list[float], list[tuple]]) -> None:
         joints, objects = state
         for index, q in enumerate(joints):
             pb.resetJointState(self.body, index, q, physicsClientId=self.client)
-        for uid, (position, orientation) in zip(self._objects, objects):
+        for uid, (position, orientation) in zip(self._movable_bodies(), objects):
             pb.resetBasePositionAndOrientation(uid, position, orientation, physicsClientId=self.client)
 
     def show(self) -> None:

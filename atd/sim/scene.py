@@ -17,6 +17,7 @@ import numpy as np
 from atd.model import ObjectClass, ObjectInfo, Task
 from atd.model.files import real_path
 from atd.model.meshcheck import MeshError, check_mesh
+from atd.sim.thread import Thread
 
 DEFAULT_WEIGHT = 0.2  # kg, when the ATD gives none
 DEFAULT_FRICTION = 1.0  # object against pads and table
@@ -34,7 +35,7 @@ CAMERA_ELEVATION = -25.0  # degrees
 WORKSPACE_CAMERA = "workspace"  # that view's name among the cameras a video can be rendered from
 # What is not the robot, as both engines paint it (red, green, blue, opacity).
 COLOURS = {"table": (0.7, 0.55, 0.4, 1.0), "object": (0.2, 0.7, 0.3, 1.0), "obstacle": (0.4, 0.4, 0.8, 1.0),
-           "container": (0.8, 0.65, 0.45, 1.0)}
+           "container": (0.8, 0.65, 0.45, 1.0), "cap": (0.85, 0.2, 0.2, 1.0)}
 
 
 class SceneError(ValueError):
@@ -49,7 +50,10 @@ class Body:
 
     A mesh file is scaled by `mesh_scale` in its own axes, then placed by `mesh_frame` in
     the body's frame. The engines collide with the convex hull of the mesh or, for a
-    concave mesh, with each of its convex `mesh_parts` (files in the mesh's own frame)."""
+    concave mesh, with each of its convex `mesh_parts` (files in the mesh's own frame).
+
+    A body with a `thread` is a bottle or jar with a screw cap (atd/sim/thread.py): `size`
+    and `pose` are the whole object's, `mass` includes the cap's."""
 
     name: str
     kind: Literal["box", "cylinder", "sphere", "mesh"]
@@ -61,6 +65,12 @@ class Body:
     mesh_scale: tuple[float, float, float] = (1.0, 1.0, 1.0)
     mesh_frame: np.ndarray | None = None  # 4x4; None: the body's own frame
     mesh_parts: tuple[Path, ...] = ()
+    thread: Thread | None = None
+
+    @property
+    def own_mass(self) -> float:
+        """The mass of the body itself: without its cap, which the engines build apart."""
+        return self.mass - (self.thread.cap_mass if self.thread is not None else 0.0)
 
     @property
     def collision_meshes(self) -> tuple[Path, ...]:
@@ -83,7 +93,8 @@ class Body:
         return (self.size[0],)
 
     def inertia(self) -> tuple[float, float, float]:
-        m = self.mass
+        """Of `own_mass` spread over the body's shape."""
+        m = self.own_mass
         if self.kind == "sphere":
             i = 0.4 * m * self.size[0] ** 2
             return (i, i, i)

@@ -16,6 +16,7 @@ import numpy as np
 
 from atd.sim.scene import WORKSPACE_CAMERA, Scene
 from atd.sim.sensors import NoisySensors, TaxelImages
+from atd.sim.thread import CapState, resting_place
 from factories.description import DepthCamera, RobotDescription, SensorModel
 from primitives.robot import SENSORS, DepthImage, HandInfo, HandMode, PadInfo, Readings, Robot, RobotInfo
 
@@ -394,6 +395,33 @@ class SimRobot(Robot):
         box = self.scene.container(container)
         return [name for name, pose in self.object_poses().items() if box.holds(pose[:3, 3])]
 
+    def caps(self) -> dict[str, CapState]:
+        """The truth about each screw cap, by its object's name (for judges, not for
+        primitives): how far it was turned, whether it is off the thread, where it rests."""
+        poses = self._object_poses()
+        threaded = [(k, b) for k, b in enumerate(self.scene.objects) if b.thread is not None]
+        return {body.name: CapState(turned, free, pose,
+                                    resting_place(body.thread, body.size[-1], poses[k], pose, free, touching))
+                for (k, body), (turned, free, pose, touching) in zip(threaded, self._caps())}
+
+    def push_cap(self, name: str, torque: float = 0.0, force: Sequence[float] = (0.0, 0.0, 0.0)) -> None:
+        """Turn the named object's cap with `torque` (N m about its axis as it stands now,
+        unscrewing positive) and push it with `force` (N, world x y z), every physics step from now
+        until pushed again or, for the torque, until the thread lets the cap go (a test's
+        hand on the cap, not part of the interface: it lets go of a cap that comes free, which
+        the torque alone would spin up without end)."""
+        threaded = [b.name for b in self.scene.objects if b.thread is not None]
+        if name not in threaded:
+            raise LookupError(f"no object '{name}' with a screw cap; those with one: {', '.join(threaded) or 'none'}")
+        k = threaded.index(name)
+        axis = self._caps()[k][2][:3, 2]
+        self._push_cap(k, np.concatenate([np.asarray(force, float), torque * axis]))
+
+    @abstractmethod
+    def _push_cap(self, k: int, wrench: np.ndarray) -> None:
+        """Apply `wrench` (force, torque; world frame, about the centre of mass) to the k-th
+        threaded object's cap every physics step until called again."""
+
     @abstractmethod
     def place_object(self, pose: np.ndarray) -> None:
         """Teleport the object, at rest (moving it away removes it from the task)."""
@@ -461,6 +489,11 @@ class SimRobot(Robot):
     @abstractmethod
     def _object_poses(self) -> list[np.ndarray]:
         """True 4x4 pose of each object, in the scene's order."""
+
+    @abstractmethod
+    def _caps(self) -> list[tuple[float, bool, np.ndarray, bool]]:
+        """Of each threaded object, in the scene's order: the angle its cap was turned open
+        (rad), whether the thread let it go, its 4x4 pose, whether it touches the robot."""
 
     @abstractmethod
     def _object_speeds(self) -> tuple[np.ndarray, np.ndarray]:

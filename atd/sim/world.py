@@ -12,6 +12,7 @@ robot knows the box, nothing of the five objects in it).
     name = "duck1"                # optional, unique
     position = [0.3, 0.2]         # z optional: resting on whatever is below
     rpy = [0, 0, 90]              # degrees, optional
+    fixture = true                # optional: a screw-capped bottle held upright in a clamp on the table
 
     [[drop]]                      # dropped at random poses, seeded by the run's seed
     objects = ["duck", "mug", "ball", "stapler", "tape"]
@@ -51,7 +52,7 @@ DEFAULT_WALL = 0.01  # m, a cardboard box's
 DROP_GAP = 0.01  # m between the bounding spheres of objects about to drop, and from the walls
 OVERLAP = 0.001  # m that two placed objects' bounding boxes may share: they touch, they do not cut in
 _KEYS = {
-    "object": ("library", "shape", "size", "mass", "friction", "name", "position", "rpy"),
+    "object": ("library", "shape", "size", "mass", "friction", "name", "position", "rpy", "fixture"),
     "drop": ("objects", "into"),
     "container": ("name", "position", "rpy", "size", "wall"),
 }
@@ -280,11 +281,18 @@ class _Reader:
                 self.error("WLD012", "a library object has its own size", (*loc, "size"),
                            "leave 'size' out, or describe the object with 'shape'")
                 return None
-            if mass is None or friction is None:
+            fixture = self.fixture(table, loc, found)
+            if mass is None or friction is None or fixture is None:
                 return None
             body = found.body(given or found.name, pose[0])
+            if fixture:
+                body = dataclasses.replace(body, thread=dataclasses.replace(body.thread, fixture=True))
             return PlacedObject(dataclasses.replace(body, mass=mass, friction=friction), pose[1], self.at(loc),
                                 given is not None)
+        if "fixture" in table:
+            self.error("WLD012", "only a bottle or jar with a screw cap stands in a fixture", (*loc, "fixture"),
+                       f"leave 'fixture' out; screw-capped objects: {', '.join(_threaded())}")
+            return None
         shape = self.word(table, (*loc, "shape"))
         if shape is None:
             if "shape" not in table:
@@ -303,6 +311,19 @@ class _Reader:
             return None
         return PlacedObject(Body(given or shape, shape, size, pose[0], mass, friction), pose[1], self.at(loc),
                             given is not None)
+
+    def fixture(self, table: dict, loc: tuple, found: LibraryObject) -> bool | None:
+        """Whether a library object stands in a fixture (`fixture = true`); None (reported) when
+        the value is not a boolean or the object has no screw cap to hold it for."""
+        value = table.get("fixture", False)
+        if not isinstance(value, bool):
+            self.error("WLD012", f"'fixture' must be true or false, not {value!r}", (*loc, "fixture"))
+            return None
+        if value and found.thread is None:
+            self.error("WLD012", f"'{found.name}' has no screw cap: only a bottle or jar with one stands in a fixture",
+                       (*loc, "fixture"), f"screw-capped objects: {', '.join(_threaded())}")
+            return None
+        return value
 
     def drop(self, i: int, table: dict) -> Drop | None:
         loc = ("drop", i)
@@ -329,6 +350,11 @@ class _Reader:
                        did_you_mean(name, known) or f"library objects: {', '.join(known)}")
             return None
         return known[name]
+
+
+def _threaded() -> list[str]:
+    """The library's objects with a screw cap."""
+    return [name for name, o in library().items() if o.thread is not None]
 
 
 def _named(placed: list[PlacedObject], drops: list[Drop], containers: tuple[tuple[Container, Location], ...],

@@ -1,0 +1,139 @@
+"""Bottles and jars with screw caps, in both engines alike: a cap turned by a torque above
+the thread's friction rises by the pitch per turn and comes free after the object's turns;
+below that torque it stays; a free cap is lifted off by a pull, a threaded one is not; the
+judge's truth (`SimRobot.caps`) says how far it turned, whether it is free and where it rests."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from atd.sim.library import get, library
+from atd.sim.scene import Scene
+from atd.sim.simrobot import SimRobot
+from atd.sim.thread import CapState, Thread, resting_place
+
+SCREW_CAPPED = [name for name, o in library().items() if o.thread is not None]
+GRAVITY = 9.81
+
+
+def _in_fixture(name: str, xy: tuple[float, float] = (0.15, 0.2)) -> Scene:
+    """The library object, held upright in a fixture on the table at `xy`."""
+    found = get(name)
+    pose = np.eye(4)
+    pose[:3, 3] = (*xy, found.size[-1] / 2)
+    body = found.body(name, pose)
+    return Scene(dataclasses.replace(body, thread=dataclasses.replace(body.thread, fixture=True)))
+
+
+def _cap(robot: SimRobot, name: str) -> CapState:
+    return robot.caps()[name]
+
+
+def _turn_until_free(robot: SimRobot, name: str, torque: float, limit: float = 6.0) -> list[tuple[float, float]]:
+    """Turn the cap with `torque` until the thread lets it go: (turns, rise in m) each tick."""
+    robot.hold_still(0.1)  # the closed cap settles on its thread
+    closed = _cap(robot, name).pose[2, 3]
+    robot.push_cap(name, torque)
+    seen = []
+    for _ in range(round(limit / robot.info.control_period)):
+        robot.step()
+        cap = _cap(robot, name)
+        seen.append((cap.turns, cap.pose[2, 3] - closed))
+        if cap.free:
+            return seen
+    raise AssertionError(f"the cap of {name} was not free after {limit} s of {torque} N m: {seen[-1]}")
+
+
+def test_eight_household_bottles_and_jars_of_different_shapes_caps_and_threads() -> None:
+    threads = [get(name).thread for name in SCREW_CAPPED]
+    assert len(SCREW_CAPPED) >= 8
+    assert {get(name).shape.value for name in SCREW_CAPPED} == {"cylinder", "box"}
+    for kind in ("pitch", "turns", "torque", "cap_radius", "cap_mass"):
+        assert len({getattr(t, kind) for t in threads}) >= 3, kind
+    assert len({get(name).mass for name in SCREW_CAPPED}) >= 6
+    # Every cap fits a two-finger pinch of every hand: wider than Baxter's narrowest (26 mm),
+    # narrower than the Melfa's widest (68 mm); every neck fits inside its cap.
+    assert all(0.026 < 2 * t.cap_radius < 0.068 and t.neck_radius < t.cap_radius for t in threads)
+
+
+@pytest.mark.parametrize("name", ["water_bottle", "jam_jar", "syrup_bottle"])
+def test_turning_the_cap_raises_it_by_the_pitch_per_turn_until_it_comes_free(robot_of, melfa, engine, name) -> None:
+    thread = get(name).thread
+    robot = robot_of(melfa, engine, _in_fixture(name))
+    seen = _turn_until_free(robot, name, 1.2 * thread.torque)
+    turns, rise = np.array(seen).T
+    assert turns[-1] == pytest.approx(thread.turns, abs=0.01)
+    threaded = slice(0, len(seen) - 1)  # every tick before it came free: rise = pitch x turns
+    np.testing.assert_allclose(rise[threaded], thread.pitch * turns[threaded], atol=5e-4)
+    assert rise[-2] == pytest.approx(thread.travel, abs=5e-4)
+    assert np.all(np.diff(turns[threaded]) >= -1e-3)  # it only ever turned open
+
+
+def test_below_the_thread_torque_the_cap_does_not_turn(robot_of, melfa, engine) -> None:
+    thread = get("coffee_jar").thread
+    robot = robot_of(melfa, engine, _in_fixture("coffee_jar"))
+    robot.push_cap("coffee_jar", 0.8 * thread.torque)
+    robot.hold_still(1.0)
+    cap = _cap(robot, "coffee_jar")
+    assert abs(cap.turned) < 0.01 and not cap.free and cap.rests == "bottle"
+
+
+def test_a_threaded_cap_holds_a_pull_and_a_free_one_is_lifted_off(robot_of, melfa, engine) -> None:
+    thread = get("juice_bottle").thread
+    robot = robot_of(melfa, engine, _in_fixture("juice_bottle"))
+    closed = _cap(robot, "juice_bottle").pose[2, 3]
+    robot.push_cap("juice_bottle", force=(0.0, 0.0, 5.0))  # a pull of 5 N on the closed cap: the thread gives a little
+    robot.hold_still(0.3)
+    assert _cap(robot, "juice_bottle").pose[2, 3] - closed < 1.5e-3 and not _cap(robot, "juice_bottle").free
+    robot.push_cap("juice_bottle", force=(0.0, 0.0, 0.0))
+    _turn_until_free(robot, "juice_bottle", 1.5 * thread.torque)
+    robot.hold_still(0.5)
+    cap = _cap(robot, "juice_bottle")
+    assert cap.free and cap.rests == "bottle"  # let go, it sits on the neck
+    robot.push_cap("juice_bottle", force=(0.0, 0.0, 2 * thread.cap_mass * GRAVITY))  # twice its weight, up
+    robot.hold_still(0.2)
+    cap = _cap(robot, "juice_bottle")
+    assert cap.pose[2, 3] - closed > 0.05 and cap.rests == "elsewhere"  # in the air: neither held nor resting
+
+
+def test_the_judge_says_a_free_cap_pressed_against_the_hand_is_held(robot_of, melfa, engine) -> None:
+    thread = get("spice_jar").thread
+    # Under the parked hand (its TCP at x 0.125, y 0, 0.15 m high), so a cap pulled up meets it.
+    robot = robot_of(melfa, engine, _in_fixture("spice_jar", (0.125, 0.0)))
+    _turn_until_free(robot, "spice_jar", 1.5 * thread.torque)
+    robot.push_cap("spice_jar", force=(0.0, 0.0, 3 * thread.cap_mass * GRAVITY))
+    robot.hold_still(0.5)
+    cap = _cap(robot, "spice_jar")
+    assert cap.rests == "held" and cap.free and cap.pose[2, 3] > 0.11
+
+
+def test_the_judge_says_a_cap_thrown_off_beside_the_bottle_rests_on_the_table(robot_of, melfa, engine) -> None:
+    thread = get("vitamin_jar").thread
+    robot = robot_of(melfa, engine, _in_fixture("vitamin_jar"))
+    _turn_until_free(robot, "vitamin_jar", 1.5 * thread.torque)
+    weight = thread.cap_mass * GRAVITY
+    robot.push_cap("vitamin_jar", force=(0.0, weight, 2 * weight))  # up and away, as fast as it falls
+    robot.hold_still(0.15)
+    robot.push_cap("vitamin_jar")
+    robot.hold_still(1.5)
+    cap = _cap(robot, "vitamin_jar")
+    assert cap.rests == "table" and cap.free and cap.turns == pytest.approx(thread.turns, abs=0.01)
+    assert cap.pose[1, 3] > 0.2 + 0.05  # beside the jar, not on it
+
+
+def test_a_cap_resting_on_the_neck_rim_is_on_the_bottle_and_one_beside_it_is_not() -> None:
+    thread = Thread(0.0125, 0.012, 0.015, 0.017, 0.0025, 0.004, 1.0, 0.04)
+    height = 0.2
+    bottle = np.eye(4)
+    bottle[2, 3] = height / 2
+    on_rim = thread.closed_cap(bottle, height)
+    assert resting_place(thread, height, bottle, on_rim, free=False, touches_robot=True) == "bottle"
+    assert resting_place(thread, height, bottle, on_rim, free=True, touches_robot=False) == "bottle"
+    lying = np.array([[1.0, 0, 0, 0.1], [0, 0, -1, 0], [0, 1, 0, thread.cap_radius], [0, 0, 0, 1]])  # on its side
+    assert resting_place(thread, height, bottle, lying, free=True, touches_robot=False) == "table"
+    assert resting_place(thread, height, bottle, lying, free=True, touches_robot=True) == "held"
+    assert CapState(math.pi, True, lying, "table").turns == pytest.approx(0.5)
