@@ -32,6 +32,7 @@ class UnscrewHand(ForceGrasp):
         super().start(readings)
         self.ctx.blackboard.cap = CapGrip()
         self.pads = [self.pad_of[f] for f in self.fingers]
+        self.squaring = self._squaring()
         if self.fingers:
             self.gauge = ExtensionGauge(self.ctx.info.hand, self.pads, self.pre)
         self._new_pinch()
@@ -49,6 +50,7 @@ class UnscrewHand(ForceGrasp):
     # -- phases: one tick each ------------------------------------------------------------
     def _close(self, readings: Readings, dt: float) -> None:
         """Close until the fingers stop or every grasping pad presses the grasp force; then hold."""
+        self._square(self.reference)
         self._feel(readings)
         pressed = all(readings.pad_force[k] >= self.grasp_force for k in self.pads)
         if self._closed(readings, dt) or pressed:
@@ -60,6 +62,7 @@ class UnscrewHand(ForceGrasp):
         """Force adaptation; pinched once every grasping pad has felt the grasp force (within
         1 - HELD) for SETTLE_TIME."""
         felt = self._adapt(readings, dt)
+        self._square(readings.hand_q)
         self._feel(readings)
         self.pressed_for = self.pressed_for + dt if bool((felt >= HELD * self.grasp_force).all()) else 0.0
         cap = self.ctx.blackboard.cap
@@ -71,6 +74,27 @@ class UnscrewHand(ForceGrasp):
             board = self.ctx.blackboard
             self.phase, board.release, board.preshaped = Phase.WAIT, False, True
             self._new_pinch()
+
+    # -- keeping the pads square to the cap -----------------------------------------------
+    def _squaring(self) -> list[tuple[int, int, float]]:
+        """(closing DOF, follower, sign) for each grasping finger with a second DOF of its own
+        that the grasp does not close: a pad on a two-joint finger turns with both."""
+        hand = self.ctx.info.hand
+        pairs = []
+        for i in np.flatnonzero(self.moving):
+            pad = hand.pads[self.pad_of[f]] if (f := self.finger_of_dof[i]) else None
+            own = [k for k in (pad.dofs if pad else ()) if k != i and self.finger_of_dof[k] == f and not self.moving[k]]
+            pairs += [(int(i), k, float(hand.closing[k] * hand.closing[i])) for k in own if hand.closing[k]]
+        return pairs
+
+    def _square(self, closing: np.ndarray) -> None:
+        """Flex each follower back by what its finger's closing DOF has closed (`closing`:
+        where that DOF is, or is sent), so the pad keeps the slant it had in the preshape,
+        square to the pinch line: pads that closed at a slant met the cap with the bare
+        fingertips below them (the SDH2 on the jam jar, MuJoCo: 10 N on the link beside the
+        neck, 2 N on the pad, never the grasp force)."""
+        for i, k, sign in self.squaring:
+            self.reference[k] = self.pre[k] - sign * (closing[i] - self.pre[i])
 
     # -- what the pads say of the cap -----------------------------------------------------
     def _new_pinch(self) -> None:
