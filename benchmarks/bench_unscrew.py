@@ -54,9 +54,9 @@ def trial(robot: str, arm: str, engine: str, alignment: bool, noise: float, inde
         run = Run(estd, factory, engine=engine, seed=index, scene=world_scene(estd, _world(offset, Path(folder)), index))
         outcome = run.execute(afterwards=lambda sim: caps.update(sim.caps()))
     [cap] = caps.values()
-    reasons = [r.get("reason", "") for r in run.trace.records if "twists" in str(r.get("reason", ""))]
-    twists = re.findall(r"after (\d+) (?:pinches and (\d+) )?twists", reasons[-1]) if reasons else []
-    moves = int(twists[-1][1] or twists[-1][0]) if twists else 0
+    reasons = [c.get("reason", "") for r in run.trace.records if r["type"] == "event" for c in r["conditions"]]
+    counts = [m for reason in reasons for m in re.findall(r"after (\d+) (?:pinches and (\d+) )?twists", reason)]
+    moves = int(counts[-1][1] or counts[-1][0]) if counts else None  # None: ended on a timeout, uncounted
     return {"task": outcome.succeeded, "off": bool(cap.free), "moves": moves, "time": outcome.sim_time,
             "offset": offset, "summary": outcome.summary}
 
@@ -79,12 +79,13 @@ def main() -> None:
             print(f"alignment {'on' if alignment else 'off'} run {index}: offset {r['offset'].round(4).tolist()} "
                   f"task {'ok' if r['task'] else 'FAILED'}, cap {'off' if r['off'] else 'ON'}, "
                   f"{r['moves']} twists, {r['time']:.1f} s: {r['summary']}", flush=True)
+        counted = [r["moves"] for r in results if r["moves"] is not None]
         n = len(results)
         ok, off = sum(r["task"] for r in results), sum(r["off"] for r in results)
         false = sum(r["task"] and not r["off"] for r in results)
         print(f"== {args.robot}/{args.arm} {args.engine} noise {args.noise} alignment {'on' if alignment else 'off'}: "
               f"task success {ok}/{n}, cap off {off}/{n}, false successes {false}, "
-              f"mean twists {np.mean([r['moves'] for r in results]):.1f}, "
+              f"mean twists {np.mean(counted) if counted else float('nan'):.1f} (of {len(counted)} counted), "
               f"mean time {np.mean([r['time'] for r in results]):.1f} s", flush=True)
 
 

@@ -14,7 +14,7 @@ import numpy as np
 from atd.model.frames import axis_rotation
 from primitives.arm.motion import GAIN, ORIENTATION_TOLERANCE, clamp_norm, norm, orientation_twist, unit
 from primitives.arm.move import arm_output
-from primitives.arm.unscrew_phases import Phase, Pulling, Start, Tally, Twisting
+from primitives.arm.unscrew_phases import Phase, Pulling, Tally, TcpPose, Twisting
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import CapGrip
 from primitives.filters import ContactWrench
@@ -47,8 +47,8 @@ class UnscrewArm(Controller):
 
     def start(self, readings: Readings) -> None:
         self.wrench.start(readings)
-        self.start_pose = Start(readings.tcp[:3, 3].copy(), readings.tcp[:3, :3].copy())
-        self.still = Start(self.start_pose.position, self.start_pose.rotation)  # where a still phase holds
+        self.start_pose = TcpPose(readings.tcp[:3, 3].copy(), readings.tcp[:3, :3].copy())
+        self.still = TcpPose(self.start_pose.position, self.start_pose.rotation)  # where a still phase holds
         self.tally = Tally(pinches=1)
         self.phase = Phase.PINCH
         self.ctx.blackboard.contact = True  # the hand is over the cap: it may close
@@ -135,7 +135,9 @@ class UnscrewArm(Controller):
         """The cap is off: hold it where the pull ended."""
         return self._toward(readings, self.still, RETURN_SPEED)
 
-    _failed = _off  # gave up: hold still where it was
+    def _failed(self, readings: Readings, dt: float) -> np.ndarray:
+        """Gave up: hold still where it was."""
+        return self._toward(readings, self.still, RETURN_SPEED)
 
     # -- transitions ----------------------------------------------------------------------
     def _begin_twist(self, readings: Readings) -> None:
@@ -178,10 +180,10 @@ class UnscrewArm(Controller):
             self.tally.aligned += 1
 
     def _hold_here(self, readings: Readings, phase: Phase) -> None:
-        self.still = Start(readings.tcp[:3, 3].copy(), readings.tcp[:3, :3].copy())
+        self.still = TcpPose(readings.tcp[:3, 3].copy(), readings.tcp[:3, :3].copy())
         self.phase = phase
 
-    def _toward(self, readings: Readings, pose: Start, speed: float) -> np.ndarray:
+    def _toward(self, readings: Readings, pose: TcpPose, speed: float) -> np.ndarray:
         """The twist (world frame) that takes the TCP to `pose` at no more than `speed`."""
         w, _ = orientation_twist(pose.rotation, readings.tcp[:3, :3])
         return np.concatenate([clamp_norm(GAIN * (pose.position - readings.tcp[:3, 3]), speed), w])

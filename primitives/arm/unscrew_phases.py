@@ -22,8 +22,9 @@ class Phase(Enum):
 
 
 @dataclass
-class Start:
-    """The pose every pinch starts from; the reactive alignment moves it."""
+class TcpPose:
+    """A pose the arm goes to or holds: the start of every pinch (the reactive alignment
+    moves it), or where a still phase began."""
 
     position: np.ndarray  # world TCP
     rotation: np.ndarray  # world TCP orientation
