@@ -23,6 +23,7 @@ from atd.runtime.report import grasp_attempts, summary
 from atd.model.files import OutputError
 from atd.runtime.session import ENGINES, InvalidScene, InvalidWorld, Run, RunError, Unrunnable, world_scene
 from atd.sim.scene import WORKSPACE_CAMERA, Scene
+from atd.sim.thread import CapState
 from atd.sim.video import VideoError, parse_size
 from factories.base import Factory
 from factories.registry import UnknownRobot, create
@@ -83,6 +84,7 @@ class _Ran:
     object_positions: dict[str, tuple[float, float, float]]
     inside: dict[str, list[str]]
     inside_before: dict[str, list[str]]
+    caps: dict[str, CapState]
     notes: list[str]
 
 
@@ -180,7 +182,7 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
                       record=record, record_rate=record_rate)
         outcome = session.execute(progress)
         return _Ran(outcome, session.trace.records, session.object_positions, session.inside, session.inside_before,
-                    session.notes)
+                    session.caps, session.notes)
 
     progress = Progress(quiet)
     try:
@@ -200,11 +202,11 @@ def run(task: Path, robot: str | None, arm: str | None, engine: str, seed: int, 
     if fmt == "json":
         about = {"task": str(task), "robot": estd.robot, "arm": estd.arm, "engine": engine, "seed": seed}
         click.echo(json.dumps(document(about, ran.outcome, ran.records, ran.object_positions, ran.inside, outputs,
-                                       ran.notes), indent=2))
+                                       ran.notes, ran.caps), indent=2))
         raise SystemExit(EXIT_OK if ran.outcome.succeeded else EXIT_TASK_FAILED)
     title = f"{task.name} on {estd.robot} ({estd.arm} arm) in {engine}, seed {seed}"
     click.echo(summary(ran.outcome, ran.records, title))
-    for line in where(ran.object_positions, ran.inside, ran.inside_before):
+    for line in where(ran.object_positions, ran.inside, ran.inside_before, ran.caps):
         click.echo(line)
     attempts = len(grasp_attempts(estd, ran.outcome.visits))
     if attempts:

@@ -11,6 +11,7 @@ import click
 
 from atd.runtime.executor import Outcome
 from atd.runtime.report import outcome_document
+from atd.sim.thread import CapState
 
 CLEAR_LINE = "\x1b[K"  # erase from the cursor to the end of the line (every terminal since the VT100)
 
@@ -42,10 +43,15 @@ class Progress:
             click.echo(f"\r{CLEAR_LINE}", err=True, nl=False)
 
 
+#: How a summary says where a cap rests (atd/sim/thread.py's `Rest`).
+CAP_RESTS = {"bottle": "on its bottle", "held": "held by the robot", "table": "on the table",
+             "elsewhere": "neither on its bottle nor on the table nor held"}
+
+
 def where(positions: dict[str, tuple[float, float, float]], inside: dict[str, list[str]],
-          before: dict[str, list[str]]) -> list[str]:
-    """Where the objects came to rest, what each container holds at the end, and what was
-    taken out of it (`before`: what it held when the run began)."""
+          before: dict[str, list[str]], caps: dict[str, CapState]) -> list[str]:
+    """Where the objects came to rest, what each container holds at the end, what was
+    taken out of it (`before`: what it held when the run began), and where each screw cap is."""
     lines = []
     if len(positions) == 1:
         x, y, z = next(iter(positions.values()))
@@ -61,15 +67,22 @@ def where(positions: dict[str, tuple[float, float, float]], inside: dict[str, li
             taken = [name for name in held if name not in names]
             lines.append(f"taken out of '{container}': {', '.join(taken) or 'nothing'} "
                          f"({len(taken)} of the {len(held)} it held)")
+    for name, cap in caps.items():  # a closed cap's turn, held at 0 by a soft stop, reads -1e-9: not -0.00
+        lines.append(f"the cap of '{name}': turned {max(cap.turns, 0.0):.2f} turns, {'off' if cap.free else 'on'} its thread, "
+                     f"{CAP_RESTS[cap.rests]}")
     return lines
 
 
 def document(run: dict, outcome: Outcome, records: list[dict], positions: dict[str, tuple[float, float, float]],
-             inside: dict[str, list[str]], outputs: dict[str, Path | None], notes: list[str]) -> dict:
+             inside: dict[str, list[str]], outputs: dict[str, Path | None], notes: list[str],
+             caps: dict[str, CapState]) -> dict:
     """The run as `--format json` gives it: what ran (`run`), the outcome with its path and
-    events, where the objects rest, the files asked for and the notes the text would print."""
+    events, where the objects rest, where the screw caps are, the files asked for and the
+    notes the text would print."""
     return {**run, **outcome_document(outcome, records),
             "objects": {name: [round(v, 6) for v in xyz] for name, xyz in positions.items()},
+            "caps": {name: {"turns": round(cap.turns, 4), "free": cap.free, "rests": cap.rests,
+                            "position": [round(float(v), 6) for v in cap.pose[:3, 3]]} for name, cap in caps.items()},
             "inside": inside,
             "outputs": {name: None if path is None else str(path) for name, path in outputs.items()},
             "notes": notes}

@@ -205,8 +205,9 @@ class Run:
     def execute(self, progress: Progress | None = None,
                 afterwards: Callable[[SimRobot], None] | None = None) -> Outcome:
         """Run to the end; afterwards `object_positions` is where each object came to rest,
-        `object_position` the first's (None when there is none), and `inside` which objects
-        each container holds (`inside_before`: as the run began). `afterwards` gets the robot once the task has ended, before it
+        `object_position` the first's (None when there is none), `inside` which objects
+        each container holds (`inside_before`: as the run began), and `caps` the truth about
+        each screw cap (`SimRobot.caps`). `afterwards` gets the robot once the task has ended, before it
         is released: a campaign's judge looks at the world there. The trace and video are
         written last; OutputError when one cannot be."""
         try:
@@ -217,6 +218,7 @@ class Run:
                                      for name, pose in self.robot.object_poses().items()}
             self.object_position = next(iter(self.object_positions.values()), None)
             self.inside = {c.name: self.robot.objects_inside(c.name) for c in self.robot.scene.containers}
+            self.caps = self.robot.caps()
             if self.trace_path:
                 self.trace.save(self.trace_path)
             if self.recorder:

@@ -60,6 +60,13 @@ class LibraryObject:
     concave: bool = False
     thread: Thread | None = None
 
+    def in_fixture(self) -> LibraryObject:
+        """This bottle or jar held upright in a clamp on the table (for one-arm robots);
+        ValueError for an object without a screw cap."""
+        if self.thread is None:
+            raise ValueError(f"'{self.name}' has no screw cap: only a bottle or jar with one stands in a fixture")
+        return dataclasses.replace(self, thread=dataclasses.replace(self.thread, fixture=True))
+
     def object_info(self, x: float, y: float) -> ObjectInfo:
         """What the robot believes: the object resting on the table at (x, y)."""
         info = ObjectInfo(weight=self.mass, friction=self.friction, object_class=self.shape, size=self.size)

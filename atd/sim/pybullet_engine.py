@@ -47,8 +47,8 @@ COUPLING_ERP = 0.2
 #: far limit: what lies nearer still hides what is behind it, as on a real camera.
 CLIP_NEAR, CLIP_FAR = 0.25, 1.5
 #: A thread (atd/sim/thread.py) is two links of the object: its rise's mass (taken from the
-#: object's) and inertia, and an inertia added to the cap's turn as MuJoCo's armature (resisting
-#: a cap's accelerations with under 1 mN, 1 mN m): constraints on almost no inertia hold loosely.
+#: object's) and inertia, and an inertia added to the cap's turn as MuJoCo's armature (1 mN m at
+#: 10 rad/s2): a motor on almost no inertia holds loosely.
 NUT_MASS = 0.001  # kg, the rising link (the turning one is the cap)
 NUT_INERTIA = (1e-6, 1e-6, 1e-6)  # kg m^2, the rising link's
 NUT_TURN_INERTIA = 1e-4  # kg m^2 added to the cap's about its axis while on the thread
@@ -601,21 +601,34 @@ class PybulletRobot(SimRobot):
                                   physicsClientId=self.client)[2]
         return np.asarray(image, np.uint8).reshape(height, width, 4)[:, :, :3]
 
-    def scene_state(self) -> tuple[list[float], list[tuple]]:
+    def scene_state(self) -> tuple[list[float], list[tuple], list[tuple]]:
+        """Robot joints, object poses, and per thread its rise, its turn and the free cap's pose (None on the thread)."""
         c = self.client
         joints = pb.getJointStates(self.body, range(pb.getNumJoints(self.body, physicsClientId=c)), physicsClientId=c)
-        return [j[0] for j in joints], [pb.getBasePositionAndOrientation(uid, physicsClientId=c) for uid in self._movable_bodies()]
+        caps = [(*(s[0] for s in pb.getJointStates(t.object, (0, 1), physicsClientId=c)),
+                 None if t.free is None else pb.getBasePositionAndOrientation(t.free, physicsClientId=c))
+                for t in self._threads]
+        return [j[0] for j in joints], [pb.getBasePositionAndOrientation(uid, physicsClientId=c) for uid in self._objects], caps
 
     def _movable_bodies(self) -> list[int]:
         """The objects, then the caps the threads let go."""
         return self._objects + [thread.free for thread in self._threads if thread.free is not None]
 
-    def set_scene_state(self, state: tuple[list[float], list[tuple]]) -> None:
-        joints, objects = state
+    def set_scene_state(self, state: tuple[list[float], list[tuple], list[tuple]]) -> None:
+        joints, objects, caps = state
+        c = self.client
         for index, q in enumerate(joints):
-            pb.resetJointState(self.body, index, q, physicsClientId=self.client)
-        for uid, (position, orientation) in zip(self._movable_bodies(), objects):
-            pb.resetBasePositionAndOrientation(uid, position, orientation, physicsClientId=self.client)
+            pb.resetJointState(self.body, index, q, physicsClientId=c)
+        for uid, (position, orientation) in zip(self._objects, objects):
+            pb.resetBasePositionAndOrientation(uid, position, orientation, physicsClientId=c)
+        for thread, (rise, turn, free) in zip(self._threads, caps):
+            pb.resetJointState(thread.object, 0, rise, physicsClientId=c)
+            pb.resetJointState(thread.object, 1, turn, physicsClientId=c)
+            if free is not None:
+                if thread.free is None:  # this copy's cap comes off where the recorded one did
+                    self._let_go(thread)
+                assert thread.free is not None
+                pb.resetBasePositionAndOrientation(thread.free, *free, physicsClientId=c)
 
     def show(self) -> None:
         """PyBullet's window draws the physics server's state by itself."""

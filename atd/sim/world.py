@@ -284,9 +284,7 @@ class _Reader:
             fixture = self.fixture(table, loc, found)
             if mass is None or friction is None or fixture is None:
                 return None
-            body = found.body(given or found.name, pose[0])
-            if fixture:
-                body = dataclasses.replace(body, thread=dataclasses.replace(body.thread, fixture=True))
+            body = (found.in_fixture() if fixture else found).body(given or found.name, pose[0])
             return PlacedObject(dataclasses.replace(body, mass=mass, friction=friction), pose[1], self.at(loc),
                                 given is not None)
         if "fixture" in table:
@@ -317,7 +315,8 @@ class _Reader:
         the value is not a boolean or the object has no screw cap to hold it for."""
         value = table.get("fixture", False)
         if not isinstance(value, bool):
-            self.error("WLD012", f"'fixture' must be true or false, not {value!r}", (*loc, "fixture"))
+            self.error("WLD012", f"'fixture' must be true or false, not {value!r}", (*loc, "fixture"),
+                       "write fixture = true, or leave it out")
             return None
         if value and found.thread is None:
             self.error("WLD012", f"'{found.name}' has no screw cap: only a bottle or jar with one stands in a fixture",

@@ -5,16 +5,22 @@ judge's truth (`SimRobot.caps`) says how far it turned, whether it is free and w
 
 from __future__ import annotations
 
-import dataclasses
+import json
 import math
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+from atd.campaign.spec import WorldDraw
 from atd.sim.library import get, library
 from atd.sim.scene import Scene
 from atd.sim.simrobot import SimRobot
 from atd.sim.thread import CapState, Thread, resting_place
+from atd.sim.world import load_world
+from tests.conftest import EXAMPLES
 
 SCREW_CAPPED = [name for name, o in library().items() if o.thread is not None]
 GRAVITY = 9.81
@@ -22,11 +28,10 @@ GRAVITY = 9.81
 
 def _in_fixture(name: str, xy: tuple[float, float] = (0.15, 0.2)) -> Scene:
     """The library object, held upright in a fixture on the table at `xy`."""
-    found = get(name)
+    found = get(name).in_fixture()
     pose = np.eye(4)
     pose[:3, 3] = (*xy, found.size[-1] / 2)
-    body = found.body(name, pose)
-    return Scene(dataclasses.replace(body, thread=dataclasses.replace(body.thread, fixture=True)))
+    return Scene(found.body(name, pose))
 
 
 def _cap(robot: SimRobot, name: str) -> CapState:
@@ -68,7 +73,7 @@ def test_turning_the_cap_raises_it_by_the_pitch_per_turn_until_it_comes_free(rob
     turns, rise = np.array(seen).T
     assert turns[-1] == pytest.approx(thread.turns, abs=0.01)
     threaded = slice(0, len(seen) - 1)  # every tick before it came free: rise = pitch x turns
-    np.testing.assert_allclose(rise[threaded], thread.pitch * turns[threaded], atol=5e-4)
+    np.testing.assert_allclose(rise[threaded], thread.pitch * turns[threaded], atol=2e-4)
     assert rise[-2] == pytest.approx(thread.travel, abs=5e-4)
     assert np.all(np.diff(turns[threaded]) >= -1e-3)  # it only ever turned open
 
@@ -88,7 +93,7 @@ def test_a_threaded_cap_holds_a_pull_and_a_free_one_is_lifted_off(robot_of, melf
     closed = _cap(robot, "juice_bottle").pose[2, 3]
     robot.push_cap("juice_bottle", force=(0.0, 0.0, 5.0))  # a pull of 5 N on the closed cap: the thread gives a little
     robot.hold_still(0.3)
-    assert _cap(robot, "juice_bottle").pose[2, 3] - closed < 1.5e-3 and not _cap(robot, "juice_bottle").free
+    assert _cap(robot, "juice_bottle").pose[2, 3] - closed < 5e-4 and not _cap(robot, "juice_bottle").free
     robot.push_cap("juice_bottle", force=(0.0, 0.0, 0.0))
     _turn_until_free(robot, "juice_bottle", 1.5 * thread.torque)
     robot.hold_still(0.5)
@@ -137,3 +142,91 @@ def test_a_cap_resting_on_the_neck_rim_is_on_the_bottle_and_one_beside_it_is_not
     assert resting_place(thread, height, bottle, lying, free=True, touches_robot=False) == "table"
     assert resting_place(thread, height, bottle, lying, free=True, touches_robot=True) == "held"
     assert CapState(math.pi, True, lying, "table").turns == pytest.approx(0.5)
+
+
+def _world(folder: Path, text: str):
+    path = folder / "world.toml"
+    path.write_text(text)
+    return load_world(path)
+
+
+def test_a_world_file_stands_a_bottle_in_a_fixture_and_drops_jars_into_a_box(robot_of, melfa, engine, tmp_path) -> None:
+    world, found = _world(tmp_path, """
+[[object]]
+library = "water_bottle"
+position = [0.15, 0.2]
+fixture = true
+
+[[container]]
+name = "box"
+position = [0.3, -0.15]
+size = [0.30, 0.25, 0.12]
+
+[[drop]]
+objects = ["jam_jar", "spice_jar"]
+into = "box"
+""")
+    assert world is not None and found == []
+    scene = world.scene(Scene(), seed=0)
+    assert [b.thread.fixture for b in scene.objects] == [True, False, False]
+    robot = robot_of(melfa, engine, scene)
+    assert robot.settling.moving == () and robot.objects_inside("box") == ["jam_jar", "spice_jar"]
+    caps = robot.caps()
+    assert list(caps) == ["water_bottle", "jam_jar", "spice_jar"]
+    assert all(not c.free and c.rests == "bottle" and abs(c.turned) < 0.01 for c in caps.values())
+    # A campaign's world draws from the same library.
+    assert WorldDraw(objects=2, into="box", **{"from": ["jam_jar", "water_bottle"]}).from_ == ("jam_jar", "water_bottle")
+
+
+@pytest.mark.parametrize("line, message, hint", [
+    ('library = "duck"\nfixture = true', "'duck' has no screw cap: only a bottle or jar with one stands in a fixture",
+     "jam_jar"),
+    ('library = "jam_jar"\nfixture = "yes"', "'fixture' must be true or false, not 'yes'", "fixture = true"),
+    ('shape = "box"\nsize = [0.05, 0.05, 0.05]\nfixture = true', "only a bottle or jar with a screw cap stands", "jam_jar"),
+])
+def test_a_fixture_for_what_has_no_screw_cap_is_a_located_error(tmp_path, line, message, hint) -> None:
+    world, found = _world(tmp_path, f"[[object]]\nposition = [0.1, 0.0]\n{line}\n")
+    assert world is None and [d.code for d in found] == ["WLD012"]
+    assert message in found[0].message and found[0].loc.line >= 3 and hint in found[0].hint
+
+
+def test_a_copy_posed_from_the_scene_state_shows_the_cap_on_its_thread_and_off_it(robot_of, melfa, engine) -> None:
+    """What a video's renderer does: a fresh copy of the scene, posed as the run's was."""
+    thread = get("vitamin_jar").thread
+    run, copy = (robot_of(melfa, engine, _in_fixture("vitamin_jar")) for _ in range(2))
+    for free in (False, True):
+        if free:
+            _turn_until_free(run, "vitamin_jar", 1.5 * thread.torque)
+            run.push_cap("vitamin_jar", force=(0.0, 0.0, 2 * thread.cap_mass * GRAVITY))
+        else:
+            run.push_cap("vitamin_jar", 1.5 * thread.torque)
+        run.hold_still(0.1)
+        copy.set_scene_state(run.scene_state())
+        # MuJoCo reports poses from the start of the last physics step, the copy's from its end.
+        np.testing.assert_allclose(copy.caps()["vitamin_jar"].pose[:3, 3], run.caps()["vitamin_jar"].pose[:3, 3], atol=3e-3)
+
+
+def test_atd_run_says_where_each_cap_is(tmp_path) -> None:
+    world = tmp_path / "world.toml"
+    world.write_text('[[object]]\nlibrary = "jam_jar"\nposition = [0.15, 0.2]\nfixture = true\n')
+    run = [sys.executable, "-m", "atd", "run", str(EXAMPLES / "simple_move.xml"), "--robot", "melfa", "--world", str(world), "-q"]
+    text = subprocess.run(run, capture_output=True, text=True, timeout=300)
+    assert text.returncode == 0, text.stderr
+    assert "the cap of 'jam_jar': turned 0.00 turns, on its thread, on its bottle" in text.stdout.splitlines()
+    found = json.loads(subprocess.run([*run, "--format", "json"], capture_output=True, text=True, timeout=300).stdout)
+    cap = found["caps"]["jam_jar"]
+    assert abs(cap["turns"]) < 1e-3 and (cap["free"], cap["rests"]) == (False, "bottle")
+    assert cap["position"] == pytest.approx([0.15, 0.2, 0.105 - 0.006], abs=1e-3)  # on top of the jar
+
+
+def test_a_bottle_placed_elsewhere_takes_its_cap_along(robot_of, melfa, engine) -> None:
+    found = get("juice_bottle")
+    pose = np.eye(4)
+    pose[:3, 3] = (0.15, 0.2, found.size[-1] / 2)
+    robot = robot_of(melfa, engine, Scene(found.body("juice_bottle", pose)))
+    pose[:3, 3] = (0.2, -0.25, found.size[-1] / 2)
+    robot.place_object(pose)
+    robot.hold_still(0.3)
+    cap = robot.caps()["juice_bottle"]
+    assert cap.rests == "bottle" and not cap.free
+    np.testing.assert_allclose(cap.pose[:3, 3], found.thread.closed_cap(pose, found.size[-1])[:3, 3], atol=1e-3)
