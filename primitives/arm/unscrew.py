@@ -24,7 +24,7 @@ TWIST_SPEED = 0.5  # rad/s: a 30 degree twist in about a second, slow beside the
 PULL_SPEED = 0.02  # m/s: the 40 mm pull in 2 s; a threaded cap reaches the 7 N limit within millimetres
 RETURN_SPEED = 0.05  # m/s: back to the start pose with the fingers open, clear of the cap
 ARRIVED = 0.002  # m: the start pose counts as reached this near (the robust grasp's SHIFT_TOLERANCE)
-ALIGN_TOLERANCE = 0.001  # m: a cap's axis nearer the grasp centre than this needs no move
+ALIGN_TOLERANCE = 0.002  # m: the pads place the axis to half a 3 mm taxel row; a finer move chased that rounding
 MAX_ALIGN = 0.02  # m: the largest move onto the cap's axis: further, the pads felt more than the cap
 
 
