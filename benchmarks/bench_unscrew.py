@@ -51,7 +51,8 @@ def trial(robot: str, arm: str, engine: str, alignment: bool, noise: float, inde
     offset = np.random.default_rng(index).uniform(-noise, noise, 2)
     caps: dict = {}
     with tempfile.TemporaryDirectory() as folder:
-        run = Run(estd, factory, engine=engine, seed=index, scene=world_scene(estd, _world(offset, Path(folder)), index))
+        truth = world_scene(estd, _world(offset, Path(folder)), index)
+        run = Run(estd, factory, engine=engine, seed=index, scene=truth)
         outcome = run.execute(afterwards=lambda sim: caps.update(sim.caps()))
     [cap] = caps.values()
     reasons = [c.get("reason", "") for r in run.trace.records if r["type"] == "event" for c in r["conditions"]]

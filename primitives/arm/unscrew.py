@@ -25,6 +25,8 @@ PULL_SPEED = 0.02  # m/s: the 40 mm pull in 2 s; a threaded cap reaches the 7 N 
 RETURN_SPEED = 0.05  # m/s: back to the start pose with the fingers open, clear of the cap
 ARRIVED = 0.002  # m: the start pose counts as reached this near (the robust grasp's SHIFT_TOLERANCE)
 ALIGN_TOLERANCE = 0.002  # m: the pads place the axis to half a 3 mm taxel row; a finer move chased that rounding
+PINCH_TIME = 6.0  # s: closing from the preshape (up to 1.5 s) and the robust grasp's SETTLE_LIMIT to reach the force
+TWIST_TURNS = 3.0  # times a twist's time at TWIST_SPEED: not turned by then, the cap turns about another axis
 MAX_ALIGN = 0.02  # m: the largest move onto the cap's axis: further, the pads felt more than the cap
 
 
@@ -50,6 +52,7 @@ class UnscrewArm(Controller):
         self.start_pose = TcpPose(readings.tcp[:3, 3].copy(), readings.tcp[:3, :3].copy())
         self.still = TcpPose(self.start_pose.position, self.start_pose.rotation)  # where a still phase holds
         self.tally = Tally(pinches=1)
+        self.pinch_started = readings.time
         self.phase = Phase.PINCH
         self.ctx.blackboard.contact = True  # the hand is over the cap: it may close
 
@@ -63,11 +66,14 @@ class UnscrewArm(Controller):
 
     # -- phases: one tick each, returning the TCP twist (world frame) ---------------------
     def _pinch(self, readings: Readings, dt: float) -> np.ndarray:
-        """At the start pose until the hand has pinched the cap (twist) or closed on nothing (again)."""
+        """At the start pose until the hand has pinched the cap (twist), or closed on nothing,
+        or not reached the grasp force on every pad within PINCH_TIME (again)."""
         if self.cap.empty:
             self._again(readings, "the fingers closed on nothing")
         elif self.cap.pinched:
             self._begin_twist(readings)
+        elif readings.time - self.pinch_started > PINCH_TIME:
+            self._again(readings, f"the pads did not all press the grasp force within {PINCH_TIME:.0f} s")
         return self._toward(readings, self.start_pose, RETURN_SPEED)
 
     def _twist(self, readings: Readings, dt: float) -> np.ndarray:
@@ -80,6 +86,8 @@ class UnscrewArm(Controller):
             self._again(readings, f"the twist met {torque:.1f} N m, above UNSCREW_TORQUE_LIMIT")
         elif self.cap.empty:
             self._again(readings, "the fingers closed on nothing while twisting")
+        elif readings.time - self.twisting.started > TWIST_TURNS * self.twist_angle / TWIST_SPEED:
+            self._again(readings, f"the twist stalled {np.degrees(left):.0f} degrees short")
         elif left < ORIENTATION_TOLERANCE:
             self.wrench.start(readings)
             self.pulling = Pulling(position.copy(), rotation.copy())
@@ -127,6 +135,7 @@ class UnscrewArm(Controller):
         _, left = orientation_twist(start.rotation, readings.tcp[:3, :3])
         if norm(start.position - readings.tcp[:3, 3]) < ARRIVED and left < ORIENTATION_TOLERANCE:
             self.phase = Phase.PINCH
+            self.pinch_started = readings.time
             self.tally.pinches += 1
             self.ctx.blackboard.contact = True
         return self._toward(readings, start, RETURN_SPEED)
@@ -147,7 +156,7 @@ class UnscrewArm(Controller):
         self.tally.twists += 1
         self.wrench.start(readings)  # the squeeze's own load is no torque of the thread's
         goal = axis_rotation(rotation @ self.direction, -self.twist_angle) @ rotation
-        self.twisting = Twisting(goal, position + rotation @ self.grasp_centre)
+        self.twisting = Twisting(goal, position + rotation @ self.grasp_centre, readings.time)
         self.phase = Phase.TWIST
 
     def _again(self, readings: Readings, why: str) -> None:

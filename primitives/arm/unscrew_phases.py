@@ -36,6 +36,7 @@ class Twisting:
 
     goal: np.ndarray  # world TCP orientation once turned TWIST_ANGLE
     centre: np.ndarray  # world: the grasp centre, which stays where it was pinched
+    started: float  # s: when it began
 
 
 @dataclass
