@@ -62,6 +62,7 @@ class UnscrewArm(Controller):
 
     @property
     def cap(self) -> CapGrip:
+        """What the hand last said of the cap; before it has said anything, an empty grip."""
         return self.ctx.blackboard.cap or CapGrip()
 
     # -- phases: one tick each, returning the TCP twist (world frame) ---------------------
