@@ -6,8 +6,11 @@ each bottle or jar held in its fixture beside the parked Melfa,
 - under 1.2 x the torque: the simulated time until the thread lets the cap go, the turns
   then, the rise at the last threaded tick against pitch x turns, and the worst gap
   between rise and pitch x turns on the way,
-- and the wall time of a control tick with the object standing free, against the library's
-  plain cylinder.
+- the wall time of a control tick with the object standing free, against the library's
+  plain cylinder,
+- and a robot's own unscrewing: the Melfa pinching the water bottle's cap (10 N a pad, the
+  bottle cut to 144 mm so the cap stands within its pads) and turning its wrist 1 rad
+  counter-clockwise seen from above: how far the cap turned and rose.
 
     python benchmarks/bench_screw_caps.py [--engine mujoco pybullet]
 
@@ -17,6 +20,8 @@ Wall times move with the machine's load; the rest does not.
 from __future__ import annotations
 
 import argparse
+import dataclasses
+import math
 import sys
 import time
 from pathlib import Path
@@ -29,6 +34,7 @@ from atd.sim import ENGINES, load_description, make_robot  # noqa: E402
 from atd.sim.library import LibraryObject, get, library  # noqa: E402
 from atd.sim.scene import Scene  # noqa: E402
 from atd.sim.simrobot import SimRobot  # noqa: E402
+from primitives.robot import HandMode  # noqa: E402
 
 PLACE = (0.15, 0.2)  # beside the parked hand
 TICKS = 500
@@ -93,6 +99,29 @@ def _tick(engine: str) -> float:
     return (time.perf_counter() - began) / TICKS
 
 
+def _pinch_and_turn(engine: str) -> str:
+    height = 0.144
+    pose = np.eye(4)
+    pose[:3, 3] = (0.125, 0.0, height / 2)
+    found = get("water_bottle").in_fixture()
+    bottle = dataclasses.replace(found.body("bottle", pose), size=(0.032, height))
+    robot = make_robot(load_description("melfa"), Scene(bottle), engine)
+    hand = robot.info.hand
+    robot.command_hand(hand.closing * 10.0, [HandMode.FORCE] * len(hand.dofs))
+    robot.hold_still(1.0)
+    pads = robot.read().pad_force
+    turn = np.zeros(len(robot.info.arm_joints))
+    turn[-1] = -0.5
+    robot.command_arm_velocity(turn)
+    for _ in range(round(2.0 / robot.info.control_period)):
+        robot.step()
+    cap = robot.caps()["bottle"]
+    rise = cap.pose[2, 3] - found.thread.closed_cap(pose, height)[2, 3]
+    robot.close()
+    return (f"{engine}: pads {pads[0]:.1f} and {pads[1]:.1f} N; wrist turned 1 rad, the cap {cap.turned:.3f} rad, "
+            f"rising {rise * 1e3:.3f} mm (pitch x turns: {found.thread.pitch * cap.turned / (2 * math.pi) * 1e3:.3f} mm)")
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--engine", nargs="+", choices=ENGINES, default=list(ENGINES))
@@ -106,6 +135,8 @@ def main() -> None:
                 print(_measure(found, engine), flush=True)
     for engine in engines:
         print(f"| `cylinder` (no cap) | {engine} | | | | | | | {_tick(engine) * 1e3:.2f} ms |")
+    for engine in engines:
+        print(_pinch_and_turn(engine))
 
 
 if __name__ == "__main__":

@@ -71,7 +71,7 @@ class Recording:
         if visit is not self.visit:
             self.visit, self.state = visit, (visit.path, visit.atd)
         row = self.layout.row(sim_time, self.robot.read(), command, self.robot.true_tcp(),
-                              list(self.robot.object_poses().values()))
+                              list(self.robot.recorded_poses().values()))
         np.concatenate(row, out=self.block[len(self.samples)])
         pads, points, forces = self.robot.true_pad_contacts()
         self.samples.append((self.state, self.modes_sent, (pads.tolist(), points.tolist(), forces.tolist())))

@@ -196,7 +196,7 @@ class Run:
         self.executor = Executor(estd, self.robot, context, self.trace, budget=budget)
         self.video = _Video(self.robot, self.executor, filming) if filming else None
         self.viewer = _Viewer(self.robot) if viewer else None
-        self.recorder = Recording(record, self.robot, self.executor, self.trace, tuple(self.robot.object_poses()), record_rate,
+        self.recorder = Recording(record, self.robot, self.executor, self.trace, tuple(self.robot.recorded_poses()), record_rate,
                                  _run_info(estd, engine, seed), _attachments(estd)) if record is not None else None
         self.observers: list[Observer] = [o for o in (self.video, self.viewer, self.recorder) if o]
         if realtime or viewer:

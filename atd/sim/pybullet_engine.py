@@ -55,6 +55,9 @@ NUT_TURN_INERTIA = 1e-4  # kg m^2 added to the cap's about its axis while on the
 #: The most a thread's rise, and a fixture's clamp, resist with (N or N m): far more than a
 #: hand pulls or pushes with.
 THREAD_FORCE = 1000.0
+#: Of the rise's lag behind pitch x turn, the part its motor corrects each step: at Bullet's
+#: default (0.1) a cap pinched by the Melfa (10 N a pad) and turned 1 rad rose 0.11 mm of 0.67.
+RISE_GAIN = 1.0
 #: Towards the light in video frames: where the MuJoCo scene's one light shines from.
 LIGHT_DIRECTION = (0.1, -0.4, 1.0)
 
@@ -251,7 +254,7 @@ class PybulletRobot(SimRobot):
 
     def _threaded(self, body: Body, colour: tuple[float, ...]) -> int:
         """A threaded object: main part and neck, then two links on top, the thread's rise
-        (prismatic, massless) and its turn (revolute), which carries the cap while it is
+        (prismatic, 1 g) and its turn (revolute), which carries the cap while it is
         on the thread (atd/sim/thread.py). Bullet's gear does not tie a prismatic joint to
         a revolute one (tried: it locked the turn and let the rise slide), so the rise follows
         the turn through a stiff position motor, every physics step (`_follow_threads`)."""
@@ -408,7 +411,8 @@ class PybulletRobot(SimRobot):
             if thread.free is None:
                 turn, speed = pb.getJointState(thread.object, 1, physicsClientId=c)[:2]
                 pb.setJointMotorControl2(thread.object, 0, pb.POSITION_CONTROL, targetPosition=thread.rise * turn,
-                                         targetVelocity=thread.rise * speed, force=THREAD_FORCE, physicsClientId=c)
+                                         targetVelocity=thread.rise * speed, force=THREAD_FORCE,
+                                         positionGain=RISE_GAIN, physicsClientId=c)
 
     def _let_go(self, thread: _Thread) -> None:
         """The thread's end: the cap goes on as a free body, where it was and as it moved; the

@@ -395,6 +395,11 @@ class SimRobot(Robot):
         box = self.scene.container(container)
         return [name for name, pose in self.object_poses().items() if box.holds(pose[:3, 3])]
 
+    def recorded_poses(self) -> dict[str, np.ndarray]:
+        """What a recording's truth holds (not for primitives): every object's pose by name,
+        then each screw cap's as `NAME:cap`."""
+        return self.object_poses() | {f"{name}:cap": cap.pose for name, cap in self.caps().items()}
+
     def caps(self) -> dict[str, CapState]:
         """The truth about each screw cap, by its object's name (for judges, not for
         primitives): how far it was turned, whether it is off the thread, where it rests."""

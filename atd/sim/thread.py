@@ -3,10 +3,11 @@
 A threaded object is one `Body` (its `size` and `pose` are the whole object's: the box or
 cylinder around bottle and cap, so resting, dropping and the robot's belief treat it as
 any other object) with a `Thread`: a main part, a neck on top of it, and the cap sitting
-on the neck. Both engines build the cap as a free body held on the thread by a weld to a
-massless "nut" that turns and rises on the neck, the rise tied to the turn (pitch per
-turn) and the turn resisted by a dry friction torque. When the nut reaches the end of the
-thread the weld is let go: from then on only contacts hold the cap, so it is lifted off,
+on the neck. On the thread the cap turns and rises on the neck, the rise tied to the turn
+(pitch per turn), the turn resisted by a dry friction torque: in MuJoCo the cap is a free
+body welded to a "nut" that does so, in PyBullet it is the object's link that does. At the
+thread's end the weld is let go (MuJoCo) or the cap goes on as a free body with the link's
+pose and velocity (PyBullet): from then on only contacts hold it, so it is lifted off,
 dropped or left on the neck by the physics alone.
 """
 
@@ -113,17 +114,20 @@ class CapState:
 
     @property
     def turns(self) -> float:
+        """How far it was turned open, in turns."""
         return self.turned / (2 * math.pi)
 
 
 def resting_place(thread: Thread, height: float, bottle: np.ndarray, cap: np.ndarray, free: bool,
                   touches_robot: bool) -> Rest:
-    """Where a cap at pose `cap` rests: on its bottle (threaded, or free with its underside on
-    the neck's rim and its centre over the neck), held by the robot (touching it and not
-    resting on the bottle or table), on the table (its lowest point near the table top), or
-    elsewhere (on another object, falling)."""
+    """Where a cap at pose `cap` rests: on its bottle while threaded; once free, held by the
+    robot (touching it: a cap pinched just over the neck is held, not left on the bottle), on
+    its bottle (its underside on the neck's rim, its centre over the neck), on the table (its
+    lowest point near the table top), or elsewhere (on another object, falling)."""
     if not free:
         return "bottle"
+    if touches_robot:
+        return "held"
     local = np.linalg.solve(bottle, cap)
     underside = local[2, 3] - thread.cap_height / 2
     over_neck = math.hypot(local[0, 3], local[1, 3]) <= thread.neck_radius
@@ -132,8 +136,4 @@ def resting_place(thread: Thread, height: float, bottle: np.ndarray, cap: np.nda
     # Lowest point of a cylinder turned any way: its centre minus the reach of its rim and ends along z.
     axis_z = abs(cap[2, 2])
     lowest = cap[2, 3] - thread.cap_radius * math.sqrt(max(0.0, 1 - axis_z * axis_z)) - thread.cap_height / 2 * axis_z
-    if touches_robot:
-        return "held"
-    if lowest <= RESTING:
-        return "table"
-    return "elsewhere"
+    return "table" if lowest <= RESTING else "elsewhere"

@@ -5,6 +5,7 @@ judge's truth (`SimRobot.caps`) says how far it turned, whether it is free and w
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import subprocess
@@ -13,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from mcap.reader import make_reader
 
 from atd.campaign.spec import WorldDraw
 from atd.sim.library import get, library
@@ -20,6 +22,7 @@ from atd.sim.scene import Scene
 from atd.sim.simrobot import SimRobot
 from atd.sim.thread import CapState, Thread, resting_place
 from atd.sim.world import load_world
+from primitives.robot import HandMode
 from tests.conftest import EXAMPLES
 
 SCREW_CAPPED = [name for name, o in library().items() if o.thread is not None]
@@ -130,7 +133,7 @@ def test_the_judge_says_a_cap_thrown_off_beside_the_bottle_rests_on_the_table(ro
     assert cap.pose[1, 3] > 0.2 + 0.05  # beside the jar, not on it
 
 
-def test_a_cap_resting_on_the_neck_rim_is_on_the_bottle_and_one_beside_it_is_not() -> None:
+def test_a_free_cap_is_held_where_the_robot_touches_it_else_on_the_rim_or_the_table() -> None:
     thread = Thread(0.0125, 0.012, 0.015, 0.017, 0.0025, 0.004, 1.0, 0.04)
     height = 0.2
     bottle = np.eye(4)
@@ -138,6 +141,7 @@ def test_a_cap_resting_on_the_neck_rim_is_on_the_bottle_and_one_beside_it_is_not
     on_rim = thread.closed_cap(bottle, height)
     assert resting_place(thread, height, bottle, on_rim, free=False, touches_robot=True) == "bottle"
     assert resting_place(thread, height, bottle, on_rim, free=True, touches_robot=False) == "bottle"
+    assert resting_place(thread, height, bottle, on_rim, free=True, touches_robot=True) == "held"
     lying = np.array([[1.0, 0, 0, 0.1], [0, 0, -1, 0], [0, 1, 0, thread.cap_radius], [0, 0, 0, 1]])  # on its side
     assert resting_place(thread, height, bottle, lying, free=True, touches_robot=False) == "table"
     assert resting_place(thread, height, bottle, lying, free=True, touches_robot=True) == "held"
@@ -206,13 +210,17 @@ def test_a_copy_posed_from_the_scene_state_shows_the_cap_on_its_thread_and_off_i
         np.testing.assert_allclose(copy.caps()["vitamin_jar"].pose[:3, 3], run.caps()["vitamin_jar"].pose[:3, 3], atol=3e-3)
 
 
-def test_atd_run_says_where_each_cap_is(tmp_path) -> None:
-    world = tmp_path / "world.toml"
+def test_atd_run_says_where_each_cap_is_and_records_it(tmp_path) -> None:
+    world, recording = tmp_path / "world.toml", tmp_path / "run.mcap"
     world.write_text('[[object]]\nlibrary = "jam_jar"\nposition = [0.15, 0.2]\nfixture = true\n')
     run = [sys.executable, "-m", "atd", "run", str(EXAMPLES / "simple_move.xml"), "--robot", "melfa", "--world", str(world), "-q"]
-    text = subprocess.run(run, capture_output=True, text=True, timeout=300)
+    text = subprocess.run([*run, "--record", str(recording)], capture_output=True, text=True, timeout=300)
     assert text.returncode == 0, text.stderr
     assert "the cap of 'jam_jar': turned 0.00 turns, on its thread, on its bottle" in text.stdout.splitlines()
+    with recording.open("rb") as f:
+        truth = [json.loads(m.data) for _, channel, m in make_reader(f).iter_messages() if channel.topic == "/truth"]
+    assert list(truth[-1]["objects"]) == ["jam_jar", "jam_jar:cap"]
+    assert truth[-1]["objects"]["jam_jar:cap"]["position"] == pytest.approx({"x": 0.15, "y": 0.2, "z": 0.099}, abs=1e-3)
     found = json.loads(subprocess.run([*run, "--format", "json"], capture_output=True, text=True, timeout=300).stdout)
     cap = found["caps"]["jam_jar"]
     assert abs(cap["turns"]) < 1e-3 and (cap["free"], cap["rests"]) == (False, "bottle")
@@ -230,3 +238,28 @@ def test_a_bottle_placed_elsewhere_takes_its_cap_along(robot_of, melfa, engine) 
     cap = robot.caps()["juice_bottle"]
     assert cap.rests == "bottle" and not cap.free
     np.testing.assert_allclose(cap.pose[:3, 3], found.thread.closed_cap(pose, found.size[-1])[:3, 3], atol=1e-3)
+
+
+def test_a_pinch_and_a_wrist_turn_unscrew_the_cap(robot_of, melfa, engine) -> None:
+    """The fingers' contacts drive the thread: the Melfa pinches the cap with 10 N per pad
+    and turns its wrist counter-clockwise seen from above (negative about its downward tool axis)."""
+    thread = get("water_bottle").thread
+    height = 0.144  # the cap, 17 mm tall, within the pads (24 mm either side of the TCP, 0.15 m high), the neck below them
+    pose = np.eye(4)
+    pose[:3, 3] = (0.125, 0.0, height / 2)
+    bottle = dataclasses.replace(get("water_bottle").in_fixture().body("bottle", pose), size=(0.032, height))
+    robot = robot_of(melfa, engine, Scene(bottle))
+    hand = robot.info.hand
+    robot.command_hand(hand.closing * 10.0, [HandMode.FORCE] * len(hand.dofs))
+    robot.hold_still(1.0)
+    assert (robot.read().pad_force > 5.0).all()  # more than the thesis's FINGER_GRASPING_FORCE
+    turn = np.zeros(len(robot.info.arm_joints))
+    turn[-1] = -0.5  # rad/s
+    robot.command_arm_velocity(turn)
+    for _ in range(round(2.0 / robot.info.control_period)):
+        robot.step()
+    cap = robot.caps()["bottle"]
+    # The wrist turned 1 rad; the cap as far, or a little less where the pads slip (MuJoCo: 0.75 rad).
+    assert 0.6 < cap.turned < 1.05 and not cap.free
+    rise = cap.pose[2, 3] - thread.closed_cap(pose, height)[2, 3]
+    assert rise == pytest.approx(thread.pitch * cap.turned / (2 * math.pi), abs=2e-4)
