@@ -252,6 +252,11 @@ class Factory(ABC):
                              "(`atd robots list`: primitives)")
         if state.type in PERCEPTUAL_PRIMITIVES:
             return self.perceptual(state, context)
+        if state.type is StateType.UNSCREW and StateType.UNSCREW not in self.primitives:
+            raise Unmappable(f"the {self.name} has no unscrew primitive: unscrewing pinches the cap between two "
+                             "fingertips, each pressing its own force through the twist (thesis 3.3.6), and the "
+                             f"{self.arm.hand.name} has no fingers that close on their own",
+                             "translate the task for a robot with a multi-finger hand (`atd robots list`: primitives)")
         mapping = self.map_node(state, context)
         if self.grasp != "naive" or state.type is not StateType.GRASP:
             return mapping

@@ -52,6 +52,7 @@ class ParallelJawFactory(Factory):
         MappingRow("slide", "-", "-", "-"),
         MappingRow("release", "release", "hand position", "arm control"),
         *PERCEPTION_ROWS,
+        MappingRow("unscrew", "-", "-", "-"),
     )
 
     def map_node(self, state: State, context: MappingContext) -> NodeMapping:
@@ -91,7 +92,7 @@ class MultiFingerFactory(Factory):
 
     primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
                             StateType.PLACE, StateType.SLIDE, StateType.RELEASE,
-                            StateType.EXPLORE, StateType.PERCEIVE})
+                            StateType.EXPLORE, StateType.PERCEIVE, StateType.UNSCREW})
     node_table = (  # thesis Table 7.3
         MappingRow("grasp", "robust_grasp", "pregrasp size", "arm control, FT and tactile sensors"),
         MappingRow("move", "transport", "-", "arm control"),
@@ -101,6 +102,8 @@ class MultiFingerFactory(Factory):
         MappingRow("slide", "slide", "slide force threshold", "arm control, force-torque sensor"),
         MappingRow("release", "release", "hand position", "arm control"),
         *PERCEPTION_ROWS,
+        MappingRow("unscrew", "unscrew", "grasp force, twist angle, torque and pull limits",
+                   "arm control, FT and tactile sensors"),
     )
     holding_pads: ClassVar[tuple[str, ...]] = ()  # empty: every tactile sensor holds
     refused_grasp_hint: ClassVar[str] = "use another grasp shape"
@@ -111,6 +114,8 @@ class MultiFingerFactory(Factory):
             return self.finger_grasp(state, context)
         if kind is StateType.RELEASE:
             return self.release(state)
+        if kind is StateType.UNSCREW:
+            return self.unscrew(state)
         target, via = self.motion(state, context)
         if kind is StateType.PLACE:
             return NodeMapping("place", self.controller("place", target=target), self.controller("hold_position"))
@@ -128,13 +133,7 @@ class MultiFingerFactory(Factory):
         """The robust grasp (thesis 3.3.1): the state's grasp, or the one its preshape leads
         to, or a power grasp; refused when the hand cannot make it or would hit an obstacle."""
         grasp = state.hand_shape or (GRASP_OF.get(state.preshape) if state.preshape else None) or DEFAULT_GRASP
-        preshape = state.preshape or PRESHAPE_OF.get(grasp)
-        for wanted in (grasp, preshape):
-            if wanted in self.arm.hand.cannot_grasp:
-                raise Unmappable(f"grasp state '{state.name}' asks for '{wanted.value}': "
-                                 f"{self.arm.hand.cannot_grasp[wanted]}", self.refused_grasp_hint)
-        grasp, notes = self.shape(grasp)
-        preshape_made, pre_notes = self.shape(preshape) if preshape else (None, ())
+        grasp, preshape_made, notes = self.grasp_shapes(state, grasp)
         self.check_object_reach(context, grasp.value, *((preshape_made.value,) if preshape_made else ()))
         configured = float(self.controller("robust_grasp_hand").params["grasp_force"])
         refuse_uncarriable(context.object, f"grasp state '{state.name}'")
@@ -151,13 +150,39 @@ class MultiFingerFactory(Factory):
                               max_back_off=round(self.robot.closing_swing(placed, grasp.value) + SWING_MARGIN, 6),
                               grasp_centre=tuple(round(float(c), 6) for c in
                                                  self.robot.hand.grasp_centres.get(grasp.value, (0.0, 0.0, 0.0))))
-        return NodeMapping("robust_grasp", arm, hand, notes + pre_notes)
+        return NodeMapping("robust_grasp", arm, hand, notes)
+
+    def unscrew(self, state: State) -> NodeMapping:
+        """Thesis 3.3.6: the state's grasp (by default a two-finger pinch, GRASPING_FINGERS 2)
+        on the cap, opened to `object_size` (the cap's width) when the state gives it."""
+        grasp, preshape_made, notes = self.grasp_shapes(state, state.hand_shape or HandShape.PINCH_GRASP)
+        hand = self.controller("unscrew_hand", grasp_shape=grasp.value, pregrasp_size=self.opening(state.object_size),
+                               preshape=preshape_made.value if preshape_made else None)
+        centre = self.robot.hand.grasp_centres.get(grasp.value, (0.0, 0.0, 0.0))
+        arm = self.controller("unscrew_arm", grasp_centre=tuple(round(float(c), 6) for c in centre))
+        return NodeMapping("unscrew", arm, hand, notes)
+
+    def grasp_shapes(self, state: State, grasp: HandShape) -> tuple[HandShape, HandShape | None, tuple[str, ...]]:
+        """The grasp and the preshape (the state's, or the grasp's own) the hand makes for
+        them, with notes on shapes only approximated; refused when it cannot make one."""
+        preshape = state.preshape or PRESHAPE_OF.get(grasp)
+        for wanted in (grasp, preshape):
+            if wanted in self.arm.hand.cannot_grasp:
+                raise Unmappable(f"{state.type.value} state '{state.name}' asks for '{wanted.value}': "
+                                 f"{self.arm.hand.cannot_grasp[wanted]}", self.refused_grasp_hint)
+        made, notes = self.shape(grasp)
+        preshape_made, pre_notes = self.shape(preshape) if preshape else (None, ())
+        return made, preshape_made, notes + pre_notes
 
     def pregrasp_size(self, state: State, context: MappingContext) -> float | None:
         """Table 7.3's extra parameter: how far to open, from the object's size (0..1)."""
         size = state.object_size
         if size is None and context.object is not None and (context.object.size or context.object.object_class):
             size = grasp_width(context.object)
+        return self.opening(size)
+
+    def opening(self, size: float | None) -> float | None:
+        """How far to open (0..1) around an object `size` wide, with PREGRASP_MARGIN; None for no size."""
         if size is None:
             return None
         return round(min(1.0, max(0.2, (size + PREGRASP_MARGIN) / self.arm.hand.max_opening)), 3)

@@ -24,6 +24,16 @@ class Shift:
 
 
 @dataclass(eq=False)
+class CapGrip:
+    """What an unscrew's fingertips say of the cap, each tick (hand -> arm)."""
+
+    pinched: bool = False  # every grasping pad has pressed the grasp force since this pinch's close
+    empty: bool = False  # the pads closed nearer than FINGER_MIN_DISTANCE: nothing between them
+    holding: bool = False  # every grasping pad touches something now
+    axis: np.ndarray | None = None  # (3,) world: the pads' contacts' midpoint, averaged since the close
+
+
+@dataclass(eq=False)
 class Blackboard:
     """The messages between the arm and hand sides of one state's primitive; each field
     says who writes it. A field left at its default is a message no controller sent."""
@@ -66,6 +76,16 @@ class Blackboard:
     """Hand -> arm: with `jaws_empty`, where along the jaws' width (the hand's x, from -1 to 1
     of a pad's half width) the pads last felt something while they closed on nothing, or
     None: the object lies beyond that edge of the pads (pushed there by it)."""
+
+    cap: CapGrip | None = None
+    """Hand -> arm: an unscrew's pinch on the cap, rewritten every tick; None before the first close."""
+
+    release: bool = False
+    """Arm -> hand: an unscrew's twist or pull is over: open into the preshape (the hand sets
+    `preshaped` True once open), and close again on the next `contact`."""
+
+    cap_off: bool = False
+    """Arm -> hand: the unscrew pulled the pinched cap CAP_REMOVED_DISTANCE off: the hand keeps holding it, done."""
 
 
 EMPTY_HAND = "empty_hand"

@@ -21,6 +21,7 @@ from primitives.arm.jaw_grasp import JawGraspCorrection
 from primitives.arm.move import CartesianMove, Hold, Push
 from primitives.arm.robust_approach import RobustGraspApproach
 from primitives.arm.surface import Place, ReleaseRetreat, Slide
+from primitives.arm.unscrew import UnscrewArm
 from primitives.base import Condition, Context, Controller, Status
 from primitives.conditions import (
     Fault,
@@ -42,6 +43,7 @@ from primitives.hands.multi_finger import NaiveGraspHand
 from primitives.hands.parallel_jaw import CloseUntilForce, NaiveJawGrasp, Squeeze
 from primitives.hands.posture import HandShape, HoldPosition, OpenTo
 from primitives.hands.robust_grasp import RobustGraspHand
+from primitives.hands.unscrew import UnscrewHand
 from primitives.perception.perceive import perceive
 from primitives.values import Approach, NothingFound
 
@@ -65,6 +67,7 @@ ARM: Mapping[str, ControllerClass] = {
     "jaw_grasp_correction": JawGraspCorrection,
     "explore": Explore,
     "perceive": perceive,
+    "unscrew_arm": UnscrewArm,
 }
 
 _POSTURES: Mapping[str, ControllerClass] = {"hold_position": HoldPosition, "hand_shape": HandShape, "open_to": OpenTo}
@@ -72,7 +75,8 @@ _POSTURES: Mapping[str, ControllerClass] = {"hold_position": HoldPosition, "hand
 HANDS: Mapping[str, Mapping[str, ControllerClass]] = {
     "parallel_jaw": {**_POSTURES, "close_until_force": CloseUntilForce, "squeeze": Squeeze,
                      "naive_grasp_hand": NaiveJawGrasp},
-    "multi_finger": {**_POSTURES, "robust_grasp_hand": RobustGraspHand, "naive_grasp_hand": NaiveGraspHand},
+    "multi_finger": {**_POSTURES, "robust_grasp_hand": RobustGraspHand, "naive_grasp_hand": NaiveGraspHand,
+                     "unscrew_hand": UnscrewHand},
 }
 
 

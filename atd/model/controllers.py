@@ -395,6 +395,35 @@ _ARM_CONTROLLERS = (
             "min_points": _p(INT, "vision: a cluster of fewer points is noise (ours)", 20),
         },
     ),
+    ControllerSpec(
+        "unscrew_arm", Role.ARM,
+        "Arm side of the unscrew: hold while the fingers pinch the cap, twist it about the approach axis through "
+        "the grasp centre, pull back to test whether it is free; after a twist or pull that ends early, return "
+        "(moved onto the cap's axis by the reactive alignment) to pinch again.",
+        "thesis 3.3.6, Fig. 3.11-3.13",
+        {
+            "grasp_direction": _p(VEC, "the approach axis in the hand frame: the twist turns about it, the pull backs "
+                                  "off along it (as the robust grasp's GRASP_DIRECTION)", (0.0, 0.0, 1.0), length=3,
+                                  limits=ranges.DIRECTION),
+            "twist_angle": _p(NUM, "how far each twist turns the cap (thesis TWIST_ANGLE)", 30.0, unit="deg",
+                              limits=ranges.ANGLE),
+            "torque_limit": _p(NUM, "a twist stops early above this torque about the approach axis: a collision is "
+                               "assumed (thesis UNSCREW_TORQUE_LIMIT)", 10.0, unit="N m"),
+            "pull_force_limit": _p(NUM, "a pull stops above this force along the approach: the cap is still on its "
+                                   "thread (thesis PULL_FORCE_LIMIT)", 7.0, unit="N"),
+            "cap_removed_distance": _p(NUM, "a pull this far with the cap still pinched: the cap is off (thesis "
+                                       "CAP_REMOVED_DISTANCE)", 0.04, unit="m"),
+            "alignment": _p(FLAG, "the reactive alignment: before each pinch the grasp centre moves onto the cap's "
+                            "axis, as the pads' contacts averaged over the last pinch and twist place it "
+                            "(thesis 3.3.6, Fig. 3.12)", True),
+            "max_pinches": _p(INT, "pinches before the unscrew gives up, each followed by a twist unless it closed "
+                              "on nothing (ours: a cap of three turns takes 36 twists of 30 degrees)", 40),
+            "grasp_centre": _p(VEC, "where the fingers pinch, from the TCP in the hand frame: the twist turns about "
+                               "it (the robot's own geometry)", (0.0, 0.0, 0.0), length=3, limits=ranges.COORDINATE),
+            "filter_time": _p(NUM, "time constant of the low-pass on the wrist's torque and force (ours: a pad "
+                              "slipping on the cap chatters tick to tick)", 0.05, unit="s"),
+        },
+    ),
 )
 
 _HAND_CONTROLLERS = (
@@ -475,6 +504,24 @@ _HAND_CONTROLLERS = (
         "thesis 3.3.4 HAND_TARGET_POSITION; thesis 7.3 (Melfa release)",
         {"hand_position": _p(NUM, "target opening, 0 = closed .. 1 = open (thesis default 1.0)", 1.0),
          "speed": _p(NUM, "fraction of the joints' speed limit to use (ours)", 0.5, limits=ranges.SPEED_FRACTION)},
+    ),
+    ControllerSpec(
+        "unscrew_hand", Role.HAND,
+        "Hand side of the unscrew: pinch the cap until each grasping pad presses the grasp force, keep pressing "
+        "(closing on when contact is lost) through the twist and the pull, tell the arm when the pads closed on "
+        "nothing and where the contacts put the cap's axis; open when the arm asks.",
+        "thesis 3.3.6 (pinch, FINGER_GRASPING_FORCE, FINGER_MIN_DISTANCE, reactive alignment)",
+        {
+            "preshape": _p(WORD, "starting hand configuration; unset = current"),
+            "pregrasp_size": _p(NUM, "hand opening before closing, 0..1; unset = the preshape's"),
+            "grasp_shape": _p(WORD, "the grasp to close into: two fingers pinch (thesis GRASPING_FINGERS 2)",
+                              required=True),
+            "grasp_force": _p(NUM, "force each grasping pad presses the cap with (thesis FINGER_GRASPING_FORCE)", 5.0,
+                              unit="N"),
+            "contact_threshold": _p(NUM, "pad force counted as finger contact (ours)", 0.3, unit="N"),
+            "finger_min_distance": _p(NUM, "pads closer than this hold nothing (thesis FINGER_MIN_DISTANCE)", 0.012,
+                                      unit="m"),
+        },
     ),
 )
 

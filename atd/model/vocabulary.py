@@ -19,6 +19,7 @@ class StateType(StrEnum):
     SLIDE = "slide"
     EXPLORE = "explore"  # perceptual (thesis Table 3.1): move along a direction until contact
     PERCEIVE = "perceive"  # perceptual (thesis 3.4.3): choose an object to grasp, or find none
+    UNSCREW = "unscrew"  # thesis 3.3.6: pinch, twist and pull a screwed cap until it comes off
     TASK = "task"
     SUCCESS = "success"
     FAILURE = "failure"
@@ -45,7 +46,7 @@ ARM_PRIMITIVES = frozenset(
     {StateType.MOVE, StateType.TRANSPORT, StateType.PLACE, StateType.PUSH, StateType.SLIDE}
 )
 OBJECT_PRIMITIVES = frozenset(
-    {StateType.GRASP, StateType.TRANSPORT, StateType.PLACE, StateType.PUSH, StateType.SLIDE}
+    {StateType.GRASP, StateType.TRANSPORT, StateType.PLACE, StateType.PUSH, StateType.SLIDE, StateType.UNSCREW}
 )
 PERCEPTUAL_PRIMITIVES = frozenset({StateType.EXPLORE, StateType.PERCEIVE})
 

@@ -61,6 +61,7 @@ class BaxterFactory(Factory):
         MappingRow("slide", "slide", "slide force thresholds (raised, filtered)", "arm control, virtual F/T"),
         MappingRow("release", "release", "hand position", "arm control, virtual F/T"),
         *PERCEPTION_ROWS,
+        MappingRow("unscrew", "-", "-", "-"),
     )
 
     def map_node(self, state: State, context: MappingContext) -> NodeMapping:

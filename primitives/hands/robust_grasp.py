@@ -19,14 +19,13 @@ from primitives.blackboard import EMPTY_HAND, Shift
 from primitives.filters import LowPass, held_wrench, world_load
 from primitives.hands.extension import ExtensionGauge, contact_points
 from primitives.hands.grasp_phases import Closing, Corrections, Holding, Phase, Weighing
-from primitives.hands.multi_finger import CLOSING_SPEED, REACHED, FingerGrasp
+from primitives.hands.force_grasp import ForceGrasp
+from primitives.hands.multi_finger import CLOSING_SPEED, REACHED
 from primitives.hands.pinch_search import PinchSearch
 from primitives.robot import Readings
 
 OPENING_SPEED = 1.0  # of each DOF's speed limit: reopening at the closing speed left time for only two closes
-TOUCH_EFFORT = 0.05  # of the effort limit: a light touch, the least force adaptation starts from
 SETTLE_TIME = 0.1  # s every pad must feel the grasp force (HELD) before the object counts as held
-ADAPT_GAIN = 0.05  # effort (fraction of the limit) per N of missing pad force, per s
 HELD = 0.9  # the squeeze within 10 % of the grasp force: the object is held
 FELT_TIME = SETTLE_TIME  # s the pad forces are averaged over: a pad on a tilted object swings about a steady mean
 SETTLE_LIMIT = 4.0  # s a hold may take to settle: 1.5 times the slowest measured; one unsettled then never will
@@ -44,13 +43,12 @@ RIM_CONTACT = 0.0015  # m over which a pad's contact on a curved face carries fr
 GAP_CHECK = 0.05  # s between looks at the pads' gap: a look (forward kinematics) costs 0.3-0.5 ms
 
 
-class RobustGraspHand(FingerGrasp):
+class RobustGraspHand(ForceGrasp):
     """The robust grasp's hand side, for any three-finger hand."""
 
     def __init__(self, ctx: Context) -> None:
         super().__init__(ctx)
         self.base = {pad.name: np.array(pad.base) for pad in ctx.info.hand.pads}
-        self.grasp_force = float(self.params["grasp_force"])
         self.correct = bool(self.params["finger_lost_correction"])
         self.finger_lost_shift = float(self.params["finger_lost_shift"])
         self.extension_correction = bool(self.params["extension_correction"])
@@ -198,21 +196,6 @@ class RobustGraspHand(FingerGrasp):
             return False
         return PASSED * self.ctx.object.least_width <= self.gauge.gap(q) <= self.ctx.object.widest + JAM_MARGIN
 
-    def _starting_effort(self, readings: Readings) -> np.ndarray:
-        """Where force adaptation starts: at rest a pad's force grows with the effort behind
-        it, so each stopped finger's effort scaled to the grasp force is close to the one
-        that holds it; from a light touch the integrator took seconds to climb back. Every
-        finger starts from the least of these: opposed fingers pressing unequally push the
-        object aside."""
-        hand = self.ctx.info.hand
-        pads, pressed = readings.pad_force, np.maximum(0.0, hand.closing * readings.hand_effort)
-        touch = TOUCH_EFFORT * hand.effort_limit
-        scaled = [pressed[i] * self.grasp_force / pads[self.pad_of[f]] / hand.effort_limit[i]
-                  for i in np.flatnonzero(self.moving)
-                  if (f := self.finger_of_dof[i]) and pads[self.pad_of[f]] >= self.touch]
-        share = min(scaled, default=0.0)  # of each DOF's effort limit
-        return np.where(self.moving, np.clip(share * hand.effort_limit, touch, hand.effort_limit), 0.0)
-
     def _feel_across(self, readings: Readings, touching: list[str]) -> None:
         """Where the touching pads feel something above the table, across the pinch line
         (m, hand frame, from the line through the fingers): each pad's centre of pressure,
@@ -336,12 +319,9 @@ class RobustGraspHand(FingerGrasp):
     def _squeeze(self, readings: Readings, dt: float) -> np.ndarray | None:
         """One tick of force adaptation, in every holding phase: from a light touch, each
         grasping finger's effort rises until its pad feels the grasp force; the two fingers
-        of a pinch share one squeeze, driven by their pads' mean (each finger's own loop
-        pushed the object along the pinch line). The pad forces averaged over FELT_TIME;
-        None once a grasping pad has felt nothing for LOST_TIME while another pressed (a
+        of a pinch share one squeeze, driven by their pads' mean (`ForceGrasp._adapt`). The
+        pad forces averaged over FELT_TIME; None once a grasping pad has felt nothing for LOST_TIME while another pressed (a
         finger off the object, or every one: knocked away), the close judged again."""
-        hand = self.ctx.info.hand
-        pads = readings.pad_force
         touching = self._touching(readings)
         held = self.held
         held.lost_for = held.lost_for + dt if self.correct and len(touching) < len(self.fingers) else 0.0
@@ -349,12 +329,7 @@ class RobustGraspHand(FingerGrasp):
             self.ctx.blackboard.weigh = None  # dropped while weighed: no more weighing
             self._judge(readings)
             return None
-        grasping = np.flatnonzero(self.moving)
-        felt = np.array([pads[self.pad_of[f]] if (f := self.finger_of_dof[i]) else self.grasp_force for i in grasping])
-        pressed = np.full_like(felt, felt.mean()) if self.pinch else felt
-        limit = hand.effort_limit[grasping]
-        self.effort[grasping] = np.clip(self.effort[grasping] + ADAPT_GAIN * limit * (self.grasp_force - pressed) * dt,
-                                        0.0, limit)
+        felt = self._adapt(readings, dt)
         return held.felt(felt, dt)
 
     def _weight_off_line(self, readings: Readings, load: np.ndarray) -> tuple[float, float]:

@@ -1,0 +1,199 @@
+"""The arm side of the unscrew (thesis 3.3.6, Fig. 3.11): hold while the fingers pinch the
+cap, twist it TWIST_ANGLE about the approach axis through the grasp centre, pull back to
+test whether it is free; a twist above UNSCREW_TORQUE_LIMIT, a pull above PULL_FORCE_LIMIT,
+or fingers closed on nothing send the arm back to its start pose to pinch again, moved
+onto the cap's axis by the reactive alignment (Fig. 3.12) unless it is switched off. The
+cap is off when a pull has gone CAP_REMOVED_DISTANCE with the pads still pressing it:
+what the wrist and the pads say, never where the simulator has the cap. Its phases are
+in `primitives.arm.unscrew_phases`; docs/writing-a-primitive.md draws the machine."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from atd.model.frames import axis_rotation
+from primitives.arm.motion import GAIN, ORIENTATION_TOLERANCE, clamp_norm, norm, orientation_twist, unit
+from primitives.arm.move import arm_output
+from primitives.arm.unscrew_phases import Phase, Pulling, Tally, TcpPose, Twisting
+from primitives.base import Context, ControlData, Controller, Status
+from primitives.blackboard import CapGrip
+from primitives.filters import ContactWrench
+from primitives.robot import Readings
+
+TWIST_SPEED = 0.5  # rad/s: a 30 degree twist in about a second, slow beside the pads' force loop
+PULL_SPEED = 0.02  # m/s: the 40 mm pull in 2 s; a threaded cap reaches the 7 N limit within millimetres
+RETURN_SPEED = 0.05  # m/s: back to the start pose with the fingers open, clear of the cap
+ARRIVED = 0.002  # m: the start pose counts as reached this near (the robust grasp's SHIFT_TOLERANCE)
+ALIGN_TOLERANCE = 0.002  # m: the pads place the axis to half a 3 mm taxel row; a finer move chased that rounding
+PINCH_TIME = 6.0  # s: closing from the preshape (up to 1.5 s) and the robust grasp's SETTLE_LIMIT to reach the force
+TWIST_TURNS = 3.0  # times a twist's time at TWIST_SPEED: not turned by then, the cap turns about another axis
+MAX_ALIGN = 0.02  # m: the largest move onto the cap's axis: further, the pads felt more than the cap
+
+
+class UnscrewArm(Controller):
+    """The unscrew's arm: a phase machine (`Phase`, one method each) driven by the wrist's
+    force and torque and by what the hand says of the cap (`Blackboard.cap`)."""
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        p = self.params
+        self.direction = unit(p["grasp_direction"])
+        self.twist_angle = np.radians(float(p["twist_angle"]))
+        self.torque_limit = float(p["torque_limit"])
+        self.pull_force_limit = float(p["pull_force_limit"])
+        self.cap_removed_distance = float(p["cap_removed_distance"])
+        self.alignment = bool(p["alignment"])
+        self.max_pinches = int(p["max_pinches"])
+        self.grasp_centre = np.asarray(p["grasp_centre"], float)
+        self.wrench = ContactWrench(float(p["filter_time"]))
+
+    def start(self, readings: Readings) -> None:
+        self.wrench.start(readings)
+        self.start_pose = TcpPose(readings.tcp[:3, 3].copy(), readings.tcp[:3, :3].copy())
+        self.still = TcpPose(self.start_pose.position, self.start_pose.rotation)  # where a still phase holds
+        self.tally = Tally(pinches=1)
+        self.pinch_started = readings.time
+        self.phase = Phase.PINCH
+        self.ctx.blackboard.contact = True  # the hand is over the cap: it may close
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        self.wrench.update(readings, dt)
+        return arm_output(getattr(self, self.phase.value)(readings, dt))
+
+    @property
+    def cap(self) -> CapGrip:
+        """What the hand last said of the cap; before it has said anything, an empty grip."""
+        return self.ctx.blackboard.cap or CapGrip()
+
+    # -- phases: one tick each, returning the TCP twist (world frame) ---------------------
+    def _pinch(self, readings: Readings, dt: float) -> np.ndarray:
+        """At the start pose until the hand has pinched the cap (twist), or closed on nothing,
+        or not reached the grasp force on every pad within PINCH_TIME (again)."""
+        if self.cap.empty:
+            self._again(readings, "the fingers closed on nothing")
+        elif self.cap.pinched:
+            self._begin_twist(readings)
+        elif readings.time - self.pinch_started > PINCH_TIME:
+            self._again(readings, f"the pads did not all press the grasp force within {PINCH_TIME:.0f} s")
+        return self._toward(readings, self.start_pose, RETURN_SPEED)
+
+    def _twist(self, readings: Readings, dt: float) -> np.ndarray:
+        """Turn about the approach axis through the grasp centre (the lever's feed-forward
+        keeps the centre still); on to the pull once turned, back to pinch again early."""
+        rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
+        torque = abs(float(self.wrench.value[3:] @ self.direction))
+        w, left = orientation_twist(self.twisting.goal, rotation)
+        if torque > self.torque_limit:
+            self._again(readings, f"the twist met {torque:.1f} N m, above UNSCREW_TORQUE_LIMIT")
+        elif self.cap.empty:
+            self._again(readings, "the fingers closed on nothing while twisting")
+        elif readings.time - self.twisting.started > TWIST_TURNS * self.twist_angle / TWIST_SPEED:
+            self._again(readings, f"the twist stalled {np.degrees(left):.0f} degrees short")
+        elif left < ORIENTATION_TOLERANCE:
+            self.wrench.start(readings)
+            self.pulling = Pulling(position.copy(), rotation.copy())
+            self.phase = Phase.PULL
+        if self.phase is not Phase.TWIST:
+            return np.zeros(6)
+        w = clamp_norm(w, TWIST_SPEED)
+        lever = rotation @ self.grasp_centre
+        v = GAIN * (self.twisting.centre - position - lever) + np.cross(w, -lever)
+        return np.concatenate([v, w])
+
+    def _pull(self, readings: Readings, dt: float) -> np.ndarray:
+        """Back off along the approach: above PULL_FORCE_LIMIT the thread still holds the cap,
+        CAP_REMOVED_DISTANCE with the pads on it and the cap is off."""
+        pulling = self.pulling
+        back = pulling.rotation @ self.direction
+        pulled = float((pulling.origin - readings.tcp[:3, 3]) @ back)
+        force = abs(float(self.wrench.value[:3] @ self.direction))
+        cap = self.cap
+        if force > self.pull_force_limit:
+            self._again(readings, f"the pull met {force:.1f} N, above PULL_FORCE_LIMIT: the thread still holds")
+        elif cap.empty:
+            self._again(readings, "the fingers closed on nothing while pulling")
+        elif pulled >= self.cap_removed_distance and cap.holding:
+            self._hold_here(readings, Phase.OFF)
+            self.ctx.blackboard.cap_off = True
+            self.finish(Status.DONE, f"cap off after {self.tally.twists} twists, pulled {pulled * 100:.1f} cm with "
+                                     f"the pads on it ({self.tally.aligned} alignments)")
+        elif pulled >= self.cap_removed_distance:
+            self._again(readings, "pulled CAP_REMOVED_DISTANCE with no cap between the pads")
+        if self.phase is not Phase.PULL:
+            return np.zeros(6)
+        w, _ = orientation_twist(pulling.rotation, readings.tcp[:3, :3])
+        return np.concatenate([-PULL_SPEED * back, w])
+
+    def _release(self, readings: Readings, dt: float) -> np.ndarray:
+        """Still while the hand opens; it clears `release` once open."""
+        if not self.ctx.blackboard.release:
+            self.phase = Phase.RETURN
+        return self._toward(readings, self.still, RETURN_SPEED)
+
+    def _return(self, readings: Readings, dt: float) -> np.ndarray:
+        """Back to the start pose (the twist undone), then pinch again."""
+        start = self.start_pose
+        _, left = orientation_twist(start.rotation, readings.tcp[:3, :3])
+        if norm(start.position - readings.tcp[:3, 3]) < ARRIVED and left < ORIENTATION_TOLERANCE:
+            self.phase = Phase.PINCH
+            self.pinch_started = readings.time
+            self.tally.pinches += 1
+            self.ctx.blackboard.contact = True
+        return self._toward(readings, start, RETURN_SPEED)
+
+    def _off(self, readings: Readings, dt: float) -> np.ndarray:
+        """The cap is off: hold it where the pull ended."""
+        return self._toward(readings, self.still, RETURN_SPEED)
+
+    def _failed(self, readings: Readings, dt: float) -> np.ndarray:
+        """Gave up: hold still where it was."""
+        return self._toward(readings, self.still, RETURN_SPEED)
+
+    # -- transitions ----------------------------------------------------------------------
+    def _begin_twist(self, readings: Readings) -> None:
+        """Turn the other way from a tightening turn about the approach axis: a right-hand
+        thread opens counter-clockwise seen from the hand."""
+        rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
+        self.tally.twists += 1
+        self.wrench.start(readings)  # the squeeze's own load is no torque of the thread's
+        goal = axis_rotation(rotation @ self.direction, -self.twist_angle) @ rotation
+        self.twisting = Twisting(goal, position + rotation @ self.grasp_centre, readings.time)
+        self.phase = Phase.TWIST
+
+    def _again(self, readings: Readings, why: str) -> None:
+        """A twist or pull ended early, or a pinch found nothing: align on the cap, open the
+        hand, go back and pinch again; or, the pinches spent, give up saying why."""
+        self.tally.ended = why
+        if self.tally.pinches >= self.max_pinches:
+            self._hold_here(readings, Phase.FAILED)
+            self.finish(Status.ERROR, f"cap still on after {self.tally.pinches} pinches and {self.tally.twists} "
+                                      f"twists: {why}")
+            return
+        self._align()
+        self._hold_here(readings, Phase.RELEASE)
+        self.ctx.blackboard.release = True
+        self.ctx.blackboard.contact = False
+
+    def _align(self) -> None:
+        """The reactive alignment (Fig. 3.12): move the start pose across the approach so that
+        the grasp centre lies on the cap's axis, as the pads' contacts averaged over the
+        pinch and the twist place it; no further than MAX_ALIGN at once."""
+        axis = self.cap.axis
+        if not self.alignment or axis is None:
+            return
+        start = self.start_pose
+        along = start.rotation @ self.direction
+        off = axis - start.position - start.rotation @ self.grasp_centre
+        off = off - float(off @ along) * along
+        if norm(off) >= ALIGN_TOLERANCE:
+            start.position = start.position + clamp_norm(off, MAX_ALIGN)
+            self.tally.aligned += 1
+
+    def _hold_here(self, readings: Readings, phase: Phase) -> None:
+        self.still = TcpPose(readings.tcp[:3, 3].copy(), readings.tcp[:3, :3].copy())
+        self.phase = phase
+
+    def _toward(self, readings: Readings, pose: TcpPose, speed: float) -> np.ndarray:
+        """The twist (world frame) that takes the TCP to `pose` at no more than `speed`."""
+        w, _ = orientation_twist(pose.rotation, readings.tcp[:3, :3])
+        return np.concatenate([clamp_norm(GAIN * (pose.position - readings.tcp[:3, 3]), speed), w])

@@ -1,0 +1,74 @@
+"""The unscrew state (thesis 3.3.6) in the ATD language: validated, translated on the hands
+that pinch with fingers of their own, its alignment switched off from the ATD, and refused
+with the reason (exit 4) on the grippers."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+from atd.model import load_task
+from atd.model.estd_xml import read_estd
+from factories.registry import create
+from translator import translate
+
+UNSCREW = """
+    <statemachine>
+      <object name="bottle">
+        <pose>1 0 0 0.10  0 1 0 0.10  0 0 1 0.09  0 0 0 1</pose>
+        <weight>0.3</weight>
+        <class>cylinder</class>
+        <size>0.035 0.18</size>
+      </object>
+      <state name="unscrew_cap" type="unscrew" object="bottle">
+        <object_size>0.03</object_size>
+        {parameter}
+      </state>
+      <state name="opened" type="success"/>
+      <state name="stuck" type="failure"/>
+      <transition origin="unscrew_cap" destination="opened"><success/></transition>
+      <transition origin="unscrew_cap" destination="stuck"><error/></transition>
+      <transition origin="unscrew_cap" destination="stuck"><timeout>120</timeout></transition>
+    </statemachine>"""
+
+
+def atd(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "atd", *args], capture_output=True, text=True, timeout=300)
+
+
+@pytest.mark.parametrize("arm", ["right", "left"])
+def test_both_tombatossals_hands_unscrew_with_the_thesis_defaults(atd_file, arm: str) -> None:
+    task, found = load_task(atd_file(UNSCREW.format(parameter="")))
+    assert found == [], found
+    [state] = [s for s in translate(task, create("tombatossals", arm=arm)).estd.states if s.name == "unscrew_cap"]
+    assert state.primitive == "unscrew" and state.arm.name == "unscrew_arm" and state.hand.name == "unscrew_hand"
+    arm_params, hand = state.arm.params, state.hand.params
+    assert (arm_params["twist_angle"], arm_params["torque_limit"], arm_params["pull_force_limit"],
+            arm_params["cap_removed_distance"], arm_params["alignment"]) == (30.0, 10.0, 7.0, 0.04, True)
+    assert (hand["grasp_shape"], hand["grasp_force"], hand["finger_min_distance"]) == ("pinch_grasp", 5.0, 0.012)
+
+
+def test_the_reactive_alignment_is_switched_off_from_the_atd(atd_file, tmp_path) -> None:
+    path = atd_file(UNSCREW.format(parameter='<parameter name="alignment">false</parameter>'))
+    out = tmp_path / "task.estd.xml"
+    result = atd("translate", str(path), "--robot", "tombatossals", "--arm", "left", "-o", str(out))
+    assert result.returncode == 0, result.stderr
+    [state] = [s for s in read_estd(out)[0].states if s.name == "unscrew_cap"]
+    assert state.arm.params["alignment"] is False
+
+
+@pytest.mark.parametrize("robot", ["melfa", "baxter"])
+def test_a_gripper_refuses_to_unscrew_with_exit_4_and_the_reason(atd_file, robot: str) -> None:
+    result = atd("run", str(atd_file(UNSCREW.format(parameter=""))), "--robot", robot, "-q")
+    assert result.returncode == 4, result.stderr
+    assert "has no unscrew primitive" in result.stderr and "multi-finger hand" in result.stderr, result.stderr
+    assert "Traceback" not in result.stderr
+
+
+def test_an_unscrew_state_that_names_an_unknown_object_is_a_located_error(atd_file) -> None:
+    path = atd_file(UNSCREW.format(parameter="").replace('type="unscrew" object="bottle"',
+                                                         'type="unscrew" object="jar"'))
+    result = atd("validate", str(path))
+    assert result.returncode == 1 and "error[ATD219]" in result.stdout and "task.xml:" in result.stdout, result.stdout
