@@ -450,7 +450,9 @@ _HAND_CONTROLLERS = (
                                 "hands); unset = the preshape's"),
             "grasp_shape": _p(WORD, "the grasp to close into (multi-finger hands; a gripper just closes)"),
             "contact_threshold": _p(NUM, "pad force counted as finger contact (ours)", 0.3, unit="N"),
-            "squeeze": _p(NUM, "effort added at the end, fraction of each finger's effort limit (ours)", 0.1),
+            "squeeze": _p(NUM, "effort added at the end, fraction of each finger's effort limit (ours: at 0.1 the "
+                          "PyBullet Barrett's pads pressed a cylinder with 0 and 0.5 N, under the 1 N its "
+                          "grasp_stable asks, and the grasp waited out its timeout)", 0.3),
             "grasp_force": _p(NUM, "a gripper's grip force once both jaws touch, in place of the squeeze: the "
                               "robust grasp's, so that the baseline lacks only the corrections (ours)", unit="N"),
         },
