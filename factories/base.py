@@ -243,9 +243,10 @@ class Factory(ABC):
     def map_state(self, state: State, context: MappingContext) -> NodeMapping:
         """What the translator asks for a node: the robot's own mapping (`map_node`), except
         that a factory made with grasp="naive" maps every grasp to the naive grasp of thesis
-        3.4.1, the baseline the robust grasp is measured by (same hand shape and checks, and
-        on a gripper the same grip force: with 10% of the Baxter's 20 N it never reached the
-        8 N its grasp_stable asks, and never lifted)."""
+        3.4.1, the baseline the robust grasp is measured by (same hand shape, opening and
+        checks, the wrist's contact felt the same, and on a gripper the same grip force: with
+        10% of the Baxter's 20 N it never reached the 8 N its grasp_stable asks, and never
+        lifted)."""
         if state.type in PERCEPTUAL_PRIMITIVES - self.primitives:
             raise Unmappable(f"the {self.name} has no {state.type.value} primitive: no controller of its runs "
                              f"'{state.type.value}' yet", "translate the task for a robot that lists it "
@@ -260,12 +261,16 @@ class Factory(ABC):
         mapping = self.map_node(state, context)
         if self.grasp != "naive" or state.type is not StateType.GRASP:
             return mapping
-        hand = mapping.hand.params
+        hand, arm = mapping.hand.params, mapping.arm.params
         # A gripper's grasp names its grip force; a multi-finger naive grasp keeps its squeeze.
         grip = hand.get("grasp_force") if mapping.hand.name == "close_until_force" else None
-        return NodeMapping("naive grasp", self.controller("naive_grasp_approach"),
+        # The wrist's contact as the robust grasp feels it: the Baxter's virtual wrench is too
+        # noisy for 2 N unfiltered, and its naive approach stopped 1 cm from the pregrasp pose.
+        feel = {"force_threshold": arm.get("force_threshold"), "filter_time": arm.get("filter_time")}
+        return NodeMapping("naive grasp", self.controller("naive_grasp_approach", **feel),
                            self.controller("naive_grasp_hand", preshape=hand.get("preshape"),
-                                           grasp_shape=hand.get("grasp_shape"), grasp_force=grip),
+                                           grasp_shape=hand.get("grasp_shape"),
+                                           pregrasp_size=hand.get("pregrasp_size"), grasp_force=grip),
                            mapping.notes)
 
     def perceptual(self, state: State, context: MappingContext) -> NodeMapping:

@@ -280,15 +280,18 @@ _ARM_CONTROLLERS = (
     ),
     ControllerSpec(
         "naive_grasp_approach", Role.ARM,
-        "Baseline grasp without corrections: move forward along the grasp direction until a contact or "
+        "Baseline grasp without corrections: from the pregrasp pose, `distance` back along the grasp direction "
+        "from where the state begins (the grasp pose the approach planned), move forward until a contact or "
         "`distance`, then stay.",
         "thesis 3.4.1 (naive grasping primitive)",
         {
             "grasp_direction": _p(VEC, "approach direction in the hand frame", (0.0, 0.0, 1.0), length=3,
                                   limits=ranges.DIRECTION),
-            "distance": _p(NUM, "how far to move forward (thesis: 10 cm)", 0.1, unit="m"),
+            "distance": _p(NUM, "how far the pregrasp pose lies back from the grasp pose, and how far to move "
+                           "forward from it (thesis: 10 cm)", 0.1, unit="m"),
             "force_threshold": _p(NUM, "contact force on the wrist (ours, as the robust grasp's)", 2.0, unit="N"),
-            "velocity": _p(NUM, "forward speed (ours)", 0.01, unit="m/s"),
+            "velocity": _p(NUM, "forward speed (ours: the robust grasp's approach velocity; at 0.01 the 10 cm "
+                           "took half of a grasp state's 20 s)", 0.03, unit="m/s"),
             "filter_time": _FILTER,
         },
     ),
@@ -467,13 +470,18 @@ _HAND_CONTROLLERS = (
     ControllerSpec(
         "naive_grasp_hand", Role.HAND,
         "Baseline grasp without corrections: once the arm has stopped, close, stopping each finger that "
-        "touches, then squeeze slightly.",
+        "touches, then squeeze slightly; done once two pads (a gripper: its motor) feel the object, an error "
+        "otherwise.",
         "thesis 3.4.1 (naive grasping primitive)",
         {
             "preshape": _p(WORD, "starting hand configuration; unset = current"),
+            "pregrasp_size": _p(NUM, "hand opening before closing, 0..1, as the robust grasp's (multi-finger "
+                                "hands); unset = the preshape's"),
             "grasp_shape": _p(WORD, "the grasp to close into (multi-finger hands; a gripper just closes)"),
             "contact_threshold": _p(NUM, "pad force counted as finger contact (ours)", 0.3, unit="N"),
-            "squeeze": _p(NUM, "effort added at the end, fraction of each finger's effort limit (ours)", 0.1),
+            "squeeze": _p(NUM, "effort added at the end, fraction of each finger's effort limit (ours: at 0.1 the "
+                          "PyBullet Barrett's pads pressed a cylinder with 0 and 0.5 N, under the 1 N its "
+                          "grasp_stable asks, and the grasp waited out its timeout)", 0.3),
             "grasp_force": _p(NUM, "a gripper's grip force once both jaws touch, in place of the squeeze: the "
                               "robust grasp's, so that the baseline lacks only the corrections (ours)", unit="N"),
         },

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from primitives.arm.robust_approach import APPROACH_ACCELERATION
+from primitives.arm.approach_phases import APPROACH_ACCELERATION
 from primitives.arm.motion import GAIN, TwistShaper, clamp_norm, orientation_twist, unit
 from primitives.arm.move import EASE_OFF, arm_output
 from primitives.base import Context, ControlData, Controller, Status

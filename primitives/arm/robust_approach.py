@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from atd.model.frames import axis_rotation
-from primitives.arm.approach_phases import Approaching, Holding, Phase, Shifting
+from primitives.arm.approach_phases import SETTLE, Approaching, Holding, Phase, Shifting
 from primitives.arm.motion import (GAIN, ORIENTATION_TOLERANCE, SUPPORT_BAND, WORLD_DOWN, clamp_norm, norm,
                                    orientation_twist, top_down, unit)
 from primitives.arm.move import arm_output
@@ -18,8 +18,6 @@ from primitives.robot import Readings
 SHIFT_TOLERANCE = 0.002  # m: a move the hand asked for counts as made this near its goal
 SHIFT_TIME = 2.0  # s: a move not made by then is blocked (by the surface or the object); the grasp goes on from there
 SURFACE_FILTER = 0.05  # s the surface force is averaged over: a fingertip on the table chatters tick to tick
-APPROACH_ACCELERATION = 0.3  # m/s^2 the approach speeds up at: a sudden start reads on the wrist as a contact
-SETTLE = 0.1  # s still, once level or over a contact, before the wrist's reading is taken as the free hand's
 
 
 class RobustGraspApproach(Controller):
@@ -133,13 +131,10 @@ class RobustGraspApproach(Controller):
                 return self.speed * (-self.side - self.direction)
             self._begin_slide(readings)
             return np.zeros(3)
-        approaching = self.approaching
-        travelled = float((readings.tcp[:3, 3] - approaching.origin) @ (readings.tcp[:3, :3] @ self.direction))
-        if travelled >= self.max_distance:
+        if self.approaching.travelled(readings, self.direction) >= self.max_distance:
             self._begin_slide(readings)
             return np.zeros(3)
-        approaching.speed = min(self.approach_speed, approaching.speed + APPROACH_ACCELERATION * dt)
-        return approaching.speed * self.direction
+        return self.approaching.velocity(self.direction, self.approach_speed, dt)
 
     def _slide(self, position: np.ndarray, pushed: float) -> np.ndarray:
         """Eq. 3.2 (hand frame): back off while pressing, follow a surface lost; hold once the fingers have stopped."""

@@ -167,9 +167,11 @@ class FingerGrasp(Controller):
 
 
 class NaiveGraspHand(FingerGrasp):
-    """The naive grasp's hand (thesis 3.4.1): close until every finger stops, then add a
-    little effort (`squeeze`) to the fingers whose pads touch. No judging, no
-    corrections, no force adaptation: only closing on nothing at all is an error."""
+    """The naive grasp's hand (thesis 3.4.1): preshape, wait for the arm's `contact`, close
+    until every finger stops, then add a little effort (`squeeze`) to the fingers whose
+    pads touch. No corrections, no force adaptation. Done only once the pads say the
+    fingers hold the object (two grasping pads, or each of fewer, touch it); otherwise an
+    error naming the fingers that missed it."""
 
     def __init__(self, ctx: Context) -> None:
         super().__init__(ctx)
@@ -180,14 +182,16 @@ class NaiveGraspHand(FingerGrasp):
             return
         self.ctx.blackboard.fingers_stopped = True
         touching = self._touching(readings)
-        if not touching:
-            self.finish(Status.ERROR, "nothing between the fingers")
+        if len(touching) < min(2, len(self.fingers)):
+            missed = [f for f in self.fingers if f not in touching]
+            self.finish(Status.ERROR, f"finger {', '.join(missed)} missed the object" if touching
+                        else "nothing between the fingers")
             self.phase = Phase.FAILED
             return
         self.pressing = self.moving & np.array([f in touching for f in self.finger_of_dof])
         self.effort = np.where(self.pressing, self.squeeze * self.ctx.info.hand.effort_limit, 0.0)
         self.phase = Phase.HOLD
-        self.finish(Status.DONE, f"closed; touching: {', '.join(touching)}")
+        self.finish(Status.DONE, f"closed on the object; touching: {', '.join(touching)}")
 
     def _hold(self, readings: Readings, dt: float) -> None:
         """The squeeze stays as set."""

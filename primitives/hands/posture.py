@@ -53,6 +53,7 @@ class PostureDrive(Controller):
 
     goal: np.ndarray
     blocked_is_done = False
+    aim = "the posture"  # what the goal is, for the error of fingers blocked short of it
 
     def __init__(self, ctx: Context, speed: float = 1.0) -> None:
         super().__init__(ctx)
@@ -70,14 +71,18 @@ class PostureDrive(Controller):
         self.reference = self.reference + np.clip(self.goal - self.reference, -step, step)
         still = self.stillness.update(readings.hand_q, dt)
         if self.status is Status.RUNNING:
-            short = np.abs(self.goal - readings.hand_q) > self.tolerance
+            short = self._short(readings.hand_q)
             if not short.any():
                 self.finish(Status.DONE, "reached the hand posture")
             elif np.array_equal(self.reference, self.goal) and (still[short] >= STALL_TIME).all():
                 where = ", ".join(f"{n} {q:.4g}" for n, q, s in zip(self.ctx.info.hand.dofs, readings.hand_q, short) if s)
                 status = Status.DONE if self.blocked_is_done else Status.ERROR
-                self.finish(status, f"fingers blocked short of the posture ({where})")
+                self.finish(status, f"fingers blocked short of {self.aim} ({where})")
         return position_command(self.reference)
+
+    def _short(self, q: np.ndarray) -> np.ndarray:
+        """Per DOF: not yet at the goal."""
+        return np.abs(self.goal - q) > self.tolerance
 
 
 class HoldPosition(PostureDrive):
@@ -130,8 +135,15 @@ class HandShape(PostureDrive):
 class OpenTo(PostureDrive):
     """Open the hand to HAND_TARGET_POSITION: 0 = closed, 1 = fully open (thesis 3.3.4).
 
-    Only the closing DOFs move: a Barrett's spread or an SDH2's finger rotation stays as
-    it is, since swinging the fingers round beside the object could knock it over.
+    Only the closing DOFs move, and only to open: a release lets go. A Barrett's spread or
+    an SDH2's finger rotation stays as it is, since swinging the fingers round beside the
+    object could knock it over; a closing DOF already at least as open as asked stays too.
+    The SDH2's 'open' is not wider than its pinch at every joint: asked for 0.8 after
+    placing a box, its distal joints closed to 0.61 rad onto it (2.6 N on each pad, the
+    box lifted 6 mm), its proximal ones were pushed back past their goal, and the release
+    waited out its timeout with the box in the fingers. Done once the encoders read every
+    closing DOF at least as open as asked; fingers stopped short of it are an error
+    saying where.
     """
 
     def __init__(self, ctx: Context) -> None:
@@ -141,4 +153,13 @@ class OpenTo(PostureDrive):
         super().start(readings)
         hand = self.ctx.info.hand
         opening = float(self.params["hand_position"])
-        self.goal = np.where(hand.closing != 0, hand.closed + opening * (hand.open - hand.closed), readings.hand_q)
+        asked = hand.closed + opening * (hand.open - hand.closed)
+        q = readings.hand_q
+        self.closing = hand.closing
+        self.goal = np.where((self.closing != 0) & (self.closing * (q - asked) > 0), asked, q)
+        self.aim = f"the opening {opening:g}"
+
+    def _short(self, q: np.ndarray) -> np.ndarray:
+        """A closing DOF pushed open past its goal has reached it."""
+        beyond = self.closing * (q - self.goal)  # > 0: more closed than the goal
+        return np.where(self.closing != 0, beyond > self.tolerance, np.abs(self.goal - q) > self.tolerance)

@@ -16,8 +16,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from primitives.arm.approach_phases import SETTLE
 from primitives.arm.explore import ARRIVED, Explore
-from primitives.arm.robust_approach import SETTLE
 from primitives.base import Context, ControlData, Status
 from primitives.perception.container import approach_pose
 from primitives.perception.perceiver import Perceiver
