@@ -39,6 +39,7 @@ from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import ARM_TWIST, EMPTY_HAND
 from primitives.filters import ContactWrench, contact_across, world_load
+from primitives.perception.container import ContainerBelief, clear_of_walls
 from primitives.robot import Readings
 from primitives.search import search_offsets
 
@@ -86,6 +87,10 @@ class JawGraspCorrection(Controller):
         self.jaw_half_width = float(p["jaw_half_width"])
         self.step = float(p["search_step"])
         self.offsets = search_offsets(self.step, int(p["search_points"]))
+        extent = p["hand_extent"]
+        self.extent = (float(extent[0]), float(extent[1]))
+        known = ctx.environment.containers if ctx.environment is not None else ()
+        self.containers = [ContainerBelief.known(c) for c in known]
         self.contact = ContactWrench(float(p["filter_time"]))
         self.shaper = TwistShaper()  # a sudden reversal shakes the wrist like a contact
         # One sample of the Baxter's virtual wrist sensor is off by 0.2 N or more: a 20 g object.
@@ -129,9 +134,16 @@ class JawGraspCorrection(Controller):
         """Up clear of the contact (at least to `height`), then `across` (world frame), then descend again."""
         here = readings.tcp[:3, 3]
         up = np.array([here[0], here[1], max(here[2] + self.clearance, height)])
-        self.route = [up, up + across * np.array([1.0, 1.0, 0.0])]
+        self.route = [up, self._inside_walls(up + across * np.array([1.0, 1.0, 0.0]))]
         self.phase = "move"
         self.free_loads.clear()
+
+    def _inside_walls(self, position: np.ndarray) -> np.ndarray:
+        """`position` moved sideways, as little as it takes, for the hand turned as it is to
+        stay inside the walls of the container it is over (unchanged over none)."""
+        pose = np.eye(4)
+        pose[:3, :3], pose[:3, 3] = self.rotation, position
+        return clear_of_walls(self.containers, pose, self.extent)[:3, 3]
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         board = self.ctx.blackboard
