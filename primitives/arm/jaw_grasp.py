@@ -39,7 +39,7 @@ from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import ARM_TWIST, EMPTY_HAND
 from primitives.filters import ContactWrench, contact_across, world_load
-from primitives.perception.container import ContainerBelief, clear_of_walls
+from primitives.perception.container import ContainerBelief, clear_of_walls, container_under
 from primitives.robot import Readings
 from primitives.search import search_offsets
 
@@ -124,7 +124,13 @@ class JawGraspCorrection(Controller):
         press on the support (and its pads feel that as a grip)."""
         obj = self.ctx.object
         centre = -np.inf if obj is None or obj.pose is None else float(obj.pose.position[2])
-        return max(centre, self.reach + FLOOR_CLEARANCE)
+        return max(centre, self._support() + self.reach + FLOOR_CLEARANCE)
+
+    def _support(self) -> float:
+        """Height of the support under the hand: the floor of a known container it is over
+        (a box's floor stands its wall's thickness over the table), else the table's z = 0."""
+        container = container_under(self.containers, self.line)
+        return 0.0 if container is None else container.floor
 
     def _above_object(self) -> float:
         """TCP height from which a descent meets the object's top first."""
@@ -226,7 +232,7 @@ class JawGraspCorrection(Controller):
             # the object). Only once: a contact that sent the jaws to close on nothing was
             # no object's top, and following each next one like it walked the hand away from
             # the object, 3.7 cm a time (Melfa, MuJoCo, the preset's wood trial 1).
-            on_support = float(readings.tcp[2, 3]) - self.reach < SUPPORT_BAND
+            on_support = float(readings.tcp[2, 3]) - self.reach - self._support() < SUPPORT_BAND
             self.hint = None if not off_centre or on_support or self.hinted else \
                 readings.tcp[:3, 3] + readings.tcp[:3, :3] @ clamp_norm(across, self.max_shift)
             self._close_here(readings, self.back_off)

@@ -79,20 +79,29 @@ def room_for_hand(container: ContainerBelief, rotation: np.ndarray, extent: tupl
     return np.maximum(container.inner[:2] / 2 - reach, 0.0)
 
 
+def container_under(containers: list[ContainerBelief], position: np.ndarray) -> ContainerBelief | None:
+    """The container whose inside `position` (world) is over, if any."""
+    for container in containers:
+        local = container.to_local(np.asarray(position, float)[None])[0]
+        if np.all(np.abs(local[:2]) <= container.inner[:2] / 2):
+            return container
+    return None
+
+
 def clear_of_walls(containers: list[ContainerBelief], tcp: np.ndarray, extent: tuple[float, float]) -> np.ndarray:
     """The TCP pose `tcp` (4x4, world) moved sideways, as little as it takes, so that a hand
     reaching `extent` (along its x, along its y) stays inside the walls of the container it is
     over; unchanged over none (a grasp on the table). Moves along the walls are free, so a
     grasp's corrections slide along a wall instead of pressing into it."""
-    for container in containers:
-        local = container.to_local(tcp[None, :3, 3])[0]
-        if np.all(np.abs(local[:2]) <= container.inner[:2] / 2):
-            room = room_for_hand(container, tcp[:3, :3], extent)
-            local[:2] = np.clip(local[:2], -room, room)
-            moved = tcp.copy()
-            moved[:3, 3] = container.to_world(local[None])[0]
-            return moved
-    return tcp
+    container = container_under(containers, tcp[:3, 3])
+    if container is None:
+        return tcp
+    local = container.to_local(tcp[None, :3, 3])[0]
+    room = room_for_hand(container, tcp[:3, :3], extent)
+    local[:2] = np.clip(local[:2], -room, room)
+    moved = tcp.copy()
+    moved[:3, 3] = container.to_world(local[None])[0]
+    return moved
 
 
 def approach_pose(container: ContainerBelief, point: np.ndarray, reach: float, height: float,
