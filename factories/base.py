@@ -296,7 +296,8 @@ class Factory(ABC):
             raise Unmappable(f"the {self.name} has no depth camera to look with", "use a blind method")
         arm = self.controller("perceive", method=method, writes=written(state, ValueKind.POSE),
                               container_pose=container.pose.matrix, container_size=container.size,
-                              container_wall=container.wall, hand_reach=round(reach, 6), hand_radius=round(radius, 6))
+                              container_wall=container.wall, hand_reach=round(reach, 6), hand_radius=round(radius, 6),
+                              grasp_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)))
         return NodeMapping("perceive", arm, self.controller("hand_shape", shape=posture), notes)
 
     @abstractmethod
@@ -468,7 +469,8 @@ class Factory(ABC):
         shape = self.shape(state.hand_shape)[0].value if state.hand_shape else HandShape.CLOSED.value
         self.check_object_reach(context, HandShape.OPEN.value, shape)
         arm = self.controller("jaw_grasp_correction", wrist_to_tcp=round(self._wrist_to_tcp, 6),
-                              fingertip_reach=round(self.robot.hand_reach(HandShape.OPEN.value), 6))
+                              fingertip_reach=round(self.robot.hand_reach(HandShape.OPEN.value), 6),
+                              hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)))
         return NodeMapping("grasp", arm, self.controller("close_until_force"), notes)
 
     @cached_property

@@ -462,14 +462,25 @@ class RobotDescription:
                        for name in self.hand_links for shape in self.links_by_name[name].shapes)
         return farthest - float(tcp[:3, 3] @ approach)
 
-    def hand_radius(self, posture: str | np.ndarray) -> float:
+    def hand_extent(self, posture: str | np.ndarray) -> tuple[float, float]:
         """How far the hand's links reach sideways from the TCP's axis in a posture (its name,
-        or its DOF values), the furthest along the hand's x and y: what a hand pointing down
-        must keep from a wall it moves beside (the perceive primitive's `hand_radius`)."""
+        or its DOF values), along the hand's x and along its y, each the further of its two
+        sides: a parallel jaw opens along one, so a hand pointing down can come nearer a wall
+        with the other towards it."""
         poses, tcp = self._hand_in(posture)
-        sideways = [sign * tcp[:3, axis] for axis in (0, 1) for sign in (1.0, -1.0)]
-        return max(shape.support(poses[name], way) - float(tcp[:3, 3] @ way)
-                   for way in sideways for name in self.hand_links for shape in self.links_by_name[name].shapes)
+
+        def reach(way: np.ndarray) -> float:
+            return max(shape.support(poses[name], way) - float(tcp[:3, 3] @ way)
+                       for name in self.hand_links for shape in self.links_by_name[name].shapes)
+
+        x, y = (max(reach(tcp[:3, axis]), reach(-tcp[:3, axis])) for axis in (0, 1))
+        return x, y
+
+    def hand_radius(self, posture: str | np.ndarray) -> float:
+        """How far the hand's links reach sideways from the TCP's axis in a posture, the
+        furthest along the hand's x and y: what a hand pointing down must keep from a wall it
+        moves beside whichever way it turns (the perceive primitive's `hand_radius`)."""
+        return max(self.hand_extent(posture))
 
     def closing_swing(self, start: str, end: str, steps: int = 20) -> float:
         """How much further than in posture `start` the hand reaches along the approach axis

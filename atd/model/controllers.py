@@ -272,6 +272,10 @@ _ARM_CONTROLLERS = (
                                  "within it, so a move across goes no further that way (the robot's own "
                                  "geometry)", 0.015, unit="m"),
             "max_shifts": _p(INT, "how many times to move across (ours)", 3),
+            "hand_extent": _p(VEC, "how far the open hand reaches sideways from the TCP, along the hand's x "
+                              "and along its y: its moves stay this far inside the walls of a container the "
+                              "task knows (the robot's own geometry; the Melfa's WRT-102)", (0.04, 0.05),
+                              unit="m", length=2),
             "search_step": _p(NUM, "spacing of the search along the jaws' width (ours: under a finger's "
                               "width plus the object's)", 0.03, unit="m"),
             "search_points": _p(INT, "points searched after the jaws close on nothing (ours)", 4),
@@ -377,6 +381,10 @@ _ARM_CONTROLLERS = (
             "hand_radius": _p(NUM, "how far the hand reaches sideways from the TCP: random blind and the sweep "
                               "keep the TCP this far in from the walls (the robot's own geometry: "
                               "`RobotDescription.hand_radius`)", 0.05, unit="m"),
+            "grasp_extent": _p(VEC, "vision: how far the open hand reaches sideways along its x and along its y "
+                               "(the jaws' closing axis), to turn the jaws where the walls leave them room "
+                               "(the robot's own geometry: `RobotDescription.hand_extent`)", (0.04, 0.05),
+                               unit="m", length=2),
             "approach_height": _p(NUM, "the approach puts the hand's lowest point this far over the higher of "
                                   "the object's top and the container's rim (ours)", 0.05, unit="m"),
             **_EXPLORING,

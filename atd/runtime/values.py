@@ -17,8 +17,8 @@ class MissingValue(RuntimeError):
 
 
 def target_of(value: Any) -> tuple[float, float, float]:
-    """The TCP position a value stands for: an `Approach`'s pose (its rotation is the
-    top-down hand every arm controller keeps), a `Contact`'s point."""
+    """The TCP position a value stands for: an `Approach`'s pose (its position only: the
+    move keeps the hand's yaw, even where vision turned the approach), a `Contact`'s point."""
     if isinstance(value, Approach):
         point = value.pose[:3, 3]
     elif isinstance(value, Contact):

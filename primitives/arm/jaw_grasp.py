@@ -39,6 +39,7 @@ from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import ARM_TWIST, EMPTY_HAND
 from primitives.filters import ContactWrench, contact_across, world_load
+from primitives.perception.container import ContainerBelief, clear_of_walls, container_under
 from primitives.robot import Readings
 from primitives.search import search_offsets
 
@@ -86,6 +87,10 @@ class JawGraspCorrection(Controller):
         self.jaw_half_width = float(p["jaw_half_width"])
         self.step = float(p["search_step"])
         self.offsets = search_offsets(self.step, int(p["search_points"]))
+        extent = p["hand_extent"]
+        self.extent = (float(extent[0]), float(extent[1]))
+        known = ctx.environment.containers if ctx.environment is not None else ()
+        self.containers = [ContainerBelief.known(c) for c in known]
         self.contact = ContactWrench(float(p["filter_time"]))
         self.shaper = TwistShaper()  # a sudden reversal shakes the wrist like a contact
         # One sample of the Baxter's virtual wrist sensor is off by 0.2 N or more: a 20 g object.
@@ -119,7 +124,13 @@ class JawGraspCorrection(Controller):
         press on the support (and its pads feel that as a grip)."""
         obj = self.ctx.object
         centre = -np.inf if obj is None or obj.pose is None else float(obj.pose.position[2])
-        return max(centre, self.reach + FLOOR_CLEARANCE)
+        return max(centre, self._support() + self.reach + FLOOR_CLEARANCE)
+
+    def _support(self) -> float:
+        """Height of the support under the hand: the floor of a known container it is over
+        (a box's floor stands its wall's thickness over the table), else the table's z = 0."""
+        container = container_under(self.containers, self.line)
+        return 0.0 if container is None else container.floor
 
     def _above_object(self) -> float:
         """TCP height from which a descent meets the object's top first."""
@@ -129,9 +140,16 @@ class JawGraspCorrection(Controller):
         """Up clear of the contact (at least to `height`), then `across` (world frame), then descend again."""
         here = readings.tcp[:3, 3]
         up = np.array([here[0], here[1], max(here[2] + self.clearance, height)])
-        self.route = [up, up + across * np.array([1.0, 1.0, 0.0])]
+        self.route = [up, self._inside_walls(up + across * np.array([1.0, 1.0, 0.0]))]
         self.phase = "move"
         self.free_loads.clear()
+
+    def _inside_walls(self, position: np.ndarray) -> np.ndarray:
+        """`position` moved sideways, as little as it takes, for the hand turned as it is to
+        stay inside the walls of the container it is over (unchanged over none)."""
+        pose = np.eye(4)
+        pose[:3, :3], pose[:3, 3] = self.rotation, position
+        return clear_of_walls(self.containers, pose, self.extent)[:3, 3]
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         board = self.ctx.blackboard
@@ -214,7 +232,7 @@ class JawGraspCorrection(Controller):
             # the object). Only once: a contact that sent the jaws to close on nothing was
             # no object's top, and following each next one like it walked the hand away from
             # the object, 3.7 cm a time (Melfa, MuJoCo, the preset's wood trial 1).
-            on_support = float(readings.tcp[2, 3]) - self.reach < SUPPORT_BAND
+            on_support = float(readings.tcp[2, 3]) - self.reach - self._support() < SUPPORT_BAND
             self.hint = None if not off_centre or on_support or self.hinted else \
                 readings.tcp[:3, 3] + readings.tcp[:3, :3] @ clamp_norm(across, self.max_shift)
             self._close_here(readings, self.back_off)

@@ -9,6 +9,7 @@ from typing import Mapping
 import numpy as np
 
 from atd.model.controllers import ParamValue
+from atd.model.task import ContainerInfo
 from primitives.arm.motion import top_down
 
 
@@ -28,6 +29,11 @@ class ContainerBelief:
         floor = np.array(pose, float)
         floor[:3, 3] = floor[:3, 3] + wall * floor[:3, 2]
         return cls(floor, size - np.array([2 * wall, 2 * wall, wall]))
+
+    @classmethod
+    def known(cls, info: ContainerInfo) -> ContainerBelief:
+        """From a container the task's <environment> names."""
+        return cls.of(info.pose.as_array(), np.asarray(info.size, float), info.wall)
 
     @classmethod
     def from_params(cls, params: Mapping[str, ParamValue]) -> ContainerBelief:
@@ -64,12 +70,49 @@ class ContainerBelief:
         return -half, half
 
 
-def approach_pose(container: ContainerBelief, point: np.ndarray, reach: float, height: float) -> np.ndarray:
+def room_for_hand(container: ContainerBelief, rotation: np.ndarray, extent: tuple[float, float]) -> np.ndarray:
+    """How far (x y, its own frame) from its middle a top-down TCP turned by `rotation` (world)
+    may go before the hand, reaching `extent` (along its own x, along its y) sideways, meets a
+    wall: 0 along an axis where the hand does not fit."""
+    axes = container.pose[:3, :3].T @ rotation  # the hand's axes in the container's frame
+    reach = np.abs(axes[:2, 0]) * extent[0] + np.abs(axes[:2, 1]) * extent[1]
+    return np.maximum(container.inner[:2] / 2 - reach, 0.0)
+
+
+def container_under(containers: list[ContainerBelief], position: np.ndarray) -> ContainerBelief | None:
+    """The container whose inside `position` (world) is over, if any."""
+    for container in containers:
+        local = container.to_local(np.asarray(position, float)[None])[0]
+        if np.all(np.abs(local[:2]) <= container.inner[:2] / 2):
+            return container
+    return None
+
+
+def clear_of_walls(containers: list[ContainerBelief], tcp: np.ndarray, extent: tuple[float, float]) -> np.ndarray:
+    """The TCP pose `tcp` (4x4, world) moved sideways, as little as it takes, so that a hand
+    reaching `extent` (along its x, along its y) stays inside the walls of the container it is
+    over; unchanged over none (a grasp on the table). Moves along the walls are free, so a
+    grasp's corrections slide along a wall instead of pressing into it."""
+    container = container_under(containers, tcp[:3, 3])
+    if container is None:
+        return tcp
+    local = container.to_local(tcp[None, :3, 3])[0]
+    room = room_for_hand(container, tcp[:3, :3], extent)
+    local[:2] = np.clip(local[:2], -room, room)
+    moved = tcp.copy()
+    moved[:3, 3] = container.to_world(local[None])[0]
+    return moved
+
+
+def approach_pose(container: ContainerBelief, point: np.ndarray, reach: float, height: float,
+                  yaw: float = 0.0) -> np.ndarray:
     """The top-down TCP pose over `point` (world) from which a grasp descends: the hand's
     lowest point (`reach` below the TCP) `height` above the higher of the point and the
-    container's rim, so the hand comes over the walls, whatever it found; the hand's x along
-    the container's x."""
+    container's rim, so the hand comes over the walls, whatever it found; the hand's x `yaw`
+    (rad) from the container's x about the vertical."""
+    c, s = np.cos(yaw), np.sin(yaw)
+    turned = container.pose[:3, :3] @ np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
     pose = np.eye(4)
-    pose[:3, :3] = top_down(container.pose[:3, :3])
+    pose[:3, :3] = top_down(turned)
     pose[:3, 3] = (point[0], point[1], max(float(point[2]), container.rim) + height + reach)
     return pose

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from primitives.perception.clusters import euclidean_clusters
-from primitives.perception.container import ContainerBelief, approach_pose
+from primitives.perception.container import ContainerBelief, approach_pose, clear_of_walls
 from primitives.robot import DepthImage, point_cloud
 from primitives.values import Approach
 
@@ -21,6 +21,13 @@ from primitives.values import Approach
 # 2.8 cm from a cube's with a 2 cm slab touching it (0.5 cm from the top's; MuJoCo, the
 # scripted worlds of tests/primitives/test_perception.py).
 TOP_BAND = 0.02
+# An object's top this much longer one way than the other has a long side for the jaws to
+# close across; a rounder one (a ball, a roll of tape seen on end) is taken along the
+# container's own axes.
+ELONGATED = 1.3
+# m a wall may push the jaws off an object's centre along their closing axis before the other
+# way round is the better grasp: the WRT-102's jaws open 68 mm, a 5 cm object leaves 9 mm a side.
+WALL_PUSH = 0.01
 
 
 @dataclass(frozen=True)
@@ -50,6 +57,7 @@ class VisionSettings:
     above_rim: float  # m over the rim up to which objects may pile and still be looked for
     voxel: float  # m, the clustering grid
     min_points: int  # a cluster of fewer is noise
+    grasp_extent: tuple[float, float]  # m the open hand reaches sideways along its x and its y (the jaws' closing)
 
 
 def inside(points: np.ndarray, container: ContainerBelief, settings: VisionSettings) -> np.ndarray:
@@ -71,18 +79,57 @@ def objects_seen(image: DepthImage, container: ContainerBelief, settings: Vision
 def top_centre(cluster: np.ndarray) -> np.ndarray:
     """Over the middle of a cluster's top: x y of its points within TOP_BAND of its highest,
     z of its highest."""
-    top = float(cluster[:, 2].max())
-    near_top = cluster[cluster[:, 2] >= top - TOP_BAND]
-    return np.array([*near_top[:, :2].mean(axis=0), top])
+    return np.array([*near_top(cluster)[:, :2].mean(axis=0), float(cluster[:, 2].max())])
+
+
+def near_top(cluster: np.ndarray) -> np.ndarray:
+    """A cluster's points within TOP_BAND of its highest: the top a hand comes down on."""
+    return cluster[cluster[:, 2] >= float(cluster[:, 2].max()) - TOP_BAND]
+
+
+def long_side(top: np.ndarray, container: ContainerBelief) -> float:
+    """The yaw (rad, from the container's x, within a quarter turn of it) of the long axis of
+    an object's top (its points, world), so that jaws closing along the hand's y close across
+    its narrow side; 0 for a top with no clear long axis."""
+    local = container.to_local(top)[:, :2]
+    if len(local) < 3:
+        return 0.0
+    spread, axes = np.linalg.eigh(np.cov(local.T))
+    if spread[1] < ELONGATED**2 * max(spread[0], 1e-12):
+        return 0.0
+    x, y = axes[:, 1]
+    yaw = float(np.arctan2(y, x))
+    return float((yaw + np.pi / 2) % np.pi - np.pi / 2)
+
+
+def jaw_yaw(top: np.ndarray, container: ContainerBelief, extent: tuple[float, float]) -> float:
+    """The yaw (see `approach_pose`) for jaws closing along the hand's y over an object's top
+    (its points, world): of the two ways along and across its long side, one whose jaws the
+    walls leave room to open over its middle (pushed less than WALL_PUSH off it along the
+    closing axis), then the one that closes across the narrower width."""
+    long = long_side(top, container)
+    centre = np.array([*top[:, :2].mean(axis=0), container.rim])
+
+    def cost(yaw: float) -> tuple[bool, float]:
+        pose = approach_pose(container, centre, 0.0, 0.0, yaw)
+        closing = pose[:3, 1]
+        pushed = abs(float((clear_of_walls([container], pose, extent)[:3, 3] - pose[:3, 3]) @ closing))
+        width = float(np.ptp(top[:, :2] @ closing[:2]))
+        return pushed > WALL_PUSH, width
+
+    return min((long, (long + np.pi) % np.pi - np.pi / 2), key=cost)
 
 
 def vision(image: DepthImage, container: ContainerBelief, rng: np.random.Generator, settings: VisionSettings,
            approaching: Approaching) -> Approach | None:
     """A top approach over one of the objects the depth image shows in the container, chosen
-    at random (thesis 3.4.3 vision); None when it shows none."""
+    at random (thesis 3.4.3 vision), turned for the jaws to close across its narrow side where
+    the walls leave them room (`jaw_yaw`); None when it shows none."""
     clusters = objects_seen(image, container, settings)
     if not clusters:
         return None
-    point = top_centre(clusters[int(rng.integers(len(clusters)))])
-    return Approach(approach_pose(container, point, approaching.reach, approaching.height), point, "vision",
-                    len(clusters))
+    chosen = clusters[int(rng.integers(len(clusters)))]
+    point = top_centre(chosen)
+    pose = approach_pose(container, point, approaching.reach, approaching.height,
+                         jaw_yaw(near_top(chosen), container, settings.grasp_extent))
+    return Approach(pose, point, "vision", len(clusters))

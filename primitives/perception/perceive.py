@@ -39,8 +39,9 @@ class Vision(Perceiver):
             raise ValueError(f"vision needs a depth camera; the {ctx.info.name} has "
                              f"{'only ' + ', '.join(cameras) if cameras else 'none'}"
                              + (f", not '{self.camera}'" if self.camera else ""))
+        extent = p["grasp_extent"]
         self.settings = VisionSettings(float(p["floor_margin"]), float(p["wall_margin"]), float(p["above_rim"]),
-                                       float(p["voxel"]), int(p["min_points"]))
+                                       float(p["voxel"]), int(p["min_points"]), (float(extent[0]), float(extent[1])))
 
     def start(self, readings: Readings) -> None:
         super().start(readings)

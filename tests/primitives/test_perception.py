@@ -19,7 +19,8 @@ from primitives.values import Approach, NothingFound
 from tests.primitives.box_worlds import BELIEF, BOX_POSE, CORNER, FLOOR, MELFA_REACH, box_world, cube, perceive
 from tests.primitives.conftest import Stage, events, execute, leaf, machine, use
 
-SETTINGS = VisionSettings(floor_margin=0.01, wall_margin=0.01, above_rim=0.1, voxel=0.01, min_points=20)
+SETTINGS = VisionSettings(floor_margin=0.01, wall_margin=0.01, above_rim=0.1, voxel=0.01, min_points=20,
+                          grasp_extent=(0.04, 0.05))
 APPROACHING = Approaching(reach=MELFA_REACH, height=0.05)
 RIM = 0.08
 

@@ -1,0 +1,89 @@
+"""Grasping in a box the robot knows (thesis 3.4.3): the walls are obstacles to the jaws.
+A hand whose corrections followed its contacts into a wall wedged its jaws there; vision
+turns the jaws across an object's narrow side, or along a wall that leaves no room across."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from atd.model.estd import Controller
+from atd.model.task import ContainerInfo, Environment, Pose
+from atd.sim import load_description
+from primitives.base import Context
+from primitives.perception.container import approach_pose, clear_of_walls
+from primitives.perception.generators import jaw_yaw, long_side
+from primitives.registry import build_controller
+from atd.sim.simrobot import robot_info
+from primitives.robot import Readings
+from tests.primitives.box_worlds import BELIEF, BOX, BOX_POSE, WALL
+
+MELFA_OPEN = (0.04, 0.05)  # the WRT-102 open: along the hand's x, and along y where its jaws close
+LOW_X, LOW_Y = 0.07, 0.06  # the inside of the box spans x 0.07-0.29, y 0.06-0.24 (tests.primitives.box_worlds)
+HIGH_Y = 0.24
+RIM_Z = BELIEF.rim
+
+
+def _tcp(x: float, y: float, yaw: float = 0.0) -> np.ndarray:
+    return approach_pose(BELIEF, np.array([x, y, 0.05]), 0.0, 0.0, yaw)
+
+
+def test_a_hand_near_a_wall_is_moved_in_by_its_reach_and_slides_along_it() -> None:
+    moved = clear_of_walls([BELIEF], _tcp(0.20, HIGH_Y - 0.01), MELFA_OPEN)[:3, 3]
+    np.testing.assert_allclose(moved[:2], (0.20, HIGH_Y - 0.05))  # jaws closing towards the wall: 5 cm in
+    turned = clear_of_walls([BELIEF], _tcp(0.20, HIGH_Y - 0.01, np.pi / 2), MELFA_OPEN)[:3, 3]
+    np.testing.assert_allclose(turned[:2], (0.20, HIGH_Y - 0.04))  # the hand's narrower side towards it
+    corner = clear_of_walls([BELIEF], _tcp(LOW_X, LOW_Y), MELFA_OPEN)[:3, 3]
+    np.testing.assert_allclose(corner[:2], (LOW_X + 0.04, LOW_Y + 0.05))
+    middle = _tcp(0.18, 0.15)
+    np.testing.assert_array_equal(clear_of_walls([BELIEF], middle, MELFA_OPEN), middle)
+    on_the_table = _tcp(0.50, 0.15)
+    np.testing.assert_array_equal(clear_of_walls([BELIEF], on_the_table, MELFA_OPEN), on_the_table)
+
+
+def test_a_jaw_grasp_over_a_known_box_starts_its_descent_clear_of_the_wall() -> None:
+    """The grasp's first move (and each move across or search after it) keeps the open jaws
+    inside the walls; with no container known it descends where the approach left it."""
+    info = robot_info(load_description("melfa"))
+    box = ContainerInfo(name="box", pose=Pose(matrix=tuple(BOX_POSE.reshape(-1))), size=BOX.size, wall=WALL)
+    start = _tcp(0.20, HIGH_Y - 0.015)
+    zeros = np.zeros(6)
+    readings = Readings(time=0.0, arm_q=zeros, arm_dq=zeros, arm_effort=zeros, hand_q=np.zeros(2),
+                        hand_dq=np.zeros(2), hand_effort=np.zeros(2), tcp=start, wrench=zeros, taxels={},
+                        pad_force=np.zeros(2), range=None)
+    ends = []
+    for environment in (Environment(containers=(box,)), None):
+        grasp = build_controller(Controller(name="jaw_grasp_correction", params={"hand_extent": MELFA_OPEN}), "arm",
+                                 Context(info=info, params={}, environment=environment))
+        grasp.start(readings)
+        ends.append(grasp.route[-1])
+    np.testing.assert_allclose(ends[0][:2], (0.20, HIGH_Y - 0.05))
+    np.testing.assert_allclose(ends[1][:2], (0.20, HIGH_Y - 0.015))
+    assert ends[0][2] == pytest.approx(start[2, 3] + 0.02)  # risen by its clearance, then across
+
+
+def _top(centre: tuple[float, float], length: float, width: float, yaw: float) -> np.ndarray:
+    """Points of a flat rectangular top at the rim's height, turned by `yaw` about the vertical."""
+    u, v = np.meshgrid(np.linspace(-length / 2, length / 2, 17), np.linspace(-width / 2, width / 2, 9))
+    c, s = np.cos(yaw), np.sin(yaw)
+    xy = np.column_stack([c * u.ravel() - s * v.ravel(), s * u.ravel() + c * v.ravel()]) + centre
+    return np.column_stack([xy, np.full(len(xy), RIM_Z)])
+
+
+def test_vision_turns_the_jaws_across_a_long_objects_narrow_side() -> None:
+    for yaw in (0.0, 0.5, -1.2, np.pi / 2 - 0.1):
+        top = _top((0.18, 0.15), 0.08, 0.04, yaw)
+        assert long_side(top, BELIEF) == pytest.approx((yaw + np.pi / 2) % np.pi - np.pi / 2, abs=1e-6)
+        turned = jaw_yaw(top, BELIEF, MELFA_OPEN)
+        closing = approach_pose(BELIEF, np.array([0.18, 0.15, RIM_Z]), 0.0, 0.0, turned)[:3, 1]
+        assert abs(closing[:2] @ (np.cos(yaw), np.sin(yaw))) < 1e-6  # jaws close across its length
+    assert long_side(_top((0.18, 0.15), 0.05, 0.05, 0.3), BELIEF) == 0.0  # a square top: no long side
+
+
+def test_vision_closes_the_jaws_along_a_wall_that_leaves_no_room_across() -> None:
+    """A 5 cm cube 1 cm from the far wall: jaws closing towards the wall would be pushed 2.5 cm
+    off its middle, so they close along the wall, whichever way the cube is turned."""
+    for yaw in (0.0, 0.2, np.pi / 2):
+        top = _top((0.18, HIGH_Y - 0.035), 0.05, 0.05, yaw)
+        closing = approach_pose(BELIEF, np.array([0.18, 0.2, RIM_Z]), 0.0, 0.0, jaw_yaw(top, BELIEF, MELFA_OPEN))
+        assert abs(closing[1, 1]) < 0.2, yaw  # the closing axis (hand y) runs along the wall (world x)
