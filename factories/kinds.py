@@ -135,7 +135,7 @@ class MultiFingerFactory(Factory):
                                  f"{self.arm.hand.cannot_grasp[wanted]}", self.refused_grasp_hint)
         grasp, notes = self.shape(grasp)
         preshape_made, pre_notes = self.shape(preshape) if preshape else (None, ())
-        self.check_object_reach(context, grasp.value, *((preshape_made.value,) if preshape_made else ()))
+        self.check_object_reach(context, state, grasp.value, *((preshape_made.value,) if preshape_made else ()))
         configured = float(self.controller("robust_grasp_hand").params["grasp_force"])
         refuse_uncarriable(context.object, f"grasp state '{state.name}'")
         needed = holding_force(context.object)
