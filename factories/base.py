@@ -540,6 +540,8 @@ class Factory(ABC):
         if held is None or (turn is None and self._from_above(held)):
             self.check_reach(*points)
             return points[-1], tuple(points[:-1])
+        if turn is not None:
+            tilt_of(turn)  # a turn no arm controller makes is refused as such, before its reach
         rotation = held @ self._hand_down
         for point in points:
             self.check_pose(point, rotation, f"of {state.type.value} state '{state.name}'")

@@ -20,6 +20,7 @@ from primitives.arm.motion import (
     norm,
     orientation_twist,
     top_down,
+    what_stops,
 )
 from primitives.base import ArmCommand, Context, ControlData, Controller, Status
 from primitives.blackboard import ARM_TWIST
@@ -152,8 +153,10 @@ class CartesianMove(Controller):
             if self.straight and force >= STALL_CONTACT:
                 self.stopped_by(force, norm(self.via[-1] - position))
                 return self._stay(readings)
-            self.finish(Status.ERROR, f"no progress for {STALL_TIME:g} s, {distance:.3f} m from "
-                                      f"({goal[0]:.3f}, {goal[1]:.3f}, {goal[2]:.3f})")
+            info = self.ctx.info
+            self.finish(Status.ERROR, f"no progress for {STALL_TIME:g} s, {distance:.3f} m and {np.degrees(angle):.0f} "
+                                      f"degrees from ({goal[0]:.3f}, {goal[1]:.3f}, {goal[2]:.3f}): "
+                                      f"{what_stops(readings.arm_q, info.arm_joints, info.arm_lower, info.arm_upper)}")
             return self._stay(readings)
 
         v = self._line(position, goal) if self.straight else clamp_norm(GAIN * (goal - position), self.max_speed)

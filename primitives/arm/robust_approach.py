@@ -9,7 +9,7 @@ import numpy as np
 from atd.model.frames import axis_rotation
 from primitives.arm.approach_phases import Approaching, Holding, Phase, Shifting
 from primitives.arm.motion import (GAIN, ORIENTATION_TOLERANCE, SUPPORT_BAND, WORLD_DOWN, clamp_norm, norm,
-                                   orientation_twist, top_down, unit)
+                                   orientation_twist, top_down, unit, what_stops)
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.filters import ContactWrench, contact_across
@@ -20,6 +20,8 @@ SHIFT_TIME = 2.0  # s: a move not made by then is blocked (by the surface or the
 SURFACE_FILTER = 0.05  # s the surface force is averaged over: a fingertip on the table chatters tick to tick
 APPROACH_ACCELERATION = 0.3  # m/s^2 the approach speeds up at: a sudden start reads on the wrist as a contact
 SETTLE = 0.1  # s still, once level or over a contact, before the wrist's reading is taken as the free hand's
+STALL_TIME = 2.0  # s an approach may go without getting STALL_PROGRESS further before it has stalled (as a move does)
+STALL_PROGRESS = 0.001  # m
 
 
 class RobustGraspApproach(Controller):
@@ -124,6 +126,7 @@ class RobustGraspApproach(Controller):
         """Eq. 3.1 (hand frame); on to the sliding grasp once the alignment is over, or
         across a contact on the object's top."""
         if self.contact.force >= self.force_threshold:
+            self.approaching.best = None  # aligning on a contact is progress of its own
             if self._over_contact(readings, wrench):
                 return np.zeros(3)
             torque = float(wrench[4])
@@ -137,6 +140,15 @@ class RobustGraspApproach(Controller):
         travelled = float((readings.tcp[:3, 3] - approaching.origin) @ (readings.tcp[:3, :3] @ self.direction))
         if travelled >= self.max_distance:
             self._begin_slide(readings)
+            return np.zeros(3)
+        if approaching.best is None or travelled > approaching.best + STALL_PROGRESS:
+            approaching.best, approaching.best_at = travelled, readings.time
+        elif readings.time - approaching.best_at > STALL_TIME:
+            info = self.ctx.info
+            self.finish(Status.ERROR, f"the approach made no progress for {STALL_TIME:g} s, {travelled * 100:.1f} cm "
+                                      f"along, without a contact: "
+                                      f"{what_stops(readings.arm_q, info.arm_joints, info.arm_lower, info.arm_upper)}")
+            self.phase, self.holding = Phase.HOLD, Holding(readings.tcp[:3, 3].copy())
             return np.zeros(3)
         approaching.speed = min(self.approach_speed, approaching.speed + APPROACH_ACCELERATION * dt)
         return approaching.speed * self.direction
@@ -223,7 +235,8 @@ class RobustGraspApproach(Controller):
         `max_shifts` times); true if that is what happens. Left there, the finger pushed
         the object over as the fingers closed."""
         rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
-        on_support = float(position[2]) - self.reach < SUPPORT_BAND  # the fingertips on the table say nothing
+        # the fingertips on the table say nothing; a hand turned to the side reaches the table with no fingertip
+        on_support = float(position[2] + self.reach * (rotation @ self.direction)[2]) < SUPPORT_BAND
         if self.moves >= self.max_shifts or on_support:
             return False
         across = contact_across(wrench, self.contact_depth)

@@ -11,24 +11,26 @@ import numpy as np
 _FRONT = np.array([[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])  # -90 degrees about y
 _YAW = {"+x": 0.0, "+y": 90.0, "-y": -90.0}
 
-OBJECT = (0.10, 0.0, 0.04)  # the cylinder's centre: 2 cm radius, 8 cm tall (grasp_and_lift.xml's)
+OBJECT = (0.10, 0.0, 0.06)  # the cylinder's centre: a bottle 2.5 cm in radius, 12 cm tall, under the hand at home
+GRASP_HEIGHT = 0.09  # m: where the hand closes on it
 START = 0.12  # m before the object's axis where the turned hand arrives
+ABOVE = 0.12  # m over that where the hand turns, clear of the object's top
 NEAR = 0.07  # m before it where the guarded preshape ends and the grasp's approach begins
 
 TEMPLATE = """<?xml version="1.0" encoding="UTF-8"?>
 <statemachine>
   <object>
     <pose>1 0 0 {ox}  0 1 0 {oy}  0 0 1 {oz}  0 0 0 1</pose>
-    <weight>0.15</weight>
-    <inertia>9.5e-5 0 0  0 9.5e-5 0  0 0 3.0e-5</inertia>
+    <weight>0.2</weight>
+    <inertia>2.71e-4 0 0  0 2.71e-4 0  0 0 6.25e-5</inertia>
     <friction>0.8</friction>
     <class>cylinder</class>
-    <size>0.02 0.08</size>
+    <size>0.025 0.12</size>
   </object>
   <state name="approach" type="move">
     <movement>free</movement>
     <hand_shape>open</hand_shape>
-    <path><pose>{start}</pose></path>
+    <path><point>{over}</point><pose>{start}</pose></path>
   </state>
   <state name="preshape_hand" type="move">
     <movement>guarded</movement>
@@ -75,11 +77,12 @@ def _pose(rotation: np.ndarray, at: np.ndarray) -> str:
     return "  ".join(rows + ["0 0 0 1"])
 
 
-def side_grasp(direction: str) -> str:
-    """The grasp-and-lift ATD whose hand approaches the cylinder along `direction`."""
+def side_grasp(direction: str, height: float = GRASP_HEIGHT) -> str:
+    """The grasp-and-lift ATD whose hand approaches the cylinder along `direction`, `height` up."""
     rotation = turn(direction)
-    centre = np.array(OBJECT)
+    centre = np.array([OBJECT[0], OBJECT[1], height])
     along = rotation @ np.array([0.0, 0.0, -1.0])  # the turned hand's approach axis
-    return TEMPLATE.format(ox=OBJECT[0], oy=OBJECT[1], oz=OBJECT[2], lz=round(OBJECT[2] + 0.12, 6),
+    return TEMPLATE.format(ox=OBJECT[0], oy=OBJECT[1], oz=OBJECT[2], lz=round(height + 0.12, 6),
+                           over=" ".join(f"{v:.9g}" for v in centre - START * along + (0.0, 0.0, ABOVE)),
                            start=_pose(rotation, centre - START * along),
                            near=_pose(rotation, centre - NEAR * along))
