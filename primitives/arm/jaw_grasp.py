@@ -34,6 +34,7 @@ from primitives.arm.motion import (
     clamp_norm,
     norm,
     orientation_twist,
+    unit,
     what_stops,
 )
 from primitives.arm.move import arm_output
@@ -106,6 +107,9 @@ class JawGraspCorrection(Controller):
         self.vertical = float(-hand_z[2]) >= np.cos(FROM_ABOVE)
         # the way the hand backs off: up, or back along the approach of a grasp from the side
         self.back = UP if self.vertical else -hand_z / norm(hand_z)
+        # the search's way: the hand's x, or level across a grasp from the side (its x would
+        # search up and down the object, and down into the table)
+        self.search_way = None if self.vertical else unit(np.cross(self.back, UP))
         self.centre = readings.tcp[:3, 3].copy()  # where the approach believes the object is
         self.shaper.start(self.ctx.memory.get(ARM_TWIST))
         self.searched = 0
@@ -121,15 +125,24 @@ class JawGraspCorrection(Controller):
         """How far back `point` lies: its height, or along `back` for a grasp from the side."""
         return float(point[2]) if self.vertical else float(point @ self.back)
 
-    def _level(self, v: np.ndarray) -> np.ndarray:
-        """`v` without its part along `back`: a move across the hand's way in."""
+    def _off_line(self, v: np.ndarray) -> np.ndarray:
+        """`v` without its part along `back`."""
         return v * FLAT if self.vertical else v - float(v @ self.back) * self.back
+
+    def _level(self, v: np.ndarray) -> np.ndarray:
+        """A move across the hand's way in: level too for a grasp from the side, which
+        closes at the height the task put it at."""
+        return self._off_line(v) * (1.0 if self.vertical else FLAT)
 
     def _at_depth(self, point: np.ndarray, depth: float) -> np.ndarray:
         """`point` moved along `back` to `depth`."""
         if self.vertical:
             return np.array([point[0], point[1], depth])
         return point + (depth - float(point @ self.back)) * self.back
+
+    def _searching(self, readings: Readings) -> np.ndarray:
+        """The way the search looks for the object (world frame)."""
+        return readings.tcp[:3, 0] if self.search_way is None else self.search_way
 
     def _object_top(self) -> float:
         """The depth of the object's face the hand meets first, as the task believes it: its
@@ -239,13 +252,13 @@ class JawGraspCorrection(Controller):
         # Held on its vertical: the arm makes a twist only roughly where damped least squares
         # trades accuracy for bounded joint speeds (near a wrist singularity the Melfa's jaws
         # drifted 8 mm sideways in an 8 cm descent, off the object they had found).
-        drift = self._level(self.line - readings.tcp[:3, 3])
+        drift = self._off_line(self.line - readings.tcp[:3, 3])
         return GAIN * drift - self.descent * self.back
 
     def _met(self, readings: Readings, wrench: np.ndarray) -> None:
         """The first contact of a descent: where it sits across the hand says what it is."""
         across = self._contact_across(readings, wrench)
-        off_centre = across is not None and norm(across) > self.centre_band
+        off_centre = across is not None and norm(across) > self.centre_band and self.vertical
         if self._depth(readings.tcp[:3, 3]) < self._object_top() or not off_centre or self.shifts >= self.max_shifts:
             # Below the object's top the jaws straddle its place: close, and should they
             # close on nothing, look first where the contact was (the palm on its top, as
@@ -307,7 +320,7 @@ class JawGraspCorrection(Controller):
         if brushed is None or self.brushed:
             return None
         self.brushed = True
-        return readings.tcp[:3, 3] + readings.tcp[:3, 0] * np.sign(brushed) * self.step
+        return readings.tcp[:3, 3] + self._searching(readings) * np.sign(brushed) * self.step
 
     def _close(self, readings: Readings, dt: float) -> np.ndarray:
         board = self.ctx.blackboard
@@ -318,7 +331,7 @@ class JawGraspCorrection(Controller):
             if self.hint is not None:
                 point, self.hint, self.hinted = self.hint, None, True
             elif self.searched < len(self.offsets):
-                point = self.centre + readings.tcp[:3, 0] * self.offsets[self.searched]
+                point = self.centre + self._searching(readings) * self.offsets[self.searched]
                 self.searched += 1
             else:
                 self.phase = "hold"

@@ -11,7 +11,7 @@ import numpy as np
 _FRONT = np.array([[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])  # -90 degrees about y
 _YAW = {"+x": 0.0, "+y": 90.0, "-y": -90.0}
 
-OBJECT = (0.10, 0.0, 0.06)  # the cylinder's centre: a bottle 2.5 cm in radius, 12 cm tall, under the hand at home
+OBJECT = (0.10, 0.0, 0.06)  # the cylinder's centre: a bottle 2 cm in radius, 12 cm tall, under the hand at home
 GRASP_HEIGHT = 0.09  # m: where the hand closes on it
 START = 0.12  # m before the object's axis where the turned hand arrives
 ABOVE = 0.12  # m over that where the hand turns, clear of the object's top
@@ -22,10 +22,10 @@ TEMPLATE = """<?xml version="1.0" encoding="UTF-8"?>
   <object>
     <pose>1 0 0 {ox}  0 1 0 {oy}  0 0 1 {oz}  0 0 0 1</pose>
     <weight>0.2</weight>
-    <inertia>2.71e-4 0 0  0 2.71e-4 0  0 0 6.25e-5</inertia>
+    <inertia>2.6e-4 0 0  0 2.6e-4 0  0 0 4.0e-5</inertia>
     <friction>0.8</friction>
     <class>cylinder</class>
-    <size>0.025 0.12</size>
+    <size>0.02 0.12</size>
   </object>
   <state name="approach" type="move">
     <movement>free</movement>
