@@ -23,7 +23,7 @@ from primitives.arm.motion import (
     what_stops,
 )
 from primitives.base import ArmCommand, Context, ControlData, Controller, Status
-from primitives.blackboard import ARM_TWIST
+from primitives.blackboard import ARM_TWIST, HAND_LEVEL
 from primitives.filters import ContactWrench, LowPass
 from primitives.robot import Readings
 
@@ -39,6 +39,7 @@ CRUISE = 0.9  # fraction of max_speed at which a push starts measuring its free-
 # went on pressing a fingertip on the steel weight's top at 19 N, and the preshape the hand
 # made meanwhile dragged its spread round under that load for 6 s instead of 1.5
 EASE_OFF = 0.003
+SIDEWAYS = np.sin(np.radians(45.0))  # the hand's x axis this far up or down: its yaw is the last level hand's
 
 
 def arm_output(twist: np.ndarray) -> ControlData:
@@ -105,7 +106,11 @@ class CartesianMove(Controller):
         self.contact.start(readings)
         self.shaper.start(self.ctx.memory.get(ARM_TWIST))
         start = readings.tcp[:3, :3]
-        self.rotation = self.tilt @ (top_down(start) if self.level else start)
+        turned = self.ctx.memory.get(HAND_LEVEL) if abs(float(start[2, 0])) > SIDEWAYS else None
+        level = top_down(start) if turned is None else turned
+        self.rotation = self.tilt @ (level if self.level else start)
+        if self.level:
+            self.ctx.memory[HAND_LEVEL] = level
         self.leg = 0
         self.leg_start = readings.tcp[:3, 3].copy()
         self.points = []
