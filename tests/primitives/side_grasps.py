@@ -14,7 +14,7 @@ _YAW = {"+x": 0.0, "+y": 90.0, "-y": -90.0}
 OBJECT = (0.10, 0.0, 0.06)  # the cylinder's centre: a bottle 2 cm in radius, 12 cm tall, under the hand at home
 GRASP_HEIGHT = 0.09  # m: where the hand closes on it
 START = 0.12  # m before the object's axis where the turned hand arrives
-ABOVE = 0.12  # m over that where the hand turns, clear of the object's top
+ABOVE = 0.12  # m over that where the hand turns first, clear of the object and the table
 NEAR = 0.07  # m before it where the guarded preshape ends and the grasp's approach begins
 
 TEMPLATE = """<?xml version="1.0" encoding="UTF-8"?>
@@ -27,10 +27,15 @@ TEMPLATE = """<?xml version="1.0" encoding="UTF-8"?>
     <class>cylinder</class>
     <size>0.02 0.12</size>
   </object>
+  <state name="turn" type="move">
+    <movement>free</movement>
+    <hand_shape>open</hand_shape>
+    <path><pose>{over}</pose></path>
+  </state>
   <state name="approach" type="move">
     <movement>free</movement>
     <hand_shape>open</hand_shape>
-    <path><point>{over}</point><pose>{start}</pose></path>
+    <path><pose>{start}</pose></path>
   </state>
   <state name="preshape_hand" type="move">
     <movement>guarded</movement>
@@ -48,15 +53,18 @@ TEMPLATE = """<?xml version="1.0" encoding="UTF-8"?>
   </state>
   <state name="success_end" type="success"/>
   <state name="fail_end" type="failure"/>
+  <transition origin="turn" destination="approach"><success/></transition>
   <transition origin="approach" destination="preshape_hand"><success/></transition>
   <transition origin="preshape_hand" destination="grasp_object"><success/></transition>
   <transition origin="grasp_object" destination="lift_object"><success/><grasp_stable/></transition>
   <transition origin="lift_object" destination="fail_end"><grasp_lost/></transition>
   <transition origin="lift_object" destination="success_end"><success/><grasp_stable/></transition>
+  <transition origin="turn" destination="fail_end"><timeout>20</timeout></transition>
   <transition origin="approach" destination="fail_end"><timeout>20</timeout></transition>
   <transition origin="preshape_hand" destination="fail_end"><timeout>20</timeout></transition>
   <transition origin="grasp_object" destination="fail_end"><timeout>20</timeout></transition>
   <transition origin="lift_object" destination="fail_end"><timeout>20</timeout></transition>
+  <transition origin="turn" destination="fail_end"><error/></transition>
   <transition origin="approach" destination="fail_end"><error/></transition>
   <transition origin="preshape_hand" destination="fail_end"><error/></transition>
   <transition origin="grasp_object" destination="fail_end"><error/></transition>
@@ -83,6 +91,6 @@ def side_grasp(direction: str, height: float = GRASP_HEIGHT) -> str:
     centre = np.array([OBJECT[0], OBJECT[1], height])
     along = rotation @ np.array([0.0, 0.0, -1.0])  # the turned hand's approach axis
     return TEMPLATE.format(ox=OBJECT[0], oy=OBJECT[1], oz=OBJECT[2], lz=round(height + 0.12, 6),
-                           over=" ".join(f"{v:.9g}" for v in centre - START * along + (0.0, 0.0, ABOVE)),
+                           over=_pose(rotation, centre - START * along + (0.0, 0.0, ABOVE)),
                            start=_pose(rotation, centre - START * along),
                            near=_pose(rotation, centre - NEAR * along))
