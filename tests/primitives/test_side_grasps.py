@@ -1,6 +1,8 @@
-"""Side grasps (issue 32): a motion the arm cannot make ends through `error` with the
-reason, never in a silent stall; what translation refuses of a grasp from the side says
-which joint or link is in the way, at the state's line."""
+"""Side grasps (issue 32): what `atd check` accepts of a grasp from the side, `atd run`
+does: on every robot and arm, a bottle approached 90 degrees from the side, from the left
+and from the right, lifts (the simulator's truth) wherever translation accepts it, and a
+refusal says which joint or link is in the way, at the state's line; a motion the arm
+cannot make ends through `error` with the reason, never in a silent stall."""
 
 from __future__ import annotations
 
@@ -13,12 +15,14 @@ from atd.cli.check import every_robot
 from atd.model import load_task
 from atd.model.diagnostics import Severity
 from atd.model.frames import rpy_of
+from atd.runtime.session import Run
 from atd.model.vocabulary import EventType
 from atd.sim.scene import box_scene
 from tests.primitives.conftest import Stage, both_done, execute, last_reasons, leaf, machine, melfa, use
-from tests.primitives.side_grasps import side_grasp, turn
+from tests.primitives.side_grasps import OBJECT, side_grasp, turn
 from translator import translate
 
+LIFTED = 0.05  # m above where it stood: the bottle has been lifted
 BEHIND = (0.0, 0.0, 0.25)  # the Melfa's TCP here, its hand turned to point along +x, needs j2 past its limit
 
 
@@ -44,7 +48,27 @@ def test_a_refused_side_grasp_names_the_joint_or_the_link_in_the_way(tmp_path: P
         errors = [d for d in translate(task, factory).diagnostics if d.severity is Severity.ERROR]
         assert errors, f"{label} accepted a side grasp 4 cm over the table"
         first = errors[0].render().splitlines()[0]
-        robot = factory.robot
-        named = [name for name in (*robot.arm_joints, *robot.hand_links) if f"'{name}'" in first or f" {name}" in first]
-        assert named, f"{label}: {first}"
+        assert _refusal_names_what_is_in_the_way(first, factory), f"{label}: {first}"
         assert first.startswith(f"{path}:"), first  # located in the ATD
+
+
+def _refusal_names_what_is_in_the_way(first: str, factory) -> bool:
+    robot = factory.robot
+    return any(f"'{name}'" in first or f" {name}" in first for name in (*robot.arm_joints, *robot.hand_links))
+
+
+@pytest.mark.parametrize("direction", ["+y", "-y"])
+def test_check_and_run_agree_on_side_grasps(tmp_path: Path, direction: str) -> None:
+    path = tmp_path / "side.xml"
+    path.write_text(side_grasp(direction))
+    task, _ = load_task(path)
+    for label, factory in every_robot():
+        result = translate(task, factory)
+        errors = [d.render().splitlines()[0] for d in result.diagnostics if d.severity is Severity.ERROR]
+        if errors:
+            assert _refusal_names_what_is_in_the_way(errors[0], factory), f"{label}: {errors[0]}"
+            continue
+        run = Run(result.estd, factory, engine="mujoco")
+        outcome = run.execute()
+        assert outcome.succeeded, f"{label} {direction}: check accepted, the run: {outcome.summary}"
+        assert run.object_position[2] > OBJECT[2] + LIFTED, f"{label} {direction}: the bottle at {run.object_position}"
