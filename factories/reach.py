@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from atd.model.resolved_rate import TWIST_DAMPING, limited_joint_velocities, rotation_error
+from atd.model.resolved_rate import TWIST_DAMPING, joints_at_limits, limited_joint_velocities, rotation_error
 from atd.model.task import Vec3
 from factories.description import RobotDescription
 
@@ -25,7 +25,6 @@ GAIN = 4.0  # 1/s: the arm controllers' proportional gain
 PATIENCE = 1.0  # s of rehearsal without getting PROGRESS closer: stalled
 PROGRESS = 0.001  # m, or rad, closer
 LONGEST = 15.0  # s of rehearsal at most
-AT_LIMIT = 0.02  # of a joint's range: a stalled joint this near a limit is what stops the arm
 SINGULAR = 0.005  # m: the Jacobian's smallest singular value below which the arm is at a singularity
 
 
@@ -97,13 +96,9 @@ class Reach:
     def _stopped(self, q: np.ndarray, distance: float, angle: float) -> str:
         """What stops an arm stalled at `q`, `distance` and `angle` short of its target."""
         short = f"{distance * 100:.1f} cm and {np.degrees(angle):.0f} degrees short"
-        span = self.upper - self.lower
-        at_limit = [(name, "lower" if value - low < high - value else "upper", low if value - low < high - value else high)
-                    for name, value, low, high, width in zip(self.robot.arm_joints, q, self.lower, self.upper, span)
-                    if min(value - low, high - value) < AT_LIMIT * width]
+        at_limit = joints_at_limits(q, self.robot.arm_joints, self.lower, self.upper)
         if at_limit:
-            joints = " and ".join(f"joint '{name}' at its {side} limit ({limit:.2f})" for name, side, limit in at_limit)
-            return f"the arm stops {short}, {joints}"
+            return f"the arm stops {short}, {' and '.join(at_limit)}"
         smallest = float(np.linalg.svd(self.robot.tcp_jacobian(q), compute_uv=False)[-1])
         if smallest < SINGULAR:
             return f"the arm stops {short}, at a singularity (no joint moves the hand the way it must go)"

@@ -5,6 +5,7 @@
 from __future__ import annotations
 
 import math
+from typing import Sequence
 
 import numpy as np
 
@@ -50,3 +51,14 @@ def rotation_error(goal: np.ndarray, current: np.ndarray) -> np.ndarray:
         return np.array([math.sqrt(max(0.0, (r[k][k] + 1.0) / 2.0)) * angle for k in range(3)])
     scale = angle / (2.0 * math.sin(angle))
     return np.array([(r[2][1] - r[1][2]) * scale, (r[0][2] - r[2][0]) * scale, (r[1][0] - r[0][1]) * scale])
+
+
+def joints_at_limits(q: np.ndarray, names: Sequence[str], lower: np.ndarray, upper: np.ndarray) -> list[str]:
+    """The joints within LIMIT_BAND of a limit, where `limited_joint_velocities` slows them,
+    each as "joint 'NAME' at its lower/upper limit (VALUE)": what stops an arm that stalls."""
+    found = []
+    for name, value, low, high in zip(names, q, lower, upper):
+        if min(value - low, high - value) < LIMIT_BAND * (high - low):
+            side, limit = ("lower", low) if value - low < high - value else ("upper", high)
+            found.append(f"joint '{name}' at its {side} limit ({limit:.2f})")
+    return found

@@ -13,7 +13,7 @@ from typing import Sequence
 
 import numpy as np
 
-from atd.model.resolved_rate import LIMIT_BAND, rotation_error
+from atd.model.resolved_rate import joints_at_limits, rotation_error
 
 GAIN = 4.0  # 1/s: linear P gain; 3 mm from the target the TCP still moves at 12 mm/s
 ROTATION_GAIN = 3.0  # 1/s
@@ -155,14 +155,8 @@ def unit(vector) -> np.ndarray:
     return v / np.linalg.norm(v)
 
 
-AT_LIMIT = LIMIT_BAND  # of a joint's range: a stalled joint this near a limit, slowed there, is what stops the arm
-
-
 def what_stops(arm_q: np.ndarray, joints: Sequence[str], lower: np.ndarray, upper: np.ndarray) -> str:
     """Why an arm that makes no progress stops: the joints at their limits, named, or else
     a singularity or something in the way (the arm cannot tell them apart)."""
-    span = upper - lower
-    named = [f"joint '{name}' at its {'lower' if q - low < high - q else 'upper'} limit"
-             for name, q, low, high, width in zip(joints, arm_q, lower, upper, span)
-             if min(q - low, high - q) < AT_LIMIT * width]
+    named = joints_at_limits(arm_q, joints, lower, upper)
     return " and ".join(named) if named else "no joint at its limit: a singularity, or something in the way"

@@ -22,6 +22,7 @@ APPROACH_ACCELERATION = 0.3  # m/s^2 the approach speeds up at: a sudden start r
 SETTLE = 0.1  # s still, once level or over a contact, before the wrist's reading is taken as the free hand's
 STALL_TIME = 2.0  # s an approach may go without getting STALL_PROGRESS further before it has stalled (as a move does)
 STALL_PROGRESS = 0.001  # m
+FROM_SIDE = np.cos(np.radians(45.0))  # a grasp direction pointing down less than this approaches from the side
 
 
 class RobustGraspApproach(Controller):
@@ -80,6 +81,7 @@ class RobustGraspApproach(Controller):
         self.backing = False  # backing off a surface the fingertips press on
         rotation = readings.tcp[:3, :3]
         from_above = float((rotation @ self.direction) @ WORLD_DOWN) >= np.cos(self.level_within)
+        self.from_side = float((rotation @ self.direction) @ WORLD_DOWN) < FROM_SIDE  # no fingertip below its TCP
         self.rotation = top_down(rotation) if from_above and self.level_within > 0.0 else rotation.copy()
         _, tilt = orientation_twist(self.rotation, rotation)
         self.phase = Phase.SETTLE if tilt >= ORIENTATION_TOLERANCE else Phase.APPROACH  # a level hand starts at once
@@ -235,8 +237,8 @@ class RobustGraspApproach(Controller):
         `max_shifts` times); true if that is what happens. Left there, the finger pushed
         the object over as the fingers closed."""
         rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
-        # the fingertips on the table say nothing; a hand turned to the side reaches the table with no fingertip
-        on_support = float(position[2] + self.reach * (rotation @ self.direction)[2]) < SUPPORT_BAND
+        # fingertips on the table say nothing
+        on_support = not self.from_side and float(position[2]) - self.reach < SUPPORT_BAND
         if self.moves >= self.max_shifts or on_support:
             return False
         across = contact_across(wrench, self.contact_depth)
