@@ -35,6 +35,7 @@ from factories.config import RobotConfig, load_config
 from factories.description import RobotDescription
 from factories.reach import Reach
 from factories.robot_info import robot_info
+from factories.turns import KEEPING, arriving, target_turn, turn_at_start
 from primitives.robot import RobotInfo
 
 ConditionNode = Condition | ConditionGroup
@@ -414,38 +415,83 @@ class Factory(ABC):
         the simulator that runs them is built from."""
         return robot_info(self.robot)
 
-    def check_object_reach(self, context: MappingContext, *postures: str) -> None:
-        """A grasp happens where the object is: refuse it when the arm cannot get there, or
-        when the hand, in any of the `postures` it takes there, would cut into an obstacle
-        of the task's environment. Such a hand closes on the obstacle, not on the object:
-        the Barrett's pinch, whose knuckles stand 75 mm either side of its TCP, wrapped the
-        walls of a box 150 mm wide inside, its pads pressing their outer faces, reported the
-        object held, and lifted against the walls (empty_the_box.xml)."""
+    def check_object_reach(self, context: MappingContext, state: State, *postures: str) -> None:
+        """A grasp happens where the object is: refuse it when the arm cannot get there with
+        the hand turned as it arrives (`turn_at_start`), or when the hand, in any of the
+        `postures` it takes there, would cut into an obstacle of the task's environment, or,
+        turned to grasp from the side, into the table. Such a hand closes on the obstacle, not
+        on the object: the Barrett's pinch, whose knuckles stand 75 mm either side of its TCP,
+        wrapped the walls of a box 150 mm wide inside, its pads pressing their outer faces,
+        reported the object held, and lifted against the walls (empty_the_box.xml). A hand
+        turned 90 degrees at a 4 cm tall grasp met the table on its way there on every robot
+        (issue 32). A grasp from the side closes where its approach line passes the object's
+        centre: the TCP of the hand as the state before it left it, moved along the approach."""
         self.check_payload(context)
         if context.object is None or context.object.pose is None:
             return
         centre = np.asarray(context.object.pose.position, float)
-        self.check_reach(context.object.pose.position)
+        rotation, line = self._grasp_line(context, state, centre)
+        tcps = {}
+        for posture in postures:
+            grasp_centre = line + float((centre - line) @ rotation[:, 2]) * rotation[:, 2]
+            tcps[posture] = grasp_centre - rotation @ np.asarray(self.robot.hand.grasp_centres.get(posture, (0.0,) * 3))
+        if rotation is self._hand_down:
+            self.check_reach(context.object.pose.position)
+        else:
+            self.check_pose(tuple(tcps[postures[0]]), rotation, f"grasping the object at "
+                            f"({', '.join(f'{v:g}' for v in centre)}) from the side")
+        for posture in postures:
+            self.check_hand_room(context, posture, rotation, tcps[posture], f"closing on the object at "
+                                 f"({', '.join(f'{v:g}' for v in centre)})")
+
+    def _grasp_line(self, context: MappingContext, state: State, centre: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The hand's rotation as a grasp begins and a point of the line its approach follows:
+        top-down through the object's centre, unless the state before turned the hand further
+        than a grasp from above levels (the robust grasp's `level_within`); then along the
+        turned hand's axis through where that state put the grasp centre."""
+        turn = turn_at_start(context.task, state)
+        if turn is None or self._from_above(turn):
+            return self._hand_down, centre
+        before = arriving(context.task, state)
+        line = np.asarray(before.path[-1].position, float) if before is not None and before.path else centre
+        return turn @ self._hand_down, line
+
+    def _from_above(self, turn: np.ndarray) -> bool:
+        """A hand turned this way grasps from above: the grasp turns it down first."""
+        within = np.radians(float(self.controller("robust_grasp_approach").params["level_within"]))
+        return float((turn @ self._hand_down[:, 2]) @ self._hand_down[:, 2]) >= np.cos(within)
+
+    def check_hand_room(self, context: MappingContext, posture: str, rotation: np.ndarray, tcp_at: np.ndarray,
+                        doing: str) -> None:
+        """The hand in `posture` with its TCP at `tcp_at`, turned by `rotation`, keeps
+        HAND_CLEARANCE from every obstacle and, when not pointing down, from the table."""
+        tcp = np.eye(4)
+        tcp[:3, :3], tcp[:3, 3] = rotation, tcp_at
         obstacles = [o for o in (context.environment.obstacles if context.environment else ()) if o.size]
-        for posture in postures if obstacles else ():
-            tcp = np.eye(4)
-            tcp[:3, :3] = self._hand_down
-            tcp[:3, 3] = centre - self._hand_down @ np.asarray(self.robot.hand.grasp_centres.get(posture, (0.0,) * 3))
-            room = [(o.position, tuple(v + 2 * HAND_CLEARANCE for v in o.size)) for o in obstacles]
-            hit = self.robot.hand_in_boxes(posture, tcp, room)
-            if hit:
-                where = " and ".join(f"({', '.join(f'{v:g}' for v in obstacles[k].position)}) sized "
-                                     f"{' x '.join(f'{v:g}' for v in obstacles[k].size)}" for k in hit)
-                links = [name for name in self.robot.hand_links if any(name in names for names in hit.values())]
-                them = "them" if len(hit) > 1 else "it"
-                raise Unmappable(
-                    f"the {self.arm.hand.name} in its '{posture}' posture, closing on the object at "
-                    f"({', '.join(f'{v:g}' for v in centre)}), would come within {HAND_CLEARANCE * 100:g} cm of the "
-                    f"{'obstacles' if len(hit) > 1 else 'obstacle'} at {where} with its "
-                    f"{' and '.join([', '.join(links[:-1]), links[-1]] if len(links) > 1 else links)}: "
-                    f"it would close on {them} or land on {them}, not on the object",
-                    "give the hand more room around the object (move the obstacle away), "
-                    "or choose a robot or arm with a smaller hand")
+        room = [(o.position, tuple(v + 2 * HAND_CLEARANCE for v in o.size)) for o in obstacles]
+        hit = self.robot.hand_in_boxes(posture, tcp, room) if room else {}
+        if hit:
+            where = " and ".join(f"({', '.join(f'{v:g}' for v in obstacles[k].position)}) sized "
+                                 f"{' x '.join(f'{v:g}' for v in obstacles[k].size)}" for k in hit)
+            links = [name for name in self.robot.hand_links if any(name in names for names in hit.values())]
+            them = "them" if len(hit) > 1 else "it"
+            raise Unmappable(
+                f"the {self.arm.hand.name} in its '{posture}' posture, {doing}, would come within "
+                f"{HAND_CLEARANCE * 100:g} cm of the {'obstacles' if len(hit) > 1 else 'obstacle'} at {where} with its "
+                f"{_listed(links)}: it would close on {them} or land on {them}, not on the object",
+                "give the hand more room around the object (move the obstacle away), "
+                "or choose a robot or arm with a smaller hand")
+        if rotation is self._hand_down:
+            return  # a hand pointing down meets the table with its fingertips, as its grasp expects
+        lowest, links = self.robot.hand_below(posture, tcp, HAND_CLEARANCE)
+        if links:
+            needed = float(tcp_at[2]) - lowest + HAND_CLEARANCE
+            raise Unmappable(
+                f"the {self.arm.hand.name} turned as the task turns it, in its '{posture}' posture, {doing}, "
+                f"would reach {max(0.0, -lowest) * 100:.1f} cm into the table, within {HAND_CLEARANCE * 100:g} cm "
+                f"of it, with its {_listed(links)}",
+                f"put the TCP at least {needed:.3f} m above the table with this turn (it is at {tcp_at[2]:.3f} m), "
+                f"or grasp from above")
 
     def hand_for_motion(self, state: State) -> tuple[Controller, tuple[str, ...]]:
         """The hand during an arm motion: the state's hand shape (or the closest this hand
@@ -467,7 +513,7 @@ class Factory(ABC):
         is reached, while the arm corrects the approach on contact (thesis 3.3.1)."""
         notes = self.shape(state.hand_shape)[1] if state.hand_shape else ()
         shape = self.shape(state.hand_shape)[0].value if state.hand_shape else HandShape.CLOSED.value
-        self.check_object_reach(context, HandShape.OPEN.value, shape)
+        self.check_object_reach(context, state, HandShape.OPEN.value, shape)
         arm = self.controller("jaw_grasp_correction", wrist_to_tcp=round(self._wrist_to_tcp, 6),
                               fingertip_reach=round(self.robot.hand_reach(HandShape.OPEN.value), 6),
                               hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)))
@@ -498,6 +544,17 @@ class Factory(ABC):
                     f"{self.arm.description} with the hand pointing down",
                     "move the target into the work area, or choose a robot or arm that reaches it")
 
+    def check_pose(self, point: Vec3, rotation: np.ndarray, doing: str) -> None:
+        """The TCP must get to `point` with the hand turned by `rotation` (world), as the arm,
+        moving from home as the run moves it, gets there (`Reach.why_not`)."""
+        why = self._reach.why_not(point, rotation)
+        if why is not None:
+            raise Unmappable(
+                f"target ({point[0]:g}, {point[1]:g}, {point[2]:g}), {doing}, is out of reach of the "
+                f"{self.arm.description} with the hand turned as the task turns it: {why}",
+                "turn the hand less or approach from another side or height, move the target into the work "
+                "area, or choose a robot or arm that reaches it")
+
     @cached_property
     def _reach(self) -> Reach:
         return Reach(self.robot)
@@ -515,7 +572,19 @@ class Factory(ABC):
         points = [w.position for w in state.path] if state.path else [derived_target(state, context.object)]
         # To the micrometre, so the ESTD's 9-digit numbers read back equal.
         points = [(round(x - dx, 6), round(y - dy, 6), round(z - dz, 6)) for x, y, z in points]
-        self.check_reach(*points)
+        held = turn if turn is not None or state.type not in KEEPING else turn_at_start(context.task, state)
+        if held is None or (turn is None and self._from_above(held)):
+            self.check_reach(*points)
+            return points[-1], tuple(points[:-1])
+        if turn is not None:
+            tilt_of(turn)  # a turn no arm controller makes is refused as such, before its reach
+        rotation = held @ self._hand_down
+        for point in points:
+            self.check_pose(point, rotation, f"of {state.type.value} state '{state.name}'")
+        if turn is not None and state.hand_shape is not None and not self._from_above(turn):
+            posture = self.posture(self.shape(state.hand_shape)[0], state)
+            self.check_hand_room(context, posture, rotation, np.asarray(points[-1], float),
+                                 f"at the target of {state.type.value} state '{state.name}'")
         return points[-1], tuple(points[:-1])
 
     def arm_motion(self, state: State, target: Vec3, via: tuple[Vec3, ...], **extra: ParamValue) -> Controller:
@@ -626,17 +695,6 @@ def pressing(node: ConditionNode, force: float) -> ConditionNode:
     return node.model_copy(update={"params": {**node.params, "force_threshold": round(force, 3)}})
 
 
-def target_turn(state: State) -> np.ndarray | None:
-    """The rotation of a path's last waypoint when it is a `<pose>`: how the hand is turned
-    away from pointing straight down (with the yaw it has) at the target, in the world
-    frame, so that the identity is the top-down hand every robot knows (docs/atd-format.md)."""
-    target = state.path[-1] if state.path else None
-    if target is None or target.kind != "pose":
-        return None
-    v = target.values
-    return np.array([v[0:3], v[4:7], v[8:11]], float)
-
-
 def tilt_of(turn: np.ndarray) -> tuple[float, float, float]:
     """`turn` as cartesian_move's tilt: roll, pitch, yaw about the world axes, in degrees;
     a turn beyond what an arm controller is asked to make (90 degrees about an axis) is
@@ -719,3 +777,8 @@ def parallel_jaw_closest() -> dict[HandShape, HandShape]:
 
 
 PARALLEL_JAW_SHAPES = frozenset({HandShape.OPEN, HandShape.CLOSED, HandShape.PINCH_GRASP})
+
+
+def _listed(names: list[str]) -> str:
+    """'a', 'a and b', 'a, b and c'."""
+    return " and ".join([", ".join(names[:-1]), names[-1]] if len(names) > 1 else names)

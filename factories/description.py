@@ -514,6 +514,16 @@ class RobotDescription:
                     hit.setdefault(k, []).append(name)
         return hit
 
+    def hand_below(self, posture: str, tcp: np.ndarray, height: float) -> tuple[float, list[str]]:
+        """How low the hand reaches (world z) with its TCP at the pose `tcp` (4x4, world) and
+        its fingers in `posture`, and which of its links reach below `height`."""
+        poses = self.link_poses(self.hand_joint_targets(np.asarray(self.hand.postures[posture], float)))
+        to_world = tcp @ np.linalg.inv(poses[self.tcp.link] @ self.tcp.origin.matrix())
+        down = np.array([0.0, 0.0, -1.0])
+        lows = {name: -max(shape.support(to_world @ poses[name], down) for shape in self.links_by_name[name].shapes)
+                for name in self.hand_links if self.links_by_name[name].shapes}
+        return min(lows.values()), [name for name, low in lows.items() if low < height]
+
     def tcp_pose(self, arm_q: np.ndarray, hand_dofs: np.ndarray | None = None) -> np.ndarray:
         joints = dict(zip(self.arm_joints, (float(v) for v in arm_q)))
         if hand_dofs is not None:

@@ -17,6 +17,8 @@ from __future__ import annotations
 
 from typing import ClassVar
 
+import numpy as np
+
 from atd.model.controllers import SensorKind
 from atd.model.task import State
 from atd.model.vocabulary import EventType, HandShape, StateType
@@ -35,6 +37,7 @@ PRESHAPE_OF = {
 GRASP_OF = {pre: grasp for grasp, pre in PRESHAPE_OF.items()}
 PREGRASP_MARGIN = 0.04  # m of clearance around the object when the hand preshapes (ours)
 SWING_MARGIN = 0.005  # m the sliding grasp may back off beyond the fingertips' swing (ours)
+SIDE_MARGIN = 0.01  # m a grasp from the side may go past where the task believes the object's axis (ours)
 
 
 class ParallelJawFactory(Factory):
@@ -134,7 +137,7 @@ class MultiFingerFactory(Factory):
         to, or a power grasp; refused when the hand cannot make it or would hit an obstacle."""
         grasp = state.hand_shape or (GRASP_OF.get(state.preshape) if state.preshape else None) or DEFAULT_GRASP
         grasp, preshape_made, notes = self.grasp_shapes(state, grasp)
-        self.check_object_reach(context, grasp.value, *((preshape_made.value,) if preshape_made else ()))
+        self.check_object_reach(context, state, grasp.value, *((preshape_made.value,) if preshape_made else ()))
         configured = float(self.controller("robust_grasp_hand").params["grasp_force"])
         refuse_uncarriable(context.object, f"grasp state '{state.name}'")
         needed = holding_force(context.object)
@@ -145,6 +148,7 @@ class MultiFingerFactory(Factory):
         placed = preshape_made.value if preshape_made else grasp.value
         rising = grasp.value in self.robot.hand.rising_grasps
         arm = self.controller("robust_grasp_approach", {"follow_surface": False} if rising else None,
+                              max_distance=self.side_travel(state, context),
                               wrist_to_tcp=round(self._wrist_to_tcp, 6),
                               fingertip_reach=round(max(self.robot.hand_reach(placed), 0.001), 6),
                               max_back_off=round(self.robot.closing_swing(placed, grasp.value) + SWING_MARGIN, 6),
@@ -173,6 +177,20 @@ class MultiFingerFactory(Factory):
         made, notes = self.shape(grasp)
         preshape_made, pre_notes = self.shape(preshape) if preshape else (None, ())
         return made, preshape_made, notes + pre_notes
+
+    def side_travel(self, state: State, context: MappingContext) -> float | None:
+        """How far a grasp from the side approaches: until its grasp centre has passed the
+        object's axis by SIDE_MARGIN. From above the support stops the fingertips; from the
+        side nothing does, and an SDH2, its fingers open around a bottle 4 cm wide, went on
+        the whole `max_distance` until its knuckles pushed the bottle, its grasp centre 13 cm
+        beyond it (issue 32). None (the default) for a grasp from above."""
+        if context.object is None or context.object.pose is None:
+            return None
+        centre = np.asarray(context.object.pose.position, float)
+        rotation, line = self._grasp_line(context, state, centre)
+        if rotation is self._hand_down:
+            return None
+        return round(max(0.0, float((centre - line) @ rotation[:, 2])) + SIDE_MARGIN, 6)
 
     def pregrasp_size(self, state: State, context: MappingContext) -> float | None:
         """Table 7.3's extra parameter: how far to open, from the object's size (0..1)."""

@@ -93,6 +93,13 @@ EMPTY_HAND = "empty_hand"
 N, as the latest grasp began, or as an arm that searches for the object last began a
 descent, in free air; the load a hand carries beyond it is what it holds."""
 
+HAND_LEVEL = "hand_level"
+"""In `Context.memory`: (3, 3) the top-down hand a move's `tilt` last turned from (its
+`<pose>`'s identity). A move that starts with the hand's x axis nearer vertical than level
+turns from it again: the top-down hand derived from a hand turned to the side has a yaw its
+sideways x axis does not say, and a Melfa side approach's second move rolled the jaws 90
+degrees to close up and down, a finger cutting into the object's side (issue 32)."""
+
 ARM_TWIST = "arm_twist"
 """In `Context.memory`: (6,) the TCP twist the arm was last commanded (world frame, m/s and
 rad/s), kept by the executor. A motion that takes the arm over ramps from it: one that

@@ -29,6 +29,8 @@ from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
+from atd.model.resolved_rate import TWIST_DAMPING, limited_joint_velocities
+
 SENSORS = ("joints", "wrench", "tactile", "range")
 """Sensor streams whose update counters `Readings.seq` carries."""
 
@@ -147,36 +149,6 @@ def point_cloud(image: DepthImage) -> np.ndarray:
     return points @ image.pose[:3, :3].T + image.pose[:3, 3]
 
 
-_IDENTITY6 = np.eye(6)  # built once: adding it costs far less than indexing the diagonal every tick
-LIMIT_BAND = 0.05  # of a joint's range: a joint this near a limit does less of a motion towards it
-
-
-def dls_joint_velocities(jacobian: np.ndarray, twist: np.ndarray, damping: float) -> np.ndarray:
-    """Damped least-squares inverse kinematics (thesis 6.3.2): dq = J^T (J J^T + l^2 I)^-1 v.
-
-    The damping keeps joint speeds bounded near singularities at the price of a small
-    tracking error there. (`.dot` rather than `@`: on 6 x 7 arrays, every tick, it costs half as much.)
-    """
-    return jacobian.T.dot(np.linalg.solve(jacobian.dot(jacobian.T) + (damping * damping) * _IDENTITY6, twist))
-
-
-def limited_joint_velocities(jacobian: np.ndarray, twist: np.ndarray, damping: float, q: np.ndarray,
-                             lower: np.ndarray, upper: np.ndarray) -> np.ndarray:
-    """Damped least squares that spares joints near their limits (weighted least norm, Chan
-    and Dubey 1995): a joint within LIMIT_BAND of a limit and moving towards it takes a
-    share of the motion that falls to nothing at the limit, and the other joints make up
-    the rest where they can. At a six-axis arm's wrist singularity the forearm roll (j4)
-    and the flange roll (j6) turn the hand alike: plain DLS shared a turn between them and
-    drove the Melfa's j4 onto its limit, a hardware failure (PyBullet, 11 of the robust
-    grasp's 100 trials with the seeds' approach error in the preset)."""
-    dq = dls_joint_velocities(jacobian, twist, damping)
-    room = np.where(dq > 0.0, upper - q, q - lower) / (LIMIT_BAND * (upper - lower))
-    if (room >= 1.0).all():
-        return dq
-    weight = np.clip(room, 0.0, 1.0)
-    return weight * dls_joint_velocities(jacobian * weight, twist, damping)
-
-
 class Robot(ABC):
     """One arm and its hand, commanded at the control rate.
 
@@ -185,7 +157,7 @@ class Robot(ABC):
     """
 
     #: Damping of the Cartesian velocity solver, in the units of the Jacobian (m).
-    twist_damping = 0.02
+    twist_damping = TWIST_DAMPING
 
     info: RobotInfo
 

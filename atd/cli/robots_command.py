@@ -109,7 +109,8 @@ def show(robot: str, arm: str | None, fmt: str) -> None:
         click.echo(f"  sensors: {', '.join(f'{s.name} ({s.kind.value})' for s in a.sensors)}")
     base = factory.robot.base.xyz
     click.echo(f"  placed with its base at ({base[0]:g}, {base[1]:g}, {base[2]:g}) in the ATD world frame; "
-               f"reach is checked by inverse kinematics on {description_file(type(factory))} with the hand pointing down")
+               f"reach is checked on {description_file(type(factory))}: by inverse kinematics with the hand pointing down, "
+               f"by rehearsing the arm's motion from home with the hand turned as a <pose> turns it")
     click.echo(f"\nprimitives ({factory.arm.name} arm):\n{mapping_table(factory)}\n")
     click.echo("events:")
     for label, text in event_rows(factory):

@@ -34,6 +34,8 @@ class Approaching:
 
     origin: np.ndarray  # world TCP position it started from: MAX_DISTANCE is counted from there
     speed: float = 0.0  # m/s, rising to the approach velocity
+    best: float | None = None  # m: the furthest it has got along the approach
+    best_at: float = 0.0  # s: when it got there
 
     def travelled(self, readings: Readings, direction: np.ndarray) -> float:
         """m covered along the grasp direction (hand frame) since the approach (re)started."""

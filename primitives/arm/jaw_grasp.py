@@ -34,6 +34,8 @@ from primitives.arm.motion import (
     clamp_norm,
     norm,
     orientation_twist,
+    unit,
+    what_stops,
 )
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
@@ -48,7 +50,13 @@ ARRIVED = 0.002  # m: a waypoint of the correction counts as reached
 # across without slowing into it (0.2 s of each 2.3 s move between search points, in free air)
 PASSED = 0.005
 UP = np.array([0.0, 0.0, 1.0])
+FLAT = np.array([1.0, 1.0, 0.0])
+# rad: a hand turned less than this from pointing down corrects along the vertical, one turned
+# further (a grasp from the side) along its own approach axis (the robust grasp levels a hand
+# within its `level_within`, 30 degrees by default, and the factory checks reach alike)
+FROM_ABOVE = np.radians(30.0)
 STALL_TIME = 0.5  # s without descending 1 mm while pressing: the descent is on a contact
+MOVE_STALL = 2.0  # s without getting 1 mm nearer a waypoint of the correction: the arm cannot get there
 STALL_PROGRESS = 0.001  # m
 STALL_CONTACT = 0.5  # of force_threshold: pressing that much when stalled is a contact
 FLOOR_CLEARANCE = 0.005  # m: the descent stops with the fingertips this far above the support
@@ -100,6 +108,13 @@ class JawGraspCorrection(Controller):
         # The hand keeps the tilt the approach left: turning it upright drove the Melfa's
         # wrist (j4) onto its limit in 4 of 20 trials with the seeds' approach error.
         self.rotation = readings.tcp[:3, :3].copy()
+        hand_z = readings.tcp[:3, 2]
+        self.vertical = float(-hand_z[2]) >= np.cos(FROM_ABOVE)
+        # the way the hand backs off: up, or back along the approach of a grasp from the side
+        self.back = UP if self.vertical else -hand_z / norm(hand_z)
+        # the search's way: the hand's x, or level across a grasp from the side (its x would
+        # search up and down the object, and down into the table)
+        self.search_way = None if self.vertical else unit(np.cross(self.back, UP))
         self.centre = readings.tcp[:3, 3].copy()  # where the approach believes the object is
         self.shaper.start(self.ctx.memory.get(ARM_TWIST))
         self.searched = 0
@@ -111,20 +126,46 @@ class JawGraspCorrection(Controller):
         self.ctx.blackboard.contact = False
         self._rise(readings, np.zeros(3), self._above_object())
 
+    def _depth(self, point: np.ndarray) -> float:
+        """How far back `point` lies: its height, or along `back` for a grasp from the side."""
+        return float(point[2]) if self.vertical else float(point @ self.back)
+
+    def _off_line(self, v: np.ndarray) -> np.ndarray:
+        """`v` without its part along `back`."""
+        return v * FLAT if self.vertical else v - float(v @ self.back) * self.back
+
+    def _level(self, v: np.ndarray) -> np.ndarray:
+        """A move across the hand's way in: level too for a grasp from the side, which
+        closes at the height the task put it at."""
+        return self._off_line(v) * (1.0 if self.vertical else FLAT)
+
+    def _at_depth(self, point: np.ndarray, depth: float) -> np.ndarray:
+        """`point` moved along `back` to `depth`."""
+        if self.vertical:
+            return np.array([point[0], point[1], depth])
+        return point + (depth - float(point @ self.back)) * self.back
+
+    def _searching(self, readings: Readings) -> np.ndarray:
+        """The way the search looks for the object (world frame)."""
+        return readings.tcp[:3, 0] if self.search_way is None else self.search_way
+
     def _object_top(self) -> float:
-        """Height of the object's top as the task believes it (-inf: the task does not say)."""
+        """The depth of the object's face the hand meets first, as the task believes it: its
+        top, or its side facing a grasp from the side (-inf: the task does not say)."""
         obj = self.ctx.object
         if obj is None or obj.pose is None:
             return -np.inf
-        return float(obj.pose.position[2]) + obj.half_height
+        centre = np.asarray(obj.pose.position, float)
+        return self._depth(centre) + (obj.half_height if self.vertical else obj.footprint_width / 2.0)
 
     def _grasp_height(self) -> float:
-        """Where the TCP closes on the object: level with its centre, as the task believes it,
-        or higher for an object shorter than the jaws' pads, whose fingertips would otherwise
-        press on the support (and its pads feel that as a grip)."""
+        """The depth where the TCP closes on the object: level with its centre, as the task
+        believes it, or higher for an object shorter than the jaws' pads, whose fingertips
+        would otherwise press on the support (and its pads feel that as a grip); on its axis
+        for a grasp from the side."""
         obj = self.ctx.object
-        centre = -np.inf if obj is None or obj.pose is None else float(obj.pose.position[2])
-        return max(centre, self._support() + self.reach + FLOOR_CLEARANCE)
+        centre = -np.inf if obj is None or obj.pose is None else self._depth(np.asarray(obj.pose.position, float))
+        return max(centre, self._support() + self.reach + FLOOR_CLEARANCE) if self.vertical else centre
 
     def _support(self) -> float:
         """Height of the support under the hand: the floor of a known container it is over
@@ -133,15 +174,17 @@ class JawGraspCorrection(Controller):
         return 0.0 if container is None else container.floor
 
     def _above_object(self) -> float:
-        """TCP height from which a descent meets the object's top first."""
+        """TCP depth from which a descent meets the object's top (or facing side) first."""
         return self._object_top() + self.above
 
     def _rise(self, readings: Readings, across: np.ndarray, height: float = -np.inf) -> None:
-        """Up clear of the contact (at least to `height`), then `across` (world frame), then descend again."""
+        """Back clear of the contact (at least to depth `height`), then `across` (world frame), then descend again."""
         here = readings.tcp[:3, 3]
-        up = np.array([here[0], here[1], max(here[2] + self.clearance, height)])
-        self.route = [up, self._inside_walls(up + across * np.array([1.0, 1.0, 0.0]))]
+        up = self._at_depth(here, max(self._depth(here) + self.clearance, height))
+        self.route = [up, self._inside_walls(up + self._level(across))]
         self.phase = "move"
+        self.nearest, self.nearest_at = np.inf, readings.time  # m from the waypoint, and when
+        self.towards: np.ndarray | None = None  # the waypoint `nearest` is measured to
         self.free_loads.clear()
 
     def _inside_walls(self, position: np.ndarray) -> np.ndarray:
@@ -189,6 +232,15 @@ class JawGraspCorrection(Controller):
                 self._start_descent(readings)
                 return np.zeros(3)
             goal = self.route[0]
+        if goal is not self.towards or norm(goal - position) < self.nearest - STALL_PROGRESS:
+            self.towards, self.nearest, self.nearest_at = goal, norm(goal - position), readings.time
+        elif readings.time - self.nearest_at > MOVE_STALL:
+            info = self.ctx.info
+            self.phase, self.goal = "hold", position.copy()
+            self.finish(Status.ERROR, f"the correction made no progress for {MOVE_STALL:g} s, "
+                                      f"{norm(goal - position) * 100:.1f} cm from its waypoint: "
+                                      f"{what_stops(readings.arm_q, info.arm_joints, info.arm_lower, info.arm_upper)}")
+            return np.zeros(3)
         return clamp_norm(GAIN * (goal - position), self.speed)
 
     def _start_descent(self, readings: Readings) -> None:
@@ -199,17 +251,20 @@ class JawGraspCorrection(Controller):
         free = self.free_loads or [world_load(readings)]
         self.ctx.memory[EMPTY_HAND] = np.mean(np.array(free), axis=0)
         self.phase = "descend"
-        self.top = float(readings.tcp[2, 3])
+        self.top = self._depth(readings.tcp[:3, 3])
         self.line = readings.tcp[:3, 3].copy()  # the descent keeps to the vertical through here
         self.best, self.best_time = self.top, readings.time
 
     def _descend(self, readings: Readings, dt: float) -> np.ndarray:
         wrench = self.contact.update(readings, dt)
-        z = float(readings.tcp[2, 3])
+        z = self._depth(readings.tcp[:3, 3])
         if z < self.best - STALL_PROGRESS:
             self.best, self.best_time = z, readings.time
         stalled = readings.time - self.best_time > STALL_TIME and self.contact.force >= STALL_CONTACT * self.threshold
-        if self.contact.force >= self.threshold or stalled:
+        # From the side the jaws straddle the object's place on their way in, and a push
+        # tips a standing object long before the wrist feels it (0.4 N tips a 0.2 kg bottle
+        # 4 cm wide pushed 9 cm up; the Melfa's contact is 2 N): only a blocked descent has met it
+        if (self.contact.force >= self.threshold and self.vertical) or stalled:
             self._met(readings, wrench)
         elif self.top - z >= self.max_depth or z <= self._grasp_height():
             self._close_here(readings, 0.0)
@@ -218,28 +273,28 @@ class JawGraspCorrection(Controller):
         # Held on its vertical: the arm makes a twist only roughly where damped least squares
         # trades accuracy for bounded joint speeds (near a wrist singularity the Melfa's jaws
         # drifted 8 mm sideways in an 8 cm descent, off the object they had found).
-        drift = (self.line - readings.tcp[:3, 3]) * np.array([1.0, 1.0, 0.0])
-        return GAIN * drift - self.descent * UP
+        drift = self._off_line(self.line - readings.tcp[:3, 3])
+        return GAIN * drift - self.descent * self.back
 
     def _met(self, readings: Readings, wrench: np.ndarray) -> None:
         """The first contact of a descent: where it sits across the hand says what it is."""
         across = self._contact_across(readings, wrench)
-        off_centre = across is not None and norm(across) > self.centre_band
-        if float(readings.tcp[2, 3]) < self._object_top() or not off_centre or self.shifts >= self.max_shifts:
+        off_centre = across is not None and norm(across) > self.centre_band and self.vertical
+        if self._depth(readings.tcp[:3, 3]) < self._object_top() or not off_centre or self.shifts >= self.max_shifts:
             # Below the object's top the jaws straddle its place: close, and should they
             # close on nothing, look first where the contact was (the palm on its top, as
             # wide as the hand; not the fingertips on the support, which say nothing of
             # the object). Only once: a contact that sent the jaws to close on nothing was
             # no object's top, and following each next one like it walked the hand away from
             # the object, 3.7 cm a time (Melfa, MuJoCo, the preset's wood trial 1).
-            on_support = float(readings.tcp[2, 3]) - self.reach - self._support() < SUPPORT_BAND
+            on_support = self.vertical and float(readings.tcp[2, 3]) - self.reach - self._support() < SUPPORT_BAND
             self.hint = None if not off_centre or on_support or self.hinted else \
                 readings.tcp[:3, 3] + readings.tcp[:3, :3] @ clamp_norm(across, self.max_shift)
             self._close_here(readings, self.back_off)
             return
         shift = readings.tcp[:3, :3] @ self._jaw_move(across)
         self.shifts += 1
-        self.centre = self.centre + shift * np.array([1.0, 1.0, 0.0])  # the search goes on from there
+        self.centre = self.centre + self._level(shift)  # the search goes on from there
         self._rise(readings, shift)
 
     def _jaw_move(self, across: np.ndarray) -> np.ndarray:
@@ -256,11 +311,11 @@ class JawGraspCorrection(Controller):
         action (from the wrist's force and torque, taken about the sensor `wrist_to_tcp` above
         the TCP) crosses the object's top as the task believes it, or the TCP's height."""
         top = self._object_top()
-        depth = self.wrist_to_tcp + (float(readings.tcp[2, 3]) - top if np.isfinite(top) else 0.0)
+        depth = self.wrist_to_tcp + (self._depth(readings.tcp[:3, 3]) - top if np.isfinite(top) else 0.0)
         return contact_across(wrench, depth)
 
     def _close_here(self, readings: Readings, back_off: float) -> None:
-        self.goal = readings.tcp[:3, 3] + back_off * UP
+        self.goal = readings.tcp[:3, 3] + back_off * self.back
         self.phase = "close"
         self.risen = 0.0  # m the arm has risen in this close to take the hand off the support
         self.ctx.blackboard.contact = True
@@ -286,7 +341,7 @@ class JawGraspCorrection(Controller):
         if brushed is None or self.brushed:
             return None
         self.brushed = True
-        return readings.tcp[:3, 3] + readings.tcp[:3, 0] * np.sign(brushed) * self.step
+        return readings.tcp[:3, 3] + self._searching(readings) * np.sign(brushed) * self.step
 
     def _close(self, readings: Readings, dt: float) -> np.ndarray:
         board = self.ctx.blackboard
@@ -297,7 +352,7 @@ class JawGraspCorrection(Controller):
             if self.hint is not None:
                 point, self.hint, self.hinted = self.hint, None, True
             elif self.searched < len(self.offsets):
-                point = self.centre + readings.tcp[:3, 0] * self.offsets[self.searched]
+                point = self.centre + self._searching(readings) * self.offsets[self.searched]
                 self.searched += 1
             else:
                 self.phase = "hold"

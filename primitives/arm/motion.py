@@ -13,6 +13,8 @@ from typing import Sequence
 
 import numpy as np
 
+from atd.model.resolved_rate import joints_at_limits, rotation_error
+
 GAIN = 4.0  # 1/s: linear P gain; 3 mm from the target the TCP still moves at 12 mm/s
 ROTATION_GAIN = 3.0  # 1/s
 MAX_ANGULAR_SPEED = 1.0  # rad/s
@@ -37,19 +39,6 @@ def top_down(rotation: np.ndarray) -> np.ndarray:
     x /= np.linalg.norm(x)
     z = WORLD_DOWN
     return np.column_stack([x, np.cross(z, x), z])
-
-
-def rotation_error(goal: np.ndarray, current: np.ndarray) -> np.ndarray:
-    """World-frame rotation vector (axis * angle) that turns `current` into `goal`."""
-    r = goal.dot(current.T).tolist()  # plain floats: nine element reads cost less than on an array
-    cos = max(-1.0, min(1.0, (r[0][0] + r[1][1] + r[2][2] - 1.0) / 2.0))
-    angle = math.acos(cos)
-    if angle < 1e-9:
-        return np.zeros(3)
-    if math.pi - angle < 1e-6:  # half a turn: the axis is the eigenvector of r for eigenvalue 1
-        return np.array([math.sqrt(max(0.0, (r[k][k] + 1.0) / 2.0)) * angle for k in range(3)])
-    scale = angle / (2.0 * math.sin(angle))
-    return np.array([(r[2][1] - r[1][2]) * scale, (r[0][2] - r[2][0]) * scale, (r[1][0] - r[0][1]) * scale])
 
 
 def norm(v: np.ndarray) -> float:
@@ -164,3 +153,10 @@ def unit(vector) -> np.ndarray:
     """The vector scaled to length 1 (directions and normals come as any length)."""
     v = np.asarray(vector, float)
     return v / np.linalg.norm(v)
+
+
+def what_stops(arm_q: np.ndarray, joints: Sequence[str], lower: np.ndarray, upper: np.ndarray) -> str:
+    """Why an arm that makes no progress stops: the joints at their limits, named, or else
+    a singularity or something in the way (the arm cannot tell them apart)."""
+    named = joints_at_limits(arm_q, joints, lower, upper)
+    return " and ".join(named) if named else "no joint at its limit: a singularity, or something in the way"

@@ -20,9 +20,10 @@ from primitives.arm.motion import (
     norm,
     orientation_twist,
     top_down,
+    what_stops,
 )
 from primitives.base import ArmCommand, Context, ControlData, Controller, Status
-from primitives.blackboard import ARM_TWIST
+from primitives.blackboard import ARM_TWIST, HAND_LEVEL
 from primitives.filters import ContactWrench, LowPass
 from primitives.robot import Readings
 
@@ -38,6 +39,7 @@ CRUISE = 0.9  # fraction of max_speed at which a push starts measuring its free-
 # went on pressing a fingertip on the steel weight's top at 19 N, and the preshape the hand
 # made meanwhile dragged its spread round under that load for 6 s instead of 1.5
 EASE_OFF = 0.003
+SIDEWAYS = np.sin(np.radians(45.0))  # the hand's x axis this far up or down: its yaw is the last level hand's
 
 
 def arm_output(twist: np.ndarray) -> ControlData:
@@ -104,7 +106,11 @@ class CartesianMove(Controller):
         self.contact.start(readings)
         self.shaper.start(self.ctx.memory.get(ARM_TWIST))
         start = readings.tcp[:3, :3]
-        self.rotation = self.tilt @ (top_down(start) if self.level else start)
+        turned = self.ctx.memory.get(HAND_LEVEL) if abs(float(start[2, 0])) > SIDEWAYS else None
+        level = top_down(start) if turned is None else turned
+        self.rotation = self.tilt @ (level if self.level else start)
+        if self.level:
+            self.ctx.memory[HAND_LEVEL] = level
         self.leg = 0
         self.leg_start = readings.tcp[:3, 3].copy()
         self.points = []
@@ -152,8 +158,10 @@ class CartesianMove(Controller):
             if self.straight and force >= STALL_CONTACT:
                 self.stopped_by(force, norm(self.via[-1] - position))
                 return self._stay(readings)
-            self.finish(Status.ERROR, f"no progress for {STALL_TIME:g} s, {distance:.3f} m from "
-                                      f"({goal[0]:.3f}, {goal[1]:.3f}, {goal[2]:.3f})")
+            info = self.ctx.info
+            self.finish(Status.ERROR, f"no progress for {STALL_TIME:g} s, {distance:.3f} m and {np.degrees(angle):.0f} "
+                                      f"degrees from ({goal[0]:.3f}, {goal[1]:.3f}, {goal[2]:.3f}): "
+                                      f"{what_stops(readings.arm_q, info.arm_joints, info.arm_lower, info.arm_upper)}")
             return self._stay(readings)
 
         v = self._line(position, goal) if self.straight else clamp_norm(GAIN * (goal - position), self.max_speed)

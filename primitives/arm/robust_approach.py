@@ -9,7 +9,7 @@ import numpy as np
 from atd.model.frames import axis_rotation
 from primitives.arm.approach_phases import SETTLE, Approaching, Holding, Phase, Shifting
 from primitives.arm.motion import (GAIN, ORIENTATION_TOLERANCE, SUPPORT_BAND, WORLD_DOWN, clamp_norm, norm,
-                                   orientation_twist, top_down, unit)
+                                   orientation_twist, top_down, unit, what_stops)
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.filters import ContactWrench, contact_across
@@ -18,6 +18,9 @@ from primitives.robot import Readings
 SHIFT_TOLERANCE = 0.002  # m: a move the hand asked for counts as made this near its goal
 SHIFT_TIME = 2.0  # s: a move not made by then is blocked (by the surface or the object); the grasp goes on from there
 SURFACE_FILTER = 0.05  # s the surface force is averaged over: a fingertip on the table chatters tick to tick
+STALL_TIME = 2.0  # s an approach may go without getting STALL_PROGRESS further before it has stalled (as a move does)
+STALL_PROGRESS = 0.001  # m
+FROM_SIDE = np.cos(np.radians(45.0))  # a grasp direction pointing down less than this approaches from the side
 
 
 class RobustGraspApproach(Controller):
@@ -76,6 +79,7 @@ class RobustGraspApproach(Controller):
         self.backing = False  # backing off a surface the fingertips press on
         rotation = readings.tcp[:3, :3]
         from_above = float((rotation @ self.direction) @ WORLD_DOWN) >= np.cos(self.level_within)
+        self.from_side = float((rotation @ self.direction) @ WORLD_DOWN) < FROM_SIDE  # no fingertip below its TCP
         self.rotation = top_down(rotation) if from_above and self.level_within > 0.0 else rotation.copy()
         _, tilt = orientation_twist(self.rotation, rotation)
         self.phase = Phase.SETTLE if tilt >= ORIENTATION_TOLERANCE else Phase.APPROACH  # a level hand starts at once
@@ -122,6 +126,7 @@ class RobustGraspApproach(Controller):
         """Eq. 3.1 (hand frame); on to the sliding grasp once the alignment is over, or
         across a contact on the object's top."""
         if self.contact.force >= self.force_threshold:
+            self.approaching.best = None  # aligning on a contact is progress of its own
             if self._over_contact(readings, wrench):
                 return np.zeros(3)
             torque = float(wrench[4])
@@ -131,10 +136,21 @@ class RobustGraspApproach(Controller):
                 return self.speed * (-self.side - self.direction)
             self._begin_slide(readings)
             return np.zeros(3)
-        if self.approaching.travelled(readings, self.direction) >= self.max_distance:
+        travelled = self.approaching.travelled(readings, self.direction)
+        if travelled >= self.max_distance:
             self._begin_slide(readings)
             return np.zeros(3)
-        return self.approaching.velocity(self.direction, self.approach_speed, dt)
+        approaching = self.approaching
+        if approaching.best is None or travelled > approaching.best + STALL_PROGRESS:
+            approaching.best, approaching.best_at = travelled, readings.time
+        elif readings.time - approaching.best_at > STALL_TIME:
+            info = self.ctx.info
+            self.finish(Status.ERROR, f"the approach made no progress for {STALL_TIME:g} s, {travelled * 100:.1f} cm "
+                                      f"along, without a contact: "
+                                      f"{what_stops(readings.arm_q, info.arm_joints, info.arm_lower, info.arm_upper)}")
+            self.phase, self.holding = Phase.HOLD, Holding(readings.tcp[:3, 3].copy())
+            return np.zeros(3)
+        return approaching.velocity(self.direction, self.approach_speed, dt)
 
     def _slide(self, position: np.ndarray, pushed: float) -> np.ndarray:
         """Eq. 3.2 (hand frame): back off while pressing, follow a surface lost; hold once the fingers have stopped."""
@@ -218,7 +234,8 @@ class RobustGraspApproach(Controller):
         `max_shifts` times); true if that is what happens. Left there, the finger pushed
         the object over as the fingers closed."""
         rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
-        on_support = float(position[2]) - self.reach < SUPPORT_BAND  # the fingertips on the table say nothing
+        # fingertips on the table say nothing
+        on_support = not self.from_side and float(position[2]) - self.reach < SUPPORT_BAND
         if self.moves >= self.max_shifts or on_support:
             return False
         across = contact_across(wrench, self.contact_depth)

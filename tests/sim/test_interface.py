@@ -8,9 +8,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from atd.model import HandShape
+from atd.model.resolved_rate import dls_joint_velocities, limited_joint_velocities
 from atd.sim import load_description, variants
 from atd.sim.scene import Scene
-from primitives.robot import HandMode, dls_joint_velocities, limited_joint_velocities
+from primitives.robot import HandMode
 
 
 @given(st.integers(0, 10_000))
