@@ -344,6 +344,10 @@ class SimRobot(Robot):
         """True 4x4 TCP pose (for checks, not for primitives)."""
         return self._tcp()
 
+    def true_joints(self) -> np.ndarray:
+        """True positions of the arm joints then `hand_joints` (for recordings, not for primitives)."""
+        return self._joint_state()[0]
+
     def true_pad_contacts(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """True contacts on the pads (for recordings, not for primitives): pad index, point
         in that pad's frame, normal force."""
