@@ -83,3 +83,14 @@ def test_the_scene_draws_table_object_and_links_on_frames_that_exist(recording: 
     assert tfs[0]["tcp"]["translation"] == tfs[-1]["tcp"]["translation"], "the TCP sits fixed on its link"
     tcp = [m["pose"]["position"] for _, m in recording["messages"]["/tcp"]]
     assert tcp[0] != tcp[-1], "the believed TCP moves with the arm"
+
+
+def test_the_shipped_layout_shows_channels_a_recording_has(recording: dict) -> None:
+    layout = json.loads((REPO / "docs" / "foxglove-layout.json").read_text())
+    panels = layout["configById"]
+    shown = set(panels["3D!atd"]["topics"]) | {panels["RawMessages!trace"]["topicPath"]}
+    shown |= {p["value"].split(".")[0] for name, panel in panels.items() for p in panel.get("paths", ())}
+    assert panels["3D!atd"]["followTf"] == "world" and "/truth/scene" in shown
+    assert shown <= set(recording["channels"])
+    placed = json.dumps(layout["layout"])
+    assert all(f'"{name}"' in placed for name in panels), "every configured panel is in the layout"
