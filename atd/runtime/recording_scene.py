@@ -19,6 +19,7 @@ from typing import Any, Iterator
 
 import numpy as np
 
+from atd.runtime.recording_format import DECIMALS
 from atd.sim.models import matrix_to_quat
 from atd.sim.scene import COLOURS, TABLE_CENTRE, TABLE_HALF, Body, Scene
 from factories.description import RobotDescription, Shape
@@ -28,7 +29,6 @@ SCENE_REPEAT = 1.0  # s: the scene's entities again, so a viewer that seeks find
 ROOT = "world"
 BASE = "base"  # the robot's base; its links are "link/NAME", the objects "object/NAME": no name clashes
 TCP = "tcp"
-DECIMALS = 6
 
 _TIME = {"type": "object", "title": "time", "properties": {
     "sec": {"type": "integer", "minimum": 0}, "nsec": {"type": "integer", "minimum": 0, "maximum": 999_999_999}}}

@@ -3,15 +3,20 @@ table (its own schema names, JSON Schemas, one tree of frames rooted at "world")
 
 from __future__ import annotations
 
+import base64
 import json
+from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
 import pytest
 from mcap.reader import make_reader
 
 from atd.model import load_task
-from atd.runtime.recording_scene import SCENE_RATE
+from atd.runtime.recording_scene import SCENE_RATE, frames_of
 from atd.runtime.session import Run
+from atd.sim.scene import Body, Scene
+from factories.description import Shape
 from factories.registry import create
 from tests.conftest import REPO
 from translator import translate
@@ -94,3 +99,20 @@ def test_the_shipped_layout_shows_channels_a_recording_has(recording: dict) -> N
     assert shown <= set(recording["channels"])
     placed = json.dumps(layout["layout"])
     assert all(f'"{name}"' in placed for name in panels), "every configured panel is in the layout"
+
+
+def test_a_mesh_object_is_drawn_from_its_own_file_and_a_capsule_link_with_round_ends(tmp_path: Path) -> None:
+    mesh = tmp_path / "wedge.obj"
+    mesh.write_text("v 0 0 0\nv 0.04 0 0\nv 0 0.04 0\nv 0 0 0.04\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n")
+    wedge = Body("wedge", "mesh", (0.04, 0.04, 0.04), np.eye(4), 0.1, 1.0, mesh, mesh_scale=(2.0, 2.0, 2.0))
+    d = create("melfa").robot
+    arm = replace(d.links[1], shapes=(Shape("capsule", (0.03, 0.1)),), visuals=())
+    d = replace(d, links=(d.links[0], arm, *d.links[2:]))
+    frames = frames_of(d, d.arm_joints, Scene(objects=(wedge,), table=False))
+    entities = {e["id"]: e for e in frames.entities}
+    model = entities["object wedge"]["models"][0]
+    assert base64.b64decode(model["data"]) == mesh.read_bytes() and model["media_type"] == "model/obj"
+    assert model["scale"] == {"x": 2.0, "y": 2.0, "z": 2.0} and "table" not in entities
+    capsule = entities[f"link {arm.name}"]
+    assert capsule["cylinders"][0]["size"] == {"x": 0.06, "y": 0.06, "z": 0.2}
+    assert sorted(s["pose"]["position"]["z"] for s in capsule["spheres"]) == [-0.1, 0.1]
