@@ -23,7 +23,7 @@ import numpy as np
 
 from atd.runtime.executor import Executor, Outcome
 from atd.runtime.recording_format import DEFAULT_RATE, RECORDING_FORMAT, Layout, Sample
-from atd.runtime.recording_scene import frames_of
+from atd.runtime.recording_scene import Arm, frames_of
 from atd.runtime.recording_writer import RecordingWriter
 from atd.runtime.trace import Trace
 from atd.sim.simrobot import SimRobot
@@ -45,9 +45,10 @@ class Recording:
         self.period = 0.0 if rate is None else 1.0 / rate
         self.next = 0.0
         hand = robot.info.hand
-        joints = (*robot.description.arm_joints, *robot.hand_joints)
+        arms = tuple(Arm("" if k == 0 else f"{arm.description.arm or k}/", arm.description,
+                         (*arm.description.arm_joints, *arm.hand_joints)) for k, arm in enumerate(robot.arms))
         self.layout = Layout(len(robot.info.arm_joints), len(hand.dofs), tuple((p.name, p.taxels) for p in hand.pads),
-                             objects, len(joints))
+                             objects, sum(len(arm.joints) for arm in arms))
         self.block = np.empty((BLOCK, self.layout.width))
         self.samples: list[Sample] = []
         self.traces: list[tuple[int, dict[str, Any]]] = []
@@ -60,7 +61,7 @@ class Recording:
         self.writer.send(("start", self.layout, {"arm_joints": " ".join(robot.info.arm_joints),
                                                  "hand_dofs": " ".join(hand.dofs), "wrench_frame": "hand"},
                           info or {}, attachments or {}))
-        self.writer.send(("scene", frames_of(robot.description, joints, robot.scene)))
+        self.writer.send(("scene", frames_of(arms, robot.scene)))
 
     def __call__(self, sim_time: float) -> None:
         if len(self.trace.records) > self.traced:

@@ -72,28 +72,37 @@ _MEDIA = {".stl": "model/stl", ".obj": "model/obj"}
 
 
 @dataclass(frozen=True)
-class Frames:
-    """What the writer process needs to draw one robot's run: its description (for the
-    links' poses from its true joint positions) and the scene's entities, built once."""
+class Arm:
+    """One arm in the world: the prefix of its frames ("" for the arm recorded, "ARM/" for
+    the others of a two-arm task), its description (for the links' poses from its true
+    joint positions) and the order of those positions in a row."""
 
+    prefix: str
     description: RobotDescription
-    joints: tuple[str, ...]  # the order of the true joint positions in a row
+    joints: tuple[str, ...]
+
+    def link_frame(self, link: str | None) -> str:
+        return f"{self.prefix}link/{link}" if link else f"{self.prefix}{BASE}"
+
+
+@dataclass(frozen=True)
+class Frames:
+    """What the writer process needs to draw a run: the arms, and the scene's entities,
+    built once."""
+
+    arms: tuple[Arm, ...]
     objects: tuple[str, ...]  # the order of the object poses in a row
     entities: tuple[dict[str, Any], ...]  # without timestamps
-
-
-def link_frame(link: str) -> str:
-    return f"link/{link}"
 
 
 def object_frame(name: str) -> str:
     return f"object/{name}"
 
 
-def frames_of(description: RobotDescription, joints: tuple[str, ...], scene: Scene) -> Frames:
-    """The frames and entities of `description`'s robot in `scene`."""
-    entities = [_entity(link_frame(link.name), f"link {link.name}", link.visuals or link.shapes)
-                for link in description.links]
+def frames_of(arms: tuple[Arm, ...], scene: Scene) -> Frames:
+    """The frames and entities of `arms` in `scene`."""
+    entities = [_entity(arm.link_frame(link.name), f"{arm.prefix}link {link.name}", link.visuals or link.shapes)
+                for arm in arms for link in arm.description.links]
     if scene.table:
         table = np.eye(4)
         table[:3, 3] = TABLE_CENTRE
@@ -104,7 +113,7 @@ def frames_of(description: RobotDescription, joints: tuple[str, ...], scene: Sce
     entities += [_body_entity(ROOT, body.name, body, colour, body.pose) for body, colour in fixed]
     entities += [_body_entity(object_frame(b.name), f"object {b.name}", b, COLOURS["object"], np.eye(4))
                  for b in scene.objects]
-    return Frames(description, joints, tuple(b.name for b in scene.objects), tuple(entities))
+    return Frames(arms, tuple(b.name for b in scene.objects), tuple(entities))
 
 
 def _entity(frame: str, name: str, shapes: tuple[Shape, ...]) -> dict[str, Any]:
@@ -216,14 +225,17 @@ class SceneWriter:
 
     def _transforms(self, joints: np.ndarray, objects: np.ndarray) -> Iterator[tuple[str, str, dict[str, Any]]]:
         """(parent, child, pose of the child in the parent) of every frame."""
-        d = self.frames.description
-        base = d.base.matrix()
-        yield ROOT, BASE, pose_of(base)
-        poses = d.link_poses(dict(zip(self.frames.joints, joints.tolist())))
-        for link in d.links:
-            parent = poses[link.parent] if link.parent else base
-            yield link_frame(link.parent) if link.parent else BASE, link_frame(link.name), pose_of(
-                np.linalg.solve(parent, poses[link.name]))
-        yield link_frame(d.tcp.link), TCP, pose_of(d.tcp.origin.matrix())
+        values = joints.tolist()
+        for arm in self.frames.arms:
+            d = arm.description
+            base = d.base.matrix()
+            yield ROOT, arm.link_frame(None), pose_of(base)
+            poses = d.link_poses(dict(zip(arm.joints, values[:len(arm.joints)])))
+            values = values[len(arm.joints):]
+            for link in d.links:
+                parent = poses[link.parent] if link.parent else base
+                yield arm.link_frame(link.parent), arm.link_frame(link.name), pose_of(
+                    np.linalg.solve(parent, poses[link.name]))
+            yield arm.link_frame(d.tcp.link), f"{arm.prefix}{TCP}", pose_of(d.tcp.origin.matrix())
         for k, name in enumerate(self.frames.objects):
             yield ROOT, object_frame(name), pose_of(objects[16 * k:16 * k + 16].reshape(4, 4))

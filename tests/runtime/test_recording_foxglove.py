@@ -13,7 +13,7 @@ import pytest
 from mcap.reader import make_reader
 
 from atd.model import load_task
-from atd.runtime.recording_scene import SCENE_RATE, frames_of
+from atd.runtime.recording_scene import SCENE_RATE, Arm, frames_of
 from atd.runtime.session import Run
 from atd.sim.scene import Body, Scene
 from factories.description import Shape
@@ -108,7 +108,7 @@ def test_a_mesh_object_is_drawn_from_its_own_file_and_a_capsule_link_with_round_
     d = create("melfa").robot
     arm = replace(d.links[1], shapes=(Shape("capsule", (0.03, 0.1)),), visuals=())
     d = replace(d, links=(d.links[0], arm, *d.links[2:]))
-    frames = frames_of(d, d.arm_joints, Scene(objects=(wedge,), table=False))
+    frames = frames_of((Arm("", d, d.arm_joints),), Scene(objects=(wedge,), table=False))
     entities = {e["id"]: e for e in frames.entities}
     model = entities["object wedge"]["models"][0]
     assert base64.b64decode(model["data"]) == mesh.read_bytes() and model["media_type"] == "model/obj"
