@@ -1,5 +1,5 @@
-"""What Foxglove's 3D panel draws from a recording: the simulator's frames (world, the
-robot's base and links, its TCP, each object) as `foxglove.FrameTransforms`, the bodies on
+"""What Foxglove's 3D panel draws from a recording: the simulator's frames (world, each
+arm's base, links and TCP, each object) as `foxglove.FrameTransforms`, the bodies on
 them (table, obstacles, containers, objects, the robot's link shapes) as one
 `foxglove.SceneUpdate` of frame-locked entities, and the TCP the robot believes in as a
 `foxglove.PoseInFrame`.
