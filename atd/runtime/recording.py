@@ -5,6 +5,8 @@ MCAP with JSON schemas is what Foxglove and PlotJuggler open as is (and what ROS
 are), so a roboticist can plot pad forces against the wrist force with the tools they
 already use. Times are simulated time, in nanoseconds. The channel `/truth` carries the
 simulator's ground truth (channel metadata `ground_truth: true`): no primitive sees it.
+Foxglove's 3D panel draws the robot, the objects and the table from `/truth/tf` and
+`/truth/scene` (atd/runtime/recording_scene.py).
 
 On the control loop a sample is only its numbers copied into a row of floats; rows go in
 blocks to a writer process, which builds the messages and the file on the other core
@@ -21,6 +23,7 @@ import numpy as np
 
 from atd.runtime.executor import Executor, Outcome
 from atd.runtime.recording_format import DEFAULT_RATE, RECORDING_FORMAT, Layout, Sample
+from atd.runtime.recording_scene import Arm, frames_of
 from atd.runtime.recording_writer import RecordingWriter
 from atd.runtime.trace import Trace
 from atd.sim.simrobot import SimRobot
@@ -42,8 +45,10 @@ class Recording:
         self.period = 0.0 if rate is None else 1.0 / rate
         self.next = 0.0
         hand = robot.info.hand
+        arms = tuple(Arm("" if k == 0 else f"{arm.description.arm or k}/", arm.description,
+                         (*arm.description.arm_joints, *arm.hand_joints)) for k, arm in enumerate(robot.arms))
         self.layout = Layout(len(robot.info.arm_joints), len(hand.dofs), tuple((p.name, p.taxels) for p in hand.pads),
-                             objects)
+                             objects, sum(len(arm.joints) for arm in arms))
         self.block = np.empty((BLOCK, self.layout.width))
         self.samples: list[Sample] = []
         self.traces: list[tuple[int, dict[str, Any]]] = []
@@ -56,6 +61,7 @@ class Recording:
         self.writer.send(("start", self.layout, {"arm_joints": " ".join(robot.info.arm_joints),
                                                  "hand_dofs": " ".join(hand.dofs), "wrench_frame": "hand"},
                           info or {}, attachments or {}))
+        self.writer.send(("scene", frames_of(arms, robot.scene)))
 
     def __call__(self, sim_time: float) -> None:
         if len(self.trace.records) > self.traced:
@@ -71,7 +77,7 @@ class Recording:
         if visit is not self.visit:
             self.visit, self.state = visit, (visit.path, visit.atd)
         row = self.layout.row(sim_time, self.robot.read(), command, self.robot.true_tcp(),
-                              list(self.robot.recorded_poses().values()))
+                              list(self.robot.recorded_poses().values()), self.robot.true_joints())
         np.concatenate(row, out=self.block[len(self.samples)])
         pads, points, forces = self.robot.true_pad_contacts()
         self.samples.append((self.state, self.modes_sent, (pads.tolist(), points.tolist(), forces.tolist())))

@@ -71,6 +71,7 @@ class Layout:
     hand: int  # hand DOFs
     pads: tuple[tuple[str, tuple[int, int] | None], ...]  # each pad's name and taxel array (rows, cols)
     objects: tuple[str, ...]  # every object's name; the first is the task's own ("object")
+    joints: int = 0  # the robot's true joint positions (arm, then hand joints), for the 3D scene
 
     @cached_property
     def fields(self) -> dict[str, slice]:
@@ -79,7 +80,7 @@ class Layout:
                  ("tcp", _POSE_SIZE), ("wrench", 6), ("pad_force", len(self.pads)),
                  *((f"taxels {name}", rows * cols) for name, (rows, cols) in self.taxel_pads),
                  ("range", 1), ("twist", 6), ("joint_velocity", self.arm), ("hand_values", self.hand),
-                 ("true_tcp", _POSE_SIZE), ("objects", _POSE_SIZE * len(self.objects))]
+                 ("true_tcp", _POSE_SIZE), ("objects", _POSE_SIZE * len(self.objects)), ("true_joints", self.joints)]
         found, start = {}, 0
         for name, size in sizes:
             found[name] = slice(start, start + size)
@@ -92,7 +93,7 @@ class Layout:
         return [(name, shape) for name, shape in self.pads if shape is not None]
 
     def row(self, t: float, r: Readings, command: RobotCommand | None, true_tcp: np.ndarray,
-            object_poses: list[np.ndarray]) -> list[np.ndarray | tuple[float]]:
+            object_poses: list[np.ndarray], true_joints: np.ndarray) -> list[np.ndarray | tuple[float]]:
         """The pieces of one sample's row, in the order of `fields` (NaN for what is None)."""
         twist, joint_velocity, hand_values = (None, None, None) if command is None else (
             command.twist, command.joint_velocity, command.hand_values)
@@ -103,7 +104,7 @@ class Layout:
                  missing["twist"] if twist is None else twist,
                  missing["joint_velocity"] if joint_velocity is None else joint_velocity,
                  missing["hand_values"] if hand_values is None else hand_values, true_tcp.ravel()]
-        return parts + [pose.ravel() for pose in object_poses]
+        return parts + [pose.ravel() for pose in object_poses] + [true_joints]
 
     @cached_property
     def _missing(self) -> dict[str, np.ndarray]:
@@ -112,7 +113,7 @@ class Layout:
 
     @property
     def width(self) -> int:
-        return self.fields["objects"].stop
+        return self.fields["true_joints"].stop
 
 
 def encode(message: dict[str, Any]) -> bytes:

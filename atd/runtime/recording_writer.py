@@ -15,17 +15,20 @@ from __future__ import annotations
 import fcntl
 import gc
 import io
+import itertools
 import json
 import os
 import pickle
 import signal
 from pathlib import Path
-from typing import Any, BinaryIO, NoReturn
+from typing import Any, BinaryIO, Iterator, NoReturn
 
 from mcap.writer import CompressionType, Writer
 
 from atd.model.files import OutputError, write_output
+from atd.runtime import recording_scene
 from atd.runtime.recording_format import CHANNELS, PROFILE, SCHEMAS, Layout, encode, messages
+from atd.runtime.recording_scene import SceneWriter
 
 WRITTEN = "written"  # the writer's answer when the file is
 PIPE_SIZE = 1 << 20  # bytes: about 20 blocks, 5 s of a run recorded at 100 Hz (Linux's default limit)
@@ -128,6 +131,7 @@ def _write(path: Path, feed: BinaryIO) -> str | None:
     writer.start(profile=PROFILE, library="atd")
     channels: dict[str, int] = {}
     layout: Layout | None = None
+    scene: SceneWriter | None = None
     sequence = 0
     while True:
         try:
@@ -137,9 +141,15 @@ def _write(path: Path, feed: BinaryIO) -> str | None:
         if item[0] == "start":
             _, layout, meta, info, attachments = item
             channels = _start(writer, meta, info, attachments)
+        elif item[0] == "scene":
+            scene = SceneWriter(item[1])
+            channels |= _register(writer, recording_scene.SCHEMAS, recording_scene.CHANNELS, {})
         elif item[0] == "rows":
             assert layout is not None, "the feed starts with the layout"
-            for topic, ns, message in messages(layout, *item[1:]):
+            found = messages(layout, *item[1:])
+            if scene is not None:
+                found = itertools.chain(found, _drawn(scene, layout, item[1]))
+            for topic, ns, message in found:
                 sequence += 1
                 writer.add_message(channels[topic], ns, encode(message), ns, sequence)
         else:
@@ -149,15 +159,30 @@ def _write(path: Path, feed: BinaryIO) -> str | None:
             return ""
 
 
+def _drawn(scene: SceneWriter, layout: Layout, block: Any) -> Iterator[tuple[str, int, dict[str, Any]]]:
+    """The 3D scene's messages due in a block of rows."""
+    f = layout.fields
+    for row in block:
+        yield from scene.messages(float(row[0]), row[f["true_joints"]], row[f["objects"]], row[f["tcp"]].reshape(4, 4))
+
+
+def _register(writer: Writer, schemas: dict[str, dict[str, Any]], topics: tuple[tuple[str, str, bool], ...],
+              meta: dict[str, str]) -> dict[str, int]:
+    """JSON `schemas` and the channels of `topics` (each with `ground_truth`, /sensors with
+    `meta`); the channel id of each topic."""
+    schema_ids = {name: writer.register_schema(name, "jsonschema", json.dumps(schema).encode())
+                  for name, schema in schemas.items()}
+    channels = {}
+    for topic, schema, truth in topics:
+        metadata = {"ground_truth": "true" if truth else "false", **(meta if topic == "/sensors" else {})}
+        channels[topic] = writer.register_channel(topic, "json", schema_ids[schema], metadata)
+    return channels
+
+
 def _start(writer: Writer, meta: dict[str, str], info: dict[str, str], attachments: dict[str, bytes]) -> dict[str, int]:
     """Schemas, channels (each with `ground_truth`, /sensors with `meta`), the run's metadata
     and attachments; the channel id of each topic."""
-    schema_ids = {name: writer.register_schema(name, "jsonschema", json.dumps(schema).encode())
-                  for name, schema in SCHEMAS.items()}
-    channels = {}
-    for topic, schema, truth in CHANNELS:
-        metadata = {"ground_truth": "true" if truth else "false", **(meta if topic == "/sensors" else {})}
-        channels[topic] = writer.register_channel(topic, "json", schema_ids[schema], metadata)
+    channels = _register(writer, SCHEMAS, CHANNELS, meta)
     for name, data in info.items():
         writer.add_metadata(name, {"value": data})
     for name, data in attachments.items():

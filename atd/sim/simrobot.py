@@ -249,6 +249,16 @@ class SimRobot(Robot):
         """True 4x4 TCP pose (for checks, not for primitives)."""
         return self._tcp()
 
+    @property
+    def arms(self) -> tuple[SimRobot, ...]:
+        """This arm, then the other arms in its world (a two-arm task's)."""
+        return (self, *self._partners)
+
+    def true_joints(self) -> np.ndarray:
+        """True positions of the arm joints then `hand_joints`, of every arm in `arms` (for
+        recordings, not for primitives)."""
+        return np.concatenate([arm._joint_state()[0] for arm in self.arms])
+
     def true_pad_contacts(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """True contacts on the pads (for recordings, not for primitives): pad index, point
         in that pad's frame, normal force."""
