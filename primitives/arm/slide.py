@@ -3,9 +3,8 @@ object's top with a normal force between LOWER_ and UPPER_FORCE_THRESHOLD along
 SURFACE_NORMAL n and drags it to the target, the hand held in its (hook) preshape.
 
 It says success only when its own sensors say it carried the object: the contact was
-found where the object's top should be (the hand's pads over the object, from its own
-kinematics, at the top the task believes the object has, none down at the surface it
-stands on), held all the way, and the wrist
+found where the object's top should be (the lowest of the hand's pads, from its own
+kinematics, at the top the task believes the object has), held all the way, and the wrist
 felt more drag than the hand's friction on the object alone could give, that of the
 object's weight sliding on the surface, over most of the way (belief only: the object's
 believed friction and weight, never the simulator's). Anything else is an error, with why.
@@ -19,7 +18,6 @@ from enum import Enum
 
 import numpy as np
 
-from atd.model.vocabulary import ObjectClass
 from primitives.arm.motion import GAIN, clamp_norm, orientation_twist, unit
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
@@ -34,9 +32,8 @@ TARE_TIME = 0.3
 # m/s of normal motion per N of force error. Small enough that a stiff contact
 # (2e5 N/m measured on the Melfa against the table) stays stable at 200 Hz: 5e-4 * 2e5 * 0.005 = 0.5.
 FORCE_GAIN = 5e-4
-# m the hand's lowest pad over the object may be below its believed top as it comes down
-# (half of it: a pad may come that near the surface the object stands on), or the hand sink
-# below where it first pressed while dragging: further, it presses on whatever is below
+# m the hand's lowest pad may be below the object's believed top when it first presses, or
+# sink below where it first pressed while dragging: further, it presses on whatever is below
 # (fingers straddling a box small for the preshape, a box that is not there; ours).
 SLIDE_DEPTH = 0.01
 # s the force must stay in the band before the drag starts: pressing is established.
@@ -57,8 +54,7 @@ GRAVITY = 9.81
 DEFAULT_FRICTION = 1.0
 # s time constant of the low-pass on the felt drag: smooths stick-slip.
 DRAG_FILTER = 0.1
-# Fraction of the drag's path over which the drag must have been felt: the filter's lag and
-# a stick-slip dip at the start cost a few mm of 8 cm.
+# Fraction of the drag's path over which the drag must have been felt.
 DRAG_SHARE = 0.8
 # N of pressing under which the hand has let go of the object, rising after the drag.
 LET_GO_FORCE = 1.0
@@ -93,9 +89,6 @@ class Slide(Controller):
         self.normal = unit(p["surface_normal"])
         self.expected_top = self._believed_top()
         obj = ctx.object
-        known = obj is not None and obj.pose is not None
-        # the surface the object stands on, believed; unknown without an object pose
-        self.expected_bottom = self.expected_top - 2 * obj.half_height if known else -np.inf
         self.friction = obj.friction if obj is not None and obj.friction is not None else DEFAULT_FRICTION
         self.weight = GRAVITY * (obj.weight or 0.0) if obj is not None else 0.0
         self.lower = float(p["lower_force_threshold"])
@@ -140,27 +133,11 @@ class Slide(Controller):
     def _height(self, position: np.ndarray) -> float:
         return float(position @ self.normal)
 
-    def _pads(self, readings: Readings) -> tuple[float, float]:
-        """Heights along n of the hand's lowest pad over the object's believed footprint
-        (inf where none is: a hook's fingers hanging beside a wide tray) and of its lowest pad
-        of all, from the hand's own forward kinematics."""
+    def _lowest(self, readings: Readings) -> float:
+        """Height along n of the hand's lowest pad, from the hand's own forward kinematics."""
         pads = self.ctx.info.hand.pad_surfaces(readings.hand_q)[:, :3, 3]
         world = readings.tcp[:3, 3] + pads @ readings.tcp[:3, :3].T
-        heights = world @ self.normal
-        over = [h for p, h in zip(world, heights) if self._over_object(p)]
-        return float(min(over, default=np.inf)), float(np.min(heights))
-
-    def _over_object(self, point: np.ndarray) -> bool:
-        """Whether a world point lies over the object's believed footprint (its own x, y)."""
-        obj = self.ctx.object
-        if obj is None or obj.pose is None:
-            return True
-        pose = obj.pose.as_array()
-        x, y, _ = pose[:3, :3].T @ (point - pose[:3, 3])
-        size = obj.effective_size
-        if (obj.object_class or ObjectClass.BOX) is ObjectClass.BOX:
-            return abs(x) <= size[0] / 2 and abs(y) <= size[1] / 2
-        return x * x + y * y <= size[0] * size[0]
+        return float(np.min(world @ self.normal))
 
     def _tangential(self, offset: np.ndarray) -> np.ndarray:
         return offset - float(offset @ self.normal) * self.normal
@@ -179,19 +156,14 @@ class Slide(Controller):
         return GAIN * (self.hold - position)
 
     def _descend(self, readings: Readings, position: np.ndarray, force: np.ndarray, dt: float) -> np.ndarray:
-        over, lowest = self._pads(readings)
-        if self.expected_top - over > SLIDE_DEPTH:
-            self._nothing(f"the hand's lowest pad over it sank {(self.expected_top - over) * 100:.1f} cm below "
-                          f"the object's top")
-        elif lowest < self.expected_bottom + SLIDE_DEPTH / 2:
-            self._nothing("a pad came down to the surface the object stands on")
+        sunk = self.expected_top - self._lowest(readings)
+        if sunk > SLIDE_DEPTH:
+            felt = "pressing on something below it" if self.pressing >= self.lower else "without feeling anything"
+            self.finish(Status.ERROR, f"nothing to press on: the hand's lowest pad sank {sunk * 100:.1f} cm below "
+                                      f"the object's top, {felt} ({self.pressing:.1f} N)")
         elif self.pressing >= self.lower:
             self.phase, self.clock, self.top = Phase.PRESS, 0.0, self._height(position)
         return -self.contact_velocity * self.normal + GAIN * self._tangential(self.hold - position)
-
-    def _nothing(self, where: str) -> None:
-        felt = "pressing on something below it" if self.pressing >= self.lower else "without feeling anything"
-        self.finish(Status.ERROR, f"nothing to press on: {where}, {felt} ({self.pressing:.1f} N)")
 
     def _normal_law(self) -> np.ndarray:
         speed = FORCE_GAIN * (self.pressing - (self.upper + self.lower) / 2)
