@@ -20,7 +20,8 @@ from primitives.arm.grasp import NaiveGraspApproach
 from primitives.arm.jaw_grasp import JawGraspCorrection
 from primitives.arm.move import CartesianMove, Hold, Push
 from primitives.arm.robust_approach import RobustGraspApproach
-from primitives.arm.surface import Place, ReleaseRetreat, Slide
+from primitives.arm.slide import Slide
+from primitives.arm.surface import Place, ReleaseRetreat
 from primitives.arm.unscrew import UnscrewArm
 from primitives.base import Condition, Context, Controller, Status
 from primitives.conditions import (

@@ -1,7 +1,7 @@
-"""Arm controllers that work against a supporting surface: place (Eq. 3.4), release
-retreat (Eq. 3.5) and slide (Eq. 3.6) of thesis 3.3.3 - 3.3.5.
+"""Arm controllers that work against a supporting surface: place (Eq. 3.4) and release
+retreat (Eq. 3.5) of thesis 3.3.3 - 3.3.4 (the slide, Eq. 3.6, is `primitives.arm.slide`).
 
-All three read the contact wrench (tared at the state's start, see `ContactWrench`) and
+Both read the contact wrench (tared at the state's start, see `ContactWrench`) and
 the SURFACE_NORMAL n, a world vector pointing out of the surface: pressing on the
 surface makes the contact force point along +n.
 """
@@ -26,14 +26,6 @@ from primitives.filters import ContactWrench
 from primitives.robot import Readings
 
 ARRIVAL_TOLERANCE = 0.003  # m: over the target, ready to descend
-# Slide: m/s of normal motion per N of force error. Small enough that a stiff contact
-# (2e5 N/m measured on the Melfa against the table) stays stable at 200 Hz: 5e-4 * 2e5 * 0.005 = 0.5.
-FORCE_GAIN = 5e-4
-# m the hand may sink below the slide's target height: it presses on the object's top, which
-# the target's height gives; sinking further, it has slid off the object, or missed it, and
-# presses on whatever is below (the SDH2 straddling a box slid to its target on the table,
-# the box unmoved; ours).
-SLIDE_DEPTH = 0.01
 
 
 class Place(Controller):
@@ -124,55 +116,3 @@ class ReleaseRetreat(Controller):
         w, _ = orientation_twist(self.rotation, readings.tcp[:3, :3])
         return arm_output(np.concatenate([v, w]))
 
-
-class Slide(Controller):
-    """Press on the object with a normal force between the two thresholds while moving it
-    to the target (Eq. 3.6): too little force, move towards the surface at
-    CONTACT_VELOCITY; too much, move away; in between, move along the surface towards the
-    target at TARGET_VELOCITY. Done when the TCP is within `tolerance` of the target along
-    the surface; an error once it has sunk SLIDE_DEPTH below the target's height, where
-    the object's top is not.
-
-    Along the normal the speed is proportional to the force's distance from the band's
-    middle, up to CONTACT_VELOCITY, rather than the equation's bang-bang: against a stiff
-    contact 5 mm/s for one tick already jumps across the band, and the force would
-    chatter from one side to the other without ever letting the tangential motion start.
-    """
-
-    def __init__(self, ctx: Context) -> None:
-        super().__init__(ctx)
-        p = self.params
-        self.target = np.asarray(p["target"], float)
-        self.normal = unit(p["surface_normal"])
-        self.lower = float(p["lower_force_threshold"])
-        self.upper = float(p["upper_force_threshold"])
-        self.target_velocity = float(p["target_velocity"])
-        self.contact_velocity = float(p["contact_velocity"])
-        self.tolerance = float(p["tolerance"])
-        self.contact = ContactWrench(float(p["filter_time"]))
-
-    def start(self, readings: Readings) -> None:
-        self.contact.start(readings)
-        self.rotation = readings.tcp[:3, :3].copy()
-
-    def update(self, readings: Readings, dt: float) -> ControlData:
-        if self.status is not Status.RUNNING:
-            return arm_output(np.zeros(6))
-        force = readings.tcp[:3, :3] @ self.contact.update(readings, dt)[:3]
-        pressing = float(force @ self.normal)
-        error = self.target - readings.tcp[:3, 3]
-        sunk = float(error @ self.normal)
-        if sunk > SLIDE_DEPTH:
-            self.finish(Status.ERROR, f"lost the object: the hand sank {sunk * 100:.1f} cm below the slide's "
-                                      f"height looking for a surface to press on")
-            return arm_output(np.zeros(6))
-        along = error - float(error @ self.normal) * self.normal
-        if np.linalg.norm(along) < self.tolerance:
-            self.finish(Status.DONE, f"slid to the target, pressing with {pressing:.1f} N")
-            return arm_output(np.zeros(6))
-        speed = FORCE_GAIN * (pressing - (self.upper + self.lower) / 2)
-        v = max(-self.contact_velocity, min(self.contact_velocity, speed)) * self.normal
-        if self.lower < pressing < self.upper:
-            v = v + clamp_norm(GAIN * along, self.target_velocity)
-        w, _ = orientation_twist(self.rotation, readings.tcp[:3, :3])
-        return arm_output(np.concatenate([v, w]))

@@ -19,6 +19,7 @@ from tests.conftest import REPO
     ("bench_record.py", ("--repeat", "1",), "recording at 100 Hz"),
     ("bench_video.py", ("--repeat", "1", "--size", "320x240"), "ratio, wall"),
     ("bench_perception.py", ("--engine", "mujoco", "--methods", "vision"), "vision: corner"),
+    ("bench_slide.py", ("--runs", "1", "--arms", "baxter:right"), "false successes 0"),
 ])
 def test_a_simulation_benchmark_prints_its_table(script: str, args: tuple[str, ...], row: str) -> None:
     result = subprocess.run([sys.executable, str(REPO / "benchmarks" / script), *args],

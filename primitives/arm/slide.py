@@ -1,0 +1,225 @@
+"""The slide primitive (thesis 3.3.5, Eq. 3.6) as a phase machine: the arm presses on the
+object's top with a normal force between LOWER_ and UPPER_FORCE_THRESHOLD along
+SURFACE_NORMAL n and drags it to the target, the hand held in its (hook) preshape.
+
+It says success only when its own sensors say it carried the object: the contact was
+found where the object's top should be (the lowest of the hand's pads, from its own
+kinematics, at the top the task believes the object has), held all the way, and the wrist
+felt more drag than the hand's friction on the object alone could give, that of the
+object's weight sliding on the surface, over most of the way (belief only: the object's
+believed friction and weight, never the simulator's). Anything else is an error, with why.
+The wrench is read as in `primitives.arm.surface`: the contact force on the hand, tared in
+free air, pressing makes it point along +n.
+"""
+
+from __future__ import annotations
+
+from enum import Enum
+
+import numpy as np
+
+from primitives.arm.motion import GAIN, clamp_norm, orientation_twist, unit
+from primitives.arm.move import arm_output
+from primitives.base import Context, ControlData, Controller, Status
+from primitives.filters import ContactWrench, LowPass
+from primitives.robot import Readings
+
+# m the hand rises before taring: more than a pad's compression, so whatever the state
+# started touching (a guarded move ends on contact) no longer loads the wrist.
+CLEARANCE = 0.005
+# s the hand holds still in free air before taring: the wrist settles from the rise.
+TARE_TIME = 0.3
+# m/s of normal motion per N of force error. Small enough that a stiff contact
+# (2e5 N/m measured on the Melfa against the table) stays stable at 200 Hz: 5e-4 * 2e5 * 0.005 = 0.5.
+FORCE_GAIN = 5e-4
+# m the hand's lowest pad may be below the object's believed top when it first presses, or
+# sink below where it first pressed while dragging: further, it presses on whatever is below
+# (fingers straddling a box small for the preshape, a box that is not there; ours).
+SLIDE_DEPTH = 0.01
+# s the force must stay in the band before the drag starts: pressing is established.
+SETTLE_TIME = 0.2
+# Fraction of LOWER_FORCE_THRESHOLD under which the contact counts as gone while dragging.
+LOST_FRACTION = 0.3
+# s the contact may be gone while dragging (a stick-slip dip) before the object counts as lost.
+LOST_TIME = 0.3
+# N of tangential force against the motion below which nothing is dragged (a hand in air, ~0).
+DRAG_FORCE = 0.5
+# Share of the object's believed weight whose friction on the surface must be felt beyond the
+# hand's own friction on the object, mu * F_n: a hand slipping over the object's top feels
+# mu * F_n (0.23-0.29 of F_n, friction 0.3, measured); a carried object drags mu * (F_n + m g).
+WEIGHT_SHARE = 0.5
+# m/s^2: the object's weight from its believed mass.
+GRAVITY = 9.81
+# The object's friction where the task does not say: the simulators' default for its contacts.
+DEFAULT_FRICTION = 1.0
+# s time constant of the low-pass on the felt drag: smooths stick-slip.
+DRAG_FILTER = 0.1
+# Fraction of the drag's path over which the drag must have been felt.
+DRAG_SHARE = 0.8
+# N of pressing under which the hand has let go of the object, rising after the drag.
+LET_GO_FORCE = 1.0
+
+
+class Phase(Enum):
+    """Where the slide is; the value is the method that runs a tick of it."""
+
+    CLEAR = "_clear"  # rising CLEARANCE off whatever the state began touching
+    TARE = "_tare"  # still in free air: the wrist's empty reading is taken
+    DESCEND = "_descend"  # down along -n at CONTACT_VELOCITY until the object's top is felt
+    PRESS = "_press"  # Eq. 3.6's normal law only, until the force is in the band
+    DRAG = "_drag"  # Eq. 3.6: in the band, towards the target at TARGET_VELOCITY
+    RELEASE = "_release"  # at the target: rise until the object no longer loads the hand
+
+
+class Slide(Controller):
+    """Press on the object with a normal force between the two thresholds while moving it
+    to the target (Eq. 3.6): too little force, move towards the surface at CONTACT_VELOCITY;
+    too much, move away; in between, move along the surface at TARGET_VELOCITY.
+
+    Along the normal the speed is proportional to the force's distance from the band's
+    middle, up to CONTACT_VELOCITY, rather than the equation's bang-bang: against a stiff
+    contact 5 mm/s for one tick already jumps across the band, and the force would chatter
+    from one side to the other without ever letting the tangential motion start.
+    """
+
+    def __init__(self, ctx: Context) -> None:
+        super().__init__(ctx)
+        p = self.params
+        self.target = np.asarray(p["target"], float)
+        self.normal = unit(p["surface_normal"])
+        self.expected_top = self._believed_top()
+        obj = ctx.object
+        self.friction = obj.friction if obj is not None and obj.friction is not None else DEFAULT_FRICTION
+        self.weight = GRAVITY * (obj.weight or 0.0) if obj is not None else 0.0
+        self.lower = float(p["lower_force_threshold"])
+        self.upper = float(p["upper_force_threshold"])
+        self.target_velocity = float(p["target_velocity"])
+        self.contact_velocity = float(p["contact_velocity"])
+        self.tolerance = float(p["tolerance"])
+        self.contact = ContactWrench(float(p["filter_time"]))
+        self.drag = LowPass(DRAG_FILTER)
+
+    def start(self, readings: Readings) -> None:
+        self.rotation = readings.tcp[:3, :3].copy()
+        self.phase = Phase.CLEAR
+        self.hold = readings.tcp[:3, 3] + CLEARANCE * self.normal  # where the hand goes or stays
+        self.clock = 0.0  # s in the current phase's condition (tare, settle, contact gone)
+        self.top = 0.0  # height along n where the object's top was felt
+        self.pressing = 0.0
+        self.dragged = 0.0  # m of the drag's path with the drag felt
+        self.travelled = 0.0  # m of the drag's path
+        self.drag.reset(np.zeros(1))
+
+    def update(self, readings: Readings, dt: float) -> ControlData:
+        if self.status is not Status.RUNNING:
+            return arm_output(np.zeros(6))
+        position = readings.tcp[:3, 3]
+        force = readings.tcp[:3, :3] @ self.contact.update(readings, dt)[:3]
+        self.pressing = float(force @ self.normal)
+        v = getattr(self, self.phase.value)(readings, position, force, dt)
+        if self.status is not Status.RUNNING:
+            return arm_output(np.zeros(6))
+        w, _ = orientation_twist(self.rotation, readings.tcp[:3, :3])
+        return arm_output(np.concatenate([v, w]))
+
+    def _believed_top(self) -> float:
+        """Height along n of the object's top as the task believes it; without an object
+        pose, the target's height is taken for where the hand's lowest pad presses."""
+        obj = self.ctx.object
+        if obj is None or obj.pose is None:
+            return float(self.target @ self.normal)
+        return float(np.asarray(obj.pose.position, float) @ self.normal) + obj.half_height
+
+    def _height(self, position: np.ndarray) -> float:
+        return float(position @ self.normal)
+
+    def _lowest(self, readings: Readings) -> float:
+        """Height along n of the hand's lowest pad, from the hand's own forward kinematics."""
+        pads = self.ctx.info.hand.pad_surfaces(readings.hand_q)[:, :3, 3]
+        world = readings.tcp[:3, 3] + pads @ readings.tcp[:3, :3].T
+        return float(np.min(world @ self.normal))
+
+    def _tangential(self, offset: np.ndarray) -> np.ndarray:
+        return offset - float(offset @ self.normal) * self.normal
+
+    def _clear(self, readings: Readings, position: np.ndarray, force: np.ndarray, dt: float) -> np.ndarray:
+        to_go = self.hold - position
+        if float(to_go @ self.normal) <= 0.0005:
+            self.phase, self.clock = Phase.TARE, 0.0
+        return self.contact_velocity * self.normal + GAIN * self._tangential(to_go)
+
+    def _tare(self, readings: Readings, position: np.ndarray, force: np.ndarray, dt: float) -> np.ndarray:
+        self.clock += dt
+        if self.clock >= TARE_TIME:
+            self.contact.start(readings)
+            self.phase = Phase.DESCEND
+        return GAIN * (self.hold - position)
+
+    def _descend(self, readings: Readings, position: np.ndarray, force: np.ndarray, dt: float) -> np.ndarray:
+        sunk = self.expected_top - self._lowest(readings)
+        if sunk > SLIDE_DEPTH:
+            felt = "pressing on something below it" if self.pressing >= self.lower else "without feeling anything"
+            self.finish(Status.ERROR, f"nothing to press on: the hand's lowest pad sank {sunk * 100:.1f} cm below "
+                                      f"the object's top, {felt} ({self.pressing:.1f} N)")
+        elif self.pressing >= self.lower:
+            self.phase, self.clock, self.top = Phase.PRESS, 0.0, self._height(position)
+        return -self.contact_velocity * self.normal + GAIN * self._tangential(self.hold - position)
+
+    def _normal_law(self) -> np.ndarray:
+        speed = FORCE_GAIN * (self.pressing - (self.upper + self.lower) / 2)
+        return max(-self.contact_velocity, min(self.contact_velocity, speed)) * self.normal
+
+    def _press(self, readings: Readings, position: np.ndarray, force: np.ndarray, dt: float) -> np.ndarray:
+        in_band = self.lower < self.pressing < self.upper
+        self.clock = self.clock + dt if in_band else 0.0
+        if self.clock >= SETTLE_TIME:
+            self.phase, self.clock = Phase.DRAG, 0.0
+            self.hold = position.copy()
+        return self._normal_law() + GAIN * self._tangential(self.hold - position)
+
+    def _drag(self, readings: Readings, position: np.ndarray, force: np.ndarray, dt: float) -> np.ndarray:
+        along = self._tangential(self.target - position)
+        left = float(np.linalg.norm(along))
+        sunk = self.top - self._height(position)
+        self.clock = self.clock + dt if self.pressing < LOST_FRACTION * self.lower else 0.0
+        if sunk > SLIDE_DEPTH:
+            self.finish(Status.ERROR, f"lost the object: the hand sank {sunk * 100:.1f} cm below the top it "
+                                      f"pressed on, {left * 100:.1f} cm from the target")
+        elif self.clock > LOST_TIME:
+            self.finish(Status.ERROR, f"lost the object: the contact went ({self.pressing:.1f} N) "
+                                      f"{left * 100:.1f} cm from the target")
+        if self.status is not Status.RUNNING:
+            return np.zeros(3)
+        if left < self.tolerance:
+            return self._arrive(left)
+        direction = along / left
+        felt = float(self.drag(np.array([-float(force @ direction)]), dt)[0])
+        step = float(np.linalg.norm(self._tangential(position - self.hold)))
+        self.hold = position.copy()
+        self.travelled += step
+        self.dragged += step if felt >= self._carrying_drag() else 0.0
+        v = self._normal_law()
+        if self.lower < self.pressing < self.upper:
+            v = v + clamp_norm(GAIN * along, self.target_velocity)
+        return v
+
+    def _carrying_drag(self) -> float:
+        """N of drag that says the object slides with the hand: more than the hand's own
+        friction on it can give, by the friction of part of its weight on the surface."""
+        return max(DRAG_FORCE, self.friction * (max(self.pressing, 0.0) + WEIGHT_SHARE * self.weight))
+
+    def _arrive(self, left: float) -> np.ndarray:
+        share = self.dragged / self.travelled if self.travelled > 0 else 0.0
+        if share < DRAG_SHARE:
+            self.finish(Status.ERROR, f"moved nothing: drag felt over {share:.0%} of the {self.travelled * 100:.1f} cm "
+                                      f"slid (< {DRAG_SHARE:.0%}), the hand slipped over the object: "
+                                      f"no more drag than its own friction on it")
+            return np.zeros(3)
+        self.phase, self.share = Phase.RELEASE, share
+        return np.zeros(3)
+
+    def _release(self, readings: Readings, position: np.ndarray, force: np.ndarray, dt: float) -> np.ndarray:
+        if self.pressing < LET_GO_FORCE and self._height(position) > self.top + CLEARANCE:
+            self.finish(Status.DONE, f"slid the object to the target: pressed all the way, drag felt over "
+                                     f"{self.share:.0%} of {self.travelled * 100:.1f} cm")
+        return self.contact_velocity * self.normal + GAIN * self._tangential(self.hold - position)
