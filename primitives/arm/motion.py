@@ -41,6 +41,16 @@ def top_down(rotation: np.ndarray) -> np.ndarray:
     return np.column_stack([x, np.cross(z, x), z])
 
 
+def turn_to_yaw(level: np.ndarray, yaw: float) -> np.ndarray:
+    """The turn about the world vertical (3x3) that brings the top-down hand `level`'s x to
+    `yaw` (rad, from the world x) or the opposite way, whichever is the smaller: parallel
+    jaws grip the same either way, so the wrist never turns more than a quarter turn for it."""
+    x = level[:, 0]
+    turn = (yaw - math.atan2(float(x[1]), float(x[0])) + math.pi / 2) % math.pi - math.pi / 2
+    c, s = math.cos(turn), math.sin(turn)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
 def norm(v: np.ndarray) -> float:
     """Euclidean norm of a short vector (a fraction of np.linalg.norm's cost, every tick)."""
     return math.sqrt(float(v.dot(v)))
