@@ -19,12 +19,13 @@ from primitives.arm.motion import (
     clamp_norm,
     norm,
     orientation_twist,
+    heading_of,
     top_down,
     turn_to_yaw,
     what_stops,
 )
 from primitives.base import ArmCommand, Context, ControlData, Controller, Status
-from primitives.blackboard import ARM_TWIST, HAND_LEVEL
+from primitives.blackboard import ARM_TWIST, HAND_LEVEL, YAW_REFERENCE
 from primitives.filters import ContactWrench, LowPass
 from primitives.robot import Readings
 
@@ -77,8 +78,8 @@ class CartesianMove(Controller):
     move carrying an object stopped short of where it goes has met resistance); on any
     other move it is unexpected. Either way the controller gives up (status ERROR),
     leaving the collision event to say what happened. The hand ends
-    top-down (hand z = world -z) with the yaw it started with, or given `yaw` the nearer of
-    that yaw and its opposite, turned by `tilt` where given; or, not `level`, as it started
+    top-down (hand z = world -z) with the yaw it started with, or given `yaw` that yaw or its
+    opposite (`turn_to_yaw`), turned by `tilt` where given; or, not `level`, as it started
     (turned about the vertical to `yaw` where given), turned by `tilt`: a transport lifts the object as the
     grasp holds it. A gripper that grasped with the tilt the approach left, levelled on the
     lift, took the Melfa's wrist into its singularity (j5 = 0), where the turn it wanted
@@ -112,7 +113,8 @@ class CartesianMove(Controller):
         turned = self.ctx.memory.get(HAND_LEVEL) if abs(float(start[2, 0])) > SIDEWAYS else None
         level = top_down(start) if turned is None else turned
         if self.yaw is not None:
-            turn = turn_to_yaw(level, self.yaw)
+            reference = self.ctx.memory.setdefault(YAW_REFERENCE, heading_of(level))
+            turn = turn_to_yaw(level, self.yaw, reference)
             level, start = turn @ level, turn @ start
         self.rotation = self.tilt @ (level if self.level else start)
         if self.level:

@@ -235,9 +235,14 @@ def test_a_move_to_an_approach_turns_the_jaws_to_its_yaw_a_contact_only_moves_th
     assert abs(turn - 60.0) < 3.0, turn  # within the move's 2 degrees; the contact's move kept the turn
 
 
-def test_a_yaw_a_half_turn_away_turns_the_jaws_the_shorter_way() -> None:
+def test_a_yaw_a_half_turn_away_turns_the_jaws_the_shorter_way_unless_that_winds_the_wrist_up() -> None:
     """Parallel jaws grip alike turned a half turn: asked for 120 degrees from where it points,
-    the hand turns 60 the other way, so the wrist never turns more than a quarter turn."""
+    the hand turns 60 the other way, so the wrist turns at most a quarter turn; but not past
+    135 degrees from where the first turn started, or turn after turn winds the wrist to its limit."""
     level = np.array([[-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]])  # hand x along -x: 180 degrees
-    assert _heading(turn_to_yaw(level, math.radians(300.0)) @ level) == pytest.approx(120.0)
-    assert _heading(turn_to_yaw(level, math.radians(240.0)) @ level) == pytest.approx(-120.0)
+    start = math.pi
+    assert _heading(turn_to_yaw(level, math.radians(300.0), start) @ level) == pytest.approx(120.0)
+    assert _heading(turn_to_yaw(level, math.radians(240.0), start) @ level) == pytest.approx(-120.0)
+    wound = turn_to_yaw(level, math.radians(60.0), start) @ level  # 120 degrees on from the start
+    assert _heading(wound) == pytest.approx(-120.0)
+    assert abs(_heading(turn_to_yaw(wound, 0.0, start) @ wound)) == pytest.approx(180.0)  # 60 on: 180 off
