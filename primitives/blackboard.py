@@ -100,12 +100,16 @@ turns from it again: the top-down hand derived from a hand turned to the side ha
 sideways x axis does not say, and a Melfa side approach's second move rolled the jaws 90
 degrees to close up and down, a finger cutting into the object's side (issue 32)."""
 
+YAW_REFERENCE = "yaw_reference"
+"""In `Context.memory`: the yaw (rad, world) of the hand's x when a move first turned it to a
+given `yaw`; later turns keep the hand within WIND_LIMIT of it (primitives/arm/motion.py)."""
+
 ARM_TWIST = "arm_twist"
 """In `Context.memory`: (6,) the TCP twist the arm was last commanded (world frame, m/s and
 rad/s), kept by the executor. A motion that takes the arm over ramps from it: one that
 started from rest stopped a lifting SDH2 within a tick, and its wrist read the 10-15 N of
 that stop as a contact."""
 
-ARM_KEYS = frozenset({EMPTY_HAND, ARM_TWIST})
+ARM_KEYS = frozenset({EMPTY_HAND, ARM_TWIST, YAW_REFERENCE})
 """The keys of `Context.memory` that say something of one arm: in a run of two arms each
 keeps its own (atd.runtime.values.ArmMemory); every other key, a named value, is the run's."""

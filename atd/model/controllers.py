@@ -157,6 +157,11 @@ _MOVE = {
     "level": _p(FLAG, "turn the hand top-down (keeping its yaw), then by tilt; off, the hand keeps the orientation "
                       "it starts with, turned by tilt: a transport carries the object as the grasp left it (ours)",
                 True),
+    "yaw": _p(NUM, "the hand's x at the target, about the world vertical from the world x, or the opposite way "
+                   "if that is the smaller turn (parallel jaws grip alike either way) and keeps the hand within 135 "
+                   "degrees of where the first such turn started; unset keeps the yaw it starts with. A target from "
+                   "an approach sets it to the approach's (ours, thesis 3.4.3)", unit="deg",
+              limits=ranges.YAW),
     "contact_margin": _p(NUM, "how near the target a contact must come to end a guarded move as arrived (a place "
                          "meeting its surface); one further away stops it short, an error (a transport meeting "
                          "resistance); negative = any contact, for a move that looks for one (ours)", -1.0, unit="m",

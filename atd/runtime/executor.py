@@ -245,7 +245,8 @@ def build_problems(estd: Estd, base: Context, others: Mapping[str, Context] | No
         for state in machine.states:
             ctx = contexts.get(state.robot_arm or "", own)
             # A target read at run time could be anywhere: any point shows the controller builds.
-            arm = targeted(state.arm, (0.0, 0.0, 0.0)) if state.arm and state.target_from else state.arm
+            anywhere = {"target": (0.0, 0.0, 0.0), "yaw": 0.0}
+            arm = targeted(state.arm, anywhere) if state.arm and state.target_from else state.arm
             for role, use in (("arm", arm), ("hand", state.hand)):
                 if use is not None:
                     try:

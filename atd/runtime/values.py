@@ -1,12 +1,16 @@
 """Named values at run time: where a state whose `<target from="v"/>` goes, and how a
 sub-task's `<input>`s take the including task's values. Robot-independent, in one place:
 a perceptual primitive writes a TCP pose or point (primitives/values.py), so the arm
-controller's target is that position, whatever the robot."""
+controller's target is that position (and a pose's yaw), whatever the robot."""
 
 from __future__ import annotations
 
+import math
 from typing import Any, Iterator, Mapping, MutableMapping
 
+import numpy as np
+
+from atd.model.controllers import ARM_CONTROLLERS
 from atd.model.estd import Controller, EstdState
 from primitives.blackboard import ARM_KEYS
 from primitives.values import Approach, Contact
@@ -16,23 +20,29 @@ class MissingValue(RuntimeError):
     """A state reads a value that holds no target (validation keeps this from happening)."""
 
 
-def target_of(value: Any) -> tuple[float, float, float]:
-    """The TCP position a value stands for: an `Approach`'s pose (its position only: the
-    move keeps the hand's yaw, even where vision turned the approach), a `Contact`'s point."""
+def target_of(value: Any) -> dict[str, Any]:
+    """The arm controller parameters a value sets: an `Approach`'s pose, its position as the
+    `target` and its hand x as the `yaw` (deg; the move turns the hand about the vertical, so
+    the jaws close the way vision chose), a `Contact`'s point as the `target` only."""
     if isinstance(value, Approach):
-        point = value.pose[:3, 3]
-    elif isinstance(value, Contact):
-        point = value.point
-    else:
-        raise MissingValue(f"it holds {type(value).__name__ if value is not None else 'nothing'}, not an approach "
-                           "or a contact")
+        x = value.pose[:3, 0]
+        return {"target": _rounded(value.pose[:3, 3]), "yaw": round(math.degrees(math.atan2(x[1], x[0])), 6)}
+    if isinstance(value, Contact):
+        return {"target": _rounded(value.point)}
+    raise MissingValue(f"it holds {type(value).__name__ if value is not None else 'nothing'}, not an approach "
+                       "or a contact")
+
+
+def _rounded(point: np.ndarray) -> tuple[float, float, float]:
     x, y, z = (round(float(v), 6) for v in point)
     return (x, y, z)
 
 
-def targeted(arm: Controller, target: tuple[float, float, float]) -> Controller:
-    """The arm controller with its `target` set."""
-    return arm.model_copy(update={"params": {**arm.params, "target": target}})
+def targeted(arm: Controller, target: Mapping[str, Any]) -> Controller:
+    """The arm controller with the parameters a target sets (`target_of`) that it takes: a
+    place or a slide goes to the position, only a move turns the hand to a yaw."""
+    takes = ARM_CONTROLLERS[arm.name].params
+    return arm.model_copy(update={"params": {**arm.params, **{k: v for k, v in target.items() if k in takes}}})
 
 
 def arm_for(state: EstdState, memory: Mapping[str, Any]) -> Controller | None:

@@ -26,6 +26,10 @@ ORIENTATION_TOLERANCE = math.radians(2.0)
 LINEAR_ACCELERATION = 1.0  # m/s^2
 ANGULAR_ACCELERATION = 4.0  # rad/s^2
 
+# rad a move given a `yaw` may leave the hand's x from where the first such move found it:
+# a half-turn band and a quarter either side, so no turn need be more than a half turn
+WIND_LIMIT = math.radians(135.0)
+
 WORLD_DOWN = np.array([0.0, 0.0, -1.0])
 SUPPORT_BAND = 0.01  # m: fingertips this close to the support's top (the world's z = 0) stand on it
 
@@ -39,6 +43,26 @@ def top_down(rotation: np.ndarray) -> np.ndarray:
     x /= np.linalg.norm(x)
     z = WORLD_DOWN
     return np.column_stack([x, np.cross(z, x), z])
+
+
+def turn_to_yaw(level: np.ndarray, yaw: float, reference: float) -> np.ndarray:
+    """The turn about the world vertical (3x3) that brings the top-down hand `level`'s x to
+    `yaw` (rad, from the world x) or the opposite way: the smaller of the two (parallel jaws
+    grip alike either way, so the wrist turns at most a quarter turn), unless it takes the
+    hand's x more than WIND_LIMIT from `reference` (rad): then the other, so turn after turn
+    cannot wind the wrist up (a vision trial that emptied a box on the Melfa, always turning
+    the shorter way, took j6 to its limit at -360 degrees)."""
+    heading = heading_of(level)
+    turn = (yaw - heading + math.pi / 2) % math.pi - math.pi / 2
+    if abs((heading + turn - reference + math.pi) % (2 * math.pi) - math.pi) > WIND_LIMIT:
+        turn -= math.copysign(math.pi, turn)
+    c, s = math.cos(turn), math.sin(turn)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def heading_of(rotation: np.ndarray) -> float:
+    """The yaw (rad, from the world x) of a hand's x about the world vertical."""
+    return math.atan2(float(rotation[1, 0]), float(rotation[0, 0]))
 
 
 def norm(v: np.ndarray) -> float:

@@ -19,11 +19,13 @@ from primitives.arm.motion import (
     clamp_norm,
     norm,
     orientation_twist,
+    heading_of,
     top_down,
+    turn_to_yaw,
     what_stops,
 )
 from primitives.base import ArmCommand, Context, ControlData, Controller, Status
-from primitives.blackboard import ARM_TWIST, HAND_LEVEL
+from primitives.blackboard import ARM_TWIST, HAND_LEVEL, YAW_REFERENCE
 from primitives.filters import ContactWrench, LowPass
 from primitives.robot import Readings
 
@@ -76,8 +78,9 @@ class CartesianMove(Controller):
     move carrying an object stopped short of where it goes has met resistance); on any
     other move it is unexpected. Either way the controller gives up (status ERROR),
     leaving the collision event to say what happened. The hand ends
-    top-down (hand z = world -z) with the yaw it started with, turned by `tilt` where given;
-    or, not `level`, as it started, turned by `tilt`: a transport lifts the object as the
+    top-down (hand z = world -z) with the yaw it started with, or given `yaw` that yaw or its
+    opposite (`turn_to_yaw`), turned by `tilt` where given; or, not `level`, as it started
+    (turned about the vertical to `yaw` where given), turned by `tilt`: a transport lifts the object as the
     grasp holds it. A gripper that grasped with the tilt the approach left, levelled on the
     lift, took the Melfa's wrist into its singularity (j5 = 0), where the turn it wanted
     could not be made, and the lift stalled 10 cm short (MuJoCo, 6 of 50 trials with the
@@ -96,6 +99,7 @@ class CartesianMove(Controller):
         self.tolerance = float(p["tolerance"])
         self.tilt = rotation_rpy(np.radians(np.asarray(p["tilt"], float)))
         self.level = bool(p["level"])
+        self.yaw = None if p.get("yaw") is None else np.radians(float(p["yaw"]))
         self.margin = float(p["contact_margin"])
         self.contact = ContactWrench(float(p["filter_time"]))
         self.shaper = TwistShaper(p["velocity_limits"], p["acceleration_limits"])
@@ -108,6 +112,10 @@ class CartesianMove(Controller):
         start = readings.tcp[:3, :3]
         turned = self.ctx.memory.get(HAND_LEVEL) if abs(float(start[2, 0])) > SIDEWAYS else None
         level = top_down(start) if turned is None else turned
+        if self.yaw is not None:
+            reference = self.ctx.memory.setdefault(YAW_REFERENCE, heading_of(level))
+            turn = turn_to_yaw(level, self.yaw, reference)
+            level, start = turn @ level, turn @ start
         self.rotation = self.tilt @ (level if self.level else start)
         if self.level:
             self.ctx.memory[HAND_LEVEL] = level

@@ -78,9 +78,11 @@ def _edge(origin: str, destination: str, event: EventType, condition, suffix: st
                           events=(EstdEvent(type=event, atd=f"{atd}/{event.value}", condition=condition),))
 
 
-def execute(estd: Estd, robot: SimRobot, hook: Hook | None = None, task=None) -> tuple[Outcome, Executor]:
+def execute(estd: Estd, robot: SimRobot, hook: Hook | None = None, task=None,
+            memory: dict | None = None) -> tuple[Outcome, Executor]:
+    """Run an ESTD on a simulated robot; `memory`: the named values its states find already there."""
     ctx = Context(info=robot.info, params={}, object=task.object if task else None,
-                  environment=task.environment if task else None, camera=robot.capture)
+                  environment=task.environment if task else None, camera=robot.capture, memory=dict(memory or {}))
     executor = Executor(estd, robot, ctx, budget=60.0)
     progress = (lambda path, time, wall: hook(robot, path, time)) if hook else None
     return executor.run(progress=progress, every=1), executor

@@ -7,9 +7,12 @@ import math
 import mujoco
 
 import numpy as np
+import pytest
 
 from atd.model.vocabulary import EventType
 from atd.sim.scene import DEFAULT_FRICTION, Body, Scene, box_scene
+from primitives.arm.motion import turn_to_yaw
+from primitives.values import Approach, Contact
 from tests.primitives.conftest import Stage, both_done, execute, last_reasons, leaf, machine, melfa, tcp, use
 
 FINGERTIP = 0.0238  # m from the Melfa's TCP down to its fingertips (PG70 pad half length)
@@ -201,3 +204,45 @@ def test_slide_presses_within_the_force_band_while_moving_and_does_not_claim_the
     forces = np.array([load - w[2] for _, p, w in pressing if p[1] > start[1] + 0.005])  # hand z down: pressing lowers fz
     assert 5.0 < np.median(forces) < 9.0
     assert np.mean((forces > 3.0) & (forces < 11.0)) > 0.8
+
+
+def _heading(rotation: np.ndarray) -> float:
+    """The hand x's direction about the world vertical, deg."""
+    return math.degrees(math.atan2(rotation[1, 0], rotation[0, 0]))
+
+
+def test_a_move_to_an_approach_turns_the_jaws_to_its_yaw_a_contact_only_moves_there() -> None:
+    robot = melfa(ASIDE)
+    start = _heading(robot.read().tcp[:3, :3])
+    turned = math.radians(start + 60.0)
+    pose = np.eye(4)
+    pose[:3, 0], pose[:3, 2] = (math.cos(turned), math.sin(turned), 0.0), (0.0, 0.0, -1.0)
+    pose[:3, 1] = np.cross(pose[:3, 2], pose[:3, 0])
+    pose[:3, 3] = (0.05, 0.12, 0.22)
+    memory = {"approach": Approach(pose, np.array([0.05, 0.12, 0.05]), "vision", 1),
+              "touched": Contact(np.array([0.1, 0.1, 0.2]), "wrist", 4.0, np.array([0.0, 0.0, -1.0]), 1.0)}
+    estd = machine(Stage(use("cartesian_move"), use("hold_position"), both_done()),
+                   Stage(use("cartesian_move"), use("hold_position"), both_done()))
+    states = (estd.states[0].model_copy(update={"target_from": "approach"}),
+              estd.states[1].model_copy(update={"target_from": "touched"}), *estd.states[2:])
+    outcome, _ = execute(estd.model_copy(update={"states": states}), robot, memory=memory)
+    assert outcome.succeeded, outcome.summary
+    assert outcome.sim_time < 10.0
+    hand = robot.read().tcp
+    assert np.linalg.norm(hand[:3, 3] - (0.1, 0.1, 0.2)) < 0.0035
+    assert hand[:3, 2] @ (0, 0, -1) > math.cos(math.radians(2))  # hand z points down
+    turn = (_heading(hand[:3, :3]) - start + 180.0) % 360.0 - 180.0
+    assert abs(turn - 60.0) < 3.0, turn  # within the move's 2 degrees; the contact's move kept the turn
+
+
+def test_a_yaw_a_half_turn_away_turns_the_jaws_the_shorter_way_unless_that_winds_the_wrist_up() -> None:
+    """Parallel jaws grip alike turned a half turn: asked for 120 degrees from where it points,
+    the hand turns 60 the other way, so the wrist turns at most a quarter turn; but not past
+    135 degrees from where the first turn started, or turn after turn winds the wrist to its limit."""
+    level = np.array([[-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]])  # hand x along -x: 180 degrees
+    start = math.pi
+    assert _heading(turn_to_yaw(level, math.radians(300.0), start) @ level) == pytest.approx(120.0)
+    assert _heading(turn_to_yaw(level, math.radians(240.0), start) @ level) == pytest.approx(-120.0)
+    wound = turn_to_yaw(level, math.radians(60.0), start) @ level  # 120 degrees on from the start
+    assert _heading(wound) == pytest.approx(-120.0)
+    assert abs(_heading(turn_to_yaw(wound, 0.0, start) @ wound)) == pytest.approx(180.0)  # 60 on: 180 off

@@ -49,13 +49,17 @@ MOVE = Controller(name="cartesian_move", params={"max_speed": 0.15})
 REACH = EstdState(name="reach", type=StateType.MOVE, atd="reach", arm=MOVE, target_from="approach")
 
 
-def test_a_target_from_a_value_is_its_tcp_position_read_as_the_state_starts():
+def test_a_target_from_a_value_is_its_tcp_position_and_an_approach_s_yaw_read_as_the_state_starts():
     pose = np.eye(4)
+    pose[:3, :3] = [[0.5, 0.866025, 0.0], [0.866025, -0.5, 0.0], [0.0, 0.0, -1.0]]  # top down, hand x at 60 deg
     pose[:3, 3] = (0.1, -0.05, 0.2)
     approach = Approach(pose, np.array([0.1, -0.05, 0.04]), "vision", 2)
-    assert arm_for(REACH, {"approach": approach}).params == {"max_speed": 0.15, "target": (0.1, -0.05, 0.2)}
+    assert arm_for(REACH, {"approach": approach}).params == {"max_speed": 0.15, "target": (0.1, -0.05, 0.2),
+                                                             "yaw": pytest.approx(60.0)}
     touched = Contact(np.array([0.2, 0.0, 0.06]), "wrist", 4.0, np.array([0.0, 0.0, -1.0]), 3.0)
-    assert arm_for(REACH, {"approach": touched}).params["target"] == (0.2, 0.0, 0.06)
+    assert arm_for(REACH, {"approach": touched}).params == {"max_speed": 0.15, "target": (0.2, 0.0, 0.06)}
+    put = EstdState(name="put", type=StateType.PLACE, atd="put", arm=Controller(name="place"), target_from="approach")
+    assert arm_for(put, {"approach": approach}).params == {"target": (0.1, -0.05, 0.2)}  # a place does not turn
     with pytest.raises(MissingValue, match="state 'reach' takes its target from 'approach': it holds NothingFound"):
         arm_for(REACH, {"approach": NothingFound("vision", "empty")})
 
