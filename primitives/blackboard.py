@@ -110,6 +110,6 @@ rad/s), kept by the executor. A motion that takes the arm over ramps from it: on
 started from rest stopped a lifting SDH2 within a tick, and its wrist read the 10-15 N of
 that stop as a contact."""
 
-ARM_KEYS = frozenset({EMPTY_HAND, ARM_TWIST, YAW_REFERENCE})
+ARM_KEYS = frozenset({EMPTY_HAND, ARM_TWIST, HAND_LEVEL, YAW_REFERENCE})
 """The keys of `Context.memory` that say something of one arm: in a run of two arms each
 keeps its own (atd.runtime.values.ArmMemory); every other key, a named value, is the run's."""
