@@ -18,7 +18,7 @@ from enum import StrEnum
 from types import MappingProxyType
 from typing import Mapping, Union
 
-from atd.model import ranges
+import atd.model.ranges as ranges
 from atd.model.ranges import Range
 
 ParamValue = Union[bool, int, float, str, tuple[float, ...], tuple[tuple[float, ...], ...]]

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from atd.model import ranges
+import atd.model.ranges as ranges
 from atd.model.files import InputError, read_capped
 
 SUFFIXES = (".stl", ".obj")

@@ -17,7 +17,7 @@ from typing import Iterable, TypeVar
 from lxml import etree
 
 from atd.model.diagnostics import Diagnostic, did_you_mean, error
-from atd.model import ranges
+import atd.model.ranges as ranges
 from atd.model.controllers import CONTROLLERS, parse_value
 from atd.model.files import name_too_long
 from atd.model.ranges import Range
