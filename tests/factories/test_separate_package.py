@@ -30,7 +30,7 @@ def test_show_names_its_own_description_file(tmp_path, monkeypatch):
     monkeypatch.syspath_prepend(str(tmp_path))
     result = CliRunner().invoke(main, ["robots", "show", "shown"])
     assert result.exit_code == 0, result.output
-    assert f"inverse kinematics on {package.resolve() / 'description.py'} with" in result.output
+    assert f"reach is checked on {package.resolve() / 'description.py'}: by inverse kinematics" in result.output
     assert "factories/shown" not in result.output
 
 
