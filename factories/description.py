@@ -195,6 +195,12 @@ class Site:
     """Its pose in that link's frame."""
 
 
+# How much better rubber-covered pads and fingertips grip than an object's own friction (on a
+# table) says: rubber on wood, cardboard or plastic 0.6-0.9 against 0.3-0.45 for those on a
+# table (engineering tables' typical figures, assumed, not measured on these hands).
+RUBBER = 2.0
+
+
 @dataclass(frozen=True)
 class FingerPad:
     """A tactile pad: a thin box on a finger whose +z face is the sensing surface.
@@ -264,6 +270,10 @@ class Hand:
     push_posture: str = "closed"
     """The posture a closed hand takes to move and push (not a D5 shape): a hand whose fist
     meets an object with sloping links names one that leads with a vertical face."""
+    surface_friction: float = 1.0
+    """How much better the hand's surfaces (pads, fingers, palm) grip than the object's own
+    friction says: a contact's friction is the object's times this, in both engines (MuJoCo
+    by explicit contact pairs, Bullet by its product); 1 = the object's friction alone."""
 
     @property
     def couplings(self) -> tuple[tuple[str, str, float], ...]:

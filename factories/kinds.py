@@ -123,8 +123,10 @@ class MultiFingerFactory(Factory):
         if kind is StateType.PLACE:
             return NodeMapping("place", self.controller("place", target=target), self.controller("hold_position"))
         if kind is StateType.SLIDE:
-            # Thesis 3.3.5: the slide presses with a predefined preshape (a hook on the Barrett).
+            # Thesis 3.3.5: the slide presses with a predefined preshape (a hook on the Barrett),
+            # its path for where that preshape presses (`shape_offset`), as the move before it.
             shape, notes = self.shape(HandShape.HOOK_GRASP_PRESHAPE)
+            target, _ = self.motion(state.model_copy(update={"hand_shape": HandShape.HOOK_GRASP_PRESHAPE}), context)
             return NodeMapping("slide", self.controller("slide", target=target),
                                self.controller("hand_shape", shape=shape.value), notes)
         arm = self.arm_motion(state, target, via, **(obstacle_params(context) if kind is StateType.TRANSPORT else {}))

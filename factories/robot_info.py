@@ -97,6 +97,7 @@ def robot_info(d: RobotDescription) -> RobotInfo:
         mass=d.hand_mass,
         centre_of_mass=_centre_of_mass(d),
         wrist=_wrist(d, open_hand),
+        surface_friction=d.hand.surface_friction,
     )
     return RobotInfo(
         name=d.label,

@@ -61,7 +61,28 @@ def compile_mjcf(xml: str, description: RobotDescription, others: tuple[RobotDes
             mesh = spec.mesh(prefix + name)
             mesh.file, mesh.scale = "", [1.0, 1.0, 1.0]
             mesh.uservert, mesh.userface = vertices.ravel(), faces.ravel()
+        _hand_friction(spec, d, prefix)
     return spec.compile()
+
+
+def _hand_friction(spec: mujoco.MjSpec, d: RobotDescription, prefix: str) -> None:
+    """The hand's surfaces grip an object `d.hand.surface_friction` times its own friction,
+    as Bullet's product makes them: an explicit contact pair per hand geom and object geom
+    (the objects are the world's free bodies) replaces MuJoCo's dynamic contact, whose
+    friction is the object's alone (priority 1). Against the table the hand's own friction
+    is taken (MuJoCo's maximum of the two, as Bullet's product with the table's 1)."""
+    factor = d.hand.surface_friction
+    if factor == 1.0:
+        return
+    hand = [g for link in d.hand_links for g in spec.body(prefix + link).geoms if g.contype or g.conaffinity]
+    objects = [g for body in spec.bodies if any(j.type == mujoco.mjtJoint.mjJNT_FREE for j in body.joints)
+               for g in body.geoms]
+    for g in hand:
+        g.friction[0] = factor * g.friction[0]
+        for o in objects:
+            slide, spin, roll = o.friction
+            spec.add_pair(geomname1=g.name, geomname2=o.name, condim=max(g.condim, o.condim),
+                          friction=[factor * slide, factor * slide, spin, roll, roll])
 
 
 class MujocoRobot(SimRobot):

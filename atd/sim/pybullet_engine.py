@@ -1,9 +1,10 @@
 """The robot interface on PyBullet, same scene, frames and signs as MuJoCo.
 
 Holding by friction needs (sim-notes.md): a small step, friction anchors, enough solver
-iterations. Bullet multiplies the friction of the two bodies in contact, so robot and
-table use 1 and the object's own coefficient (from the ATD) governs its contacts, as
-geom priority makes it do in MuJoCo. Hand joints follow their DOF with mimic targets.
+iterations. Bullet multiplies the friction of the two bodies in contact, so the table and
+the arm use 1 and the object's own coefficient (from the ATD) governs its contacts, as
+geom priority makes it do in MuJoCo; the hand's surfaces use their description's
+`surface_friction` (MuJoCo: explicit contact pairs with the product). Hand joints follow their DOF with mimic targets.
 """
 
 from __future__ import annotations
@@ -141,6 +142,8 @@ class PybulletRobot(SimRobot):
         self._pad_links = [index["link:" + p.name] for p in d.hand.pads]
         self._hand_links = [index["link:" + n] for n in d.hand_links if n != d.hand_root] + self._pad_links
         self._hand_set = {self._hand_link, *self._hand_links}
+        for link in self._hand_set:  # the hand's surfaces grip d.hand.surface_friction times the object's friction
+            pb.changeDynamics(self.body, link, lateralFriction=d.hand.surface_friction, physicsClientId=c)
         self._pad_of_link = {link: k for k, link in enumerate(self._pad_links)}
         self._untouched = (np.zeros(0, int), np.zeros((0, 2)), np.zeros(0))
         self._hand_weights = np.array(  # z of each hand link's weight, root first

@@ -13,7 +13,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from factories.description import Hand, Joint, Link, Origin, RobotDescription, SensorModel, Servo, Site
+from factories.description import RUBBER, Hand, Joint, Link, Origin, RobotDescription, SensorModel, Servo, Site
 from factories.parts import DARK, JawSpec, box, capsule, parallel_jaw
 
 PI2 = np.pi / 2
@@ -105,6 +105,7 @@ def description(arm: str | None = None) -> RobotDescription:
             "power_grasp": (0.0,),
         },
         pad_force_from_effort=True,
+        surface_friction=RUBBER,  # rubber fingertip inserts
     )
     return RobotDescription(
         name="baxter",

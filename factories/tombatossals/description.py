@@ -10,11 +10,12 @@ unverified). Barrett: [BH], [BHFK], [BHWIKI]; SDH2: [SDH] and thesis A.1.2 (210 
 
 from __future__ import annotations
 
+from dataclasses import replace
 from functools import lru_cache
 
 import numpy as np
 
-from factories.description import FingerPad, Hand, HandDof, Joint, Link, Origin, RobotDescription, SensorModel, Servo, Site
+from factories.description import RUBBER, FingerPad, Hand, HandDof, Joint, Link, Origin, RobotDescription, SensorModel, Servo, Site
 from factories.parts import DARK, METAL, box, capsule, cylinder
 
 D = np.pi / 180
@@ -156,7 +157,8 @@ def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
     # with a gap between them and the grasp searched on. Left to rise, the preset's trials
     # 0-19 with the error lifted 159 of 200 against 155 (MuJoCo), 148 against 136 (PyBullet).
     hand = Hand("barrett_bh8_280", dofs, tuple(pads), postures, test_grasp="pinch_grasp",
-                grasp_centres={"push": pointing}, push_posture="push", rising_grasps=frozenset({"pinch_grasp"}))
+                grasp_centres={"push": pointing}, push_posture="push", rising_grasps=frozenset({"pinch_grasp"}),
+                surface_friction=RUBBER)  # rubber fingertip and palm pads
     return tuple(links), hand, 0.155
 
 
@@ -249,7 +251,7 @@ def _sdh2() -> tuple[tuple[Link, ...], Hand, float]:
     centres = {"pinch_grasp_preshape": pinch, "pinch_grasp": pinch, "push": (SDH_THUMB_X, 0.0, 0.0)}
     # Three fingers 120 degrees apart balance each other on a small box.
     hand = Hand("schunk_sdh2", dofs, tuple(pads), postures, test_grasp="spherical_grasp", grasp_centres=centres,
-                push_posture="push")
+                push_posture="push", surface_friction=RUBBER)  # its tactile pads are rubber-covered
     return tuple(links), hand, 0.225
 
 
@@ -272,7 +274,7 @@ def description(arm: str | None = None) -> RobotDescription:
         raise ValueError(f"Tombatossals has a 'left' (Schunk SDH2) and a 'right' (Barrett) arm; got '{arm}'")
     hand_links, hand, tcp_depth = _barrett() if side == "right" else _sdh2()
     root = hand_links[0].name
-    return RobotDescription(
+    d = RobotDescription(
         name="tombatossals",
         payload=10.0,  # kg, PA10: 'payload 10 kg'
         arm=side,
@@ -293,3 +295,18 @@ def description(arm: str | None = None) -> RobotDescription:
         },
         extra_sites=(Site("attachment_site", "w2_link", HAND_MOUNT),),
     )
+    if side == "left":
+        return d
+    # The Barrett's hook hangs its three fingers 8 cm to one side of its TCP: it presses (a
+    # slide, thesis 3.3.5) and is placed with its fingertips, not with the empty TCP.
+    return replace(d, hand=replace(hand, grasp_centres={**hand.grasp_centres, "hook_grasp_preshape": _tips(d, "hook_grasp_preshape")}))
+
+
+def _tips(d: RobotDescription, posture: str) -> tuple[float, float, float]:
+    """Where the fingers' tips are in a posture, TCP frame: across, the centre of the finger
+    pads; along the approach, the hand's reach."""
+    poses = d.link_poses(d.hand_joint_targets(np.asarray(d.hand.postures[posture], float)))
+    to_hand = np.linalg.inv(poses[d.tcp.link] @ d.tcp.origin.matrix())
+    pads = [to_hand @ poses[p.link] @ p.origin.matrix() for p in d.hand.pads if p.link != d.hand_root]
+    x, y = np.mean([pad[:2, 3] for pad in pads], axis=0)
+    return (round(float(x), 4), round(float(y), 4), round(d.hand_reach(posture), 4))

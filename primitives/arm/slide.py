@@ -18,6 +18,7 @@ from enum import Enum
 
 import numpy as np
 
+from atd.model.vocabulary import ObjectClass
 from primitives.arm.motion import GAIN, clamp_norm, orientation_twist, unit
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
@@ -44,10 +45,6 @@ LOST_FRACTION = 0.3
 LOST_TIME = 0.3
 # N of tangential force against the motion below which nothing is dragged (a hand in air, ~0).
 DRAG_FORCE = 0.5
-# Share of the object's believed weight whose friction on the surface must be felt beyond the
-# hand's own friction on the object, mu * F_n: a hand slipping over the object's top feels
-# mu * F_n (0.23-0.29 of F_n, friction 0.3, measured); a carried object drags mu * (F_n + m g).
-WEIGHT_SHARE = 0.5
 # m/s^2: the object's weight from its believed mass.
 GRAVITY = 9.81
 # The object's friction where the task does not say: the simulators' default for its contacts.
@@ -134,10 +131,25 @@ class Slide(Controller):
         return float(position @ self.normal)
 
     def _lowest(self, readings: Readings) -> float:
-        """Height along n of the hand's lowest pad, from the hand's own forward kinematics."""
+        """Height along n of the lowest of the hand's pads over the object's believed
+        footprint (all of them where none is), from the hand's own forward kinematics: a
+        hook's fingers hanging behind the object's trailing face are not pressing on it."""
         pads = self.ctx.info.hand.pad_surfaces(readings.hand_q)[:, :3, 3]
         world = readings.tcp[:3, 3] + pads @ readings.tcp[:3, :3].T
-        return float(np.min(world @ self.normal))
+        over = world[self._over_object(world)]
+        return float(np.min((over if len(over) else world) @ self.normal))
+
+    def _over_object(self, points: np.ndarray) -> np.ndarray:
+        """Which of `points` lie over the object's footprint as the task believes it."""
+        obj = self.ctx.object
+        if obj is None or obj.pose is None:
+            return np.ones(len(points), bool)
+        pose = obj.pose.as_array()
+        local = (points - pose[:3, 3]) @ pose[:3, :3]
+        size = obj.effective_size
+        if (obj.object_class or ObjectClass.BOX) is ObjectClass.BOX:
+            return np.all(np.abs(local[:, :2]) <= np.array(size[:2]) / 2, axis=1)
+        return np.hypot(local[:, 0], local[:, 1]) <= size[0]
 
     def _tangential(self, offset: np.ndarray) -> np.ndarray:
         return offset - float(offset @ self.normal) * self.normal
@@ -197,16 +209,21 @@ class Slide(Controller):
         step = float(np.linalg.norm(self._tangential(position - self.hold)))
         self.hold = position.copy()
         self.travelled += step
-        self.dragged += step if felt >= self._carrying_drag() else 0.0
+        self.dragged += step if self._carries(felt) else 0.0
         v = self._normal_law()
         if self.lower < self.pressing < self.upper:
             v = v + clamp_norm(GAIN * along, self.target_velocity)
         return v
 
-    def _carrying_drag(self) -> float:
-        """N of drag that says the object slides with the hand: more than the hand's own
-        friction on it can give, by the friction of part of its weight on the surface."""
-        return max(DRAG_FORCE, self.friction * (max(self.pressing, 0.0) + WEIGHT_SHARE * self.weight))
+    def _carries(self, felt: float) -> bool:
+        """Whether `felt` N of drag says the object slides with the hand: nearer the friction
+        of the object on the surface under it, mu (F_n + m g), than that of the hand's
+        surfaces slipping over its top, k mu F_n (k: how much better they grip)."""
+        pressing = max(self.pressing, 0.0)
+        carried = self.friction * (pressing + self.weight)
+        slipping = self.ctx.info.hand.surface_friction * self.friction * pressing
+        between = (carried + slipping) / 2
+        return felt >= DRAG_FORCE and (felt >= between if carried > slipping else felt <= between)
 
     def _arrive(self, left: float) -> np.ndarray:
         share = self.dragged / self.travelled if self.travelled > 0 else 0.0
