@@ -13,7 +13,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from factories.description import RUBBER, Hand, Joint, Link, Origin, RobotDescription, SensorModel, Servo, Site
+from factories.description import Hand, Joint, Link, Origin, RobotDescription, SensorModel, Servo, Site
 from factories.parts import DARK, JawSpec, capsule, cylinder, parallel_jaw
 
 D = np.pi / 180
@@ -95,7 +95,8 @@ def description(arm: str | None = None) -> RobotDescription:
             "power_grasp_preshape": (PG70.stroke,),
             "power_grasp": (0.0,),
         },
-        surface_friction=RUBBER,  # the WRT-102's tactile fingers are silicone-covered
+        # The object's friction alone (no rubber, unlike the hands that slide): with twice it,
+        # the jaw grasp timed out on 3 more of the Table 3.3 preset's trials (docs/slide.md).
     )
     return RobotDescription(
         name="melfa",

@@ -218,12 +218,12 @@ class Slide(Controller):
     def _carries(self, felt: float) -> bool:
         """Whether `felt` N of drag says the object slides with the hand: nearer the friction
         of the object on the surface under it, mu (F_n + m g), than that of the hand's
-        surfaces slipping over its top, k mu F_n (k: how much better they grip)."""
+        surfaces slipping over its top, k mu F_n (k: how much better they grip); where the
+        two are alike (an object of no known weight), nothing tells them apart."""
         pressing = max(self.pressing, 0.0)
         carried = self.friction * (pressing + self.weight)
         slipping = self.ctx.info.hand.surface_friction * self.friction * pressing
-        between = (carried + slipping) / 2
-        return felt >= DRAG_FORCE and (felt >= between if carried > slipping else felt <= between)
+        return felt >= DRAG_FORCE and abs(felt - carried) < abs(felt - slipping)
 
     def _arrive(self, left: float) -> np.ndarray:
         share = self.dragged / self.travelled if self.travelled > 0 else 0.0
