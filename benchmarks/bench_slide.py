@@ -61,6 +61,7 @@ def main() -> None:
         estd = translate(task, create(robot, arm)).estd
         said = carried = false = 0
         ends: Counter[str] = Counter()
+        misses = []  # (run, cm from the target, cm the tray travelled) of every run not carried
         for run in range(args.runs):
             scene = scene_from_task(task, TRAY)
             body = displaced(scene.objects[0], run)
@@ -69,13 +70,18 @@ def main() -> None:
             executor = Executor(estd, sim, context, budget=60.0)
             outcome = executor.run()
             target = scene.objects[0].pose[:2, 3] + SLID
-            ok = bool(np.linalg.norm(sim.object_pose()[:2, 3] - target) < CARRIED)
+            off = float(np.linalg.norm(sim.object_pose()[:2, 3] - target))
+            ok = off < CARRIED
+            if not ok:
+                travel = float(np.linalg.norm(sim.object_pose()[:2, 3] - body.pose[:2, 3]))
+                misses.append((run, round(off * 100, 1), round(travel * 100, 1)))
             said += outcome.succeeded
             carried += ok
             false += outcome.succeeded and not ok
             ends[outcome.summary if outcome.succeeded else _why(executor)] += 1
         print(f"{args.engine} {robot}/{arm}: {args.runs} runs, success said {said}, carried within 2 cm {carried}, "
-              f"false successes {false}; ends: {dict(ends)}", flush=True)
+              f"false successes {false}; ends: {dict(ends)}; not carried (run, cm off, cm travelled): {misses}",
+              flush=True)
 
 
 def _why(executor: Executor) -> str:

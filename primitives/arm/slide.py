@@ -3,11 +3,12 @@ object's top with a normal force between LOWER_ and UPPER_FORCE_THRESHOLD along
 SURFACE_NORMAL n and drags it to the target, the hand held in its (hook) preshape.
 
 It says success only when its own sensors say it carried the object: the contact was
-found where the object's top should be (the lowest of the hand's pads, from its own
-kinematics, at the top the task believes the object has), held all the way, and the wrist
-felt more drag than the hand's friction on the object alone could give, that of the
-object's weight sliding on the surface, over most of the way (belief only: the object's
-believed friction and weight, never the simulator's). Anything else is an error, with why.
+found where the object's top should be (the lowest of the hand's pads over the object,
+from its own kinematics, at the top the task believes the object has), held all the way,
+and over most of the way the wrist felt the drag of the object sliding on the surface
+rather than that of the hand's surfaces slipping over it (belief only: the object's
+believed friction and weight, the hand's surface friction from its description, never the
+simulator's). Anything else is an error, with why.
 The wrench is read as in `primitives.arm.surface`: the contact force on the hand, tared in
 free air, pressing makes it point along +n.
 """
