@@ -26,7 +26,7 @@ import numpy as np
 from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamValue, SensorKind, defaults
 from atd.model.estd import Condition, ConditionGroup, Controller
 from atd.model.frames import GRAVITY, rpy_of
-from atd.model.ranges import FORCE, TILT, WEIGHT
+from atd.model.ranges import FORCE, WEIGHT
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
 from atd.model.vocabulary import (FIRED_BY, PERCEPTUAL_PRIMITIVES, EventType, HandShape, Movement, PerceptionMethod,
                                   StateType, ValueKind)
@@ -449,12 +449,30 @@ class Factory(ABC):
         top-down through the object's centre, unless the state before turned the hand further
         than a grasp from above levels (the robust grasp's `level_within`); then along the
         turned hand's axis through where that state put the grasp centre."""
-        turn = turn_at_start(context.task, state)
+        turn = self.rolled(turn_at_start(context.task, state))
         if turn is None or self._from_above(turn):
             return self._hand_down, centre
         before = arriving(context.task, state)
         line = np.asarray(before.path[-1].position, float) if before is not None and before.path else centre
         return turn @ self._hand_down, line
+
+    def rolled(self, turn: np.ndarray | None) -> np.ndarray | None:
+        """The task's `turn` of the hand with the hand's own roll about its approach axis
+        (`Hand.side_roll`) where the turn grasps from the side: the task says where the hand
+        approaches from, the hand how it presents its fingers there."""
+        roll = self.robot.hand.side_roll
+        if turn is None or not roll or self._from_above(turn):
+            return turn
+        c, s = np.cos(roll), np.sin(roll)
+        about_z = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        rolled = turn @ self._hand_down @ about_z @ self._hand_down.T
+        try:
+            tilt_of(rolled)
+        except Unmappable as refused:
+            raise Unmappable(f"the {self.arm.hand.name} rolls {np.degrees(roll):g} degrees about its approach to grasp "
+                             f"from the side, its fingers across the object; with that roll {refused.reason}",
+                             "approach from another side") from None
+        return rolled
 
     def _from_above(self, turn: np.ndarray) -> bool:
         """A hand turned this way grasps from above: the grasp turns it down first."""
@@ -566,13 +584,14 @@ class Factory(ABC):
         (`atd.runtime.values`), a TCP position as the perceptual primitive wrote it."""
         if state.target_from is not None:
             return None, ()
-        turn = target_turn(state)
+        turn = self.rolled(target_turn(state))
         offset = np.asarray(self.shape_offset(state), float)
         dx, dy, dz = offset if turn is None else turn @ offset
         points = [w.position for w in state.path] if state.path else [derived_target(state, context.object)]
         # To the micrometre, so the ESTD's 9-digit numbers read back equal.
         points = [(round(x - dx, 6), round(y - dy, 6), round(z - dz, 6)) for x, y, z in points]
-        held = turn if turn is not None or state.type not in KEEPING else turn_at_start(context.task, state)
+        held = turn if turn is not None or state.type not in KEEPING else \
+            self.rolled(turn_at_start(context.task, state))
         if held is None or (turn is None and self._from_above(held)):
             self.check_reach(*points)
             return points[-1], tuple(points[:-1])
@@ -599,7 +618,7 @@ class Factory(ABC):
             return self.controller("push", target=target, waypoints=via, keep_orientation=flags["keep_orientation"])
         margin = CARRIED_MARGIN.get(state.type)
         carried: dict[str, ParamValue] = {} if margin is None else {"contact_margin": margin}
-        turn = target_turn(state)
+        turn = self.rolled(target_turn(state))
         if turn is not None:
             carried["tilt"] = tilt_of(turn)
         elif state.type is StateType.TRANSPORT:  # the object as the grasp holds it: see cartesian_move's `level`
@@ -695,15 +714,21 @@ def pressing(node: ConditionNode, force: float) -> ConditionNode:
     return node.model_copy(update={"params": {**node.params, "force_threshold": round(force, 3)}})
 
 
+LEVEL_SLACK = 1e-6  # of the approach axis's rise: a turn of exactly 90 degrees, rounded, is level
+
+
 def tilt_of(turn: np.ndarray) -> tuple[float, float, float]:
     """`turn` as cartesian_move's tilt: roll, pitch, yaw about the world axes, in degrees;
-    a turn beyond what an arm controller is asked to make (90 degrees about an axis) is
-    refused: no hand grasps from below the horizontal."""
+    a turn that points the hand's approach above the horizontal is refused: no hand grasps
+    from below."""
     tilt = tuple(round(float(np.degrees(a)), 3) for a in rpy_of(turn))
-    if max(abs(a) for a in tilt) > TILT.high:
+    upward = float(turn[2] @ (0.0, 0.0, -1.0))  # the turned approach axis's world z
+    if upward > LEVEL_SLACK:
+        angle = float(np.degrees(np.arccos(np.clip(-upward, -1.0, 1.0))))
         raise Unmappable(f"its <pose> turns the hand by roll {tilt[0]:g}, pitch {tilt[1]:g}, yaw {tilt[2]:g} degrees "
-                         f"from pointing down, over {TILT.high:g} about some axis",
-                         "give the pose's rotation as the hand's turn away from top-down (identity: straight down)")
+                         f"from pointing down: {angle:.0f} degrees, its approach past the horizontal",
+                         "give the pose's rotation as the hand's turn away from top-down (identity: straight down), "
+                         "at most 90 degrees")
     return tilt  # type: ignore[return-value]
 
 
