@@ -25,7 +25,7 @@ import numpy as np
 
 from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamValue, SensorKind, defaults
 from atd.model.estd import Condition, ConditionGroup, Controller
-from atd.model.frames import GRAVITY, rpy_of
+from atd.model.frames import GRAVITY, rotation_rpy, rpy_of
 from atd.model.ranges import FORCE, WEIGHT
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
 from atd.model.vocabulary import (FIRED_BY, PERCEPTUAL_PRIMITIVES, EventType, HandShape, Movement, PerceptionMethod,
@@ -463,9 +463,7 @@ class Factory(ABC):
         roll = self.robot.hand.side_roll
         if turn is None or not roll or self._from_above(turn):
             return turn
-        c, s = np.cos(roll), np.sin(roll)
-        about_z = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-        rolled = turn @ self._hand_down @ about_z @ self._hand_down.T
+        rolled = turn @ self._hand_down @ rotation_rpy((0.0, 0.0, roll)) @ self._hand_down.T
         try:
             tilt_of(rolled)
         except Unmappable as refused:
