@@ -13,9 +13,16 @@ from atd.sim.simrobot import SimRobot
 from factories.description import RobotDescription
 from factories.registry import UnknownRobot, create, installed
 
-__all__ = ["ENGINES", "UnknownRobot", "load_description", "make_arms", "make_robot", "variants"]
+__all__ = ["ENGINES", "UnknownRobot", "installed_engines", "load_description", "make_arms", "make_robot", "variants"]
 
 ENGINES = ("mujoco", "pybullet")
+
+
+def installed_engines() -> tuple[str, ...]:
+    """The engines this installation can run: PyBullet is optional (atd/sim/optional.py)."""
+    from atd.sim.optional import pybullet_installed
+
+    return ENGINES if pybullet_installed() else ("mujoco",)
 
 
 def variants() -> list[tuple[str, str]]:
@@ -42,6 +49,10 @@ def make_robot(description: RobotDescription, scene: Scene | None = None, engine
 
         robot: SimRobot = MujocoRobot(description, scene, seed, window, belief)
     elif engine == "pybullet":
+        if engine not in installed_engines():
+            from atd.sim.optional import pybullet_missing
+
+            raise ValueError(pybullet_missing("the pybullet engine"))
         from atd.sim.pybullet_engine import PybulletRobot
 
         robot = PybulletRobot(description, scene, seed, window, belief)
