@@ -39,8 +39,8 @@ PREGRASP_MARGIN = 0.04  # m of clearance around the object when the hand preshap
 SWING_MARGIN = 0.005  # m the sliding grasp may back off beyond the fingertips' swing (ours)
 SIDE_MARGIN = 0.01  # m a grasp from the side may go past where the task believes the object's axis (ours)
 # Thesis 3.3.6 on a gripper (ours): the jaws grip the cap, the last wrist joint twists it.
-JAW_UNSCREW_ROW = MappingRow("unscrew", "unscrew (jaws, wrist twist)", "grasp force, twist angle, torque and pull limits",
-                             "arm control, FT sensor, gripper force")
+JAW_UNSCREW_ROW = MappingRow("unscrew", "unscrew", "grasp force, twist angle (of the last wrist joint), torque and "
+                             "pull limits", "arm control, FT sensor, gripper force")
 
 
 class ParallelJawFactory(Factory):
