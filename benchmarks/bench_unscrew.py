@@ -7,10 +7,11 @@ thread), twists made and simulated time; per setting the counts and false succes
 task says the cap is off, the simulator disagrees).
 
 `--objects all` runs each of the eight screw-capped objects of the library in the fixture
-instead (a gripper: `--task examples/unscrew_fixture_jaws.xml`): the task is the example's,
-with the object's size, its cap's width and the hand's heights written for that object as
-a user would write them for a gripper whose TCP lies at the middle of its pads (the pads'
-lower ends 1 mm over the cap's lower rim, `pad_height`).
+instead (a gripper: `--task examples/unscrew_fixture_jaws.xml`), 15 cm to the side of the
+example's place (`ASIDE`): the task is the example's, with the object's size, its cap's
+width and the hand's heights written for that object as a user would write them for a
+gripper whose TCP lies at the middle of its pads (the pads' lower ends 1 mm over the cap's
+lower rim, `pad_height`).
 
     python benchmarks/bench_unscrew.py [--runs 5] [--noise 0.0] [--robot tombatossals --arm left] [--engine mujoco]
     python benchmarks/bench_unscrew.py --robot melfa --arm "" --task examples/unscrew_fixture_jaws.xml --objects all
@@ -40,12 +41,15 @@ WORLD = REPO / "examples" / "unscrew_fixture.world.toml"
 
 
 PAD_CLEARANCE = 0.001  # m the pads' lower ends stand over the cap's lower rim: below it a jar's shoulder is wider
+ASIDE = 0.15  # m along y the library's objects stand from the example's place: the hands' home TCP (0.125, 0, 0.15) is inside the tall ones
 
 
 def _world(offset: np.ndarray, folder: Path, thing: str | None = None) -> Path:
     """The example's world with the bottle moved by `offset` (x, y, m) from where the task
     believes it, and `thing` (a library object) in place of the jam jar."""
     text = WORLD.read_text() if thing is None else WORLD.read_text().replace('"jam_jar"', f'"{thing}"')
+    if thing is not None:
+        offset = offset + np.array([0.0, ASIDE])
     match = re.search(r"position = \[([-\d.]+), ([-\d.]+)\]", text)
     x, y = float(match.group(1)) + offset[0], float(match.group(2)) + offset[1]
     path = folder / "world.toml"
@@ -67,11 +71,11 @@ def object_task(text: str, thing: str, reach: float, folder: Path) -> Path:
     down = height - thread.cap_height + PAD_CLEARANCE + reach
     text = re.sub(r"<class>\w+</class>", f"<class>{found.shape.value}</class>", text)
     text = re.sub(r"<size>[^<]*</size>", f"<size>{size}</size>", text)
-    text = re.sub(r"0 0 1 0.0525", f"0 0 1 {height / 2:.4f}", text)
     text = re.sub(r"<weight>[^<]*</weight>", f"<weight>{found.mass:g}</weight>", text)
     text = re.sub(r"<object_size>[^<]*</object_size>", f"<object_size>{2 * thread.cap_radius:g}</object_size>", text)
-    text = re.sub(r"0.12 0.0 0.1[0-5]\d*</position>", f"0.12 0.0 {down:.4f}</position>", text)  # down to the cap
-    text = text.replace("0.12 0.0 0.16</position>", f"0.12 0.0 {height + 0.055:.4f}</position>")  # over it
+    text = re.sub(r"0.12 0.0 0.1[0-5]\d*</position>", f"0.12 {ASIDE} {down:.4f}</position>", text)  # down to the cap
+    text = text.replace("0.12 0.0 0.16</position>", f"0.12 {ASIDE} {height + 0.055:.4f}</position>")  # over it
+    text = text.replace("0 1 0 0.0  0 0 1 0.0525", f"0 1 0 {ASIDE}  0 0 1 {height / 2:.4f}")
     path = folder / "task.xml"
     path.write_text(text)
     return path

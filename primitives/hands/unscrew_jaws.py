@@ -91,8 +91,10 @@ class UnscrewJaws(Controller):
         """Pinched once the grip has its force; every GAP_CHECK (a look is the hand's forward
         kinematics), with both pads touching, add their contacts' midpoint (world frame) to
         the average that places the cap's axis; and are the jaws nearer than
-        FINGER_MIN_DISTANCE? A gripper without pads knows only its motor: its jaws are
-        empty when closed to their stop, and it places no axis."""
+        FINGER_MIN_DISTANCE with neither pad pressed (pads that both press hold something:
+        the Melfa's soft pads, pressing a 40 mm cap with 10 N, stood 12 mm apart by the jaws'
+        joint, MuJoCo)? A gripper without pads knows only its motor: its jaws are empty when
+        closed to their stop, and it places no axis."""
         cap = self.ctx.blackboard.cap
         cap.pinched = cap.pinched or self.grip.status is Status.DONE
         cap.holding = self.jaws.both_touch(readings, self.grip.grasp_force)
@@ -109,4 +111,4 @@ class UnscrewJaws(Controller):
             self.felt += 1
             cap.axis = self.contacts / self.felt
         left, right = hand.pad_surfaces(readings.hand_q)[:2, :3, 3]
-        cap.empty = cap.empty or float(np.linalg.norm(left - right)) < self.min_distance
+        cap.empty = cap.empty or (float(np.linalg.norm(left - right)) < self.min_distance and not cap.holding)
