@@ -44,7 +44,9 @@ WORLD = REPO / "examples" / "unscrew_fixture.world.toml"
 PAD_CLEARANCE = 0.001  # m the pads' lower ends stand over the cap's lower rim: below it a jar's shoulder is wider
 TIMEOUT = 150.0  # s: the example's unscrew timeout, written for the jam jar's quarter turn
 TIME_PER_TURN = 80.0  # s a writer allows per turn of the thread: twelve 30 degree twists took the grippers 45-56 s
-ASIDE = 0.15  # m along y the library's objects stand from the example's place: the hands' home TCP (0.125, 0, 0.15) is inside the tall ones
+# m along y the library's objects stand from the example's place: the hands' home TCP
+# (0.125, 0, 0.15) is inside the tall bottles there
+ASIDE = 0.15
 
 
 def _world(offset: np.ndarray, folder: Path, thing: str | None = None) -> Path:
