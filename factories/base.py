@@ -57,6 +57,7 @@ CARRIED_MARGIN = {StateType.TRANSPORT: 0.0, StateType.PLACE: 0.01}
 # eased from 2.1 to 1.2 N 1.6 s after (MuJoCo duck trial 16, PyBullet mug trial 11 of the
 # preset's approach error)
 HELD_FOR = 2.0
+WRIST_ALIGNED = 0.99  # cos: a last joint within 8 degrees of the approach axis rolls the hand about it (ours)
 
 
 class Unmappable(Exception):
@@ -256,9 +257,9 @@ class Factory(ABC):
             return self.perceptual(state, context)
         if state.type is StateType.UNSCREW and StateType.UNSCREW not in self.primitives:
             raise Unmappable(f"the {self.name} has no unscrew primitive: unscrewing pinches the cap between two "
-                             "fingertips, each pressing its own force through the twist (thesis 3.3.6), and the "
-                             f"{self.arm.hand.name} has no fingers that close on their own",
-                             "translate the task for a robot with a multi-finger hand (`atd robots list`: primitives)")
+                             "fingertips or grips it in a gripper's jaws, and turns it (thesis 3.3.6), and the "
+                             f"{self.arm.hand.name} does neither",
+                             "translate the task for a robot that lists it (`atd robots list`: primitives)")
         mapping = self.map_node(state, context)
         if self.grasp != "naive" or state.type is not StateType.GRASP:
             return mapping
@@ -534,6 +535,42 @@ class Factory(ABC):
                               fingertip_reach=round(self.robot.hand_reach(HandShape.OPEN.value), 6),
                               hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)))
         return NodeMapping("grasp", arm, self.controller("close_until_force"), notes)
+
+    def jaw_unscrew(self, state: State) -> NodeMapping:
+        """Thesis 3.3.6's unscrew on a parallel gripper, as a real one unscrews: the jaws grip
+        the cap as this gripper's grasp grips anything (its closing speed, its grip-force
+        sensing, its re-centring), the last wrist joint twists it, the arm pulls; the arm
+        side is the one the fingertip pinch uses. The grasp centre is the TCP, between the pads."""
+        grip = self.controller("close_until_force").params
+        hand = self.controller("unscrew_jaws", closing_speed=grip["closing_speed"],
+                               force_source=grip["force_source"], max_recentre=grip["max_recentre"])
+        arm = self.controller("unscrew_arm", wrist_turn=self.wrist_turn(state))
+        return NodeMapping("unscrew", arm, hand, self.shape(state.hand_shape)[1] if state.hand_shape else ())
+
+    def wrist_turn(self, state: State) -> float:
+        """The unscrew's twist turns the hand about its approach axis: +1 or -1, the way the
+        last arm joint turns with it (at home, in the robot's own geometry). Refused where
+        that joint does not roll the hand (a twist would swing the cap round an axis of its
+        own) or cannot turn one twist's TWIST_ANGLE in all its range."""
+        robot, home = self.robot, np.asarray(self.robot.home, float)
+        name = robot.arm_joints[-1]
+        joint = robot.joints[name]
+        along = float(robot.tcp_jacobian(home)[3:, -1] @ robot.tcp_pose(home)[:3, 2])
+        if joint.kind != "revolute" or abs(along) < WRIST_ALIGNED:
+            raise Unmappable(f"unscrew state '{state.name}': the last joint of the {self.arm.description}, '{name}', "
+                             "does not roll the hand about its approach axis, so no twist turns the cap on its axis",
+                             "translate the task for a robot whose wrist rolls the hand")
+        try:
+            angle = float(state.parameters.get("twist_angle", self.controller("unscrew_arm").params["twist_angle"]))
+        except ValueError:  # the translator reports the bad value, located
+            return float(np.sign(along))
+        span = float(np.degrees(joint.upper - joint.lower))
+        if span < angle:
+            raise Unmappable(f"unscrew state '{state.name}': the wrist joint '{name}' of the {self.arm.description} "
+                             f"turns {span:.0f} degrees in all, less than one twist of {angle:g} degrees (TWIST_ANGLE)",
+                             "set a smaller <parameter name=\"twist_angle\">, or translate for a robot whose wrist "
+                             "turns further")
+        return float(np.sign(along))
 
     @cached_property
     def _wrist_to_tcp(self) -> float:
