@@ -44,6 +44,7 @@ class ConditionTree:
         else:
             self.leaf = None
             self.children = [ConditionTree(child, ctx) for child in node.children]
+        self.every = isinstance(node, ConditionGroup) and node.op == "all"
 
     def start(self, readings: Readings) -> None:
         if self.leaf:
@@ -55,7 +56,7 @@ class ConditionTree:
         if self.leaf:
             return self.leaf.holds(readings, view, dt)
         verdicts = [child.holds(readings, view, dt) for child in self.children]
-        return all(verdicts) if self.node.op == "all" else any(verdicts)
+        return all(verdicts) if self.every else any(verdicts)
 
     def evidence(self) -> list[dict]:
         """The leaves behind a verdict, with the readings each recorded."""
@@ -171,8 +172,10 @@ class Machine:
         view = self._view(readings)
         fired = None
         for edge in self.edges:
-            verdicts = [tree.holds(readings, view, dt) for _, tree in edge.events]
-            if fired is None and all(verdicts):
+            held = True
+            for _, tree in edge.events:  # every tree, whatever the others say: their timers count on
+                held = tree.holds(readings, view, dt) and held
+            if fired is None and held:
                 fired = edge
         return fired
 
