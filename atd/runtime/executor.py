@@ -325,9 +325,10 @@ class Executor:
         ticks = 0
         shown = ""
         verdict: str | None = None
+        others = [other for other, _ in list(self._arms.values())[1:]]
         while not self.machine.ended:
             readings = self.robot.read()
-            for other, _ in list(self._arms.values())[1:]:
+            for other in others:
                 other.read()  # every arm's sensors sampled each tick, as the ESTD's own
             wall = wallclock.perf_counter() - started
             if readings.time >= self.budget or wall >= self.wall_budget:
