@@ -98,16 +98,18 @@ class RobustGraspHand(ForceGrasp):
 
     def _hold(self, readings: Readings, dt: float) -> None:
         """Force adaptation until the squeeze settles at the grasp force (within 1 - HELD,
-        averaged over FELT_TIME, and not only passing through the band) for SETTLE_TIME;
-        then a pinch weighs what it holds, other grasps are done. Unsettled after
-        SETTLE_LIMIT: an error naming the pads."""
+        averaged over FELT_TIME, and not only passing through the band) for SETTLE_TIME, or
+        below it with every finger at its effort limit (`_strongest`); then a pinch weighs
+        what it holds, other grasps are done. Unsettled after SETTLE_LIMIT: an error naming
+        the pads."""
         averaged = self._squeeze(readings, dt)
         if averaged is None:
             return
         held = self.held
         squeeze = float(averaged.mean() if self.pinch else averaged.min())
         band = (1.0 - HELD) * self.grasp_force
-        if abs(squeeze - self.grasp_force) > band or abs(squeeze - held.entered) > band:
+        short = squeeze < self.grasp_force - band and self._strongest()  # steady there, it is all the hand has
+        if (abs(squeeze - self.grasp_force) > band and not short) or abs(squeeze - held.entered) > band:
             held.entered, held.settled = squeeze, 0.0  # out of the band, or only passing through it
         else:
             held.settled += dt
