@@ -32,7 +32,7 @@ from atd.model.vocabulary import (FIRED_BY, PERCEPTUAL_PRIMITIVES, EventType, Ha
                                   StateType, ValueKind)
 from factories.beside import description_module, shipped_config
 from factories.config import RobotConfig, load_config
-from factories.description import RobotDescription, SensorModel
+from factories.description import RobotDescription
 from factories.reach import Reach
 from factories.robot_info import robot_info
 from factories.turns import KEEPING, arriving, target_turn, turn_at_start
@@ -354,10 +354,6 @@ class Factory(ABC):
         # Half the weight, but no less than the least a load_held accepts (an object under 2 g).
         load = self.condition(EventType.GRASP_STABLE, "load_held", wrist,
                               weight=None if weight is None else round(max(weight / 2, WEIGHT.low), 6))
-        # the description names its wrist sensor's noise by stream ("wrench"), whatever the factory calls it
-        filtered = load_filter(self.robot.sensors.get("wrench"), float(load.params["weight"]),
-                               self.robot.control_period, float(load.params["filter_time"]))
-        load = load.model_copy(update={"params": {**load.params, "filter_time": filtered}})
         return all_of(held, still, load)
 
     def success(self, origin: State) -> ConditionNode:
@@ -744,27 +740,6 @@ def carrying_force(obj: ObjectInfo | None) -> float:
     hand in the judge's hold (PyBullet, the Table 3.3 preset's weight trial 4, approach
     error). 0 when the task does not say the object's weight and friction."""
     return holding_force(obj) / GRIP_SAFETY
-
-
-# standard deviations of the wrist's filtered noise below the load a held object must show:
-# Baxter's virtual wrist (1 N per reading) low-passed over 0.05 s read the 30 g that half a
-# 60 g tape roll asks at 1.3 of them, and a lift ended in success with the roll on the table
-# (docs/robust-grasp.md, "Beyond the preset")
-NOISE_MARGIN = 4.0
-
-
-def load_filter(sensor: SensorModel | None, weight: float, period: float, least: float) -> float:
-    """The time constant (s) of load_held's low pass, at least `least`, that keeps the wrist
-    sensor's white noise NOISE_MARGIN standard deviations below `weight` (kg): a first-order
-    low pass of time constant tau over readings `period` s apart passes noise**2 * period /
-    (2 tau) of it. No longer than HELD_FOR, the transport's hold at its target, in which the
-    load must show (on the Baxter, objects under 29 g keep less margin). From the description
-    the factory believes, as the controllers' own model."""
-    if sensor is None:
-        return least
-    noise = np.broadcast_to(np.asarray(sensor.noise_std, float), (6,))[:3].max()  # N, the noisiest force axis
-    needed = period / 2.0 * (NOISE_MARGIN * float(noise) / (weight * GRAVITY)) ** 2
-    return round(min(HELD_FOR, max(least, needed)), 3)
 
 
 def refuse_uncarriable(obj: ObjectInfo | None, where: str) -> None:
