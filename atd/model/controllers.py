@@ -586,7 +586,7 @@ _CONDITIONS = (
             "weight": _p(NUM, "least load that counts as the object (ours: half the task's object weight)", 0.02,
                          unit="kg"),
             "filter_time": _p(NUM, "time constant of the low-pass on the load: a hand speeding up reads as load "
-                              "too; factories lengthen it for a noisy wrist (ours)", 0.05, unit="s"),
+                              "too (ours)", 0.05, unit="s"),
             "for_time": _FOR,
         },
     ),
