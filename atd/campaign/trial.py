@@ -8,6 +8,7 @@ leaves nothing of one trial in the next.
 
 from __future__ import annotations
 
+import math
 import time
 import traceback
 from dataclasses import replace
@@ -49,9 +50,10 @@ def believed(task_file: str, robot: str, arm: str, grasp: str, obj: str) -> tupl
     if obj != TASK_OBJECT:
         from atd.campaign.objects import get
 
-        x, y = (task.object.pose.as_array()[:2, 3] if task.object is not None and task.object.pose is not None
-                else (0.10, 0.0))
-        task = task.model_copy(update={"object": get(obj).object_info(float(x), float(y))})
+        pose = task.object.pose.as_array() if task.object is not None and task.object.pose is not None else None
+        x, y = pose[:2, 3] if pose is not None else (0.10, 0.0)
+        yaw = math.atan2(pose[1, 0], pose[0, 0]) if pose is not None else 0.0  # the task's object turned: so is the cell's
+        task = task.model_copy(update={"object": get(obj).object_info(float(x), float(y), float(yaw))})
     factory = create(robot, arm, grasp=grasp)
     result = translate(task, factory)
     if result.estd is None:

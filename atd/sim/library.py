@@ -17,6 +17,7 @@ geom priority, Bullet by multiplying with the pad's 1).
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
@@ -71,10 +72,13 @@ class LibraryObject:
             raise ValueError(f"'{self.name}' has no screw cap: only a bottle or jar with one stands in a fixture")
         return dataclasses.replace(self, thread=dataclasses.replace(self.thread, fixture=True))
 
-    def object_info(self, x: float, y: float) -> ObjectInfo:
-        """What the robot believes: the object resting on the table at (x, y)."""
+    def object_info(self, x: float, y: float, yaw: float = 0.0) -> ObjectInfo:
+        """What the robot believes: the object resting on the table at (x, y), turned by
+        `yaw` (rad) about the vertical."""
         info = ObjectInfo(weight=self.mass, friction=self.friction, object_class=self.shape, size=self.size)
-        return info.model_copy(update={"pose": Pose.from_position((x, y, info.half_height))})
+        c, s = math.cos(yaw), math.sin(yaw)
+        pose = Pose(matrix=(c, 0.0 - s, 0.0, x, s, c, 0.0, y, 0.0, 0.0, 1.0, info.half_height, 0.0, 0.0, 0.0, 1.0))
+        return info.model_copy(update={"pose": pose})
 
     @property
     def unavailable(self) -> str | None:
