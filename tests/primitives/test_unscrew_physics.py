@@ -1,10 +1,12 @@
-"""The unscrew (thesis 3.3.6) in physics: examples/unscrew_fixture.xml on Tombatossals' SDH2,
-the jam jar of its world file standing in a fixture. The task's verdict comes from the
-robot's own sensors; the simulator's truth (the cap off its thread) judges it."""
+"""The unscrew (thesis 3.3.6) in physics, in both engines: examples/unscrew_fixture.xml on
+Tombatossals' SDH2, the jam jar of its world file standing in a fixture. The task's verdict
+comes from the robot's own sensors; the simulator's truth (the cap off its thread) judges it."""
 
 from __future__ import annotations
 
 from pathlib import Path
+
+import pytest
 
 from atd.model import load_task
 from atd.runtime.session import Run, world_scene
@@ -14,12 +16,13 @@ from translator import translate
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
-def test_the_sdh2_unscrews_the_jam_jars_cap_and_the_simulator_agrees() -> None:
+@pytest.mark.parametrize("engine", ["mujoco", "pybullet"])
+def test_the_sdh2_unscrews_the_jam_jars_cap_and_the_simulator_agrees(engine: str) -> None:
     task, _ = load_task(EXAMPLES / "unscrew_fixture.xml")
     factory = create("tombatossals", arm="left")
     estd = translate(task, factory).estd
     caps: dict = {}
-    run = Run(estd, factory, engine="mujoco", scene=world_scene(estd, EXAMPLES / "unscrew_fixture.world.toml", 0))
+    run = Run(estd, factory, engine=engine, scene=world_scene(estd, EXAMPLES / "unscrew_fixture.world.toml", 0))
     outcome = run.execute(afterwards=lambda robot: caps.update(robot.caps()))
     assert outcome.succeeded and outcome.end_state == "cap_off", outcome.summary
     assert caps["jar"].free and caps["jar"].rests == "held", caps
