@@ -151,9 +151,9 @@ def _beside_tables_3_4_3_5(ax: Axes, rows: Sequence[UnscrewRow]) -> None:
     ax.invert_yaxis()
     ax.set_xlim(-2, 102)
     ax.set_xlabel("rate (%); bars: 95% Wilson interval; x: the thesis")
-    ax.set_title("unscrew and put the cap on the table (thesis Tables 3.4, 3.5)")
+    ax.set_title("unscrew, cap on the table: thesis Tables 3.4, 3.5", fontsize="medium")
     ax.grid(axis="x", alpha=0.3)
-    ax.legend(fontsize="small")
+    ax.legend(fontsize="small", loc="center left", bbox_to_anchor=(1.01, 0.5))
 
 
 def _against_error(ax: Axes, bins: Sequence[ErrorBin], label: str, scale: float) -> None:
