@@ -35,6 +35,7 @@ from atd.model import load_task  # noqa: E402
 from atd.sim.library import get, library  # noqa: E402
 from atd.runtime.session import Run, world_scene  # noqa: E402
 from factories.registry import create  # noqa: E402
+from primitives.arm.unscrew import twists_in  # noqa: E402
 from translator import translate  # noqa: E402
 
 TASK = REPO / "examples" / "unscrew_fixture.xml"
@@ -107,8 +108,8 @@ def trial(robot: str, arm: str, engine: str, alignment: bool, noise: float, inde
         outcome = run.execute(afterwards=lambda sim: caps.update(sim.caps()))
     [cap] = caps.values()
     reasons = [c.get("reason", "") for r in run.trace.records if r["type"] == "event" for c in r["conditions"]]
-    counts = [m for reason in reasons for m in re.findall(r"after (\d+) (?:pinches and (\d+) )?twists", reason)]
-    moves = int(counts[-1][1] or counts[-1][0]) if counts else None  # None: ended on a timeout, uncounted
+    said = [n for reason in reasons if (n := twists_in(reason)) is not None]
+    moves = said[-1] if said else None  # None: ended on a timeout, uncounted
     return {"task": outcome.succeeded, "off": bool(cap.free), "moves": moves, "time": outcome.sim_time,
             "offset": offset, "summary": outcome.summary}
 

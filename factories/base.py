@@ -245,7 +245,7 @@ class Factory(ABC):
     def map_state(self, state: State, context: MappingContext) -> NodeMapping:
         """What the translator asks for a node: the robot's own mapping (`map_node`), except
         that a factory made with grasp="naive" maps every grasp to the naive grasp of thesis
-        3.4.1, the baseline the robust grasp is measured by (same hand shape, opening and
+        3.4.1 (and every unscrew to one without its reactive alignment), the baseline the robust grasp is measured by (same hand shape, opening and
         checks, the wrist's contact felt the same, and on a gripper the same grip force: with
         10% of the Baxter's 20 N it never reached the 8 N its grasp_stable asks, and never
         lifted)."""
@@ -261,6 +261,11 @@ class Factory(ABC):
                              f"{self.arm.hand.name} does neither",
                              "translate the task for a robot that lists it (`atd robots list`: primitives)")
         mapping = self.map_node(state, context)
+        if self.grasp == "naive" and state.type is StateType.UNSCREW:
+            # The unscrew's naive form is the thesis's "reactive: no" (Table 3.4): no alignment
+            # onto the cap's axis between pinches; an ATD's own `alignment` parameter still wins.
+            arm = mapping.arm.model_copy(update={"params": {**mapping.arm.params, "alignment": False}})
+            return replace(mapping, arm=arm)
         if self.grasp != "naive" or state.type is not StateType.GRASP:
             return mapping
         hand, arm = mapping.hand.params, mapping.arm.params

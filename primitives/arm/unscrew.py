@@ -9,6 +9,8 @@ in `primitives.arm.unscrew_phases`; docs/writing-a-primitive.md draws the machin
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from atd.model.frames import axis_rotation
@@ -225,3 +227,14 @@ class UnscrewArm(Controller):
         """The twist (world frame) that takes the TCP to `pose` at no more than `speed`."""
         w, _ = orientation_twist(pose.rotation, readings.tcp[:3, :3])
         return np.concatenate([clamp_norm(GAIN * (pose.position - readings.tcp[:3, 3]), speed), w])
+
+
+#: The start of the unscrew's verdicts (`UnscrewArm.finish`), which say how many twists it made.
+TWISTS_SAID = re.compile(r"^cap (?:off after|still on after \d+ pinches and) (\d+) twists")
+
+
+def twists_in(reason: str) -> int | None:
+    """The twist moves (thesis Table 3.4 "Moves") an unscrew's verdict says it made; None for
+    any other reason (a run that ended while it still twisted never said)."""
+    said = TWISTS_SAID.match(reason)
+    return int(said.group(1)) if said else None

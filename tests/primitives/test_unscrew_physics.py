@@ -1,6 +1,7 @@
-"""The unscrew (thesis 3.3.6) in physics: examples/unscrew_fixture.xml on Tombatossals, the jam
-jar of its world file standing in a fixture. The task's verdict comes from the robot's own
-sensors; the simulator's truth (the cap turned, off its thread) judges it."""
+"""The unscrew (thesis 3.3.6) in physics: examples/unscrew_fixture.xml on Tombatossals' SDH2,
+the jam jar of its world file standing in a fixture, the cap then put on the table (thesis
+Fig. 3.19). The task's verdict comes from the robot's own sensors; the simulator's truth (the
+cap off its thread, resting on the table) judges it."""
 
 from __future__ import annotations
 
@@ -30,10 +31,10 @@ def _run(arm: str, engine: str, budget: float = 300.0) -> tuple[Run, Outcome, di
 
 
 @pytest.mark.parametrize("engine", ["mujoco", "pybullet"])
-def test_the_sdh2_unscrews_the_jam_jars_cap_and_the_simulator_agrees(engine: str) -> None:
+def test_the_sdh2_unscrews_the_jam_jars_cap_puts_it_on_the_table_and_the_simulator_agrees(engine: str) -> None:
     run, outcome, caps = _run("left", engine)
-    assert outcome.succeeded and outcome.end_state == "cap_off", outcome.summary
-    assert caps["jar"].free and caps["jar"].rests == "held", caps
+    assert outcome.succeeded and outcome.end_state == "cap_on_table", outcome.summary
+    assert caps["jar"].free and caps["jar"].rests == "table", caps
     ends = [c["reason"] for r in run.trace.records if r["type"] == "event" for c in r["conditions"] if "reason" in c]
     assert any(reason.startswith("cap off after") for reason in ends), ends
 

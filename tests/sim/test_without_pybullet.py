@@ -66,6 +66,6 @@ def test_a_campaign_asking_for_pybullet_is_refused_before_any_trial(without_pybu
                     'engines = ["mujoco", "pybullet"]\nobjects = ["ball", "duck"]\n')
     ran = atd(without_pybullet, "campaign", "run", str(spec), "--store", str(tmp_path / "c.sqlite"))
     assert ran.returncode == 1
-    assert f"{spec}:4:1: error[CMP028]: the pybullet engine" in ran.stderr
-    assert f"{spec}:5:1: error[CMP028]: library object 'duck'" in ran.stderr
+    assert f"{spec}:4:1: error[CMP029]: the pybullet engine" in ran.stderr
+    assert f"{spec}:5:1: error[CMP029]: library object 'duck'" in ran.stderr
     assert not (tmp_path / "c.sqlite").exists()
