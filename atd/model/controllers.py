@@ -242,6 +242,10 @@ _ARM_CONTROLLERS = (
             "max_back_off": _p(NUM, "how far the sliding grasp may back off above where it began (the robot's "
                                "own geometry: how far its fingertips swing down as they close, and 5 mm; the "
                                "default covers the Barrett pinch's 18 mm)", 0.025, unit="m"),
+            "hand_extent": _p(VEC, "how far the preshaped hand reaches sideways from the TCP, along the hand's x "
+                              "and along its y: its moves stay this far inside the walls of a container the task "
+                              "knows (the robot's own geometry: `RobotDescription.hand_extent`)", (0.1, 0.1),
+                              unit="m", length=2),
             "filter_time": _FILTER,
         },
     ),
