@@ -264,6 +264,10 @@ class Hand:
     push_posture: str = "closed"
     """The posture a closed hand takes to move and push (not a D5 shape): a hand whose fist
     meets an object with sloping links names one that leads with a vertical face."""
+    side_roll: float = 0.0
+    """Radians the hand turns about its approach axis, beyond the task's turn, wherever the
+    task turns it to grasp from the side: a hand whose pinch closes along its x axis (which
+    such a turn stands upright) rolls so that its fingers close across a standing object."""
 
     @property
     def couplings(self) -> tuple[tuple[str, str, float], ...]:
@@ -378,6 +382,9 @@ class RobotDescription:
     cameras: tuple[DepthCamera, ...] = (KINECT,)
     """Depth cameras it sees the world through; by default the Kinect over the table, which
     every robot at this table shares."""
+    park: Vec3 | None = None
+    """Where this arm's TCP waits (world, the hand pointing down with its home yaw) while
+    another arm of the robot works over the middle of the work area; None: one arm only."""
 
     @property
     def label(self) -> str:

@@ -27,6 +27,7 @@ def check_entries(data: dict, folder: Path, where: str, lines: TomlLines) -> lis
     """Every problem of the spec's entries, located in the spec (and a task's own errors,
     located in the task)."""
     return [*_tasks(data, folder, where, lines), *_robots(data, where, lines), *_objects(data, where, lines),
+            *_needs_pybullet(data, where, lines),
             *(d for key in ("engines", "grasps", "objects") for d in _repeated(data, key, where, lines)),
             *_perturbation_names(data, where, lines)]
 
@@ -110,6 +111,27 @@ def _objects(data: dict, where: str, lines: TomlLines) -> list[Diagnostic]:
     return [error("CMP023", f"no object '{name}' in the library", lines.find(("objects", i), where),
                   did_you_mean(name, known) or f"'{TASK_OBJECT}' or one of: {', '.join(known)}")
             for i, name in named if name not in known]
+
+
+def _needs_pybullet(data: dict, where: str, lines: TomlLines) -> list[Diagnostic]:
+    """The PyBullet engine and the library's meshes, asked for where PyBullet is not installed
+    (it is optional: atd/sim/optional.py)."""
+    from atd.sim.library import library
+    from atd.sim.optional import pybullet_installed, pybullet_missing
+
+    if pybullet_installed():
+        return []
+    known = library()
+    world = data.get("world") if isinstance(data.get("world"), dict) else {}
+    found = [error("CMP028", pybullet_missing("the pybullet engine"), lines.find(("engines", i), where),
+                   "or leave 'pybullet' out")
+             for i, engine in _entries(data, "engines") if engine == "pybullet"]
+    for key, entries in (("objects", _entries(data, "objects")), ("from", list(enumerate(world.get("from") or [])))):
+        loc = ("objects",) if key == "objects" else ("world", "from")
+        found += [error("CMP028", known[name].unavailable, lines.find((*loc, i), where),
+                        "or use an object without a mesh")
+                  for i, name in entries if isinstance(name, str) and name in known and known[name].unavailable]
+    return found
 
 
 def _repeated(data: dict, key: str, where: str, lines: TomlLines) -> list[Diagnostic]:

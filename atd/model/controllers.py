@@ -446,6 +446,9 @@ _ARM_CONTROLLERS = (
                                "it (the robot's own geometry)", (0.0, 0.0, 0.0), length=3, limits=ranges.COORDINATE),
             "filter_time": _p(NUM, "time constant of the low-pass on the wrist's torque and force (ours: a pad "
                               "slipping on the cap chatters tick to tick)", 0.05, unit="s"),
+            "wrist_turn": _p(NUM, "how the last arm joint turns with the hand about the approach axis, +1 or -1 "
+                             "(0: no joint named): a twist goes no further than that joint can still turn "
+                             "(the robot's own geometry)", 0.0, limits=ranges.DIRECTION),
         },
     ),
 )
@@ -549,6 +552,24 @@ _HAND_CONTROLLERS = (
                               unit="N"),
             "contact_threshold": _p(NUM, "pad force counted as finger contact (ours)", 0.3, unit="N"),
             "finger_min_distance": _p(NUM, "pads closer than this hold nothing (thesis FINGER_MIN_DISTANCE)", 0.012,
+                                      unit="m"),
+        },
+    ),
+    ControllerSpec(
+        "unscrew_jaws", Role.HAND,
+        "Hand side of the unscrew on a parallel gripper: grip the cap as the gripper's grasp does (close when the "
+        "arm says, centre on the pads' contacts, press with the grasp force), keep pressing through the wrist's "
+        "twist and the pull, tell the arm when the jaws closed on nothing and where the pads' contacts put the "
+        "cap's axis; open when the arm asks.",
+        "thesis 3.3.6 mapped on a gripper (FINGER_GRASPING_FORCE, FINGER_MIN_DISTANCE, reactive alignment); "
+        "thesis 7.3 (Melfa grasp)",
+        {
+            "grasp_force": _p(NUM, "grip force on the cap (thesis FINGER_GRASPING_FORCE)", 5.0, unit="N"),
+            "closing_speed": _p(NUM, "jaw closing speed (the gripper's grasp's)", 0.04, unit="m/s"),
+            "force_source": _FORCE_SOURCE,
+            "max_recentre": _p(NUM, "how far the arm follows a contact off the pads' middle before the jaws close "
+                               "anyway (the gripper's grasp's)", 0.01, unit="m"),
+            "finger_min_distance": _p(NUM, "jaws closer than this hold nothing (thesis FINGER_MIN_DISTANCE)", 0.012,
                                       unit="m"),
         },
     ),
