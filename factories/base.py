@@ -304,6 +304,7 @@ class Factory(ABC):
         arm = self.controller("perceive", method=method, writes=written(state, ValueKind.POSE),
                               container_pose=container.pose.matrix, container_size=container.size,
                               container_wall=container.wall, hand_reach=round(reach, 6), hand_radius=round(radius, 6),
+                              grasp_reach=round(max(self.robot.hand_reach(p) for p in self.robot.hand.postures), 6),
                               grasp_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)))
         return NodeMapping("perceive", arm, self.controller("hand_shape", shape=posture), notes)
 

@@ -157,6 +157,7 @@ class MultiFingerFactory(Factory):
                               wrist_to_tcp=round(self._wrist_to_tcp, 6),
                               fingertip_reach=round(max(self.robot.hand_reach(placed), 0.001), 6),
                               max_back_off=round(self.robot.closing_swing(placed, grasp.value) + SWING_MARGIN, 6),
+                              hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(placed)),
                               grasp_centre=tuple(round(float(c), 6) for c in
                                                  self.robot.hand.grasp_centres.get(grasp.value, (0.0, 0.0, 0.0))))
         return NodeMapping("robust_grasp", arm, hand, notes)

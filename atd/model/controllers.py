@@ -242,6 +242,10 @@ _ARM_CONTROLLERS = (
             "max_back_off": _p(NUM, "how far the sliding grasp may back off above where it began (the robot's "
                                "own geometry: how far its fingertips swing down as they close, and 5 mm; the "
                                "default covers the Barrett pinch's 18 mm)", 0.025, unit="m"),
+            "hand_extent": _p(VEC, "how far the preshaped hand reaches sideways from the TCP, along the hand's x "
+                              "and along its y: its moves stay this far inside the walls of a container the task "
+                              "knows (the robot's own geometry: `RobotDescription.hand_extent`)", (0.1, 0.1),
+                              unit="m", length=2),
             "filter_time": _FILTER,
         },
     ),
@@ -383,6 +387,10 @@ _ARM_CONTROLLERS = (
             "container_wall": _p(NUM, "the thickness of its walls and floor", 0.01, unit="m"),
             "hand_reach": _p(NUM, "how far the hand reaches below the TCP, pointing down (the robot's own "
                              "geometry: `RobotDescription.hand_reach`)", 0.0, unit="m", limits=ranges.COORDINATE),
+            "grasp_reach": _p(NUM, "how far the hand reaches below the TCP, pointing down, in the posture that "
+                              "reaches furthest: the approach keeps this clear of the rim, whatever the grasp opens "
+                              "the hand to (the robot's own geometry: `RobotDescription.hand_reach`)", 0.0, unit="m",
+                              limits=ranges.COORDINATE),
             "hand_radius": _p(NUM, "how far the hand reaches sideways from the TCP: random blind and the sweep "
                               "keep the TCP this far in from the walls (the robot's own geometry: "
                               "`RobotDescription.hand_radius`)", 0.05, unit="m"),

@@ -16,7 +16,7 @@ from atd.graph.model import Graph, from_estd
 from atd.graph.render import render
 from atd.review.load import Recording
 from atd.review.messages import TraceRecord
-from atd.review.plots import signals, timeline
+from atd.review.plots import pictures, signals, timeline
 from atd.runtime.report import ends
 
 _PAGE = Environment(autoescape=True).from_string("""<!DOCTYPE html>
@@ -50,7 +50,13 @@ code { font-size: .9em; }
 <p>States are shaded; a dashed red line is an event firing. The last panel is the simulator's
 ground truth, which the robot does not see.</p>
 <figure id="signals">{{ signals|safe }}</figure>
-<h2>Events, and the readings that fired them</h2>
+{% if pictures %}<h2>Depth camera</h2>
+<p>What the robot's depth camera saw each time a state took a picture, nearest darkest, nothing
+seen blank{% if pictures_left_out %} (the first and last; {{ pictures_left_out }} more between){% endif %}.
+The recording also holds each picture's points, in the world as the robot believes it
+(<code>/camera/points</code>).</p>
+<figure id="pictures">{{ pictures|safe }}</figure>
+{% endif %}<h2>Events, and the readings that fired them</h2>
 <table id="events"><tr><th>time (s)</th><th>transition</th><th>event</th><th>conditions and readings</th></tr>
 {% macro event(e) %}<tr><td>{{ "%.3f"|format(e.t) }}</td><td>{{ e.transition }}</td><td>{{ e.event }}</td>
 <td>{% for c in e.conditions %}<code>{{ c }}</code><br>{% endfor %}</td></tr>{% endmacro %}
@@ -96,8 +102,10 @@ def report_page(recording: Recording) -> str:
     run = recording.run
     title = f"{html.unescape(run.task)} on {run.robot} ({run.arm} arm) in {run.engine}"
     first, left_out, last = ends(recording.events())
+    drawn, pictures_left_out = pictures(recording)
     return _PAGE.render(
         title=title, run=run, outcome=recording.outcome, succeeded=recording.outcome.get("succeeded") == "true",
         end_time=recording.end_time, graph=_graph(recording), timeline=timeline(recording),
-        signals=signals(recording), visits=ends(recording.visits),
+        signals=signals(recording), visits=ends(recording.visits), pictures=drawn,
+        pictures_left_out=pictures_left_out,
         events=([_event(e) for e in first], left_out, [_event(e) for e in last]))

@@ -27,6 +27,8 @@ PIXELS = 10 * DPI  # across a plot, 10 inches wide
 SHADES = ("#eef3fb", "#fbf3e6")  # a state's stays, alternately
 EVENT = "#c0392b"
 LABEL = 60  # characters of a state's name in a label
+PICTURES = 8  # depth pictures drawn at most (the first and last four), ACROSS a row
+ACROSS = 4
 
 
 def _label(name: str) -> str:
@@ -34,14 +36,16 @@ def _label(name: str) -> str:
     return name if len(name) <= LABEL else name[:LABEL - 3] + "..."
 
 
-def _figure(rows: int):
+def _figure(rows: int, across: int = 1):
+    """A figure 10 inches wide and its axes, row by row: one column of plots sharing their
+    time axis, or a grid of pictures."""
     import matplotlib
 
     matplotlib.use("Agg")
     from matplotlib import pyplot
 
-    figure, axes = pyplot.subplots(rows, 1, figsize=(10, 2.1 * rows), sharex=True, squeeze=False)
-    return figure, [a[0] for a in axes]
+    figure, axes = pyplot.subplots(rows, across, figsize=(10, 2.1 * rows), sharex=across == 1, squeeze=False)
+    return figure, list(axes.ravel())
 
 
 def _svg(figure) -> str:
@@ -189,3 +193,23 @@ def difference(a: Recording, b: Recording, rows: list[tuple[str, str, float, flo
     between = f"; {left_out} states between the first and last {len(first)} not drawn" if left_out else ""
     figure.suptitle(f"mean difference per state: {b.path.name} - {a.path.name}{between}", fontsize=9)
     return _svg(figure)
+
+
+def pictures(recording: Recording) -> tuple[str, int]:
+    """The depth camera's pictures: what each perceive state saw when it chose, nearest dark,
+    nothing seen blank; of a long run the first and last PICTURES // 2. Inline SVG (empty
+    for a run that took none) and how many were left out between."""
+    if not recording.pictures:
+        return "", 0
+    first, left_out, last = ends(recording.pictures, PICTURES)
+    shown = first + last
+    figure, axes = _figure(-(-len(shown) // ACROSS), ACROSS)
+    for axis in axes:
+        axis.set_axis_off()
+    for axis, picture in zip(axes, shown):
+        depth = picture.depth.astype(float)
+        seen = depth > 0
+        axis.imshow(np.where(seen, depth, np.nan), cmap="viridis", interpolation="nearest")
+        near, far = (float(depth[seen].min()), float(depth[seen].max())) if seen.any() else (0.0, 0.0)
+        axis.set_title(f"{_label(picture.camera)} at {picture.t:.2f} s: {near:.2f}-{far:.2f} m", fontsize=8)
+    return _svg(figure), left_out
