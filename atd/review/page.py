@@ -30,6 +30,8 @@ h1 { font-size: 1.4em; } h2 { font-size: 1.1em; margin-top: 2em; border-bottom: 
 .succeeded { background: #e3f4e1; } .failed { background: #fbe4e1; }
 table { border-collapse: collapse; font-size: .85em; } td, th { border: 1px solid #ddd; padding: .25em .5em; text-align: left; vertical-align: top; }
 figure { margin: 0; overflow-x: auto; } figure svg { max-width: 100%; height: auto; }
+/* The task graph at its own size, its text as drawn (12 px), scrolled rather than shrunk to fit */
+#graph { overflow: auto; max-height: 85vh; border: 1px solid #eee; } #graph svg { max-width: none; }
 code { font-size: .9em; }
 </style></head><body>
 <h1>{{ title }}</h1>

@@ -134,6 +134,18 @@ def test_the_report_colours_the_path_taken_and_folds_the_failure_fan(melfa_page)
     assert "The 15 failure transitions never taken are folded into 5 grey arrows" in note.text_content()
 
 
+def test_the_report_draws_the_graph_at_a_readable_size_and_scrolls_it(melfa_page) -> None:
+    css = re.sub(r"/\*.*?\*/", "", " ".join(melfa_page.xpath("//style/text()")), flags=re.S)
+    rules = {selector.strip(): body for selector, body in re.findall(r"([^{}]+)\{([^}]*)\}", css)}
+    assert "overflow: auto" in rules["#graph"], "the graph scrolls"
+    assert "max-width: none" in rules["#graph svg"], "the graph is not shrunk to the page's width"
+    svg = _graph_svg(melfa_page)
+    width = float(re.match(r"[\d.]+", svg.get("width")).group())
+    assert width == float(svg.get("viewbox").split()[2]), "drawn at its own scale"  # an HTML parser lowercases
+    sizes = [float(e.get("font-size")) for e in svg.iter() if e.get("font-size")]
+    assert sizes and min(sizes) >= 11, "text at least 11 px"
+
+
 @pytest.mark.parametrize("a, b", [("melfa_mj", "melfa_pb"), ("panda_mj", "panda_pb"), ("barrett_mj", "sdh2_pb"),
                                   ("baxter_mj", "baxter_pb")])
 def test_compare_aligns_two_runs_state_by_state(recordings, a, b, tmp_path) -> None:
