@@ -14,6 +14,7 @@ from lxml import etree, html
 
 from atd.graph.style import FADED_BORDER, FADED_FILL, TAKEN_WIDTH
 from atd.review.load import RecordingError, load
+from factories.melfa import description as melfa
 from tests.conftest import REPO
 
 
@@ -144,6 +145,15 @@ def test_the_report_draws_the_graph_at_a_readable_size_and_scrolls_it(melfa_page
     assert width == float(svg.get("viewbox").split()[2]), "drawn at its own scale"  # an HTML parser lowercases
     sizes = [float(e.get("font-size")) for e in svg.iter() if e.get("font-size")]
     assert sizes and min(sizes) >= 11, "text at least 11 px"
+
+
+def test_the_report_names_each_joint_as_the_robot_does(melfa_page) -> None:
+    """The legends say the Melfa's j1..j6 and its jaw's `grip`, where they said q1..q6 and `dof 0`."""
+    robot = melfa.description()
+    signals = etree.tostring(melfa_page.xpath("//figure[@id='signals']")[0], encoding="unicode")
+    legends = set(re.findall(r"<!-- (.*?) -->", signals))  # matplotlib names each text it draws as paths
+    assert {*robot.arm_joints, *(dof.name for dof in robot.hand.dofs)} <= legends
+    assert not {"q1", "dof 0"} & legends
 
 
 @pytest.mark.parametrize("a, b", [("melfa_mj", "melfa_pb"), ("panda_mj", "panda_pb"), ("barrett_mj", "sdh2_pb"),
