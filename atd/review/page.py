@@ -9,6 +9,8 @@ import json
 from collections import Counter, defaultdict
 from dataclasses import replace
 
+from pathlib import Path
+
 from jinja2 import Environment
 
 from atd.graph.layout import MAX_ELEMENTS
@@ -40,6 +42,11 @@ code { font-size: .9em; }
 <h2>The task, and the path taken</h2>
 <figure id="graph">{{ graph|safe }}</figure>
 <p class="note">{{ graph_note }}</p>
+<h2>The robot in 3D</h2>
+<p id="foxglove">Foxglove's 3D panel draws the robot, the table and the objects of this run, moving, from the
+same recording: in Foxglove (desktop app) choose <em>Open local file</em>, <code>{{ recording_path }}</code>; then,
+in the Layout menu, <em>Import from file</em>, <code>{{ layout }}</code>
+(a 3D panel, the task's states over time, the forces and the trace).</p>
 <h2>Timeline</h2>
 <figure id="timeline">{{ timeline|safe }}</figure>
 <table><tr><th>state</th><th>entered (s)</th><th>left (s)</th><th>time spent (s)</th></tr>
@@ -95,6 +102,14 @@ def _graph(recording: Recording) -> tuple[str, str]:
     return text[text.index("<svg"):], note
 
 
+# In a clone of atd, beside the package; the page names it there, else as the source tree names it.
+FOXGLOVE_LAYOUT = Path(__file__).resolve().parents[2] / "docs" / "foxglove-layout.json"
+
+
+def _layout() -> str:
+    return str(FOXGLOVE_LAYOUT) if FOXGLOVE_LAYOUT.is_file() else "docs/foxglove-layout.json of atd's source"
+
+
 def _event(record: TraceRecord) -> dict:
     conditions = [f"{c.get('kind')}: " + json.dumps({k: v for k, v in c.items() if k not in ("kind", "atd", "sensors")})
                   for c in record.conditions]
@@ -110,6 +125,7 @@ def report_page(recording: Recording) -> str:
     graph, graph_note = _graph(recording)
     return _PAGE.render(
         title=title, run=run, outcome=recording.outcome, succeeded=recording.outcome.get("succeeded") == "true",
+        recording_path=recording.path.resolve(), layout=_layout(),
         end_time=recording.end_time, graph=graph, graph_note=graph_note, timeline=timeline(recording),
         signals=signals(recording), visits=ends(recording.visits),
         events=([_event(e) for e in first], left_out, [_event(e) for e in last]))

@@ -156,6 +156,13 @@ def test_the_report_names_each_joint_as_the_robot_does(melfa_page) -> None:
     assert not {"q1", "dof 0"} & legends
 
 
+def test_the_report_says_how_to_see_the_same_recording_in_3d_in_foxglove(melfa_page, recordings) -> None:
+    (note,) = melfa_page.xpath("//p[@id='foxglove']")
+    text = note.text_content()
+    assert "Foxglove" in text and str(recordings["melfa_mj"].resolve()) in text
+    assert str(REPO / "docs" / "foxglove-layout.json") in text and (REPO / "docs" / "foxglove-layout.json").is_file()
+
+
 @pytest.mark.parametrize("a, b", [("melfa_mj", "melfa_pb"), ("panda_mj", "panda_pb"), ("barrett_mj", "sdh2_pb"),
                                   ("baxter_mj", "baxter_pb")])
 def test_compare_aligns_two_runs_state_by_state(recordings, a, b, tmp_path) -> None:
