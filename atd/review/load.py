@@ -55,6 +55,8 @@ class Recording:
     trace: list[TraceRecord]
     signals: Signals
     pictures: list[Picture]  # the depth camera's, in time order (a run that took none: none)
+    arm_joints: tuple[str, ...]  # a name per column of signals.arm_dq
+    hand_dofs: tuple[str, ...]  # a name per column of signals.hand_q
 
     @cached_property
     def visits(self) -> list[tuple[str, float, float | None]]:
@@ -96,6 +98,7 @@ def _read(path: Path, data: bytes) -> Recording:
     meta: dict[str, dict[str, str]] = {}
     estd_xml: bytes | None = None
     timed: dict[str, Timed] = {topic: Timed() for topic in _READ}
+    sensors_meta: dict[str, str] = {}
     for record in records(data):
         if isinstance(record, Message):
             if record.channel_id not in topics:
@@ -109,6 +112,8 @@ def _read(path: Path, data: bytes) -> Recording:
             schemas[record.id] = record
         elif isinstance(record, Channel):
             topics[record.id] = _topic(record, schemas)
+            if record.topic == "/sensors":
+                sensors_meta = record.metadata
         elif isinstance(record, Metadata):
             meta[record.name] = record.metadata
         elif isinstance(record, Attachment) and record.name == ESTD_ATTACHMENT:
@@ -127,8 +132,17 @@ def _read(path: Path, data: bytes) -> Recording:
     times, taken = timed["/camera/depth"].in_time_order()
     pictures = [Picture(t, m.frame_id, m.depth(f"its /camera/depth message at {t:.3f} s"))
                 for t, m in zip(times.tolist(), taken)]
-    return Recording(path, run, outcome, end_time, estd, estd_problem, trace,
-                     signals(timed["/sensors"], timed["/truth"]), pictures)
+    drawn = signals(timed["/sensors"], timed["/truth"])
+    return Recording(path, run, outcome, end_time, estd, estd_problem, trace, drawn, pictures,
+                     _names(sensors_meta.get("arm_joints", ""), drawn.arm_dq.shape[1], "q{}", 1),
+                     _names(sensors_meta.get("hand_dofs", ""), drawn.hand_q.shape[1], "dof {}", 0))
+
+
+def _names(recorded: str, count: int, fallback: str, first: int) -> tuple[str, ...]:
+    """The names the recorder wrote in the /sensors channel's metadata (the robot's own, from
+    its description), one per column; numbered ones where they are missing or do not fit."""
+    names = tuple(recorded.split())
+    return names if len(names) == count else tuple(fallback.format(k + first) for k in range(count))
 
 
 def _topic(channel: Channel, schemas: dict[int, Schema]) -> str | None:

@@ -36,6 +36,13 @@ def _label(name: str) -> str:
     return name if len(name) <= LABEL else name[:LABEL - 3] + "..."
 
 
+def _legend(name: str) -> str:
+    """A recorded name as a legend entry, shown as written: cut like a label, a `$` not read as
+    maths, a leading `_` not read as 'leave out of the legend'."""
+    text = _label(name).replace("$", r"\$")
+    return " " + text if text.startswith("_") else text
+
+
 def _figure(rows: int, across: int = 1):
     """A figure 10 inches wide and its axes, row by row: one column of plots sharing their
     time axis, or a grid of pictures."""
@@ -123,12 +130,12 @@ def signals(recording: Recording) -> str:
     panels: list[tuple[str, Sequence[tuple[str, np.ndarray]]]] = [
         ("pad force (N)", [(pad, force) for pad, force in sorted(s.pad_force.items())]),
         ("wrist force (N), hand frame", [(f"F{a}", s.wrist_force[:, i]) for i, a in enumerate("xyz")]),
-        ("hand DOFs", [(f"dof {k}", s.hand_q[:, k]) for k in range(s.hand_q.shape[1])]),
-        ("arm joint speed (rad/s)", [(f"q{k + 1}", s.arm_dq[:, k]) for k in range(s.arm_dq.shape[1])])]
+        ("hand DOFs", [(name, s.hand_q[:, k]) for k, name in enumerate(recording.hand_dofs)]),
+        ("arm joint speed (rad/s)", [(name, s.arm_dq[:, k]) for k, name in enumerate(recording.arm_joints)])]
     figure, axes = _figure(len(panels) + 1)
     for axis, (label, lines) in zip(axes, panels):
         for name, values in lines:
-            axis.plot(*_envelope(s.t, values), linewidth=1, label=name, rasterized=len(s.t) > DENSE)
+            axis.plot(*_envelope(s.t, values), linewidth=1, label=_legend(name), rasterized=len(s.t) > DENSE)
         axis.set_ylabel(label, fontsize=8)
         if lines:
             # Beside the panel, not on it: inside, a legend hid the lines that ran under it
