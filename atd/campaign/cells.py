@@ -98,15 +98,16 @@ class Plans:
 
     loaded: LoadedSpec
     cells: tuple[tuple[Cell, TaskEntry], ...]
-    at_most: int | None = None  # trials per cell, at most (`--trials`); None: as the spec says
+    trials: int | None = None  # trials per cell (`--trials`), for every cell; None: as the spec says
     recordings: Path | None = None  # a folder: each trial the judge fails is recorded there
     campaign: str = ""  # what the recordings' names start with (`recording_name`)
 
     def count(self, cell: Cell) -> int:
-        """The cell's trials: its perturbation's own number, or the spec's, at most `at_most`."""
+        """The cell's trials: `--trials` where given, else its perturbation's own number or the spec's."""
+        if self.trials is not None:
+            return self.trials
         spec = self.loaded.spec
-        wanted = spec.perturbations[cell.perturbation].trials or spec.trials
-        return wanted if self.at_most is None else min(wanted, self.at_most)
+        return spec.perturbations[cell.perturbation].trials or spec.trials
 
     def __len__(self) -> int:
         return sum(self.count(cell) for cell, _ in self.cells)
