@@ -124,15 +124,14 @@ def _needs_pybullet(data: dict, where: str, lines: TomlLines) -> list[Diagnostic
         return []
     known = library()
     world = data.get("world") if isinstance(data.get("world"), dict) else {}
-    found = [error("CMP029", pybullet_missing("the pybullet engine"), lines.find(("engines", i), where),
-                   "or leave 'pybullet' out")
-             for i, engine in _entries(data, "engines") if engine == "pybullet"]
-    for key, entries in (("objects", _entries(data, "objects")), ("from", list(enumerate(world.get("from") or [])))):
-        loc = ("objects",) if key == "objects" else ("world", "from")
-        found += [error("CMP029", known[name].unavailable, lines.find((*loc, i), where),
-                        "or use an object without a mesh")
-                  for i, name in entries if isinstance(name, str) and name in known and known[name].unavailable]
-    return found
+    named = [(("objects", i), name) for i, name in _entries(data, "objects")]
+    named += [(("world", "from", i), name) for i, name in _entries(world, "from")]
+    engines = [error("CMP029", pybullet_missing("the pybullet engine"), lines.find(("engines", i), where),
+                     "or leave 'pybullet' out")
+               for i, engine in _entries(data, "engines") if engine == "pybullet"]
+    meshes = [error("CMP029", known[name].unavailable, lines.find(loc, where), "or use an object without a mesh")
+              for loc, name in named if isinstance(name, str) and name in known and known[name].unavailable]
+    return engines + meshes
 
 
 def _repeated(data: dict, key: str, where: str, lines: TomlLines) -> list[Diagnostic]:
