@@ -12,11 +12,20 @@ ratio to bare stepping: the empty executor's ratio is the floor under issue 5's 
 (contacts, a moving arm) already costs more than bare stepping.
 
     python benchmarks/bench_tick.py [--repeat 3] [--robot melfa]
+
+Where the executor's time goes, function by function: `--profile N` runs the task once per
+robot under cProfile (after a run that warms it up) and prints the N functions that spent
+the most time of their own. cProfile's own cost per Python call inflates Python code
+against numpy's and MuJoCo's C, so read it for the order, and this table for the ratios.
+
+    python benchmarks/bench_tick.py --robot melfa --profile 30
 """
 
 from __future__ import annotations
 
 import argparse
+import cProfile
+import pstats
 import sys
 import time
 from pathlib import Path
@@ -74,11 +83,32 @@ def timed_run(estd: Estd, factory) -> tuple[Outcome, float, float]:
     return outcome, spent["physics"], outcome.wall_time - spent["interface"]
 
 
+def profiled(factory, lines: int) -> None:
+    """The task run once under cProfile, the functions by time of their own."""
+    task, _ = load_task(TASK)
+    estd = translate(task, factory).estd
+    Run(estd, factory).execute()  # imports, caches: not what a tick costs
+    profile = cProfile.Profile()
+    run = Run(estd, factory)
+    profile.enable()
+    outcome = run.execute()
+    profile.disable()
+    print(f"{factory.info.name}: {outcome.ticks} ticks, {outcome.wall_time:.2f} s under the profiler")
+    pstats.Stats(profile).sort_stats("tottime").print_stats(lines)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--repeat", type=int, default=3, help="runs per measurement; the fastest counts")
     parser.add_argument("--robot", help="only this robot (default: every robot and arm)")
+    parser.add_argument("--profile", type=int, metavar="N",
+                        help="instead: profile the task and print the N functions with the most time of their own")
     args = parser.parse_args()
+    if args.profile:
+        for robot_name, arm in variants():
+            if not args.robot or robot_name == args.robot:
+                profiled(create(robot_name, arm), args.profile)
+        return
     task, _ = load_task(TASK)
     scene = scene_from_task(Task(known_objects=task.known_objects, environment=task.environment), TASK)
     print(f"{'robot':<20} {'ticks':>6} {'bare':>14} {'interface':>14} {'empty executor':>15} {'atd run':>14} {'its physics':>14} "

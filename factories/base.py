@@ -25,8 +25,8 @@ import numpy as np
 
 from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamValue, SensorKind, defaults
 from atd.model.estd import Condition, ConditionGroup, Controller
-from atd.model.frames import GRAVITY, rpy_of
-from atd.model.ranges import FORCE, TILT, WEIGHT
+from atd.model.frames import GRAVITY, rotation_rpy, rpy_of
+from atd.model.ranges import FORCE, WEIGHT
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
 from atd.model.vocabulary import (FIRED_BY, PERCEPTUAL_PRIMITIVES, EventType, HandShape, Movement, PerceptionMethod,
                                   StateType, ValueKind)
@@ -57,6 +57,7 @@ CARRIED_MARGIN = {StateType.TRANSPORT: 0.0, StateType.PLACE: 0.01}
 # eased from 2.1 to 1.2 N 1.6 s after (MuJoCo duck trial 16, PyBullet mug trial 11 of the
 # preset's approach error)
 HELD_FOR = 2.0
+WRIST_ALIGNED = 0.99  # cos: a last joint within 8 degrees of the approach axis rolls the hand about it (ours)
 
 
 class Unmappable(Exception):
@@ -244,7 +245,7 @@ class Factory(ABC):
     def map_state(self, state: State, context: MappingContext) -> NodeMapping:
         """What the translator asks for a node: the robot's own mapping (`map_node`), except
         that a factory made with grasp="naive" maps every grasp to the naive grasp of thesis
-        3.4.1, the baseline the robust grasp is measured by (same hand shape, opening and
+        3.4.1 (and every unscrew to one without its reactive alignment), the baseline the robust grasp is measured by (same hand shape, opening and
         checks, the wrist's contact felt the same, and on a gripper the same grip force: with
         10% of the Baxter's 20 N it never reached the 8 N its grasp_stable asks, and never
         lifted)."""
@@ -256,10 +257,15 @@ class Factory(ABC):
             return self.perceptual(state, context)
         if state.type is StateType.UNSCREW and StateType.UNSCREW not in self.primitives:
             raise Unmappable(f"the {self.name} has no unscrew primitive: unscrewing pinches the cap between two "
-                             "fingertips, each pressing its own force through the twist (thesis 3.3.6), and the "
-                             f"{self.arm.hand.name} has no fingers that close on their own",
-                             "translate the task for a robot with a multi-finger hand (`atd robots list`: primitives)")
+                             "fingertips or grips it in a gripper's jaws, and turns it (thesis 3.3.6), and the "
+                             f"{self.arm.hand.name} does neither",
+                             "translate the task for a robot that lists it (`atd robots list`: primitives)")
         mapping = self.map_node(state, context)
+        if self.grasp == "naive" and state.type is StateType.UNSCREW:
+            # The unscrew's naive form is the thesis's "reactive: no" (Table 3.4): no alignment
+            # onto the cap's axis between pinches; an ATD's own `alignment` parameter still wins.
+            arm = mapping.arm.model_copy(update={"params": {**mapping.arm.params, "alignment": False}})
+            return replace(mapping, arm=arm)
         if self.grasp != "naive" or state.type is not StateType.GRASP:
             return mapping
         hand, arm = mapping.hand.params, mapping.arm.params
@@ -298,6 +304,7 @@ class Factory(ABC):
         arm = self.controller("perceive", method=method, writes=written(state, ValueKind.POSE),
                               container_pose=container.pose.matrix, container_size=container.size,
                               container_wall=container.wall, hand_reach=round(reach, 6), hand_radius=round(radius, 6),
+                              grasp_reach=round(max(self.robot.hand_reach(p) for p in self.robot.hand.postures), 6),
                               grasp_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)))
         return NodeMapping("perceive", arm, self.controller("hand_shape", shape=posture), notes)
 
@@ -449,12 +456,28 @@ class Factory(ABC):
         top-down through the object's centre, unless the state before turned the hand further
         than a grasp from above levels (the robust grasp's `level_within`); then along the
         turned hand's axis through where that state put the grasp centre."""
-        turn = turn_at_start(context.task, state)
+        turn = self.rolled(turn_at_start(context.task, state))
         if turn is None or self._from_above(turn):
             return self._hand_down, centre
         before = arriving(context.task, state)
         line = np.asarray(before.path[-1].position, float) if before is not None and before.path else centre
         return turn @ self._hand_down, line
+
+    def rolled(self, turn: np.ndarray | None) -> np.ndarray | None:
+        """The task's `turn` of the hand with the hand's own roll about its approach axis
+        (`Hand.side_roll`) where the turn grasps from the side: the task says where the hand
+        approaches from, the hand how it presents its fingers there."""
+        roll = self.robot.hand.side_roll
+        if turn is None or not roll or self._from_above(turn):
+            return turn
+        rolled = turn @ self._hand_down @ rotation_rpy((0.0, 0.0, roll)) @ self._hand_down.T
+        try:
+            tilt_of(rolled)
+        except Unmappable as refused:
+            raise Unmappable(f"the {self.arm.hand.name} rolls {np.degrees(roll):g} degrees about its approach to grasp "
+                             f"from the side, its fingers across the object; with that roll {refused.reason}",
+                             "approach from another side") from None
+        return rolled
 
     def _from_above(self, turn: np.ndarray) -> bool:
         """A hand turned this way grasps from above: the grasp turns it down first."""
@@ -519,6 +542,42 @@ class Factory(ABC):
                               hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)))
         return NodeMapping("grasp", arm, self.controller("close_until_force"), notes)
 
+    def jaw_unscrew(self, state: State) -> NodeMapping:
+        """Thesis 3.3.6's unscrew on a parallel gripper, as a real one unscrews: the jaws grip
+        the cap as this gripper's grasp grips anything (its closing speed, its grip-force
+        sensing, its re-centring), the last wrist joint twists it, the arm pulls; the arm
+        side is the one the fingertip pinch uses. The grasp centre is the TCP, between the pads."""
+        grip = self.controller("close_until_force").params
+        hand = self.controller("unscrew_jaws", closing_speed=grip["closing_speed"],
+                               force_source=grip["force_source"], max_recentre=grip["max_recentre"])
+        arm = self.controller("unscrew_arm", wrist_turn=self.wrist_turn(state))
+        return NodeMapping("unscrew", arm, hand, self.shape(state.hand_shape)[1] if state.hand_shape else ())
+
+    def wrist_turn(self, state: State) -> float:
+        """The unscrew's twist turns the hand about its approach axis: +1 or -1, the way the
+        last arm joint turns with it (at home, in the robot's own geometry). Refused where
+        that joint does not roll the hand (a twist would swing the cap round an axis of its
+        own) or cannot turn one twist's TWIST_ANGLE in all its range."""
+        robot, home = self.robot, np.asarray(self.robot.home, float)
+        name = robot.arm_joints[-1]
+        joint = robot.joints[name]
+        along = float(robot.tcp_jacobian(home)[3:, -1] @ robot.tcp_pose(home)[:3, 2])
+        if joint.kind != "revolute" or abs(along) < WRIST_ALIGNED:
+            raise Unmappable(f"unscrew state '{state.name}': the last joint of the {self.arm.description}, '{name}', "
+                             "does not roll the hand about its approach axis, so no twist turns the cap on its axis",
+                             "translate the task for a robot whose wrist rolls the hand")
+        try:
+            angle = float(state.parameters.get("twist_angle", self.controller("unscrew_arm").params["twist_angle"]))
+        except ValueError:  # the translator reports the bad value, located
+            return float(np.sign(along))
+        span = float(np.degrees(joint.upper - joint.lower))
+        if span < angle:
+            raise Unmappable(f"unscrew state '{state.name}': the wrist joint '{name}' of the {self.arm.description} "
+                             f"turns {span:.0f} degrees in all, less than one twist of {angle:g} degrees (TWIST_ANGLE)",
+                             "set a smaller <parameter name=\"twist_angle\">, or translate for a robot whose wrist "
+                             "turns further")
+        return float(np.sign(along))
+
     @cached_property
     def _wrist_to_tcp(self) -> float:
         """Distance from the wrist sensor to the TCP along the hand's approach axis."""
@@ -566,13 +625,14 @@ class Factory(ABC):
         (`atd.runtime.values`), a TCP position as the perceptual primitive wrote it."""
         if state.target_from is not None:
             return None, ()
-        turn = target_turn(state)
+        turn = self.rolled(target_turn(state))
         offset = np.asarray(self.shape_offset(state), float)
         dx, dy, dz = offset if turn is None else turn @ offset
         points = [w.position for w in state.path] if state.path else [derived_target(state, context.object)]
         # To the micrometre, so the ESTD's 9-digit numbers read back equal.
         points = [(round(x - dx, 6), round(y - dy, 6), round(z - dz, 6)) for x, y, z in points]
-        held = turn if turn is not None or state.type not in KEEPING else turn_at_start(context.task, state)
+        held = turn if turn is not None or state.type not in KEEPING else \
+            self.rolled(turn_at_start(context.task, state))
         if held is None or (turn is None and self._from_above(held)):
             self.check_reach(*points)
             return points[-1], tuple(points[:-1])
@@ -599,7 +659,7 @@ class Factory(ABC):
             return self.controller("push", target=target, waypoints=via, keep_orientation=flags["keep_orientation"])
         margin = CARRIED_MARGIN.get(state.type)
         carried: dict[str, ParamValue] = {} if margin is None else {"contact_margin": margin}
-        turn = target_turn(state)
+        turn = self.rolled(target_turn(state))
         if turn is not None:
             carried["tilt"] = tilt_of(turn)
         elif state.type is StateType.TRANSPORT:  # the object as the grasp holds it: see cartesian_move's `level`
@@ -695,15 +755,21 @@ def pressing(node: ConditionNode, force: float) -> ConditionNode:
     return node.model_copy(update={"params": {**node.params, "force_threshold": round(force, 3)}})
 
 
+LEVEL_SLACK = 1e-6  # of the approach axis's rise: a turn of exactly 90 degrees, rounded, is level
+
+
 def tilt_of(turn: np.ndarray) -> tuple[float, float, float]:
     """`turn` as cartesian_move's tilt: roll, pitch, yaw about the world axes, in degrees;
-    a turn beyond what an arm controller is asked to make (90 degrees about an axis) is
-    refused: no hand grasps from below the horizontal."""
+    a turn that points the hand's approach above the horizontal is refused: no hand grasps
+    from below."""
     tilt = tuple(round(float(np.degrees(a)), 3) for a in rpy_of(turn))
-    if max(abs(a) for a in tilt) > TILT.high:
+    upward = float(turn[2] @ (0.0, 0.0, -1.0))  # the turned approach axis's world z
+    if upward > LEVEL_SLACK:
+        angle = float(np.degrees(np.arccos(np.clip(-upward, -1.0, 1.0))))
         raise Unmappable(f"its <pose> turns the hand by roll {tilt[0]:g}, pitch {tilt[1]:g}, yaw {tilt[2]:g} degrees "
-                         f"from pointing down, over {TILT.high:g} about some axis",
-                         "give the pose's rotation as the hand's turn away from top-down (identity: straight down)")
+                         f"from pointing down: {angle:.0f} degrees, its approach past the horizontal",
+                         "give the pose's rotation as the hand's turn away from top-down (identity: straight down), "
+                         "at most 90 degrees")
     return tilt  # type: ignore[return-value]
 
 

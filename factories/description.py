@@ -274,6 +274,10 @@ class Hand:
     """How much better the hand's surfaces (pads, fingers, palm) grip than the object's own
     friction says: a contact's friction is the object's times this, in both engines (MuJoCo
     by explicit contact pairs, Bullet by its product); 1 = the object's friction alone."""
+    side_roll: float = 0.0
+    """Radians the hand turns about its approach axis, beyond the task's turn, wherever the
+    task turns it to grasp from the side: a hand whose pinch closes along its x axis (which
+    such a turn stands upright) rolls so that its fingers close across a standing object."""
 
     @property
     def couplings(self) -> tuple[tuple[str, str, float], ...]:
@@ -388,6 +392,9 @@ class RobotDescription:
     cameras: tuple[DepthCamera, ...] = (KINECT,)
     """Depth cameras it sees the world through; by default the Kinect over the table, which
     every robot at this table shares."""
+    park: Vec3 | None = None
+    """Where this arm's TCP waits (world, the hand pointing down with its home yaw) while
+    another arm of the robot works over the middle of the work area; None: one arm only."""
 
     @property
     def label(self) -> str:

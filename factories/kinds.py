@@ -38,6 +38,9 @@ GRASP_OF = {pre: grasp for grasp, pre in PRESHAPE_OF.items()}
 PREGRASP_MARGIN = 0.04  # m of clearance around the object when the hand preshapes (ours)
 SWING_MARGIN = 0.005  # m the sliding grasp may back off beyond the fingertips' swing (ours)
 SIDE_MARGIN = 0.01  # m a grasp from the side may go past where the task believes the object's axis (ours)
+# Thesis 3.3.6 on a gripper (ours): the jaws grip the cap, the last wrist joint twists it.
+JAW_UNSCREW_ROW = MappingRow("unscrew", "unscrew", "grasp force, twist angle (of the last wrist joint), torque and "
+                             "pull limits", "arm control, FT sensor, gripper force")
 
 
 class ParallelJawFactory(Factory):
@@ -45,7 +48,7 @@ class ParallelJawFactory(Factory):
 
     primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
                             StateType.PLACE, StateType.RELEASE,
-                            StateType.EXPLORE, StateType.PERCEIVE})
+                            StateType.EXPLORE, StateType.PERCEIVE, StateType.UNSCREW})
     node_table = (  # thesis Table 7.4
         MappingRow("grasp", "grasp", "grasp force", "arm control, tactile sensors"),
         MappingRow("move", "move", "-", "arm control"),
@@ -55,11 +58,13 @@ class ParallelJawFactory(Factory):
         MappingRow("slide", "-", "-", "-"),
         MappingRow("release", "release", "hand position", "arm control"),
         *PERCEPTION_ROWS,
-        MappingRow("unscrew", "-", "-", "-"),
+        JAW_UNSCREW_ROW,
     )
 
     def map_node(self, state: State, context: MappingContext) -> NodeMapping:
         kind = state.type
+        if kind is StateType.UNSCREW:
+            return self.jaw_unscrew(state)
         if kind is StateType.SLIDE:
             raise Unmappable(f"the {self.name} has no slide primitive (a parallel jaw maps as thesis Table 7.4)",
                              "push the object instead (type=\"push\"), or translate for a robot that slides")
@@ -154,6 +159,7 @@ class MultiFingerFactory(Factory):
                               wrist_to_tcp=round(self._wrist_to_tcp, 6),
                               fingertip_reach=round(max(self.robot.hand_reach(placed), 0.001), 6),
                               max_back_off=round(self.robot.closing_swing(placed, grasp.value) + SWING_MARGIN, 6),
+                              hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(placed)),
                               grasp_centre=tuple(round(float(c), 6) for c in
                                                  self.robot.hand.grasp_centres.get(grasp.value, (0.0, 0.0, 0.0))))
         return NodeMapping("robust_grasp", arm, hand, notes)
@@ -165,7 +171,8 @@ class MultiFingerFactory(Factory):
         hand = self.controller("unscrew_hand", grasp_shape=grasp.value, pregrasp_size=self.opening(state.object_size),
                                preshape=preshape_made.value if preshape_made else None)
         centre = self.robot.hand.grasp_centres.get(grasp.value, (0.0, 0.0, 0.0))
-        arm = self.controller("unscrew_arm", grasp_centre=tuple(round(float(c), 6) for c in centre))
+        arm = self.controller("unscrew_arm", grasp_centre=tuple(round(float(c), 6) for c in centre),
+                              wrist_turn=self.wrist_turn(state))
         return NodeMapping("unscrew", arm, hand, notes)
 
     def grasp_shapes(self, state: State, grasp: HandShape) -> tuple[HandShape, HandShape | None, tuple[str, ...]]:

@@ -95,10 +95,12 @@ descent, in free air; the load a hand carries beyond it is what it holds."""
 
 HAND_LEVEL = "hand_level"
 """In `Context.memory`: (3, 3) the top-down hand a move's `tilt` last turned from (its
-`<pose>`'s identity). A move that starts with the hand's x axis nearer vertical than level
-turns from it again: the top-down hand derived from a hand turned to the side has a yaw its
-sideways x axis does not say, and a Melfa side approach's second move rolled the jaws 90
-degrees to close up and down, a finger cutting into the object's side (issue 32)."""
+`<pose>`'s identity). A move that starts with the hand's x axis nearer vertical than level,
+or its approach axis nearer level than down, turns from it again: the top-down hand derived
+from a hand turned to the side has a yaw its sideways x axis does not say, and a Melfa side
+approach's second move rolled the jaws 90 degrees to close up and down, a finger cutting
+into the object's side (issue 32); a Barrett rolled to pinch across a bottle, its x axis
+level, rolled back 40 degrees on the way down to it."""
 
 YAW_REFERENCE = "yaw_reference"
 """In `Context.memory`: the yaw (rad, world) of the hand's x when a move first turned it to a

@@ -11,14 +11,12 @@ from __future__ import annotations
 
 import math
 from abc import abstractmethod
-from collections import deque
-
 import numpy as np
 
 from atd.model.frames import GRAVITY
 from primitives.base import Condition, Context, StateView, Status
 from primitives.blackboard import EMPTY_HAND
-from primitives.filters import ContactWrench, Debounce, LowPass, world_load
+from primitives.filters import ContactWrench, Debounce, LowPass, RecentRows, world_load
 from primitives.robot import HandInfo, Readings
 from primitives.values import Approach, NothingFound
 
@@ -277,7 +275,7 @@ class FingersStill(Debounced):
         self.drift = float(self.params["drift"])
         self.tau = float(self.params["filter_time"])
         self.mean = LowPass(self.tau)
-        self.recent: deque[tuple[float, np.ndarray]] = deque()
+        self.recent = RecentRows(len(self.joints))
 
     def start(self, readings: Readings) -> None:
         super().start(readings)
@@ -286,10 +284,8 @@ class FingersStill(Debounced):
 
     def test(self, readings: Readings, dt: float) -> bool:
         q = readings.hand_q[self.joints]
-        self.recent.append((readings.time, q.copy()))
-        while self.recent[0][0] < readings.time - self.tau:
-            self.recent.popleft()
-        spread = np.ptp(np.array([position for _, position in self.recent]), axis=0) / max(self.tau, dt)
+        self.recent.add(readings.time, q, readings.time - self.tau)
+        spread = np.ptp(self.recent.rows(), axis=0) / max(self.tau, dt)
         speed = np.maximum(np.abs(q - self.mean(q, dt)) / max(self.tau, dt), spread)
         rate = float(np.max(speed / self.travel, initial=0.0))
         self.evidence = {"drift": round(rate, 4), "still_below": self.drift}

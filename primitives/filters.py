@@ -9,6 +9,7 @@ the weight turned with the hand so that a rotating wrist does not look like a co
 from __future__ import annotations
 
 import math
+from collections import deque
 
 import numpy as np
 
@@ -113,3 +114,35 @@ class Debounce:
     def __call__(self, value: bool, dt: float) -> bool:
         self.held = (self.held + dt if self.held >= 0.0 else 0.0) if value else -1.0
         return self.held >= self.for_time - 1e-9
+
+
+class RecentRows:
+    """The rows of the last stretch of time, as one array: a window kept in a buffer that is
+    compacted now and then, rather than an array rebuilt from a list of rows every tick (a
+    0.1 s window at 200 Hz took 20 rows' copying a tick)."""
+
+    def __init__(self, width: int, capacity: int = 64) -> None:
+        self._buffer = np.empty((capacity, width))
+        self._times: deque[float] = deque()
+        self._end = 0  # the row after the newest
+
+    def clear(self) -> None:
+        self._times.clear()
+        self._end = 0
+
+    def add(self, time: float, row: np.ndarray, since: float) -> None:
+        """Keep `row` taken at `time`; forget the rows taken before `since`."""
+        self._times.append(time)
+        while self._times[0] < since:
+            self._times.popleft()
+        kept = len(self._times) - 1  # those before this row
+        if self._end == len(self._buffer):
+            grown = np.empty((max(len(self._buffer), 2 * kept + 2), self._buffer.shape[1]))
+            grown[:kept] = self._buffer[self._end - kept:self._end]
+            self._buffer, self._end = grown, kept
+        self._buffer[self._end] = row
+        self._end += 1
+
+    def rows(self) -> np.ndarray:
+        """The rows kept, oldest first (a view, valid until the next `add`)."""
+        return self._buffer[self._end - len(self._times):self._end]

@@ -45,6 +45,7 @@ from primitives.hands.parallel_jaw import CloseUntilForce, NaiveJawGrasp, Squeez
 from primitives.hands.posture import HandShape, HoldPosition, OpenTo
 from primitives.hands.robust_grasp import RobustGraspHand
 from primitives.hands.unscrew import UnscrewHand
+from primitives.hands.unscrew_jaws import UnscrewJaws
 from primitives.perception.perceive import perceive
 from primitives.values import Approach, NothingFound
 
@@ -75,7 +76,7 @@ _POSTURES: Mapping[str, ControllerClass] = {"hold_position": HoldPosition, "hand
 
 HANDS: Mapping[str, Mapping[str, ControllerClass]] = {
     "parallel_jaw": {**_POSTURES, "close_until_force": CloseUntilForce, "squeeze": Squeeze,
-                     "naive_grasp_hand": NaiveJawGrasp},
+                     "naive_grasp_hand": NaiveJawGrasp, "unscrew_jaws": UnscrewJaws},
     "multi_finger": {**_POSTURES, "robust_grasp_hand": RobustGraspHand, "naive_grasp_hand": NaiveGraspHand,
                      "unscrew_hand": UnscrewHand},
 }

@@ -28,11 +28,12 @@ class TrialPlan:
     index: int
     seed: int
     task_file: str  # absolute path of the ATD
-    judge: str | None  # "lift", "place", or None: chosen from the task's states
+    judge: str | None  # "lift", "place", "box", "cap", or None: chosen from the task's states
     perturbation: PerturbationModel
     budget: float  # simulated seconds before the watchdog
     recording: str | None = None  # where to record the trial (MCAP) if the judge fails it
     world: WorldDraw | None = None  # the world drawn for the trial, if the spec draws one
+    fixture: bool = False  # a screw-capped object stands in a clamp on the table
 
 
 def recording_name(campaign: str, cell: Cell, index: int) -> str:
@@ -58,6 +59,9 @@ def cells(loaded: LoadedSpec) -> list[tuple[Cell, TaskEntry]]:
     found = []
     for task, (robot, arm), engine, grasp, obj, perturbation in itertools.product(
             spec.task_entries, robots, spec.engines, spec.grasps, spec.objects, spec.perturbations):
+        tried_on = spec.perturbations[perturbation].objects
+        if tried_on and obj not in tried_on:
+            continue
         name = loaded.task_path(task).stem
         found.append((Cell(name, robot, arm, engine, grasp, obj, perturbation), task))
     return found
@@ -94,12 +98,19 @@ class Plans:
 
     loaded: LoadedSpec
     cells: tuple[tuple[Cell, TaskEntry], ...]
-    count: int  # trials per cell
+    trials: int | None = None  # trials per cell (`--trials`), for every cell; None: as the spec says
     recordings: Path | None = None  # a folder: each trial the judge fails is recorded there
     campaign: str = ""  # what the recordings' names start with (`recording_name`)
 
+    def count(self, cell: Cell) -> int:
+        """The cell's trials: `--trials` where given, else its perturbation's own number or the spec's."""
+        if self.trials is not None:
+            return self.trials
+        spec = self.loaded.spec
+        return spec.perturbations[cell.perturbation].trials or spec.trials
+
     def __len__(self) -> int:
-        return len(self.cells) * self.count
+        return sum(self.count(cell) for cell, _ in self.cells)
 
     def __iter__(self) -> Iterator[TrialPlan]:
         return self.skipping(lambda cell: ())
@@ -124,20 +135,20 @@ class Plans:
         spec = self.loaded.spec
         for cell, task in self.cells:
             task_file, done = str(self.loaded.task_path(task)), stored(cell)
-            for index in range(self.count):
+            for index in range(self.count(cell)):
                 if index in done:
                     continue
                 recording = self.recordings / recording_name(self.campaign, cell, index) if self.recordings else None
                 yield TrialPlan(cell, index, trial_seed(spec.base_seed, cell, index), task_file, task.judge,
                                 spec.perturbations[cell.perturbation], spec.budget,
-                                str(recording) if recording else None, spec.world)
+                                str(recording) if recording else None, spec.world, task.fixture)
 
     def recording_problem(self) -> str | None:
         """Why some trial's recording could not be written into `recordings` (checked before
         the first trial runs, with each cell's longest name); None when all can, or none is asked for."""
         if self.recordings is None:
             return None
-        names = [recording_name(self.campaign, cell, self.count - 1) for cell, _ in self.cells]
+        names = [recording_name(self.campaign, cell, self.count(cell) - 1) for cell, _ in self.cells]
         for name in names:
             problem = output_problem(self.recordings / name)
             if problem:
@@ -150,4 +161,4 @@ def plans(loaded: LoadedSpec, only: dict[str, set[str]] | None = None, trials: i
     """The trials of the spec's cells, narrowed to `only` and to the first `trials` of each."""
     chosen = tuple((cell, task) for cell, task in cells(loaded)
                    if not only or all(getattr(cell, d) in values for d, values in only.items()))
-    return Plans(loaded, chosen, loaded.spec.trials if trials is None else trials)
+    return Plans(loaded, chosen, trials)

@@ -27,8 +27,10 @@ def check_entries(data: dict, folder: Path, where: str, lines: TomlLines) -> lis
     """Every problem of the spec's entries, located in the spec (and a task's own errors,
     located in the task)."""
     return [*_tasks(data, folder, where, lines), *_robots(data, where, lines), *_objects(data, where, lines),
+            *_needs_pybullet(data, where, lines),
             *(d for key in ("engines", "grasps", "objects") for d in _repeated(data, key, where, lines)),
-            *_perturbation_names(data, where, lines)]
+            *_perturbation_names(data, where, lines), *_perturbation_objects(data, where, lines),
+            *_fixtures(data, where, lines)]
 
 
 def _tasks(data: dict, folder: Path, where: str, lines: TomlLines) -> list[Diagnostic]:
@@ -112,6 +114,26 @@ def _objects(data: dict, where: str, lines: TomlLines) -> list[Diagnostic]:
             for i, name in named if name not in known]
 
 
+def _needs_pybullet(data: dict, where: str, lines: TomlLines) -> list[Diagnostic]:
+    """The PyBullet engine and the library's meshes, asked for where PyBullet is not installed
+    (it is optional: atd/sim/optional.py)."""
+    from atd.sim.library import library
+    from atd.sim.optional import pybullet_installed, pybullet_missing
+
+    if pybullet_installed():
+        return []
+    known = library()
+    world = data.get("world") if isinstance(data.get("world"), dict) else {}
+    named = [(("objects", i), name) for i, name in _entries(data, "objects")]
+    named += [(("world", "from", i), name) for i, name in _entries(world, "from")]
+    engines = [error("CMP029", pybullet_missing("the pybullet engine"), lines.find(("engines", i), where),
+                     "or leave 'pybullet' out")
+               for i, engine in _entries(data, "engines") if engine == "pybullet"]
+    meshes = [error("CMP029", known[name].unavailable, lines.find(loc, where), "or use an object without a mesh")
+              for loc, name in named if isinstance(name, str) and name in known and known[name].unavailable]
+    return engines + meshes
+
+
 def _repeated(data: dict, key: str, where: str, lines: TomlLines) -> list[Diagnostic]:
     seen: set[str] = set()
     found = []
@@ -131,6 +153,40 @@ def _perturbation_names(data: dict, where: str, lines: TomlLines) -> list[Diagno
     return [error("CMP027", f"perturbation name '{name}' is not a plain name", lines.find(("perturbations", name), where),
                   "use letters, digits, '_', '.' and '-': the name is part of each cell's name and recording")
             for name in names if not PLAIN_NAME.fullmatch(name)]
+
+
+def _perturbation_objects(data: dict, where: str, lines: TomlLines) -> list[Diagnostic]:
+    """A perturbation tried on some objects names only objects the spec lists: another would
+    make no cell, and the perturbation would silently be tried on nothing."""
+    table = data.get("perturbations")
+    listed = [o for _, o in _entries(data, "objects")] or [TASK_OBJECT]
+    found = []
+    for name, model in (table.items() if isinstance(table, dict) else ()):
+        objects = model.get("objects") if isinstance(model, dict) else None
+        for i, obj in enumerate(objects if isinstance(objects, list) else ()):
+            if isinstance(obj, str) and obj not in listed:
+                found.append(error("CMP023", f"perturbation '{name}' is tried on object '{obj}', which the spec's "
+                                             "objects do not list", lines.find(("perturbations", name, "objects"), where),
+                                   did_you_mean(obj, listed) or f"the spec's objects: {', '.join(listed)}"))
+    return found
+
+
+def _fixtures(data: dict, where: str, lines: TomlLines) -> list[Diagnostic]:
+    """A task whose objects stand in a fixture is tried only on screw-capped objects: a
+    clamp holds a bottle or jar by its neck, and nothing else has one."""
+    from atd.campaign.objects import library
+
+    known = library()
+    found = []
+    for i, entry in _entries(data, "tasks"):
+        if not (isinstance(entry, dict) and entry.get("fixture") is True):
+            continue
+        for obj in (o for _, o in _entries(data, "objects") or [(0, TASK_OBJECT)]):
+            if isinstance(obj, str) and (obj == TASK_OBJECT or (obj in known and known[obj].thread is None)):
+                found.append(error("CMP028", f"task {entry.get('file')} stands its objects in a fixture, but "
+                                             f"'{obj}' has no screw cap", lines.find(("tasks", i), where),
+                                   "list only screw-capped library objects (docs/objects.md), or drop fixture"))
+    return found
 
 
 def _entries(data: dict, key: str) -> list[tuple[int, object]]:

@@ -40,6 +40,17 @@ def render(report: Report, fmt: str) -> str:
     if report.boxes:
         parts += ["thesis Table 3.6 (five objects; attempts and time are means, time simulated) beside ours:",
                   draw(*_box_table(report))]
+    if report.unscrews:
+        parts += ["thesis Tables 3.4 (eight objects, 80 runs per row) and 3.5 (one object, cap approach off by up to "
+                  "1.5 cm, 15 runs) beside ours; reactive: the unscrew's alignment (grasp naive: no, robust: yes); "
+                  "success: the task said so and the cap rests on the table; unscrewed: the cap off its thread, "
+                  "whatever the task said; time: the unscrew's, simulated; moves: twists",
+                  draw(*_unscrew_table(report))]
+        refused = [r for r in report.unscrews if r.refused]
+        if refused:
+            parts.append("refused:\n" + "\n".join(
+                f"  {' / '.join(r.ours.value(d) for d in _THESIS_CONDITION)} / {r.ours.value('grasp')}: {r.refused}"
+                for r in refused))
     return "\n\n".join(parts) + "\n"
 
 
@@ -92,6 +103,25 @@ def _box_table(report: Report) -> tuple[list[str], list[list[str]]]:
     return header, rows
 
 
+def _unscrew_table(report: Report) -> tuple[list[str], list[list[str]]]:
+    header = [*_THESIS_CONDITION, "table", "reactive", "success thesis", "ours", "ours 95%", "unscrewed thesis",
+              "ours", "time thesis", "ours", "moves thesis", "ours", "n", "false successes", "errors"]
+    rows = []
+    for r in report.unscrews:
+        g, thesis = r.ours, r.thesis
+        success, unscrewed, time, moves = (
+            (f"{thesis.successes}/{thesis.n} ({_percent(thesis.success_rate)})",
+             f"{thesis.unscrewed}/{thesis.n} ({_percent(thesis.unscrewed_rate)})",
+             f"{thesis.time:.1f} s", f"{thesis.moves:.2f}") if thesis else ("-",) * 4)
+        rows.append([g.value(d) for d in _THESIS_CONDITION]
+                    + [r.table, r.alignment, success, f"{g.successes}/{g.n} ({_percent(g.rate)})",
+                       _interval(*g.interval), unscrewed, f"{r.unscrewed}/{g.n} ({_percent(r.unscrewed / g.n if g.n else None)})",
+                       time, "-" if r.time is None else f"{r.time:.1f} s",
+                       moves, "-" if r.moves is None else f"{r.moves:.2f} (of {r.counted})",
+                       str(g.n), str(g.false_successes), str(g.errors)])
+    return header, rows
+
+
 def _numeric(text: str) -> bool:
     return text[:1].isdigit() or text[:1] in "[-"
 
@@ -129,5 +159,12 @@ def _as_json(report: Report) -> dict[str, Any]:
              "thesis": dict(zip(("attempts", "time", "rate"), r.thesis)) if r.thesis else None,
              "ours": {"attempts": r.attempts, "time": r.time, **r.ours.as_dict()}}
             for r in report.boxes
+        ],
+        "tables_3_4_3_5": [
+            {**{d: r.ours.value(d) for d in _THESIS_CONDITION}, "table": r.table, "reactive": r.alignment,
+             "thesis": vars(r.thesis) if r.thesis else None,
+             "ours": {"unscrewed": r.unscrewed, "time": r.time, "moves": r.moves, "moves_counted": r.counted,
+                      "refused": r.refused or None, **r.ours.as_dict()}}
+            for r in report.unscrews
         ],
     }

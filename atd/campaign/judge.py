@@ -133,3 +133,41 @@ class BoxJudge:
                                           f"{', '.join(left)}", m)
         else:
             self.verdict = Verdict(True, f"'{self.container}' emptied of {len(self.start)} objects", m)
+
+
+#: Where a free cap rests (`atd.sim.thread.Rest`), in words.
+RESTS = {"table": "on the table", "bottle": "back on its bottle", "held": "held by the robot",
+         "elsewhere": "neither on the table nor held (on another object, or falling)"}
+
+
+class CapJudge:
+    """Unscrewing a cap and putting it on the table (thesis 3.4.2): after the world is left
+    alone, the simulator says whether the cap is off its thread ("cap unscrewed", whatever
+    the task said) and where it rests. The trial succeeded when the task said so and the cap
+    is free and resting on the table (the thesis: "removes the cap from the object and places
+    it on the table by itself"); a task that says so of a cap elsewhere made a false success."""
+
+    def __init__(self, robot: SimRobot) -> None:
+        caps = robot.caps()
+        if len(caps) != 1:
+            raise ValueError(f"the cap judge needs one screw-capped object, the world has {len(caps)}")
+        self.name = next(iter(caps))
+        self.free = False
+        self.rests = "bottle"
+        self.turns = 0.0
+
+    def __call__(self, robot: SimRobot) -> None:
+        robot.hold_still(SETTLE)
+        cap = robot.caps()[self.name]
+        self.free, self.rests, self.turns = cap.free, cap.rests, cap.turns
+
+    def verdict(self, task_succeeded: bool) -> Verdict:
+        """The verdict, given what the task said; `cap_free` and `cap_on_table` are the truth alone."""
+        on_table = self.free and self.rests == "table"
+        m = {"cap_free": float(self.free), "cap_on_table": float(on_table), "cap_turns": self.turns}
+        where = f"off its thread, {RESTS[self.rests]}" if self.free else f"still on its thread, turned {self.turns:.2f} turns"
+        if not on_table:
+            return Verdict(False, f"the cap of '{self.name}' is {where}", m)
+        if not task_succeeded:
+            return Verdict(False, f"the cap of '{self.name}' is {where}, but the task did not say it put it there", m)
+        return Verdict(True, f"the cap of '{self.name}' is {where}", m)

@@ -20,19 +20,23 @@ from __future__ import annotations
 import math
 import typing
 from dataclasses import dataclass, replace
-from typing import Annotated, Literal, Union
+from typing import Annotated, Callable, Literal, Sequence, Union
 
 import numpy as np
 from pydantic import Field
 
-from atd.campaign.fields import Number, PositiveScales, Scales, StrictTable, within
+from atd.campaign.fields import Count, Number, PositiveScales, Scales, StrictTable, within
 from atd.model import ranges
+from atd.model.controllers import ParamValue
 from atd.model.estd import Estd, EstdState
 from atd.model.frames import rotation_angle, rotation_rpy
+from atd.model.vocabulary import StateType
 from atd.sim.scene import Scene
 from factories.description import Link, RobotDescription, SensorModel, Servo
 
 APPROACH_MOVES = ("cartesian_move",)  # arm controllers that bring the hand to a grasp
+#: A model's keys that say which cells it makes, not how it perturbs a trial.
+CELL_KEYS = ("objects", "trials")
 
 # The ranges of the models' own numbers (their scale ranges are in atd.model.ranges).
 SHIFT = ranges.Range(0.0, 0.2, "m")  # an approach or object-pose error per axis: a hand's width
@@ -52,7 +56,13 @@ class Truth:
 
 class PerturbationModel(StrictTable):
     """A model with its parameters: `draw` the values a trial's truth differs by, `apply`
-    them to the truth. The base changes nothing."""
+    them to the truth. The base changes nothing. Every model may also say which cells it
+    makes (`CELL_KEYS`): only some of the spec's objects, and its own trials per cell (thesis
+    Table 3.5 adds noise on one object of Table 3.4's eight, 15 runs each)."""
+
+    objects: tuple[str, ...] = Field((), description="the spec's objects it is tried on (none: all)")
+    trials: Count | None = Field(None, ge=ranges.TRIALS.low, le=ranges.TRIALS.high,
+                                 description="trials per cell (none: the spec's)")
 
     def draw(self, rng: np.random.Generator) -> dict[str, float]:
         """Every value this trial's truth differs by, named (metres, degrees, scale factors)."""
@@ -166,12 +176,40 @@ class HandPhysics(PerturbationModel):
         return replace(truth, robot=replace(robot, links=links))
 
 
+class CapApproach(PerturbationModel):
+    """The hand arrives over the cap off where the robot believes it: thesis Table 3.5 adds
+    uniform noise of up to 1.5 cm to "the approach vectors calculated to grasp the cap" (from
+    the cap's centre as vision estimated it), so every move that brings the hand from the start
+    to the first unscrew is shifted by one error, drawn per axis; the jar stays where it is.
+    `across` is the error across the approach (x and y, where the reactive alignment can
+    correct it), `along` the error along it (z, off by default: the thesis's pinch height
+    comes from a guarded descent)."""
+
+    model: Literal["cap_approach"]
+    across: Annotated[Number, within(SHIFT)] = Field(0.015, description="± m along x and along y")
+    along: Annotated[Number, within(SHIFT)] = Field(0.0, description="± m along z")
+
+    def draw(self, rng: np.random.Generator) -> dict[str, float]:
+        dx, dy = (float(v) for v in rng.uniform(-self.across, self.across, 2))
+        dz = float(rng.uniform(-self.along, self.along))
+        return {"cap_dx": dx, "cap_dy": dy, "cap_dz": dz, "cap_offset": math.sqrt(dx * dx + dy * dy + dz * dz)}
+
+    def apply(self, truth: Truth, values: dict[str, float]) -> Truth:
+        shift = np.array((values["cap_dx"], values["cap_dy"], values["cap_dz"]))
+
+        def err(point) -> tuple[float, ...]:
+            return tuple(float(v) for v in np.asarray(point, float) + shift)
+
+        return replace(truth, estd=moves_changed(truth.estd, approach_states(truth.estd, StateType.UNSCREW), err))
+
+
 def _model_name(model: type[PerturbationModel]) -> str:
     return typing.get_args(model.model_fields["model"].annotation)[0]
 
 
 MODELS: dict[str, type[PerturbationModel]] = {
-    _model_name(m): m for m in (NoPerturbation, ApproachError, ObjectPose, ObjectPhysics, SensorError, HandPhysics)}
+    _model_name(m): m for m in (NoPerturbation, ApproachError, ObjectPose, ObjectPhysics, SensorError, HandPhysics,
+                                 CapApproach)}
 """Every perturbation model by the name a spec gives it as `model`."""
 
 Perturbation = Annotated[Union[tuple(MODELS.values())], Field(discriminator="model")]
@@ -187,26 +225,32 @@ def approach_taken(estd: Estd, values: dict[str, float]) -> Estd:
     centre = np.array(estd.object.pose.as_array()[:3, 3])
     turn = rotation_rpy(np.radians((values["roll"], values["pitch"], values["yaw"])))
     shift = np.array((values["dx"], values["dy"], values["dz"]))
-    moved = approach_states(estd)
 
     def err(point) -> tuple[float, ...]:
         return tuple(float(v) for v in centre + turn @ (np.asarray(point, float) - centre) + shift)
 
+    return moves_changed(estd, approach_states(estd), err, tilt=(values["roll"], values["pitch"], values["yaw"]))
+
+
+def moves_changed(estd: Estd, moved: set[str], err: Callable[[Sequence[float]], tuple[float, ...]],
+                  **extra: ParamValue) -> Estd:
+    """The ESTD with the `moved` states' targets and waypoints taken through `err`, and `extra`
+    parameters given to their arm controllers."""
     states = []
     for state in estd.states:
         if state.name in moved:
             params = dict(state.arm.params)
             params["target"] = err(params["target"])
             params["waypoints"] = tuple(err(w) for w in params.get("waypoints", ()))
-            params["tilt"] = (values["roll"], values["pitch"], values["yaw"])
+            params.update(extra)
             state = state.model_copy(update={"arm": state.arm.model_copy(update={"params": params})})
         states.append(state)
     return estd.model_copy(update={"states": tuple(states)})
 
 
-def approach_states(estd: Estd) -> set[str]:
-    """The moves the robot makes from the start until it first grasps: the states
-    reachable from the initial state without passing a grasp, whose arm moves the hand."""
+def approach_states(estd: Estd, until: StateType = StateType.GRASP) -> set[str]:
+    """The moves the robot makes from the start until it first grasps (or `until`): the
+    states reachable from the initial state without passing one, whose arm moves the hand."""
     by_name = {s.name: s for s in estd.states}
     seen, frontier = set(), [estd.initial]
     while frontier:
@@ -214,7 +258,7 @@ def approach_states(estd: Estd) -> set[str]:
         if name in seen:
             continue
         seen.add(name)
-        if by_name[name].type.value == "grasp":
+        if by_name[name].type is until:
             continue
         frontier += [t.destination for t in estd.transitions if t.origin == name]
     return {n for n in seen if _moves_hand(by_name[n])}

@@ -1,6 +1,7 @@
 """A campaign's results as a picture: success rate per group with its Wilson interval, and,
 when the approach was perturbed, success against the size of the error for each grasp
-mode, the plot that shows whether the robust grasp degrades more gracefully.
+mode, the plot that shows whether the robust grasp degrades more gracefully; for an
+unscrew campaign, its rates beside thesis Tables 3.4 and 3.5.
 
 Drawn on a bare matplotlib Figure (Agg canvas): no display, no pyplot global state.
 """
@@ -8,7 +9,7 @@ Drawn on a bare matplotlib Figure (Agg canvas): no display, no pyplot global sta
 from __future__ import annotations
 
 import io
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from itertools import pairwise
 from typing import Sequence
 
@@ -17,7 +18,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from atd.campaign.record import DIMENSIONS, TrialRecord
-from atd.campaign.report import Group, emptied_a_box, group
+from atd.campaign.report import Group, UnscrewRow, emptied_a_box, group, unscrew_tables
 
 #: The approach error's magnitudes, as the perturbation records them: (key, axis label, scale to the axis unit).
 APPROACH_MEASURES = (("translation", "approach translation error (cm)", 100.0),
@@ -66,12 +67,16 @@ def draw_report(records: Sequence[TrialRecord], groups: Sequence[Group], fmt: st
     """The picture, as PNG or SVG bytes (`fmt` "png" or "svg")."""
     perturbed = any(measure in r.perturbation for r in records for measure, _, _ in APPROACH_MEASURES)
     boxes = attempts_by_remaining(records)
-    panels = 1 + perturbed * len(APPROACH_MEASURES) + bool(boxes)
-    figure = Figure(figsize=(6.5 * panels, max(3.5, 0.9 + 0.28 * len(groups))), layout="constrained")
+    unscrews = [r for r in unscrew_tables(records) if r.ours.n]
+    panels = 1 + perturbed * len(APPROACH_MEASURES) + bool(boxes) + bool(unscrews)
+    rows = max(len(groups), 2 * len(unscrews))
+    figure = Figure(figsize=(6.5 * panels, max(3.5, 0.9 + 0.28 * rows)), layout="constrained")
     axes = figure.subplots(1, panels, squeeze=False)[0]
     _rates(axes[0], groups)
     if boxes:
         _attempts(axes[-1], boxes)
+    if unscrews:
+        _beside_tables_3_4_3_5(axes[-1], unscrews)
     if perturbed:
         for ax, (measure, label, scale) in zip(axes[1:], APPROACH_MEASURES):
             _against_error(ax, approach_bins(records, measure), label, scale)
@@ -122,6 +127,33 @@ def _attempts(ax: Axes, by_task: dict[str, dict[int, float]]) -> None:
     ax.set_title("attempts against objects remaining (thesis Fig. 3.27)")
     ax.grid(alpha=0.3)
     ax.legend(title="method")
+
+
+def _beside_tables_3_4_3_5(ax: Axes, rows: Sequence[UnscrewRow]) -> None:
+    """Per condition, our success and cap-unscrewed rates (95% Wilson bars) beside the thesis's
+    figure for its table and alignment (crosses)."""
+    labels = []
+    for y, row in enumerate(rows):
+        g, thesis = row.ours, row.thesis
+        unscrewed = replace(g, successes=row.unscrewed)
+        for k, (ours, mark, colour, name) in enumerate(((g, "o", "tab:red", "success"),
+                                                        (unscrewed, "s", "tab:blue", "cap unscrewed"))):
+            at = 2 * y + k
+            ax.errorbar([_percent(ours)], [at], xerr=_errors([ours]), fmt=mark, capsize=3, color=colour,
+                        label=f"ours: {name}" if y == 0 else None)
+            if thesis is not None:
+                rate = thesis.success_rate if k == 0 else thesis.unscrewed_rate
+                ax.plot([100 * rate], [at], "x", color=colour, markersize=9,
+                        label=f"thesis: {name}" if y == 0 else None)
+        labels += [f"{g.value('robot')}/{g.value('arm')} {g.value('engine')} T{row.table} reactive {row.alignment} "
+                   f"(n={g.n})", ""]
+    ax.set_yticks(range(len(labels)), labels)
+    ax.invert_yaxis()
+    ax.set_xlim(-2, 102)
+    ax.set_xlabel("rate (%); bars: 95% Wilson interval; x: the thesis")
+    ax.set_title("unscrew, cap on the table: thesis Tables 3.4, 3.5", fontsize="medium")
+    ax.grid(axis="x", alpha=0.3)
+    ax.legend(fontsize="small", loc="center left", bbox_to_anchor=(1.01, 0.5))
 
 
 def _against_error(ax: Axes, bins: Sequence[ErrorBin], label: str, scale: float) -> None:

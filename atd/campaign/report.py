@@ -1,7 +1,8 @@
 """What a campaign measured: trials grouped by the dimensions asked for, each group's
 success counted by the judge (the ground truth), not by the task's own opinion, with its
 95% Wilson interval; for a campaign shaped like thesis 3.4.1, Table 3.3 beside ours, and for
-one that empties a box (thesis 3.4.3, the box judge), Table 3.6 beside ours.
+one that empties a box (thesis 3.4.3, the box judge), Table 3.6 beside ours, and for one
+that unscrews caps (thesis 3.4.2, the cap judge), Tables 3.4 and 3.5 beside ours.
 """
 
 from __future__ import annotations
@@ -166,6 +167,91 @@ def table_3_6(records: Sequence[TrialRecord]) -> list[BoxRow]:
 
 
 @dataclass(frozen=True)
+class ThesisUnscrew:
+    """One row of thesis Tables 3.4 or 3.5, as printed there (its percentages rounded its own way)."""
+
+    successes: int
+    unscrewed: int
+    n: int
+    success_rate: float  # as printed
+    unscrewed_rate: float  # as printed
+    time: float  # s, mean time of the unscrew
+    moves: float  # mean twist moves
+
+
+#: Thesis 3.4.2: by (table, grasp mode): "naive" is the unscrew without its reactive alignment.
+THESIS_UNSCREW: dict[tuple[str, str], ThesisUnscrew] = {
+    ("3.4", "naive"): ThesisUnscrew(70, 75, 80, 0.875, 0.938, 156.47, 8.98),
+    ("3.4", "robust"): ThesisUnscrew(71, 78, 80, 0.886, 0.975, 172.42, 10.06),
+    ("3.5", "naive"): ThesisUnscrew(9, 10, 15, 0.60, 0.667, 57.5, 3.4),
+    ("3.5", "robust"): ThesisUnscrew(12, 13, 15, 0.80, 0.867, 66.9, 3.77),
+}
+ALIGNMENT = {"naive": "no", "robust": "yes"}  # the grasp mode as the thesis's "reactive" column
+NOISE_MEASURE = "cap_offset"  # sampled by the cap_approach model: a trial of Table 3.5
+
+
+def unscrewed_a_cap(record: TrialRecord) -> bool:
+    """A trial the cap judge judged (it looked at the cap)."""
+    return "cap_free" in record.measurements
+
+
+@dataclass(frozen=True)
+class UnscrewRow:
+    """One condition of an unscrew campaign (objects pooled) beside the thesis's row for the
+    same table (3.5 when the cap's approach was noisy, 3.4 when nothing was perturbed) and
+    alignment. `refused` is why no trial could run (a robot that cannot unscrew)."""
+
+    ours: Group
+    table: str  # "3.4", "3.5", or "-" for a perturbation the thesis did not try
+    unscrewed: int  # trials whose cap came off its thread, whatever the task said
+    time: float | None  # mean s of the unscrew primitive, over the trials run
+    moves: float | None  # mean twist moves, over the trials whose unscrew said how many
+    counted: int  # trials whose unscrew said how many
+    refused: str
+
+    @property
+    def alignment(self) -> str:
+        return ALIGNMENT.get(self.ours.value("grasp"), self.ours.value("grasp"))
+
+    @property
+    def thesis(self) -> ThesisUnscrew | None:
+        return THESIS_UNSCREW.get((self.table, self.ours.value("grasp")))
+
+
+def unscrew_tables(records: Sequence[TrialRecord]) -> list[UnscrewRow]:
+    """A row per condition of every task the cap judge judged, refused conditions included."""
+    tasks = {r.cell.task for r in records if r.status == "ok" and unscrewed_a_cap(r)}
+    mine = [r for r in records if r.cell.task in tasks]
+    sampled: dict[str, set[str]] = defaultdict(set)  # by perturbation: what its trials drew
+    for r in mine:
+        if r.status == "ok":
+            sampled[r.cell.perturbation] |= set(r.perturbation)
+    rows = []
+    for g in group(mine, CONDITION):
+        members = [r for r in mine if all(getattr(r.cell, d) == g.value(d) for d in CONDITION)]
+        ran = [r for r in members if r.status == "ok"]
+        drawn = sampled.get(g.value("perturbation"))
+        table = "-" if drawn is None else "3.5" if NOISE_MEASURE in drawn else "3.4" if not drawn else "-"
+        said = [r.measurements["twists"] for r in ran if "twists" in r.measurements]
+        errors = [r.error for r in members if r.status == "error"]
+        rows.append(UnscrewRow(
+            g, table, sum(r.measurements.get("cap_free", 0.0) > 0 for r in ran),
+            sum(r.measurements.get("unscrew_time", 0.0) for r in ran) / len(ran) if ran else None,
+            sum(said) / len(said) if said else None, len(said),
+            "" if ran else _why_refused(errors[0]) if errors else ""))
+    # As the thesis: Table 3.4 before 3.5, without the alignment before with it.
+    return sorted(rows, key=lambda r: (*(r.ours.value(d) for d in ("task", "robot", "arm", "engine")), r.table,
+                                       r.ours.value("grasp")))
+
+
+def _why_refused(error: str) -> str:
+    """The translator's error line in a trial's error, without its location; else its first line."""
+    lines = error.splitlines()
+    found = next((line for line in lines if "error[" in line), lines[0] if lines else "")
+    return found.split("]: ", 1)[-1]
+
+
+@dataclass(frozen=True)
 class Report:
     """Everything `atd campaign report` shows, before it is formatted."""
 
@@ -175,10 +261,13 @@ class Report:
     thesis: list[ThesisRow]  # empty unless the campaign is shaped like thesis Table 3.3
     trials: int  # every stored trial, errors included
     boxes: list[BoxRow]  # empty unless the box judge judged its trials (thesis Table 3.6)
+    unscrews: list[UnscrewRow]  # empty unless the cap judge judged its trials (thesis Tables 3.4, 3.5)
 
 
 def build_report(records: Sequence[TrialRecord], by: Sequence[str] = DIMENSIONS) -> Report:
     conditions = group(records, CONDITION)
     boxes = table_3_6(records)
+    unscrews = unscrew_tables(records)
     return Report(by=tuple(d for d in DIMENSIONS if d in by), groups=group(records, by), conditions=conditions,
-                  thesis=[] if boxes else table_3_3(conditions), trials=len(records), boxes=boxes)
+                  thesis=[] if boxes or unscrews else table_3_3(conditions), trials=len(records), boxes=boxes,
+                  unscrews=unscrews)

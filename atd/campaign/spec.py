@@ -18,7 +18,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, field_valida
 
 from atd.campaign.checks import PLAIN_NAME, check_entries
 from atd.campaign.fields import Count, Number, StrictTable, within
-from atd.campaign.perturbation import MODELS, NoPerturbation, Perturbation
+from atd.campaign.perturbation import CELL_KEYS, MODELS, NoPerturbation, Perturbation
 from atd.campaign.record import DIMENSIONS, TASK_OBJECT
 from atd.campaign.sources import digests
 from atd.model import ranges
@@ -28,7 +28,7 @@ from atd.model.task import Location
 from atd.model.toml_lines import TomlLines
 
 GRASP_MODES = ("naive", "robust")
-JUDGES = ("lift", "place", "box")
+JUDGES = ("lift", "place", "box", "cap")
 SPEC_CAP = 1 << 20  # bytes: a spec is a page of TOML
 
 TRIAL_BUDGET = ranges.Range(0.0, 3600.0, "s", low_open=True)
@@ -36,7 +36,8 @@ TRIAL_BUDGET = ranges.Range(0.0, 3600.0, "s", low_open=True)
 
 class TaskEntry(StrictTable):
     file: str
-    judge: Literal["lift", "place", "box"] | None = None  # None: chosen from the task's states and the spec
+    judge: Literal["lift", "place", "box", "cap"] | None = None  # None: chosen from the task's states and the spec
+    fixture: bool = False  # its screw-capped objects stand in a clamp on the table (a one-arm task)
 
 
 class RobotEntry(StrictTable):
@@ -168,8 +169,8 @@ def _perturbation_diagnostic(e: dict, loc: tuple, where: str, lines: TomlLines) 
     dotted = ".".join(str(p) for p in loc)
     if model and e["type"] == "extra_forbidden":
         key = str(loc[-1])
-        params = [n for n in MODELS[model].model_fields if n != "model"]
-        owners = [m for m, kind in MODELS.items() if key in kind.model_fields and key != "model"]
+        params = [n for n in MODELS[model].model_fields if n not in ("model", *CELL_KEYS)]
+        owners = [m for m, kind in MODELS.items() if key in kind.model_fields and key not in ("model", *CELL_KEYS)]
         hint = f"the '{model}' model's parameters: {', '.join(params) or 'none'}" + (
             f" ('{key}' belongs to {', '.join(repr(m) for m in owners)})" if owners else "")
         return error("CMP010", f"unknown key '{dotted}': perturbation model '{model}' has no parameter '{key}'",

@@ -8,6 +8,7 @@ leaves nothing of one trial in the next.
 
 from __future__ import annotations
 
+import math
 import time
 import traceback
 from dataclasses import replace
@@ -17,9 +18,10 @@ from pathlib import Path
 import numpy as np
 
 from atd.campaign.cells import TrialPlan
-from atd.campaign.judge import BoxJudge, LiftJudge, PlaceJudge
+from atd.campaign.judge import BoxJudge, CapJudge, LiftJudge, PlaceJudge
 from atd.campaign.perturbation import Truth
 from atd.campaign.record import TASK_OBJECT, TrialRecord
+from atd.campaign.unscrew import unscrew_measures
 from atd.model import has_errors, load_task
 from atd.model.diagnostics import render_all
 from atd.model.estd import Estd
@@ -49,9 +51,10 @@ def believed(task_file: str, robot: str, arm: str, grasp: str, obj: str) -> tupl
     if obj != TASK_OBJECT:
         from atd.campaign.objects import get
 
-        x, y = (task.object.pose.as_array()[:2, 3] if task.object is not None and task.object.pose is not None
-                else (0.10, 0.0))
-        task = task.model_copy(update={"object": get(obj).object_info(float(x), float(y))})
+        pose = task.object.pose.as_array() if task.object is not None and task.object.pose is not None else None
+        x, y = pose[:2, 3] if pose is not None else (0.10, 0.0)
+        yaw = math.atan2(pose[1, 0], pose[0, 0]) if pose is not None else 0.0  # the task's object turned: so is the cell's
+        task = task.model_copy(update={"object": get(obj).object_info(float(x), float(y), float(yaw))})
     factory = create(robot, arm, grasp=grasp)
     result = translate(task, factory)
     if result.estd is None:
@@ -91,7 +94,8 @@ def trial_run(plan: TrialPlan, record: TrialRecord, recording: Path | None = Non
     if cell.object != TASK_OBJECT and scene.object is not None and not plan.world:
         from atd.campaign.objects import get
 
-        scene = replace(scene, object=get(cell.object).realize(scene.object))
+        found = get(cell.object)
+        scene = replace(scene, object=(found.in_fixture() if plan.fixture else found).realize(scene.object))
     truth = plan.perturbation.apply(Truth(belief, scene, factory.robot), values)
     run = Run(truth.estd, factory, engine=cell.engine, seed=plan.seed, budget=plan.budget, scene=truth.scene,
               robot=truth.robot, record=recording)
@@ -103,7 +107,11 @@ def _run(plan: TrialPlan, record: TrialRecord, started: float, recording: Path |
     judge = _judge(plan, belief, run)
     record.setup_time = time.perf_counter() - started
     outcome = run.execute(afterwards=judge)
-    verdict = judge.verdict
+    if isinstance(judge, CapJudge):
+        verdict = judge.verdict(outcome.succeeded)
+        verdict.measurements.update(unscrew_measures(belief, run.trace.records, outcome.sim_time))
+    else:
+        verdict = judge.verdict
     if isinstance(judge, BoxJudge):
         attempts = [visit.entered for visit in grasp_attempts(belief, outcome.visits)]
         verdict.measurements.update(attempts=float(len(attempts)), **judge.by_remaining(attempts))
@@ -136,12 +144,18 @@ def drawn_world(plan: TrialPlan, belief: Estd) -> Scene:
         raise TrialError(f"the spec's world cannot be built around {Path(plan.task_file).name}: {exc}") from None
 
 
-def _judge(plan: TrialPlan, belief: Estd, run: Run) -> LiftJudge | PlaceJudge | BoxJudge:
+def _judge(plan: TrialPlan, belief: Estd, run: Run) -> LiftJudge | PlaceJudge | BoxJudge | CapJudge:
     """The judge the spec names, or the one the task's states call for: a world drawn into
-    a container is judged by what is left in it, a task that places something by where it
-    rests, any other by whether it was lifted."""
+    a container is judged by what is left in it, a task that unscrews by where the cap is, a
+    task that places something by where it rests, any other by whether it was lifted."""
     if plan.judge == "box" or (plan.judge is None and plan.world):
         return _box_judge(plan, belief, run)
+    unscrews = any(s.type is StateType.UNSCREW for _, machine in belief.walk() for s in machine.states)
+    if plan.judge == "cap" or (plan.judge is None and unscrews):
+        try:
+            return CapJudge(run.robot)
+        except ValueError as exc:
+            raise TrialError(f"{plan.task_file}: {exc}; give a screw-capped library object (docs/objects.md)") from None
     places = [s for s in belief.states if s.type is StateType.PLACE and s.arm is not None
               and "target" in s.arm.params]
     kind = plan.judge or ("place" if places else "lift")

@@ -65,6 +65,23 @@ class Ranged(click.ParamType):
         return number
 
 
+class Engine(click.Choice):
+    """A physics engine's name; PyBullet, an optional install, refused with the fix where it
+    is missing (atd/sim/optional.py)."""
+
+    def __init__(self) -> None:
+        super().__init__(["mujoco", "pybullet"])  # atd.sim.ENGINES, not imported for `atd --help`
+
+    def convert(self, value, param, ctx) -> str:
+        engine = super().convert(value, param, ctx)
+        if engine == "pybullet":
+            from atd.sim.optional import pybullet_installed, pybullet_missing
+
+            if not pybullet_installed():
+                self.fail(pybullet_missing("--engine pybullet"), param, ctx)
+        return engine
+
+
 def usage_error(message: str) -> NoReturn:
     """One line on stderr and exit 2: the command line asked for something that cannot be done."""
     click.echo(f"error: {message}", err=True)

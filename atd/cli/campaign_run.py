@@ -136,10 +136,14 @@ def _open_store(path: Path, loaded: LoadedSpec, resume: bool, tasks: dict[str, s
 
 def _run(chosen: Plans, store: Store, name: str, workers: int, ray_address: str | None, quiet: bool) -> int:
     """Run the trials the store lacks, each stored as it ends; how many recordings were lost."""
-    stored = store.counts(chosen.count)
-    left = Counter({cell.key: chosen.count - stored.get(cell.key, 0) for cell, _ in chosen.cells})
+    most = max((chosen.count(cell) for cell, _ in chosen.cells), default=0)
+    stored = store.counts(most)
+    # A cell of fewer trials than the most counts only its own (a store may hold more of it).
+    stored.update({cell.key: len(store.indices(cell, chosen.count(cell))) for cell, _ in chosen.cells
+                   if stored.get(cell.key) and chosen.count(cell) < most})
+    left = Counter({cell.key: chosen.count(cell) - stored.get(cell.key, 0) for cell, _ in chosen.cells})
     todo = chosen.longest_first().skipping(
-        lambda cell: store.indices(cell, chosen.count) if stored.get(cell.key) else ())
+        lambda cell: store.indices(cell, chosen.count(cell)) if stored.get(cell.key) else ())
     total = sum(left.values())
     where = f"Ray ({ray_address or 'local'})" if ray_address is not None else f"{workers} worker(s)"
     if not quiet:
@@ -176,11 +180,11 @@ def _run(chosen: Plans, store: Store, name: str, workers: int, ray_address: str 
 
 def _tally(chosen: Plans, store: Store) -> Counter[str]:
     """The stored trials asked for, counted one at a time: a campaign of millions is never all in memory."""
-    keys = {cell.key for cell, _ in chosen.cells}
+    counts = {cell.key: chosen.count(cell) for cell, _ in chosen.cells}
     tally: Counter[str] = Counter()
     try:
         for r in store.each():
-            if r.index < chosen.count and r.cell.key in keys:
+            if r.index < counts.get(r.cell.key, 0):
                 tally.update(n=1, ok=int(r.judged_succeeded), false=int(r.false_success), error=int(r.status == "error"))
     except StoreError as exc:
         _fail(f"error: {exc}", EXIT_INVALID)

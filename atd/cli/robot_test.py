@@ -7,7 +7,7 @@ from pathlib import Path
 
 import click
 
-from atd.cli.app import EXIT_OK, EXIT_TASK_FAILED, OutputFile, Ranged, robots, usage_error
+from atd.cli.app import EXIT_OK, EXIT_TASK_FAILED, Engine, OutputFile, Ranged, robots, usage_error
 from atd.model import ranges
 from atd.model.files import OutputError
 
@@ -15,7 +15,7 @@ from atd.model.files import OutputError
 @robots.command("test")
 @click.argument("robot")
 @click.option("--arm", default=None, help="Which arm (e.g. left, right; default: the robot's first).")
-@click.option("--engine", type=click.Choice(["mujoco", "pybullet"]), default="mujoco", show_default=True)
+@click.option("--engine", type=Engine(), default="mujoco", show_default=True)
 @click.option("--seed", type=Ranged(ranges.SEED, integer=True), default=0, show_default=True, help="Seed of the sensor noise.")
 @click.option("--video", type=OutputFile(), default=None, help="Record the grasp as a video (.gif, or .mp4 with ffmpeg).")
 def robot_test(robot: str, arm: str | None, engine: str, seed: int, video: Path | None) -> None:

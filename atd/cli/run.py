@@ -11,7 +11,7 @@ import click
 
 from atd.cli.run_output import Progress, document, next_step, where
 from atd.cli.translate import GRASP_OPTION, ROLE_OPTION
-from atd.cli.app import (EXIT_ENGINE_CRASHED, EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, EXIT_UNTRANSLATABLE,
+from atd.cli.app import (EXIT_ENGINE_CRASHED, Engine, EXIT_INVALID, EXIT_OK, EXIT_TASK_FAILED, EXIT_UNTRANSLATABLE,
                          EXIT_USAGE, OutputFile, Ranged, guard_outputs, main, usage_error)
 from atd.model import has_errors, load_task, ranges
 from atd.model.diagnostics import render_all
@@ -21,7 +21,7 @@ from atd.runtime.executor import Outcome
 from atd.runtime.isolated import EngineCrash, in_child
 from atd.runtime.report import grasp_attempts, summary
 from atd.model.files import OutputError
-from atd.runtime.session import ENGINES, InvalidScene, InvalidWorld, Run, RunError, Unrunnable, world_scene
+from atd.runtime.session import InvalidScene, InvalidWorld, Run, RunError, Unrunnable, world_scene
 from atd.sim.scene import WORKSPACE_CAMERA, Scene
 from atd.sim.thread import CapState
 from atd.sim.video import VideoError, parse_size
@@ -130,7 +130,7 @@ class RecordRate(click.ParamType):
 @click.argument("task", type=click.Path(path_type=Path))
 @click.option("--robot", "-r", default=None, help="the robot (required for an ATD; an ESTD names its own)")
 @click.option("--arm", default=None, help="which arm, for robots with more than one")
-@click.option("--engine", type=click.Choice(ENGINES), default="mujoco", show_default=True)
+@click.option("--engine", type=Engine(), default="mujoco", show_default=True)
 @click.option("--seed", type=Ranged(ranges.SEED, integer=True), default=0, show_default=True, help="seeds sensor noise: same seed, same trace")
 @click.option("--trace", "trace_path", type=OutputFile(), default=None,
               help="write every state entry, exit and event as JSON lines")

@@ -9,8 +9,8 @@ from __future__ import annotations
 import shutil
 import subprocess
 
-from atd.graph.model import Graph, NodeKind
-from atd.graph.style import PALETTE  # the same colours as the library layout
+from atd.graph.model import Graph, NodeKind, Trail
+from atd.graph.style import edge_look, node_colours  # the same colours as the library layout
 
 DOT_TIMEOUT_S = 60
 
@@ -38,16 +38,20 @@ def to_dot(graph: Graph) -> str:
         '  edge [fontname="Helvetica", fontsize=10, color="#444444"];',
     ]
     for node in graph.nodes:
-        fill, border = PALETTE[node.kind]
+        fill, border, ink = node_colours(node)
         attrs = [f"label={_label(node.lines)}", f'fillcolor="{fill}"', f'color="{border}"']
+        if node.trail is Trail.FADED:
+            attrs.append(f'fontcolor="{ink}"')
         if node.kind in (NodeKind.SUCCESS, NodeKind.FAILURE):
             attrs.append("peripheries=2")
         if node.initial:
             attrs.append("penwidth=2.5")
         out.append(f"  {_quote(node.id)} [{', '.join(attrs)}];")
     for edge in graph.edges:
+        colour, width, ink = edge_look(edge)
+        look = "" if edge.trail is Trail.PLAIN else f', color="{colour}", fontcolor="{ink}", penwidth={width:g}'
         out.append(f"  {_quote(edge.source)} -> {_quote(edge.target)} [label={_label(edge.lines)}, "
-                   f"tooltip={_quote(edge.id)}];")
+                   f"tooltip={_quote(edge.id)}{look}];")
     out.append("}")
     return "\n".join(out) + "\n"
 

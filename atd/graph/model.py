@@ -30,12 +30,21 @@ class NodeKind(StrEnum):
     FAILURE = "failure"
 
 
+class Trail(StrEnum):
+    """How a box or arrow stands to a run drawn on the graph (atd/graph/trail.py)."""
+
+    PLAIN = "plain"  # no run is drawn: the task alone
+    TAKEN = "taken"  # the run visited the state, or took the transition
+    FADED = "faded"  # the run never went there: drawn grey
+
+
 @dataclass(frozen=True)
 class Node:
     id: str
     lines: tuple[str, ...]  # the first line is the state's name
     kind: NodeKind
     initial: bool = False
+    trail: Trail = Trail.PLAIN
 
 
 @dataclass(frozen=True)
@@ -44,6 +53,7 @@ class Edge:
     target: str
     lines: tuple[str, ...]
     id: str  # the ATD transition id, so a drawing can be matched to diagnostics
+    trail: Trail = Trail.PLAIN
 
 
 @dataclass

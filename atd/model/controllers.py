@@ -242,6 +242,10 @@ _ARM_CONTROLLERS = (
             "max_back_off": _p(NUM, "how far the sliding grasp may back off above where it began (the robot's "
                                "own geometry: how far its fingertips swing down as they close, and 5 mm; the "
                                "default covers the Barrett pinch's 18 mm)", 0.025, unit="m"),
+            "hand_extent": _p(VEC, "how far the preshaped hand reaches sideways from the TCP, along the hand's x "
+                              "and along its y: its moves stay this far inside the walls of a container the task "
+                              "knows (the robot's own geometry: `RobotDescription.hand_extent`)", (0.1, 0.1),
+                              unit="m", length=2),
             "filter_time": _FILTER,
         },
     ),
@@ -383,6 +387,10 @@ _ARM_CONTROLLERS = (
             "container_wall": _p(NUM, "the thickness of its walls and floor", 0.01, unit="m"),
             "hand_reach": _p(NUM, "how far the hand reaches below the TCP, pointing down (the robot's own "
                              "geometry: `RobotDescription.hand_reach`)", 0.0, unit="m", limits=ranges.COORDINATE),
+            "grasp_reach": _p(NUM, "how far the hand reaches below the TCP, pointing down, in the posture that "
+                              "reaches furthest: the approach keeps this clear of the rim, whatever the grasp opens "
+                              "the hand to (the robot's own geometry: `RobotDescription.hand_reach`)", 0.0, unit="m",
+                              limits=ranges.COORDINATE),
             "hand_radius": _p(NUM, "how far the hand reaches sideways from the TCP: random blind and the sweep "
                               "keep the TCP this far in from the walls (the robot's own geometry: "
                               "`RobotDescription.hand_radius`)", 0.05, unit="m"),
@@ -438,6 +446,9 @@ _ARM_CONTROLLERS = (
                                "it (the robot's own geometry)", (0.0, 0.0, 0.0), length=3, limits=ranges.COORDINATE),
             "filter_time": _p(NUM, "time constant of the low-pass on the wrist's torque and force (ours: a pad "
                               "slipping on the cap chatters tick to tick)", 0.05, unit="s"),
+            "wrist_turn": _p(NUM, "how the last arm joint turns with the hand about the approach axis, +1 or -1 "
+                             "(0: no joint named): a twist goes no further than that joint can still turn "
+                             "(the robot's own geometry)", 0.0, limits=ranges.DIRECTION),
         },
     ),
 )
@@ -541,6 +552,24 @@ _HAND_CONTROLLERS = (
                               unit="N"),
             "contact_threshold": _p(NUM, "pad force counted as finger contact (ours)", 0.3, unit="N"),
             "finger_min_distance": _p(NUM, "pads closer than this hold nothing (thesis FINGER_MIN_DISTANCE)", 0.012,
+                                      unit="m"),
+        },
+    ),
+    ControllerSpec(
+        "unscrew_jaws", Role.HAND,
+        "Hand side of the unscrew on a parallel gripper: grip the cap as the gripper's grasp does (close when the "
+        "arm says, centre on the pads' contacts, press with the grasp force), keep pressing through the wrist's "
+        "twist and the pull, tell the arm when the jaws closed on nothing and where the pads' contacts put the "
+        "cap's axis; open when the arm asks.",
+        "thesis 3.3.6 mapped on a gripper (FINGER_GRASPING_FORCE, FINGER_MIN_DISTANCE, reactive alignment); "
+        "thesis 7.3 (Melfa grasp)",
+        {
+            "grasp_force": _p(NUM, "grip force on the cap (thesis FINGER_GRASPING_FORCE)", 5.0, unit="N"),
+            "closing_speed": _p(NUM, "jaw closing speed (the gripper's grasp's)", 0.04, unit="m/s"),
+            "force_source": _FORCE_SOURCE,
+            "max_recentre": _p(NUM, "how far the arm follows a contact off the pads' middle before the jaws close "
+                               "anyway (the gripper's grasp's)", 0.01, unit="m"),
+            "finger_min_distance": _p(NUM, "jaws closer than this hold nothing (thesis FINGER_MIN_DISTANCE)", 0.012,
                                       unit="m"),
         },
     ),

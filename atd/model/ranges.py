@@ -104,7 +104,7 @@ DIRECTION = Range(-1.0, 1.0)  # components of a direction or normal
 PADS = Range(1, 64)
 COUNT = Range(0, 1000)  # how many times a primitive may try something: corrections, search points
 ANGLE = Range(0.0, 90.0, "deg")  # an angle from a direction, as a tolerance
-TILT = Range(-90.0, 90.0, "deg")  # the hand turned away from top-down, about each world axis
+TILT = Range(-180.0, 180.0, "deg")  # the hand turned away from top-down, about each world axis (rpy)
 YAW = Range(-180.0, 180.0, "deg")  # the hand's heading about the world vertical
 
 CONTACT_MARGIN = Range(-1.0, 5.0, "m")  # negative: any contact ends a guarded move

@@ -8,6 +8,7 @@ import math
 from typing import Sequence
 
 import numpy as np
+from numpy.linalg import _umath_linalg
 
 _IDENTITY6 = np.eye(6)  # built once: adding it costs far less than indexing the diagonal every tick
 TWIST_DAMPING = 0.02  # m: the damping of the Cartesian velocity solver, in the units of the Jacobian
@@ -20,7 +21,16 @@ def dls_joint_velocities(jacobian: np.ndarray, twist: np.ndarray, damping: float
     The damping keeps joint speeds bounded near singularities at the price of a small
     tracking error there. (`.dot` rather than `@`: on 6 x 7 arrays, every tick, it costs half as much.)
     """
-    return jacobian.T.dot(np.linalg.solve(jacobian.dot(jacobian.T) + (damping * damping) * _IDENTITY6, twist))
+    return jacobian.T.dot(_solve(jacobian.dot(jacobian.T) + (damping * damping) * _IDENTITY6, twist))
+
+
+def _solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """`np.linalg.solve(a, b)` for a 6 x 6 `a` and a vector `b`, by the same LAPACK call without
+    the wrapper's checks and error state, which cost three times the solve itself every tick.
+    A result that is not finite (a singular `a`: a Jacobian with NaNs in it) is solved again
+    by numpy's own, which raises as it always did."""
+    x = _umath_linalg.solve1(a, b, signature="dd->d")
+    return x if math.isfinite(float(x.sum())) else np.linalg.solve(a, b)
 
 
 def limited_joint_velocities(jacobian: np.ndarray, twist: np.ndarray, damping: float, q: np.ndarray,

@@ -11,25 +11,37 @@ from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
 
+import numpy as np
 from mcap.records import Attachment, Channel, Message, Metadata, Schema
 
 from atd.model.estd import Estd
 from atd.model.estd_xml import parse_estd
 from atd.model.files import InputError, read_capped
 from atd.review.mcap_records import Damaged, records
-from atd.review.messages import (RUN_TIME, MessageProblem, RunInfo, SensorsMessage, Signals, Timed, TraceRecord,
-                                 TruthMessage, parsed, signals)
+from atd.review.messages import (RUN_TIME, DepthMessage, MessageProblem, RunInfo, SensorsMessage, Signals, Timed,
+                                 TraceRecord, TruthMessage, parsed, signals)
 from atd.runtime.recording_format import RECORDING_FORMAT
 
 RECORDING_CAP = 2 << 30  # bytes: hours of a run at 100 Hz
 ESTD_ATTACHMENT = "task.estd.xml"
 TIME_SLACK = 1e-3  # s: the outcome's time is written to the microsecond, a message's to the nanosecond
-_READ = {"/sensors": SensorsMessage, "/truth": TruthMessage, "/task/trace": TraceRecord}  # the rest is skipped
+_READ = {"/sensors": SensorsMessage, "/truth": TruthMessage, "/task/trace": TraceRecord,
+         "/camera/depth": DepthMessage}  # the rest is skipped
 _REQUIRED = ("/sensors", "/task/trace")  # /truth is not: a real robot's recording has none
 
 
 class RecordingError(Exception):
     """Not a recording `atd` can read; the message says why, in one line."""
+
+
+@dataclass(frozen=True)
+class Picture:
+    """A depth picture a state took: when, with which camera, and the depths (m, 0 where
+    nothing was seen)."""
+
+    t: float
+    camera: str
+    depth: np.ndarray  # (height, width)
 
 
 @dataclass(frozen=True)
@@ -42,6 +54,9 @@ class Recording:
     estd_problem: str  # why the attached ESTD could not be read; "" when it could, or there is none
     trace: list[TraceRecord]
     signals: Signals
+    pictures: list[Picture]  # the depth camera's, in time order (a run that took none: none)
+    arm_joints: tuple[str, ...]  # a name per column of signals.arm_dq
+    hand_dofs: tuple[str, ...]  # a name per column of signals.hand_q
 
     @cached_property
     def visits(self) -> list[tuple[str, float, float | None]]:
@@ -83,6 +98,7 @@ def _read(path: Path, data: bytes) -> Recording:
     meta: dict[str, dict[str, str]] = {}
     estd_xml: bytes | None = None
     timed: dict[str, Timed] = {topic: Timed() for topic in _READ}
+    sensors_meta: dict[str, str] = {}
     for record in records(data):
         if isinstance(record, Message):
             if record.channel_id not in topics:
@@ -96,6 +112,8 @@ def _read(path: Path, data: bytes) -> Recording:
             schemas[record.id] = record
         elif isinstance(record, Channel):
             topics[record.id] = _topic(record, schemas)
+            if record.topic == "/sensors":
+                sensors_meta = record.metadata
         elif isinstance(record, Metadata):
             meta[record.name] = record.metadata
         elif isinstance(record, Attachment) and record.name == ESTD_ATTACHMENT:
@@ -111,8 +129,20 @@ def _read(path: Path, data: bytes) -> Recording:
     if estd_xml is not None:
         estd, found = parse_estd(estd_xml, ESTD_ATTACHMENT)
         estd_problem = "" if estd is not None else found[0].render()
-    return Recording(path, run, outcome, end_time, estd, estd_problem, trace,
-                     signals(timed["/sensors"], timed["/truth"]))
+    times, taken = timed["/camera/depth"].in_time_order()
+    pictures = [Picture(t, m.frame_id, m.depth(f"its /camera/depth message at {t:.3f} s"))
+                for t, m in zip(times.tolist(), taken)]
+    drawn = signals(timed["/sensors"], timed["/truth"])
+    return Recording(path, run, outcome, end_time, estd, estd_problem, trace, drawn, pictures,
+                     _names(sensors_meta.get("arm_joints", ""), drawn.arm_dq.shape[1], "q{}", 1),
+                     _names(sensors_meta.get("hand_dofs", ""), drawn.hand_q.shape[1], "dof {}", 0))
+
+
+def _names(recorded: str, count: int, fallback: str, first: int) -> tuple[str, ...]:
+    """The names the recorder wrote in the /sensors channel's metadata (the robot's own, from
+    its description), one per column; numbered ones where they are missing or do not fit."""
+    names = tuple(recorded.split())
+    return names if len(names) == count else tuple(fallback.format(k + first) for k in range(count))
 
 
 def _topic(channel: Channel, schemas: dict[int, Schema]) -> str | None:

@@ -9,8 +9,10 @@ then megabytes in memory, not the gigabyte its messages as dicts would be.
 
 from __future__ import annotations
 
+import base64
+import binascii
 from dataclasses import dataclass, field
-from typing import Annotated, Any, Generic, TypeVar
+from typing import Annotated, Any, Generic, Literal, TypeVar
 
 import numpy as np
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
@@ -33,6 +35,7 @@ class _Checked(BaseModel):
 
 _ONE_LINE = r"^[^\x00-\x1f\x7f]*$"  # a name printed in a line of text: no line break, no control character
 Reading = float | None  # null: a reading that was NaN (a sensor with nothing to say)
+MOST_PIXELS = 8192  # across or down a depth picture: a Kinect's is 640 x 480
 MOST = 64  # joints, DOFs or pads a robot may have: the robots here have at most 7, 8 and 4
 Readings = Annotated[list[Reading], Field(max_length=MOST)]
 PadName = Annotated[str, Field(max_length=200, pattern=_ONE_LINE)]  # a legend's entry
@@ -70,6 +73,29 @@ class TruthMessage(_Checked):
     """Of /truth: the simulator's ground truth, which no primitive sees."""
 
     object: _Pose | None
+
+
+class DepthMessage(_Checked):
+    """Of /camera/depth: a depth picture a state took, 32-bit floats in metres, 0 where the
+    camera saw nothing (atd/runtime/recording_images.py)."""
+
+    frame_id: PadName  # the camera
+    width: int = Field(ge=1, le=MOST_PIXELS)
+    height: int = Field(ge=1, le=MOST_PIXELS)
+    encoding: Literal["32FC1"]
+    data: str  # base64
+
+    def depth(self, what: str) -> np.ndarray:
+        """The picture, (height, width) metres; MessageProblem naming `what` when its data is
+        not that many floats."""
+        try:
+            raw = base64.b64decode(self.data, validate=True)
+        except binascii.Error:
+            raise MessageProblem(f"{what} is not what `atd run --record` writes: data is not base64") from None
+        if len(raw) != 4 * self.width * self.height:
+            raise MessageProblem(f"{what} is not what `atd run --record` writes: {len(raw)} bytes of data for "
+                                 f"{self.width} x {self.height} 4-byte pixels")
+        return np.frombuffer(raw, dtype="<f4").reshape(self.height, self.width)
 
 
 class TraceRecord(_Checked):

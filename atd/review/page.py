@@ -6,17 +6,20 @@ from __future__ import annotations
 
 import html
 import json
-from collections import defaultdict
+from collections import Counter, defaultdict
 from dataclasses import replace
+
+from pathlib import Path
 
 from jinja2 import Environment
 
 from atd.graph.layout import MAX_ELEMENTS
 from atd.graph.model import Graph, from_estd
 from atd.graph.render import render
+from atd.graph.trail import on_trail
 from atd.review.load import Recording
 from atd.review.messages import TraceRecord
-from atd.review.plots import signals, timeline
+from atd.review.plots import pictures, signals, timeline
 from atd.runtime.report import ends
 
 _PAGE = Environment(autoescape=True).from_string("""<!DOCTYPE html>
@@ -29,6 +32,8 @@ h1 { font-size: 1.4em; } h2 { font-size: 1.1em; margin-top: 2em; border-bottom: 
 .succeeded { background: #e3f4e1; } .failed { background: #fbe4e1; }
 table { border-collapse: collapse; font-size: .85em; } td, th { border: 1px solid #ddd; padding: .25em .5em; text-align: left; vertical-align: top; }
 figure { margin: 0; overflow-x: auto; } figure svg { max-width: 100%; height: auto; }
+/* The task graph at its own size, its text as drawn (12 px), scrolled rather than shrunk to fit */
+#graph { overflow: auto; max-height: 85vh; border: 1px solid #eee; } #graph svg { max-width: none; }
 code { font-size: .9em; }
 </style></head><body>
 <h1>{{ title }}</h1>
@@ -36,6 +41,12 @@ code { font-size: .9em; }
  &middot; {{ "%.2f"|format(end_time) }} s simulated &middot; seed {{ run.seed }}</p>
 <h2>The task, and the path taken</h2>
 <figure id="graph">{{ graph|safe }}</figure>
+<p class="note">{{ graph_note }}</p>
+<h2>The robot in 3D</h2>
+<p id="foxglove">Foxglove's 3D panel draws the robot, the table and the objects of this run, moving, from the
+same recording: in Foxglove (desktop app) choose <em>Open local file</em>, <code>{{ recording_path }}</code>; then,
+in the Layout menu, <em>Import from file</em>, <code>{{ layout }}</code>
+(a 3D panel, the task's states over time, the forces and the trace).</p>
 <h2>Timeline</h2>
 <figure id="timeline">{{ timeline|safe }}</figure>
 <table><tr><th>state</th><th>entered (s)</th><th>left (s)</th><th>time spent (s)</th></tr>
@@ -50,7 +61,13 @@ code { font-size: .9em; }
 <p>States are shaded; a dashed red line is an event firing. The last panel is the simulator's
 ground truth, which the robot does not see.</p>
 <figure id="signals">{{ signals|safe }}</figure>
-<h2>Events, and the readings that fired them</h2>
+{% if pictures %}<h2>Depth camera</h2>
+<p>What the robot's depth camera saw each time a state took a picture, nearest darkest, nothing
+seen blank{% if pictures_left_out %} (the first and last; {{ pictures_left_out }} more between){% endif %}.
+The recording also holds each picture's points, in the world as the robot believes it
+(<code>/camera/points</code>).</p>
+<figure id="pictures">{{ pictures|safe }}</figure>
+{% endif %}<h2>Events, and the readings that fired them</h2>
 <table id="events"><tr><th>time (s)</th><th>transition</th><th>event</th><th>conditions and readings</th></tr>
 {% macro event(e) %}<tr><td>{{ "%.3f"|format(e.t) }}</td><td>{{ e.transition }}</td><td>{{ e.event }}</td>
 <td>{% for c in e.conditions %}<code>{{ c }}</code><br>{% endfor %}</td></tr>{% endmacro %}
@@ -62,15 +79,17 @@ ground truth, which the robot does not see.</p>
 """)
 
 
-def _graph(recording: Recording) -> str:
-    """The ESTD's graph as inline SVG, each state visited labelled with its visits and time."""
+def _graph(recording: Recording) -> tuple[str, str]:
+    """The ESTD's graph as inline SVG with the path taken in colour, each state visited
+    labelled with its visits and time; and a line saying what it leaves out."""
     if recording.estd is None:
         return (f"<p>(the ESTD this recording holds cannot be read: {html.escape(recording.estd_problem)})</p>"
-                if recording.estd_problem else "<p>(this recording holds no ESTD)</p>")
+                if recording.estd_problem else "<p>(this recording holds no ESTD)</p>"), ""
     graph: Graph = from_estd(recording.estd, recording.run.task or "task")
     if len(graph.nodes) + len(graph.edges) > MAX_ELEMENTS:
         return (f"<p>(the task's {len(graph.nodes)} states and {len(graph.edges)} transitions are more than a report "
-                f"draws, {MAX_ELEMENTS} in all; draw them with atd graph)</p>")
+                f"draws, {MAX_ELEMENTS} in all; draw them with atd graph)</p>"), ""
+    taken = Counter(r.transition for r in recording.trace if r.type == "exit" and r.transition and "/" not in r.state)
     spent: dict[str, float] = defaultdict(float)
     count: dict[str, int] = defaultdict(int)
     for state, start, end in recording.visits:
@@ -79,9 +98,22 @@ def _graph(recording: Recording) -> str:
         count[top] += 1 if "/" not in state else 0
     graph.nodes = [replace(n, lines=n.lines + (f">> visited {count[n.id]}x, {spent[n.id]:.2f} s",))
                    if n.id in spent else n for n in graph.nodes]
+    graph, folded = on_trail(graph, set(spent), taken)
     svg, _ = render(graph, "svg")
     text = svg.decode()
-    return text[text.index("<svg"):]
+    note = "The path taken is in colour, thick arrows the transitions taken; grey: never visited, never taken."
+    if folded.arrows:
+        note += (f" The {folded.transitions} failure transitions never taken are folded into {folded.arrows} grey "
+                 f"arrows, each saying how many it stands for (hover it for their names).")
+    return text[text.index("<svg"):], note
+
+
+# In a clone of atd, beside the package; the page names it there, else as the source tree names it.
+FOXGLOVE_LAYOUT = Path(__file__).resolve().parents[2] / "docs" / "foxglove-layout.json"
+
+
+def _layout() -> str:
+    return str(FOXGLOVE_LAYOUT) if FOXGLOVE_LAYOUT.is_file() else "docs/foxglove-layout.json of atd's source"
 
 
 def _event(record: TraceRecord) -> dict:
@@ -96,8 +128,12 @@ def report_page(recording: Recording) -> str:
     run = recording.run
     title = f"{html.unescape(run.task)} on {run.robot} ({run.arm} arm) in {run.engine}"
     first, left_out, last = ends(recording.events())
+    drawn, pictures_left_out = pictures(recording)
+    graph, graph_note = _graph(recording)
     return _PAGE.render(
         title=title, run=run, outcome=recording.outcome, succeeded=recording.outcome.get("succeeded") == "true",
-        end_time=recording.end_time, graph=_graph(recording), timeline=timeline(recording),
-        signals=signals(recording), visits=ends(recording.visits),
+        recording_path=recording.path.resolve(), layout=_layout(),
+        end_time=recording.end_time, graph=graph, graph_note=graph_note, timeline=timeline(recording),
+        signals=signals(recording), visits=ends(recording.visits), pictures=drawn,
+        pictures_left_out=pictures_left_out,
         events=([_event(e) for e in first], left_out, [_event(e) for e in last]))

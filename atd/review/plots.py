@@ -27,6 +27,8 @@ PIXELS = 10 * DPI  # across a plot, 10 inches wide
 SHADES = ("#eef3fb", "#fbf3e6")  # a state's stays, alternately
 EVENT = "#c0392b"
 LABEL = 60  # characters of a state's name in a label
+PICTURES = 8  # depth pictures drawn at most (the first and last four), ACROSS a row
+ACROSS = 4
 
 
 def _label(name: str) -> str:
@@ -34,14 +36,23 @@ def _label(name: str) -> str:
     return name if len(name) <= LABEL else name[:LABEL - 3] + "..."
 
 
-def _figure(rows: int):
+def _legend(name: str) -> str:
+    """A recorded name as a legend entry, shown as written: cut like a label, a `$` not read as
+    maths, a leading `_` not read as 'leave out of the legend'."""
+    text = _label(name).replace("$", r"\$")
+    return " " + text if text.startswith("_") else text
+
+
+def _figure(rows: int, across: int = 1):
+    """A figure 10 inches wide and its axes, row by row: one column of plots sharing their
+    time axis, or a grid of pictures."""
     import matplotlib
 
     matplotlib.use("Agg")
     from matplotlib import pyplot
 
-    figure, axes = pyplot.subplots(rows, 1, figsize=(10, 2.1 * rows), sharex=True, squeeze=False)
-    return figure, [a[0] for a in axes]
+    figure, axes = pyplot.subplots(rows, across, figsize=(10, 2.1 * rows), sharex=across == 1, squeeze=False)
+    return figure, list(axes.ravel())
 
 
 def _svg(figure) -> str:
@@ -119,12 +130,12 @@ def signals(recording: Recording) -> str:
     panels: list[tuple[str, Sequence[tuple[str, np.ndarray]]]] = [
         ("pad force (N)", [(pad, force) for pad, force in sorted(s.pad_force.items())]),
         ("wrist force (N), hand frame", [(f"F{a}", s.wrist_force[:, i]) for i, a in enumerate("xyz")]),
-        ("hand DOFs", [(f"dof {k}", s.hand_q[:, k]) for k in range(s.hand_q.shape[1])]),
-        ("arm joint speed (rad/s)", [(f"q{k + 1}", s.arm_dq[:, k]) for k in range(s.arm_dq.shape[1])])]
+        ("hand DOFs", [(name, s.hand_q[:, k]) for k, name in enumerate(recording.hand_dofs)]),
+        ("arm joint speed (rad/s)", [(name, s.arm_dq[:, k]) for k, name in enumerate(recording.arm_joints)])]
     figure, axes = _figure(len(panels) + 1)
     for axis, (label, lines) in zip(axes, panels):
         for name, values in lines:
-            axis.plot(*_envelope(s.t, values), linewidth=1, label=name, rasterized=len(s.t) > DENSE)
+            axis.plot(*_envelope(s.t, values), linewidth=1, label=_legend(name), rasterized=len(s.t) > DENSE)
         axis.set_ylabel(label, fontsize=8)
         if lines:
             # Beside the panel, not on it: inside, a legend hid the lines that ran under it
@@ -189,3 +200,23 @@ def difference(a: Recording, b: Recording, rows: list[tuple[str, str, float, flo
     between = f"; {left_out} states between the first and last {len(first)} not drawn" if left_out else ""
     figure.suptitle(f"mean difference per state: {b.path.name} - {a.path.name}{between}", fontsize=9)
     return _svg(figure)
+
+
+def pictures(recording: Recording) -> tuple[str, int]:
+    """The depth camera's pictures: what each perceive state saw when it chose, nearest dark,
+    nothing seen blank; of a long run the first and last PICTURES // 2. Inline SVG (empty
+    for a run that took none) and how many were left out between."""
+    if not recording.pictures:
+        return "", 0
+    first, left_out, last = ends(recording.pictures, PICTURES)
+    shown = first + last
+    figure, axes = _figure(-(-len(shown) // ACROSS), ACROSS)
+    for axis in axes:
+        axis.set_axis_off()
+    for axis, picture in zip(axes, shown):
+        depth = picture.depth.astype(float)
+        seen = depth > 0
+        axis.imshow(np.where(seen, depth, np.nan), cmap="viridis", interpolation="nearest")
+        near, far = (float(depth[seen].min()), float(depth[seen].max())) if seen.any() else (0.0, 0.0)
+        axis.set_title(f"{_label(picture.camera)} at {picture.t:.2f} s: {near:.2f}-{far:.2f} m", fontsize=8)
+    return _svg(figure), left_out

@@ -32,36 +32,58 @@ from primitives.registry import BuildError, build_condition, build_controller
 from primitives.robot import Readings, Robot, RobotInfo
 
 
+class SharedLeaf:
+    """A leaf condition as a state's events share it: the same leaf (kind, sensors and
+    parameters) in several events of a state, as a translation's `success` and
+    `grasp_stable` both ask for a stable grasp, is one condition, asked once a tick. Two
+    copies would see the same readings and keep the same timers: the same verdicts, at twice
+    the cost."""
+
+    def __init__(self, condition: Condition) -> None:
+        self.condition = condition
+        self.tick = -1  # the tick of `verdict`
+        self.verdict = False
+
+    def holds(self, readings: Readings, view: StateView, dt: float, tick: int) -> bool:
+        if tick != self.tick:
+            self.tick, self.verdict = tick, self.condition.holds(readings, view, dt)
+        return self.verdict
+
+
+def _leaf_key(leaf: Leaf) -> tuple:
+    return leaf.kind, tuple(leaf.sensors), repr(sorted(leaf.params.items()))
+
+
 class ConditionTree:
     """An event's `all`/`any` tree of leaf conditions, evaluated without short-circuit so
-    that every debounce timer sees every tick."""
+    that every debounce timer sees every tick. Leaves already in `shared` (by kind, sensors
+    and parameters) are those; new ones are added to it."""
 
-    def __init__(self, node: Leaf | ConditionGroup, ctx: Context) -> None:
+    def __init__(self, node: Leaf | ConditionGroup, ctx: Context, shared: dict[tuple, SharedLeaf] | None = None) -> None:
         self.node = node
+        shared = {} if shared is None else shared
         if isinstance(node, Leaf):
-            self.leaf: Condition | None = build_condition(node, ctx)
+            key = _leaf_key(node)
+            if key not in shared:
+                shared[key] = SharedLeaf(build_condition(node, ctx))
+            self.leaf: SharedLeaf | None = shared[key]
             self.children: list[ConditionTree] = []
         else:
             self.leaf = None
-            self.children = [ConditionTree(child, ctx) for child in node.children]
+            self.children = [ConditionTree(child, ctx, shared) for child in node.children]
+        self.every = isinstance(node, ConditionGroup) and node.op == "all"
 
-    def start(self, readings: Readings) -> None:
+    def holds(self, readings: Readings, view: StateView, dt: float, tick: int) -> bool:
         if self.leaf:
-            self.leaf.start(readings)
-        for child in self.children:
-            child.start(readings)
-
-    def holds(self, readings: Readings, view: StateView, dt: float) -> bool:
-        if self.leaf:
-            return self.leaf.holds(readings, view, dt)
-        verdicts = [child.holds(readings, view, dt) for child in self.children]
-        return all(verdicts) if self.node.op == "all" else any(verdicts)
+            return self.leaf.holds(readings, view, dt, tick)
+        verdicts = [child.holds(readings, view, dt, tick) for child in self.children]
+        return all(verdicts) if self.every else any(verdicts)
 
     def evidence(self) -> list[dict]:
         """The leaves behind a verdict, with the readings each recorded."""
         if self.leaf:
             return [{"kind": self.node.kind, "atd": self.node.atd, "sensors": list(self.node.sensors),
-                     **self.leaf.evidence}]
+                     **self.leaf.condition.evidence}]
         return [item for child in self.children for item in child.evidence()]
 
 
@@ -126,8 +148,9 @@ class Machine:
         arm = arm_for(state, base.memory)
         self.arm = build_controller(arm, "arm", ctx) if arm else None
         self.hand = build_controller(state.hand, "hand", ctx) if state.hand else None
+        leaves: dict[tuple, SharedLeaf] = {}
         self.edges = [
-            Edge(t, [(e, ConditionTree(e.condition, ctx)) for e in t.events])
+            Edge(t, [(e, ConditionTree(e.condition, ctx, leaves)) for e in t.events])
             for t in self.estd.leaving.get(name, ())
         ]
         self.visit = Visit(self.prefix + name, state.atd, readings.time)
@@ -136,9 +159,9 @@ class Machine:
         for controller in (self.arm, self.hand):
             if controller:
                 controller.start(readings)
-        for edge in self.edges:
-            for _, tree in edge.events:
-                tree.start(readings)
+        for leaf in leaves.values():
+            leaf.condition.start(readings)
+        self.checks = 0  # ticks the edges were checked on in this state, for the shared leaves
         self.sub = Machine(state.machine, f"{self.visit.path}/", self.base, self.trace, self.visits, self.others) \
             if state.machine is not None else None
         if self.sub:
@@ -169,10 +192,13 @@ class Machine:
 
     def _fired(self, readings: Readings, dt: float) -> Edge | None:
         view = self._view(readings)
+        self.checks += 1
         fired = None
         for edge in self.edges:
-            verdicts = [tree.holds(readings, view, dt) for _, tree in edge.events]
-            if fired is None and all(verdicts):
+            held = True
+            for _, tree in edge.events:  # every tree, whatever the others say: their timers count on
+                held = tree.holds(readings, view, dt, self.checks) and held
+            if fired is None and held:
                 fired = edge
         return fired
 
@@ -322,9 +348,10 @@ class Executor:
         ticks = 0
         shown = ""
         verdict: str | None = None
+        others = [other for other, _ in list(self._arms.values())[1:]]
         while not self.machine.ended:
             readings = self.robot.read()
-            for other, _ in list(self._arms.values())[1:]:
+            for other in others:
                 other.read()  # every arm's sensors sampled each tick, as the ESTD's own
             wall = wallclock.perf_counter() - started
             if readings.time >= self.budget or wall >= self.wall_budget:

@@ -6,7 +6,8 @@ are), so a roboticist can plot pad forces against the wrist force with the tools
 already use. Times are simulated time, in nanoseconds. The channel `/truth` carries the
 simulator's ground truth (channel metadata `ground_truth: true`): no primitive sees it.
 Foxglove's 3D panel draws the robot, the objects and the table from `/truth/tf` and
-`/truth/scene` (atd/runtime/recording_scene.py).
+`/truth/scene` (atd/runtime/recording_scene.py), its Image panel the depth camera's pictures
+(atd/runtime/recording_images.py).
 
 On the control loop a sample is only its numbers copied into a row of floats; rows go in
 blocks to a writer process, which builds the messages and the file on the other core
@@ -27,6 +28,7 @@ from atd.runtime.recording_scene import Arm, frames_of
 from atd.runtime.recording_writer import RecordingWriter
 from atd.runtime.trace import Trace
 from atd.sim.simrobot import SimRobot
+from primitives.robot import DepthImage
 
 __all__ = ["DEFAULT_RATE", "RECORDING_FORMAT", "Recording"]
 
@@ -62,6 +64,7 @@ class Recording:
                                                  "hand_dofs": " ".join(hand.dofs), "wrench_frame": "hand"},
                           info or {}, attachments or {}))
         self.writer.send(("scene", frames_of(arms, robot.scene)))
+        robot.on_capture = self._picture
 
     def __call__(self, sim_time: float) -> None:
         if len(self.trace.records) > self.traced:
@@ -84,6 +87,10 @@ class Recording:
         if len(self.samples) == BLOCK:
             self._send()
 
+    def _picture(self, image: DepthImage) -> None:
+        """A depth picture a state took: to the writer now (it is no tick's reading)."""
+        self.writer.send(("image", image))
+
     def _take_trace(self) -> None:
         self.traces += [(len(self.samples), record) for record in self.trace.records[self.traced:]]
         self.traced = len(self.trace.records)
@@ -96,10 +103,12 @@ class Recording:
         """Write the end of the run and the file, whole (OutputError when it cannot be)."""
         self._take_trace()
         self._send()
+        self.robot.on_capture = None
         self.writer.finish({"succeeded": str(outcome.succeeded).lower(), "summary": outcome.summary,
                             "end_state": outcome.end_state or "", "sim_time": f"{outcome.sim_time:.6f}"})
 
     def abandon(self) -> None:
         """The run did not end (an exception, Ctrl-C): stop the writer, leave no file. (Once
         the file is written, nothing.)"""
+        self.robot.on_capture = None
         self.writer.abandon()

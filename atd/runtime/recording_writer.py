@@ -26,7 +26,7 @@ from typing import Any, BinaryIO, Iterator, NoReturn
 from mcap.writer import CompressionType, Writer
 
 from atd.model.files import OutputError, write_output
-from atd.runtime import recording_scene
+from atd.runtime import recording_images, recording_scene
 from atd.runtime.recording_format import CHANNELS, PROFILE, SCHEMAS, Layout, encode, messages
 from atd.runtime.recording_scene import SceneWriter
 
@@ -144,6 +144,12 @@ def _write(path: Path, feed: BinaryIO) -> str | None:
         elif item[0] == "scene":
             scene = SceneWriter(item[1])
             channels |= _register(writer, recording_scene.SCHEMAS, recording_scene.CHANNELS, {})
+        elif item[0] == "image":
+            if recording_images.DEPTH not in channels:
+                channels |= _register(writer, recording_images.SCHEMAS, recording_images.CHANNELS, {})
+            for topic, ns, message in recording_images.image_messages(item[1]):
+                sequence += 1
+                writer.add_message(channels[topic], ns, encode(message), ns, sequence)
         elif item[0] == "rows":
             assert layout is not None, "the feed starts with the layout"
             found = messages(layout, *item[1:])

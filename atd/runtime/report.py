@@ -31,11 +31,11 @@ def _short(value: object) -> str:
     return str(value)
 
 
-def ends(items: list[T]) -> tuple[list[T], int, list[T]]:
-    """A long section's first and last SECTION_LINES // 2 items and how many lie between
-    them; a short section whole (then none between, none after)."""
-    half = SECTION_LINES // 2
-    if len(items) <= SECTION_LINES:
+def ends(items: list[T], lines: int = SECTION_LINES) -> tuple[list[T], int, list[T]]:
+    """A long section's first and last `lines` // 2 items and how many lie between them; a
+    short section whole (then none between, none after)."""
+    half = lines // 2
+    if len(items) <= lines:
         return items, 0, []
     return items[:half], len(items) - 2 * half, items[-half:]
 

@@ -13,9 +13,16 @@ from atd.sim.simrobot import SimRobot
 from factories.description import RobotDescription
 from factories.registry import UnknownRobot, create, installed
 
-__all__ = ["ENGINES", "UnknownRobot", "load_description", "make_arms", "make_robot", "variants"]
+__all__ = ["ENGINES", "UnknownRobot", "installed_engines", "load_description", "make_arms", "make_robot", "variants"]
 
 ENGINES = ("mujoco", "pybullet")
+
+
+def installed_engines() -> tuple[str, ...]:
+    """The engines this installation can run: PyBullet is optional (atd/sim/optional.py)."""
+    from atd.sim.optional import pybullet_installed
+
+    return ENGINES if pybullet_installed() else ("mujoco",)
 
 
 def variants() -> list[tuple[str, str]]:
@@ -42,6 +49,10 @@ def make_robot(description: RobotDescription, scene: Scene | None = None, engine
 
         robot: SimRobot = MujocoRobot(description, scene, seed, window, belief)
     elif engine == "pybullet":
+        if engine not in installed_engines():
+            from atd.sim.optional import pybullet_missing
+
+            raise ValueError(pybullet_missing("the pybullet engine"))
         from atd.sim.pybullet_engine import PybulletRobot
 
         robot = PybulletRobot(description, scene, seed, window, belief)
@@ -61,7 +72,7 @@ def make_arms(descriptions: tuple[RobotDescription, ...], scene: Scene | None = 
               ) -> tuple[SimRobot, ...]:
     """Several arms of one robot (a description each, as its factory gives them) in one world,
     each behind its own robot interface; stepping the first steps them all. The first arm
-    starts at its home, the others `parked` beside the work area; the k-th arm's sensor noise
+    starts at its home, the others `parked` where their descriptions say; the k-th arm's sensor noise
     is drawn from `seed + k`. Only MuJoCo builds such a world (ValueError otherwise)."""
     beliefs = beliefs or (None,) * len(descriptions)
     if len(descriptions) == 1:
@@ -73,8 +84,8 @@ def make_arms(descriptions: tuple[RobotDescription, ...], scene: Scene | None = 
     from atd.sim.two_arms import parked
 
     scene = scene if scene is not None else box_scene()
-    descriptions = (descriptions[0],) + tuple(parked(d, descriptions[0]) for d in descriptions[1:])
-    beliefs = (beliefs[0],) + tuple(parked(b, descriptions[0]) if b else None for b in beliefs[1:])
+    descriptions = (descriptions[0],) + tuple(parked(d) for d in descriptions[1:])
+    beliefs = (beliefs[0],) + tuple(parked(b) if b else None for b in beliefs[1:])
     first = MujocoRobot(descriptions[0], scene, seed, window, beliefs[0], others=descriptions[1:])
     arms = (first,) + tuple(first.arm(d, seed + k, b) for k, (d, b) in enumerate(zip(descriptions[1:], beliefs[1:]), 1))
     if scene.settle:

@@ -17,16 +17,17 @@ geom priority, Bullet by multiplying with the pad's 1).
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from functools import cache
 from pathlib import Path
 
 import numpy as np
-import pybullet_data
 
 from atd.model import ObjectClass, ObjectInfo, Pose
 from atd.model.meshcheck import mesh_points
 from atd.sim.convex import convex_parts
+from atd.sim import optional
 from atd.sim.scene import Body, bounding_box
 from atd.sim.thread import Thread
 
@@ -38,6 +39,10 @@ _Y_TO_X = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])  # file
 
 class UnknownObject(LookupError):
     """No library object has that name; the message lists the ones there are."""
+
+
+class MeshUnavailable(LookupError):
+    """The object's mesh ships with PyBullet (`pybullet_data`), which is not installed."""
 
 
 @dataclass(frozen=True)
@@ -67,10 +72,20 @@ class LibraryObject:
             raise ValueError(f"'{self.name}' has no screw cap: only a bottle or jar with one stands in a fixture")
         return dataclasses.replace(self, thread=dataclasses.replace(self.thread, fixture=True))
 
-    def object_info(self, x: float, y: float) -> ObjectInfo:
-        """What the robot believes: the object resting on the table at (x, y)."""
+    def object_info(self, x: float, y: float, yaw: float = 0.0) -> ObjectInfo:
+        """What the robot believes: the object resting on the table at (x, y), turned by
+        `yaw` (rad) about the vertical."""
         info = ObjectInfo(weight=self.mass, friction=self.friction, object_class=self.shape, size=self.size)
-        return info.model_copy(update={"pose": Pose.from_position((x, y, info.half_height))})
+        c, s = math.cos(yaw), math.sin(yaw)
+        pose = Pose(matrix=(c, 0.0 - s, 0.0, x, s, c, 0.0, y, 0.0, 0.0, 1.0, info.half_height, 0.0, 0.0, 0.0, 1.0))
+        return info.model_copy(update={"pose": pose})
+
+    @property
+    def unavailable(self) -> str | None:
+        """Why this object cannot be built here (its mesh needs PyBullet), or None."""
+        if self.mesh is None or optional.pybullet_installed():
+            return None
+        return optional.pybullet_missing(f"library object '{self.name}' (a mesh from pybullet_data)")
 
     def body(self, name: str, pose: np.ndarray) -> Body:
         """The simulator's truth for this object at `pose` (its geometric centre), named `name`."""
@@ -104,6 +119,10 @@ class LibraryObject:
 
 def mesh_file(relative: str) -> Path:
     """A mesh of the installed `pybullet_data` package, used where it is, never copied."""
+    if not optional.pybullet_installed():
+        raise MeshUnavailable(optional.pybullet_missing(f"the mesh '{relative}' from pybullet_data"))
+    import pybullet_data
+
     path = Path(pybullet_data.getDataPath()) / relative
     if not path.is_file():
         raise FileNotFoundError(f"{path}: pybullet_data has no '{relative}'; reinstall it with "

@@ -143,8 +143,7 @@ class MujocoRobot(SimRobot):
 
         self._tcp_site = _id(m, mujoco.mjtObj.mjOBJ_SITE, prefix + d.tcp.name)
         self._identity = np.eye(4)
-        self._jacp = np.zeros((3, m.nv))
-        self._jacr = np.zeros((3, m.nv))
+        self._jac = np.zeros((6, m.nv))  # translational rows, then rotational: one gather a tick
         force_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, prefix + "wrist_force")]
         torque_adr = m.sensor_adr[_id(m, mujoco.mjtObj.mjOBJ_SENSOR, prefix + "wrist_torque")]
         self._wrench_idx = np.r_[force_adr : force_adr + 3, torque_adr : torque_adr + 3]
@@ -183,6 +182,7 @@ class MujocoRobot(SimRobot):
         self._renderer: mujoco.Renderer | None = None
         self._depth_renderers: dict[str, mujoco.Renderer] = {}
         self._arm_from: np.ndarray | None = None  # where the arm's reference ramps from; None: hold it
+        self._fractions = np.arange(1, self.substeps + 1) / self.substeps  # of the ramp, after each substep
 
     # ---- engine part ------------------------------------------------------------------
     def _apply_arm(self, q_ref: np.ndarray, dq_ff: np.ndarray) -> None:
@@ -215,12 +215,14 @@ class MujocoRobot(SimRobot):
         # hold), as a servo drive interpolates its setpoints: held as a step, it left the servo a
         # growing error each period, and the wrist, sampled at the period's end, read a hand
         # going down 0.5 N heavier than at rest.
+        # Every substep's references at once, each element as start + change * (k / substeps).
         arms = (self, *self._partners)
         ramps = [(r._arm_act, r._arm_to if r._arm_from is None else r._arm_from) for r in arms]
-        ramps = [(act, start, r._arm_to - start) for r, (act, start) in zip(arms, ramps)]
-        for k in range(1, self.substeps + 1):
-            for act, start, change in ramps:
-                self._ctrl[act] = start + change * (k / self.substeps)
+        ramps = [(act, start + np.multiply.outer(self._fractions, r._arm_to - start))
+                 for r, (act, start) in zip(arms, ramps)]
+        for k in range(self.substeps):
+            for act, references in ramps:
+                self._ctrl[act] = references[k]
             mujoco.mj_step(self.model, self.data)
         for r in arms:
             r._arm_from = r._arm_to
@@ -230,8 +232,8 @@ class MujocoRobot(SimRobot):
                 self.data.xfrc_applied[cap, 3:] = 0.0  # a test's push on it turns it no further
 
     def jacobian(self) -> np.ndarray:
-        mujoco.mj_jacSite(self.model, self.data, self._jacp, self._jacr, self._tcp_site)
-        return np.vstack([self._jacp[:, self._arm_vadr], self._jacr[:, self._arm_vadr]])
+        mujoco.mj_jacSite(self.model, self.data, self._jac[:3], self._jac[3:], self._tcp_site)
+        return self._jac[:, self._arm_vadr]
 
     def _joint_state(self):
         return self._qpos[self._qadr], self._qvel[self._vadr], self._qfrc_actuator[self._vadr]

@@ -430,6 +430,7 @@ class PybulletRobot(SimRobot):
         pb.resetBaseVelocity(cap, state[6], state[7], physicsClientId=c)
         pb.changeVisualShape(cap, -1, rgbaColor=COLOURS["cap"], physicsClientId=c)
         pb.setCollisionFilterGroupMask(uid, 1, 0, 0, physicsClientId=c)
+        self._robot_touches(uid, 1, False)  # a pair's filter outranks the mask: `settle` left one on
         pb.changeVisualShape(uid, 1, rgbaColor=(0, 0, 0, 0), physicsClientId=c)
         pb.setJointMotorControl2(uid, 1, pb.VELOCITY_CONTROL, targetVelocity=0.0, force=THREAD_FORCE, physicsClientId=c)
         thread.free = cap
@@ -561,8 +562,12 @@ class PybulletRobot(SimRobot):
     def _robot_collides(self, on: bool) -> None:
         parts = [(uid, -1) for uid in self._movable_bodies()] + [(t.object, 1) for t in self._threads if t.free is None]
         for uid, part in parts:
-            for link in range(-1, pb.getNumJoints(self.body, physicsClientId=self.client)):
-                pb.setCollisionFilterPair(self.body, uid, link, part, int(on), physicsClientId=self.client)
+            self._robot_touches(uid, part, on)
+
+    def _robot_touches(self, uid: int, part: int, on: bool) -> None:
+        """Whether the robot's links collide with link `part` of body `uid`, whatever their masks say."""
+        for link in range(-1, pb.getNumJoints(self.body, physicsClientId=self.client)):
+            pb.setCollisionFilterPair(self.body, uid, link, part, int(on), physicsClientId=self.client)
 
     def _camera_matrices(self, camera: DepthCamera, near: float, far: float, aspect: float) -> tuple[list, list]:
         """PyBullet's view and projection matrices of a described camera, from where it truly stands."""

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from abc import abstractmethod
 from dataclasses import dataclass, replace
-from typing import Sequence
+from typing import Callable, Sequence
 
 import numpy as np
 
@@ -72,6 +72,9 @@ class SimRobot(Robot):
         self._cameras = {c.name: c for c in d.cameras}
         self._believed_cameras = {c.name: c for c in (belief or d).cameras}
         self._camera_noise = np.random.default_rng([seed, 3])
+        # Told of every picture taken (a recording keeps them): pictures are taken on demand,
+        # so no tick-by-tick reading carries them.
+        self.on_capture: Callable[[DepthImage], None] | None = None
         self.settling: Settling | None = None
         self.hand_joints = tuple(n for n in d.joints if n not in d.arm_joints)
         self.substeps = int(round(d.control_period / d.timestep))
@@ -281,7 +284,10 @@ class SimRobot(Robot):
         if camera.noise:
             seen = depth > 0
             depth[seen] += (camera.noise * depth[seen] ** 2 * self._camera_noise.standard_normal(int(seen.sum())))
-        return DepthImage(sensor, self._time, depth, believed.intrinsics, believed.origin.matrix())
+        image = DepthImage(sensor, self._time, depth, believed.intrinsics, believed.origin.matrix())
+        if self.on_capture is not None:
+            self.on_capture(image)
+        return image
 
     def settle(self) -> Settling:
         """Let gravity bring the scene's objects to rest before the run's clock starts (a

@@ -8,8 +8,7 @@ joints. Each description carries the robot's trunk (Baxter's torso and pedestal)
 same place; robot geoms never collide with one another, so the copy only overlaps.
 
 Every arm's home puts its hand over the middle of the work area (docs/robots.md), so an
-added arm starts `parked` beside it, on its own side: there, Baxter's left gripper held
-the cylinder its right arm lifted into it.
+added arm starts `parked` where its description says an idle arm waits (`park`).
 """
 
 from __future__ import annotations
@@ -23,9 +22,6 @@ from atd.sim.models import mjcf
 from atd.sim.scene import Scene, SceneError
 from factories.description import RobotDescription
 
-# m sideways, towards its own shoulder, an added arm's hand starts from its home: beside a
-# 5-10 cm object lifted 15 cm over the middle of the work area by the first arm, clear of it.
-PARK_SIDEWAYS = 0.30
 PARK_TOLERANCE = 0.002  # m the inverse kinematics may leave the parked hand from where it is asked
 
 # Attributes that name an element of the robot's own (prefixed with it); classes are shared.
@@ -37,24 +33,21 @@ def arm_prefix(arm: str) -> str:
     return f"{arm}/"
 
 
-def _shoulder_y(arm: RobotDescription) -> float:
-    """Where the arm's first joint stands across the work area (world y) at home."""
-    poses = arm.link_poses(dict(zip(arm.arm_joints, arm.home)))
-    return float(poses[arm.joint_link[arm.arm_joints[0]]][1, 3])
-
-
-def parked(arm: RobotDescription, first: RobotDescription) -> RobotDescription:
-    """`arm` with its home moved out of the way of `first`'s: its hand still top-down at the
-    same height, PARK_SIDEWAYS to the side its shoulder stands on (SceneError where it cannot
-    get there)."""
+def parked(arm: RobotDescription) -> RobotDescription:
+    """`arm` with its home moved to where its description parks an idle arm (`park`): its hand
+    top-down with its home yaw, out of the way of the arm that works from home (SceneError
+    where the description parks none or the arm cannot get there)."""
+    if arm.park is None:
+        raise SceneError(f"the {arm.label}'s description says nowhere for it to wait while another arm works "
+                         "(RobotDescription.park): it would start in the other arm's way")
     home = np.array(arm.home, float)
     target = arm.tcp_pose(home)
-    side = 1.0 if _shoulder_y(arm) >= _shoulder_y(first) else -1.0
-    target[1, 3] += side * PARK_SIDEWAYS
+    target[:3, 3] = arm.park
     q, error = arm.inverse_kinematics(target, home)
     if error > PARK_TOLERANCE:
-        raise SceneError(f"the {arm.label} cannot park its hand {PARK_SIDEWAYS:g} m beside the work area "
-                         f"(the nearest is {error * 1000:.0f} mm off): it would start in the other arm's way")
+        raise SceneError(f"the {arm.label} cannot park its hand at ({', '.join(f'{v:g}' for v in arm.park)}), "
+                         f"where its description parks it (the nearest is {error * 1000:.0f} mm off): it would "
+                         "start in the other arm's way")
     return dataclasses.replace(arm, home=tuple(round(float(v), 6) for v in q))
 
 

@@ -348,6 +348,10 @@ class _Reader:
             self.error("WLD020", f"no object '{name}' in the library", loc,
                        did_you_mean(name, known) or f"library objects: {', '.join(known)}")
             return None
+        if known[name].unavailable:
+            usable = [n for n, o in known.items() if not o.unavailable]
+            self.error("WLD026", known[name].unavailable, loc, f"or use one without a mesh: {', '.join(usable)}")
+            return None
         return known[name]
 
 

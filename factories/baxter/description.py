@@ -61,6 +61,10 @@ HOME = {
     "right": (0.5567, -0.6607, 0.9944, 1.9396, 2.1332, -0.8987, -1.8344),
     "left": (-0.5567, -0.6607, -0.9944, 1.9396, -2.1332, -0.8987, 1.8344),  # the right one mirrored
 }
+# Where an arm waits while the other works: its hand top-down at home height, 30 cm from
+# the middle towards its own shoulder, clear of a 5-10 cm object the other lifts 15 cm over
+# the middle (Baxter's left gripper held a cylinder its right arm lifted into it from home).
+PARK = {"right": (0.125, -0.30, 0.15), "left": (0.125, 0.30, 0.15)}
 
 
 def _arm(side: str) -> tuple[Link, ...]:
@@ -121,6 +125,7 @@ def description(arm: str | None = None) -> RobotDescription:
         # the table, far enough back for the pedestal to clear the table's edge.
         base=Origin((-0.40, 0.0, 0.15)),
         home=HOME[side],
+        park=PARK[side],
         sensors={
             "joints": SensorModel(resolution=0.0004),  # about 14-bit encoders
             # Estimated from joint torques: noisy, coarse, slightly biased (thesis A.4).

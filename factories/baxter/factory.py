@@ -29,6 +29,7 @@ from factories.base import (
     PARALLEL_JAW_SHAPES,
     parallel_jaw_closest,
 )
+from factories.kinds import JAW_UNSCREW_ROW
 
 def _arm(side: str) -> Arm:
     sensors = (
@@ -51,7 +52,7 @@ class BaxterFactory(Factory):
     arms = (_arm("right"), _arm("left"))
     primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
                             StateType.PLACE, StateType.SLIDE, StateType.RELEASE,
-                            StateType.EXPLORE, StateType.PERCEIVE})
+                            StateType.EXPLORE, StateType.PERCEIVE, StateType.UNSCREW})
     node_table = (
         MappingRow("grasp", "grasp", "grasp force", "arm control, gripper force and opening"),
         MappingRow("move", "move", "-", "arm control, filtered virtual F/T"),
@@ -61,7 +62,7 @@ class BaxterFactory(Factory):
         MappingRow("slide", "slide", "slide force thresholds (raised, filtered)", "arm control, virtual F/T"),
         MappingRow("release", "release", "hand position", "arm control, virtual F/T"),
         *PERCEPTION_ROWS,
-        MappingRow("unscrew", "-", "-", "-"),
+        JAW_UNSCREW_ROW,
     )
 
     def map_node(self, state: State, context: MappingContext) -> NodeMapping:
@@ -70,6 +71,8 @@ class BaxterFactory(Factory):
             return self.jaw_grasp(state, context)
         if kind is StateType.RELEASE:
             return self.release(state)
+        if kind is StateType.UNSCREW:
+            return self.jaw_unscrew(state)
         target, via = self.motion(state, context)
         if kind is StateType.PLACE:
             return NodeMapping("place", self.controller("place", target=target), self.controller("squeeze"))

@@ -156,9 +156,12 @@ def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
     # mug, stapler: up 3-9 mm, PyBullet, the preset's approach error); the pads read 2-4 N
     # with a gap between them and the grasp searched on. Left to rise, the preset's trials
     # 0-19 with the error lifted 159 of 200 against 155 (MuJoCo), 148 against 136 (PyBullet).
+    # From the side, a quarter turn about the approach axis: the pinch's F1 and F2, facing
+    # each other along hand x, close across a standing bottle instead of on its top and
+    # bottom, and F3, flat in the pinch, stands up off the table instead of 7 cm into it.
     hand = Hand("barrett_bh8_280", dofs, tuple(pads), postures, test_grasp="pinch_grasp",
                 grasp_centres={"push": pointing}, push_posture="push", rising_grasps=frozenset({"pinch_grasp"}),
-                surface_friction=RUBBER)  # rubber fingertip and palm pads
+                side_roll=-np.pi / 2, surface_friction=RUBBER)  # rubber fingertip and palm pads
     return tuple(links), hand, 0.155
 
 
@@ -262,6 +265,10 @@ HOME = {
     "right": (2.0532, 0.9389, -0.4985, 1.7014, 1.9358, -1.3386, -1.6889),
     "left": (1.502, -0.8841, -0.1818, -1.6711, -1.648, 1.7894, -1.5213),
 }
+# Where an arm waits while the other works: its hand top-down at home height, 30 cm from
+# the middle towards its own shoulder, clear of a 5-10 cm object the other lifts 15 cm over
+# the middle (Baxter's, whose left gripper a cylinder lifted from home met, are the same).
+PARK = {"right": (0.125, -0.30, 0.15), "left": (0.125, 0.30, 0.15)}
 
 
 ARMS = ("right", "left")  # what `description(arm)` accepts (None = the first); its factory's arm names
@@ -287,6 +294,7 @@ def description(arm: str | None = None) -> RobotDescription:
         # Torso behind the table, the arms' plane 35 cm above the table top.
         base=Origin((-0.5, 0.0, 0.35)),
         home=HOME[side],
+        park=PARK[side],
         sensors={
             "joints": SensorModel(resolution=1e-5),
             # JR3: no public datasheet; a few hundredths of a newton (robot-facts.md section 6).

@@ -24,7 +24,7 @@ class Phase(Enum):
     SLIDE = "slide"  # riding the supporting surface while the fingers close (Eq. 3.2)
     HOLD = "hold"  # the fingers have closed: stay, and raise or lower the hand when asked
     SETTLE = "settle"  # turning level, or stopped after a move: still before the wrist is read afresh
-    ACROSS = "across"  # rising off a contact on the object's top and moving the grasp centre over it
+    ACROSS = "across"  # off a contact on the object's top to over it, or in from a known wall first
     SHIFT = "shift"  # making a move the hand asked for
 
 

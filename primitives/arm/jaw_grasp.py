@@ -38,10 +38,10 @@ from primitives.arm.motion import (
     what_stops,
 )
 from primitives.arm.move import arm_output
+from primitives.arm.walls import KnownWalls
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import ARM_TWIST, EMPTY_HAND
 from primitives.filters import ContactWrench, contact_across, world_load
-from primitives.perception.container import ContainerBelief, clear_of_walls, container_under
 from primitives.robot import Readings
 from primitives.search import search_offsets
 
@@ -95,10 +95,7 @@ class JawGraspCorrection(Controller):
         self.jaw_half_width = float(p["jaw_half_width"])
         self.step = float(p["search_step"])
         self.offsets = search_offsets(self.step, int(p["search_points"]))
-        extent = p["hand_extent"]
-        self.extent = (float(extent[0]), float(extent[1]))
-        known = ctx.environment.containers if ctx.environment is not None else ()
-        self.containers = [ContainerBelief.known(c) for c in known]
+        self.walls = KnownWalls.of(ctx)
         self.contact = ContactWrench(float(p["filter_time"]))
         self.shaper = TwistShaper()  # a sudden reversal shakes the wrist like a contact
         # One sample of the Baxter's virtual wrist sensor is off by 0.2 N or more: a 20 g object.
@@ -170,8 +167,7 @@ class JawGraspCorrection(Controller):
     def _support(self) -> float:
         """Height of the support under the hand: the floor of a known container it is over
         (a box's floor stands its wall's thickness over the table), else the table's z = 0."""
-        container = container_under(self.containers, self.line)
-        return 0.0 if container is None else container.floor
+        return self.walls.support(self.line)
 
     def _above_object(self) -> float:
         """TCP depth from which a descent meets the object's top (or facing side) first."""
@@ -181,18 +177,11 @@ class JawGraspCorrection(Controller):
         """Back clear of the contact (at least to depth `height`), then `across` (world frame), then descend again."""
         here = readings.tcp[:3, 3]
         up = self._at_depth(here, max(self._depth(here) + self.clearance, height))
-        self.route = [up, self._inside_walls(up + self._level(across))]
+        self.route = [up, self.walls.inside(self.rotation, up + self._level(across))]
         self.phase = "move"
         self.nearest, self.nearest_at = np.inf, readings.time  # m from the waypoint, and when
         self.towards: np.ndarray | None = None  # the waypoint `nearest` is measured to
         self.free_loads.clear()
-
-    def _inside_walls(self, position: np.ndarray) -> np.ndarray:
-        """`position` moved sideways, as little as it takes, for the hand turned as it is to
-        stay inside the walls of the container it is over (unchanged over none)."""
-        pose = np.eye(4)
-        pose[:3, :3], pose[:3, 3] = self.rotation, position
-        return clear_of_walls(self.containers, pose, self.extent)[:3, 3]
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         board = self.ctx.blackboard

@@ -41,7 +41,8 @@ CRUISE = 0.9  # fraction of max_speed at which a push starts measuring its free-
 # went on pressing a fingertip on the steel weight's top at 19 N, and the preshape the hand
 # made meanwhile dragged its spread round under that load for 6 s instead of 1.5
 EASE_OFF = 0.003
-SIDEWAYS = np.sin(np.radians(45.0))  # the hand's x axis this far up or down: its yaw is the last level hand's
+# the hand's x axis this far up or down, or its approach axis this far from down: its yaw is the last level hand's
+SIDEWAYS = np.sin(np.radians(45.0))
 
 
 def arm_output(twist: np.ndarray) -> ControlData:
@@ -110,7 +111,8 @@ class CartesianMove(Controller):
         self.contact.start(readings)
         self.shaper.start(self.ctx.memory.get(ARM_TWIST))
         start = readings.tcp[:3, :3]
-        turned = self.ctx.memory.get(HAND_LEVEL) if abs(float(start[2, 0])) > SIDEWAYS else None
+        sideways = abs(float(start[2, 0])) > SIDEWAYS or float(start[2, 2]) > -SIDEWAYS
+        turned = self.ctx.memory.get(HAND_LEVEL) if sideways else None
         level = top_down(start) if turned is None else turned
         if self.yaw is not None:
             reference = self.ctx.memory.setdefault(YAW_REFERENCE, heading_of(level))

@@ -11,6 +11,7 @@ from primitives.arm.approach_phases import SETTLE, Approaching, Holding, Phase, 
 from primitives.arm.motion import (GAIN, ORIENTATION_TOLERANCE, SUPPORT_BAND, WORLD_DOWN, clamp_norm, norm,
                                    orientation_twist, top_down, unit, what_stops)
 from primitives.arm.move import arm_output
+from primitives.arm.walls import KnownWalls
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.filters import ContactWrench, contact_across
 from primitives.robot import Readings
@@ -47,6 +48,9 @@ class RobustGraspApproach(Controller):
     its place, still backing off while the squeeze presses the fingertips on the surface.
     A shift the hand asks for before it has preshaped (rising to free a preshape blocked
     on the table) ends in settling and approaching again, not in the slide.
+    In a container the task knows (`KnownWalls`, as the parallel jaws' grasp), every move
+    keeps the open hand inside its walls by the hand's `hand_extent`, a start too near a
+    wall first moving the hand in (ACROSS), and its floor is the support.
     """
 
     def __init__(self, ctx: Context) -> None:
@@ -69,6 +73,7 @@ class RobustGraspApproach(Controller):
         self.contact_depth = float(p["wrist_to_tcp"]) + self.reach  # from the wrist sensor to the fingertips
         self.grasp_centre = np.array([*np.asarray(p["grasp_centre"], float)[:2], 0.0])
         self.max_back_off = float(p["max_back_off"])
+        self.walls = KnownWalls.of(ctx)
         self.contact = ContactWrench(float(p["filter_time"]))
         self.surface = ContactWrench(SURFACE_FILTER)
         self.side = np.array([1.0, 0.0, 0.0])  # v_x of Eq. 3.1
@@ -83,6 +88,10 @@ class RobustGraspApproach(Controller):
         self.rotation = top_down(rotation) if from_above and self.level_within > 0.0 else rotation.copy()
         _, tilt = orientation_twist(self.rotation, rotation)
         self.phase = Phase.SETTLE if tilt >= ORIENTATION_TOLERANCE else Phase.APPROACH  # a level hand starts at once
+        position = readings.tcp[:3, 3]
+        inside = self.walls.inside(self.rotation, position)
+        if norm(inside - position) >= SHIFT_TOLERANCE:  # the open hand would come down on a wall
+            self.route, self.phase = [inside], Phase.ACROSS
         self.approaching = Approaching(readings.tcp[:3, 3].copy())
         self.still = 0.0  # s the hand has been still: settling, or at a raise's goal (SETTLE)
         # m: the raise or lower being made. Kept across holds, as the still time is across
@@ -224,7 +233,8 @@ class RobustGraspApproach(Controller):
         self.rotation = self.rotation @ axis_rotation(self.direction, turn)
         # A shift along the approach looks for the object, so a contact ends it; a
         # sideways one drags the fingertips over the surface, which is no reason to stop.
-        self.shifting = Shifting(position + rotation @ shift, float(shift @ self.direction) > 0.0, readings.time)
+        goal = self.walls.inside(self.rotation, position + rotation @ shift)
+        self.shifting = Shifting(goal, float(shift @ self.direction) > 0.0, readings.time)
         self.phase = Phase.SHIFT
         self.contact.start(readings)
 
@@ -234,8 +244,9 @@ class RobustGraspApproach(Controller):
         `max_shifts` times); true if that is what happens. Left there, the finger pushed
         the object over as the fingers closed."""
         rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
-        # fingertips on the table say nothing
-        on_support = not self.from_side and float(position[2]) - self.reach < SUPPORT_BAND
+        # fingertips on the table (or a known box's floor) say nothing
+        on_support = not self.from_side and \
+            float(position[2]) - self.reach - self.walls.support(position) < SUPPORT_BAND
         if self.moves >= self.max_shifts or on_support:
             return False
         across = contact_across(wrench, self.contact_depth)
@@ -243,7 +254,8 @@ class RobustGraspApproach(Controller):
             return False
         self.moves += 1
         up = position - self.clearance * (rotation @ self.direction)
-        self.route = [up, up + rotation @ clamp_norm(across - self.grasp_centre, self.max_shift)]
+        self.route = [up, self.walls.inside(self.rotation, up + rotation @ clamp_norm(across - self.grasp_centre,
+                                                                                      self.max_shift))]
         self.phase = Phase.ACROSS
         return True
 

@@ -9,6 +9,8 @@ in `primitives.arm.unscrew_phases`; docs/writing-a-primitive.md draws the machin
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 
 from atd.model.frames import axis_rotation
@@ -28,6 +30,8 @@ ALIGN_TOLERANCE = 0.002  # m: the pads place the axis to half a 3 mm taxel row; 
 PINCH_TIME = 6.0  # s: closing from the preshape (up to 1.5 s) and the robust grasp's SETTLE_LIMIT to reach the force
 TWIST_TURNS = 3.0  # times a twist's time at TWIST_SPEED: not turned by then, the cap turns about another axis
 MAX_ALIGN = 0.02  # m: the largest move onto the cap's axis: further, the pads felt more than the cap
+WRIST_MARGIN = np.radians(5.0)  # rad a twist stays short of the wrist joint's limit: the servo overshoots near it
+MIN_TWIST = np.radians(5.0)  # rad: a wrist with less room than this left turns the cap nowhere
 
 
 class UnscrewArm(Controller):
@@ -45,6 +49,7 @@ class UnscrewArm(Controller):
         self.alignment = bool(p["alignment"])
         self.max_pinches = int(p["max_pinches"])
         self.grasp_centre = np.asarray(p["grasp_centre"], float)
+        self.wrist_turn = float(p["wrist_turn"])
         self.wrench = ContactWrench(float(p["filter_time"]))
 
     def start(self, readings: Readings) -> None:
@@ -68,14 +73,19 @@ class UnscrewArm(Controller):
     # -- phases: one tick each, returning the TCP twist (world frame) ---------------------
     def _pinch(self, readings: Readings, dt: float) -> np.ndarray:
         """At the start pose until the hand has pinched the cap (twist), or closed on nothing,
-        or not reached the grasp force on every pad within PINCH_TIME (again)."""
+        or not reached the grasp force on every pad within PINCH_TIME (again). A gripper
+        whose one pad touches first asks to be moved towards it (`arm_nudge`): the arm
+        follows, or the jaws, closing together, push the held cap and never both touch."""
+        nudge = self.ctx.blackboard.arm_nudge
+        if nudge is not None:
+            self.still.position = self.still.position + nudge * dt
         if self.cap.empty:
             self._again(readings, "the fingers closed on nothing")
         elif self.cap.pinched:
             self._begin_twist(readings)
         elif readings.time - self.pinch_started > PINCH_TIME:
             self._again(readings, f"the pads did not all press the grasp force within {PINCH_TIME:.0f} s")
-        return self._toward(readings, self.start_pose, RETURN_SPEED)
+        return self._toward(readings, self.still, RETURN_SPEED)
 
     def _twist(self, readings: Readings, dt: float) -> np.ndarray:
         """Turn about the approach axis through the grasp centre (the lever's feed-forward
@@ -136,6 +146,7 @@ class UnscrewArm(Controller):
         _, left = orientation_twist(start.rotation, readings.tcp[:3, :3])
         if norm(start.position - readings.tcp[:3, 3]) < ARRIVED and left < ORIENTATION_TOLERANCE:
             self.phase = Phase.PINCH
+            self.still = TcpPose(start.position.copy(), start.rotation.copy())
             self.pinch_started = readings.time
             self.tally.pinches += 1
             self.ctx.blackboard.contact = True
@@ -152,13 +163,32 @@ class UnscrewArm(Controller):
     # -- transitions ----------------------------------------------------------------------
     def _begin_twist(self, readings: Readings) -> None:
         """Turn the other way from a tightening turn about the approach axis: a right-hand
-        thread opens counter-clockwise seen from the hand."""
+        thread opens counter-clockwise seen from the hand; no further than the wrist joint
+        that rolls the hand can turn from where it is (each return turns it back)."""
         rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
+        angle = min(self.twist_angle, self._wrist_room(readings) - WRIST_MARGIN)
+        if angle < MIN_TWIST:
+            self._hold_here(readings, Phase.FAILED)
+            self.finish(Status.ERROR, f"the wrist joint '{self.ctx.info.arm_joints[-1]}' has "
+                                      f"{np.degrees(angle + WRIST_MARGIN):.0f} degrees left to turn the cap open: "
+                                      "turn the hand the other way about its approach before the unscrew")
+            return
         self.tally.twists += 1
         self.wrench.start(readings)  # the squeeze's own load is no torque of the thread's
-        goal = axis_rotation(rotation @ self.direction, -self.twist_angle) @ rotation
+        goal = axis_rotation(rotation @ self.direction, -angle) @ rotation
         self.twisting = Twisting(goal, position + rotation @ self.grasp_centre, readings.time)
         self.phase = Phase.TWIST
+
+    def _wrist_room(self, readings: Readings) -> float:
+        """How far (rad) the last arm joint can turn the way an opening twist turns it
+        (`wrist_turn`: its turn per turn of the hand about the approach); unlimited where
+        the factory names no such joint."""
+        info = self.ctx.info
+        if self.wrist_turn > 0.0:
+            return float(readings.arm_q[-1] - info.arm_lower[-1])
+        if self.wrist_turn < 0.0:
+            return float(info.arm_upper[-1] - readings.arm_q[-1])
+        return np.inf
 
     def _again(self, readings: Readings, why: str) -> None:
         """A twist or pull ended early, or a pinch found nothing: align on the cap, open the
@@ -197,3 +227,14 @@ class UnscrewArm(Controller):
         """The twist (world frame) that takes the TCP to `pose` at no more than `speed`."""
         w, _ = orientation_twist(pose.rotation, readings.tcp[:3, :3])
         return np.concatenate([clamp_norm(GAIN * (pose.position - readings.tcp[:3, 3]), speed), w])
+
+
+#: The start of the unscrew's verdicts (`UnscrewArm.finish`), which say how many twists it made.
+TWISTS_SAID = re.compile(r"^cap (?:off after|still on after \d+ pinches and) (\d+) twists")
+
+
+def twists_in(reason: str) -> int | None:
+    """The twist moves (thesis Table 3.4 "Moves") an unscrew's verdict says it made; None for
+    any other reason (a run that ended while it still twisted never said)."""
+    said = TWISTS_SAID.match(reason)
+    return int(said.group(1)) if said else None

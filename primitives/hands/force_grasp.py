@@ -37,6 +37,13 @@ class ForceGrasp(FingerGrasp):
         share = min(scaled, default=0.0)  # of each DOF's effort limit
         return np.where(self.moving, np.clip(share * hand.effort_limit, touch, hand.effort_limit), 0.0)
 
+    def _strongest(self) -> bool:
+        """Every grasping finger presses with all its effort: the pads feel what this hand
+        can give the object, though short of the grasp force where the links beside the pads
+        carry some of the squeeze (an SDH2 around the bunny's body: pads 2-3 N of 5 N)."""
+        limit = self.ctx.info.hand.effort_limit
+        return bool((self.effort[self.moving] >= limit[self.moving]).all())
+
     def _adapt(self, readings: Readings, dt: float) -> np.ndarray:
         """One tick of force adaptation: each grasping finger's effort rises until its pad
         feels the grasp force; the two fingers of a pinch share one squeeze, driven by their

@@ -56,6 +56,7 @@ class Holding:
     settled: float = 0.0  # s the squeeze has stayed in the band about the grasp force
     entered: float = np.inf  # N: the squeeze when it last came into the band
     lost_for: float = 0.0  # s a grasping pad has felt nothing while another presses
+    short: bool = False  # settled below the grasp force, every finger at its effort limit
 
 
 @dataclass

@@ -98,19 +98,22 @@ class RobustGraspHand(ForceGrasp):
 
     def _hold(self, readings: Readings, dt: float) -> None:
         """Force adaptation until the squeeze settles at the grasp force (within 1 - HELD,
-        averaged over FELT_TIME, and not only passing through the band) for SETTLE_TIME;
-        then a pinch weighs what it holds, other grasps are done. Unsettled after
-        SETTLE_LIMIT: an error naming the pads."""
+        averaged over FELT_TIME, and not only passing through the band) for SETTLE_TIME, or
+        below it with every finger at its effort limit (`_strongest`); then a pinch weighs
+        what it holds, other grasps are done. Unsettled after SETTLE_LIMIT: an error naming
+        the pads."""
         averaged = self._squeeze(readings, dt)
         if averaged is None:
             return
         held = self.held
         squeeze = float(averaged.mean() if self.pinch else averaged.min())
         band = (1.0 - HELD) * self.grasp_force
-        if abs(squeeze - self.grasp_force) > band or abs(squeeze - held.entered) > band:
+        short = squeeze < self.grasp_force - band and self._strongest()  # steady there, it is all the hand has
+        if (abs(squeeze - self.grasp_force) > band and not short) or abs(squeeze - held.entered) > band:
             held.entered, held.settled = squeeze, 0.0  # out of the band, or only passing through it
         else:
             held.settled += dt
+        held.short = short
         held.holding += dt
         if self.status is not Status.RUNNING:
             return
@@ -119,7 +122,7 @@ class RobustGraspHand(ForceGrasp):
             self.ctx.blackboard.weigh = WEIGH_LIFT
         elif held.settled >= SETTLE_TIME:
             self.finish(Status.DONE, f"object held after {self.corrections.retries} corrections: "
-                                     f"{self._forces(readings.pad_force)}")
+                                     f"{self._forces(readings.pad_force)}{self._short_of()}")
         elif held.holding > SETTLE_LIMIT:
             what = (f"pads never settled at {self.grasp_force:.1f} N within {SETTLE_LIMIT:.0f} s "
                     f"({self._forces(readings.pad_force)})")
@@ -141,7 +144,8 @@ class RobustGraspHand(ForceGrasp):
         if abs(offset) <= OFF_CENTRE or abs(torque) <= (self.ctx.object.friction or 0.0) * squeeze * RIM_CONTACT:
             self.phase = Phase.HOLD
             self.finish(Status.DONE, f"object held after {self.corrections.retries} corrections, its weight "
-                                     f"{abs(offset) * 100:.1f} cm off the pinch line: {self._forces(readings.pad_force)}")
+                                     f"{abs(offset) * 100:.1f} cm off the pinch line: {self._forces(readings.pad_force)}"
+                                     f"{self._short_of()}")
             return
         weighing.off_line = f"its weight hung {abs(offset) * 100:.1f} cm off the pinch line"
         weighing.regrasp = self.search.look(self.search.across + offset)
@@ -347,6 +351,10 @@ class RobustGraspHand(ForceGrasp):
         torque = float(line @ (load[3:] + np.cross(hand.wrist - ends[0], load[:3])))
         across = np.cross(down, line)  # a weight this way of the line turns it positively
         return torque / weight * float(across[:2] @ self.search.normal), torque
+
+    def _short_of(self) -> str:
+        """For a reason: a hold settled below the grasp force, as hard as the hand presses."""
+        return f" (the hand's strongest squeeze, short of the {self.grasp_force:.1f} N asked)" if self.held.short else ""
 
     def _forces(self, pads: np.ndarray) -> str:
         """The grasping pads' forces, for a reason a user reads."""

@@ -131,7 +131,7 @@ class BlindExploration(Perceiver):
             self._approach(contact, point)
 
     def _approach(self, contact: Contact, point: np.ndarray) -> None:
-        pose = approach_pose(self.container, point, self.approaching.reach, self.approaching.height)
+        pose = approach_pose(self.container, point, self.approaching.grasp_reach, self.approaching.height)
         self.found(Approach(pose, point, self.method), "", f"the {self.leg.kind} felt it: {contact.sensor} "
                                                            f"{contact.force:.1f} N")
 

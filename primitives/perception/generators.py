@@ -34,8 +34,12 @@ WALL_PUSH = 0.01
 class Approaching:
     """How high over what it found a generator puts the TCP (see `approach_pose`)."""
 
-    reach: float  # m the hand reaches below its TCP, pointing down
+    reach: float  # m the hand reaches below its TCP, pointing down, as it perceives (a sweep's hand)
     height: float  # m of clearance between the hand's lowest point and the object's top (or the rim)
+    # m the hand reaches below its TCP in the posture that reaches furthest: the grasp after
+    # the approach opens it (an SDH2 perceives closed, 9.3 cm short of its TCP, and opens to
+    # 2.1 cm past it), so the approach keeps that much clear of the rim
+    grasp_reach: float
 
 
 def random_blind(container: ContainerBelief, rng: np.random.Generator, margin: float,
@@ -45,7 +49,7 @@ def random_blind(container: ContainerBelief, rng: np.random.Generator, margin: f
     low, high = container.footprint(margin)
     local = np.array([*rng.uniform(low, high), 0.0])
     point = container.to_world(local[None])[0]
-    return Approach(approach_pose(container, point, approaching.reach, approaching.height), point, "random_blind")
+    return Approach(approach_pose(container, point, approaching.grasp_reach, approaching.height), point, "random_blind")
 
 
 @dataclass(frozen=True)
@@ -130,6 +134,6 @@ def vision(image: DepthImage, container: ContainerBelief, rng: np.random.Generat
         return None
     chosen = clusters[int(rng.integers(len(clusters)))]
     point = top_centre(chosen)
-    pose = approach_pose(container, point, approaching.reach, approaching.height,
+    pose = approach_pose(container, point, approaching.grasp_reach, approaching.height,
                          jaw_yaw(near_top(chosen), container, settings.grasp_extent))
     return Approach(pose, point, "vision", len(clusters))

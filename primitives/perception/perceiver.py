@@ -25,7 +25,7 @@ class Perceiver(Controller):
         p = self.params
         self.writes = str(p["writes"])
         self.container = ContainerBelief.from_params(p)
-        self.approaching = Approaching(float(p["hand_reach"]), float(p["approach_height"]))
+        self.approaching = Approaching(float(p["hand_reach"]), float(p["approach_height"]), float(p["grasp_reach"]))
         self.hold = Hold(ctx)
 
     def start(self, readings: Readings) -> None:

@@ -192,7 +192,7 @@ def test_a_parameter_another_model_has_is_a_located_spec_error(tmp_path: Path) -
     ('model = "hand_physics"\nmass = [0.0, 2.0]', ("CMP012", 7, None)),
     ('model = "aproach"', ("CMP012", 6, "did you mean 'approach'?")),
     ('translation = 0.01', ("CMP011", 5, "add model = ..., one of none, approach, object_pose, object_physics, sensors, "
-                                         "hand_physics")),
+                                         "hand_physics, cap_approach")),
 ])
 def test_a_perturbation_table_is_checked_against_its_own_model(tmp_path: Path, table: str, expected: tuple) -> None:
     _, found = _spec_errors(tmp_path, table)

@@ -1,16 +1,20 @@
 """The unscrew state (thesis 3.3.6) in the ATD language: validated, translated on the hands
-that pinch with fingers of their own, its alignment switched off from the ATD, and refused
-with the reason (exit 4) on the grippers."""
+that pinch with fingers of their own and on the grippers (the jaws grip the cap, the last
+wrist joint twists it), its alignment switched off from the ATD, and refused with the
+reason where the wrist cannot turn one twist."""
 
 from __future__ import annotations
 
 import subprocess
 import sys
+from dataclasses import replace
+from functools import cached_property
 
 import pytest
 
 from atd.model import load_task
 from atd.model.estd_xml import read_estd
+from factories.description import RobotDescription
 from factories.registry import create
 from translator import translate
 
@@ -59,12 +63,41 @@ def test_the_reactive_alignment_is_switched_off_from_the_atd(atd_file, tmp_path)
     assert state.arm.params["alignment"] is False
 
 
-@pytest.mark.parametrize("robot", ["melfa", "baxter"])
-def test_a_gripper_refuses_to_unscrew_with_exit_4_and_the_reason(atd_file, robot: str) -> None:
-    result = atd("run", str(atd_file(UNSCREW.format(parameter=""))), "--robot", robot, "-q")
-    assert result.returncode == 4, result.stderr
-    assert "has no unscrew primitive" in result.stderr and "multi-finger hand" in result.stderr, result.stderr
-    assert "Traceback" not in result.stderr
+@pytest.mark.parametrize(("robot", "arm", "source"),
+                         [("melfa", None, "tactile"), ("panda", None, "tactile"), ("baxter", "left", "motor"),
+                          ("baxter", "right", "motor")])
+def test_a_gripper_grips_the_cap_and_twists_it_with_its_last_wrist_joint(atd_file, robot: str, arm: str | None,
+                                                                          source: str) -> None:
+    task, _ = load_task(atd_file(UNSCREW.format(parameter="")))
+    [state] = [s for s in translate(task, create(robot, arm=arm)).estd.states if s.name == "unscrew_cap"]
+    assert state.primitive == "unscrew" and state.arm.name == "unscrew_arm" and state.hand.name == "unscrew_jaws"
+    arm_params, hand = state.arm.params, state.hand.params
+    assert (arm_params["twist_angle"], arm_params["torque_limit"], arm_params["pull_force_limit"],
+            arm_params["cap_removed_distance"], arm_params["alignment"]) == (30.0, 10.0, 7.0, 0.04, True)
+    assert arm_params["wrist_turn"] in (1.0, -1.0)  # its last joint rolls the hand about the approach
+    assert (hand["grasp_force"], hand["finger_min_distance"], hand["force_source"]) == (5.0, 0.012, source)
+
+
+def test_a_wrist_that_cannot_turn_one_twist_is_refused_with_the_reason(atd_file) -> None:
+    from factories.melfa.factory import MelfaFactory
+
+    class StiffWrist(MelfaFactory):
+        """A Melfa whose last joint turns 20 degrees in all."""
+
+        @cached_property
+        def robot(self) -> RobotDescription:
+            robot = super().robot
+            links = tuple(replace(link, joint=replace(link.joint, lower=-0.1745, upper=0.1745))
+                          if link.joint is not None and link.joint.name == robot.arm_joints[-1] else link
+                          for link in robot.links)
+            return replace(robot, links=links)
+
+    path = atd_file(UNSCREW.format(parameter=""))
+    result = translate(load_task(path)[0], StiffWrist())
+    assert result.estd is None
+    message = result.diagnostics[0].render()
+    assert "error[TRN001]" in message and "the wrist joint 'j6'" in message, message
+    assert "turns 20 degrees in all, less than one twist of 30 degrees" in message, message
 
 
 def test_an_unscrew_state_that_names_an_unknown_object_is_a_located_error(atd_file) -> None:

@@ -44,4 +44,5 @@ def container_params() -> dict:
 def perceive(method: str, **params) -> Controller:
     """A perceive arm controller for the Melfa looking in the box, writing under 'found'."""
     return Controller(name="perceive", params={"method": method, "writes": "found", "hand_reach": MELFA_REACH,
+                                               "grasp_reach": MELFA_REACH,
                                                **container_params(), **params})

@@ -29,12 +29,12 @@ TEMPLATE = """<?xml version="1.0" encoding="UTF-8"?>
   </object>
   <state name="turn" type="move">
     <movement>free</movement>
-    <hand_shape>open</hand_shape>
+    <hand_shape>{coming}</hand_shape>
     <path><pose>{over}</pose></path>
   </state>
   <state name="approach" type="move">
     <movement>free</movement>
-    <hand_shape>open</hand_shape>
+    <hand_shape>{coming}</hand_shape>
     <path><pose>{start}</pose></path>
   </state>
   <state name="preshape_hand" type="move">
@@ -85,12 +85,13 @@ def _pose(rotation: np.ndarray, at: np.ndarray) -> str:
     return "  ".join(rows + ["0 0 0 1"])
 
 
-def side_grasp(direction: str, height: float = GRASP_HEIGHT) -> str:
-    """The grasp-and-lift ATD whose hand approaches the cylinder along `direction`, `height` up."""
+def side_grasp(direction: str, height: float = GRASP_HEIGHT, coming: str = "open") -> str:
+    """The grasp-and-lift ATD whose hand approaches the cylinder along `direction`, `height`
+    up, in the hand shape `coming` until its preshape."""
     rotation = turn(direction)
     centre = np.array([OBJECT[0], OBJECT[1], height])
     along = rotation @ np.array([0.0, 0.0, -1.0])  # the turned hand's approach axis
-    return TEMPLATE.format(ox=OBJECT[0], oy=OBJECT[1], oz=OBJECT[2], lz=round(height + 0.12, 6),
+    return TEMPLATE.format(coming=coming, ox=OBJECT[0], oy=OBJECT[1], oz=OBJECT[2], lz=round(height + 0.12, 6),
                            over=_pose(rotation, centre - START * along + (0.0, 0.0, ABOVE)),
                            start=_pose(rotation, centre - START * along),
                            near=_pose(rotation, centre - NEAR * along))

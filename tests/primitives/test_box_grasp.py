@@ -10,6 +10,7 @@ import pytest
 from atd.model.estd import Controller
 from atd.model.task import ContainerInfo, Environment, Pose
 from atd.sim import load_description
+from primitives.arm.approach_phases import Phase
 from primitives.base import Context
 from primitives.perception.container import approach_pose, clear_of_walls
 from primitives.perception.generators import jaw_yaw, long_side
@@ -87,3 +88,29 @@ def test_vision_closes_the_jaws_along_a_wall_that_leaves_no_room_across() -> Non
         top = _top((0.18, HIGH_Y - 0.035), 0.05, 0.05, yaw)
         closing = approach_pose(BELIEF, np.array([0.18, 0.2, RIM_Z]), 0.0, 0.0, jaw_yaw(top, BELIEF, MELFA_OPEN))
         assert abs(closing[1, 1]) < 0.2, yaw  # the closing axis (hand y) runs along the wall (world x)
+
+
+@pytest.mark.parametrize("arm", ["right", "left"])
+def test_a_multi_finger_grasp_over_a_known_box_first_moves_its_hand_clear_of_the_wall(arm: str) -> None:
+    """The robust grasp (Barrett, SDH2) keeps its preshaped hand inside the walls as the jaw
+    grasp does: over the box and too near a wall it moves in first; on the table it starts its
+    approach where the move left it."""
+    description = load_description("tombatossals", arm)
+    info = robot_info(description)
+    extent = (0.045, 0.06)  # a hand narrower than the box, its x along the box's x
+    box = ContainerInfo(name="box", pose=Pose(matrix=tuple(BOX_POSE.reshape(-1))), size=BOX.size, wall=WALL)
+    start = _tcp(0.20, HIGH_Y - 0.015)
+    zeros = np.zeros(len(info.arm_joints))
+    hand = np.zeros(len(info.hand.dofs))
+    readings = Readings(time=0.0, arm_q=zeros, arm_dq=zeros, arm_effort=zeros, hand_q=hand, hand_dq=hand,
+                        hand_effort=hand, tcp=start, wrench=np.zeros(6), taxels={},
+                        pad_force=np.zeros(len(info.hand.pads)), range=None)
+    phases = []
+    for environment in (Environment(containers=(box,)), None):
+        grasp = build_controller(Controller(name="robust_grasp_approach", params={"hand_extent": extent}), "arm",
+                                 Context(info=info, params={}, environment=environment))
+        grasp.start(readings)
+        phases.append(grasp.phase)
+        if environment is not None:
+            np.testing.assert_allclose(grasp.route[-1], (0.20, HIGH_Y - 0.06, start[2, 3]))
+    assert phases[0] is Phase.ACROSS and phases[1] is Phase.APPROACH

@@ -21,7 +21,7 @@ from tests.primitives.conftest import Stage, events, execute, leaf, machine, use
 
 SETTINGS = VisionSettings(floor_margin=0.01, wall_margin=0.01, above_rim=0.1, voxel=0.01, min_points=20,
                           grasp_extent=(0.04, 0.05))
-APPROACHING = Approaching(reach=MELFA_REACH, height=0.05)
+APPROACHING = Approaching(reach=MELFA_REACH, height=0.05, grasp_reach=MELFA_REACH)
 RIM = 0.08
 
 

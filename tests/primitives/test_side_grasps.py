@@ -18,6 +18,7 @@ from atd.model.frames import rpy_of
 from atd.runtime.session import Run
 from atd.model.vocabulary import EventType
 from atd.sim.scene import box_scene
+from factories.registry import create
 from tests.primitives.conftest import Stage, both_done, execute, last_reasons, leaf, machine, melfa, use
 from tests.primitives.side_grasps import OBJECT, side_grasp, turn
 from translator import translate
@@ -72,3 +73,22 @@ def test_check_and_run_agree_on_side_grasps(tmp_path: Path, direction: str) -> N
         outcome = run.execute()
         assert outcome.succeeded, f"{label} {direction}: check accepted, the run: {outcome.summary}"
         assert run.object_position[2] > OBJECT[2] + LIFTED, f"{label} {direction}: the bottle at {run.object_position}"
+
+
+def test_the_barrett_rolls_its_pinch_across_a_bottle_from_the_side_and_lifts_it(tmp_path: Path) -> None:
+    """The Barrett's pinch closes along its x axis, which a side turn stands upright: its
+    description rolls it a quarter turn about the approach (`Hand.side_roll`), so its fingers
+    close across the bottle, and check accepts the approach it comes in preshaped (open, its
+    flat fingers reach into the table: refused above, naming them)."""
+    path = tmp_path / "side.xml"
+    path.write_text(side_grasp("+y", coming="pinch_grasp_preshape"))
+    task, _ = load_task(path)
+    factory = create("tombatossals")  # the right arm: the Barrett
+    result = translate(task, factory)
+    assert not [d for d in result.diagnostics if d.severity is Severity.ERROR], result.diagnostics
+    run = Run(result.estd, factory, engine="mujoco")
+    outcome = run.execute()
+    assert outcome.succeeded, outcome.summary
+    assert run.object_position[2] > OBJECT[2] + LIFTED, run.object_position  # truth: lifted
+    tcp = run.robot.true_tcp()
+    assert abs(tcp[2, 2]) < 0.1 and abs(tcp[2, 0]) < 0.1, tcp[:3, :3]  # approach and closing axes level

@@ -8,7 +8,6 @@ import pytest
 
 from atd.model.vocabulary import EventType
 from atd.sim.scene import box_scene
-from primitives.hands.robust_grasp import SETTLE_LIMIT
 from tests.primitives.conftest import (
     EXAMPLES,
     Stage,
@@ -94,10 +93,11 @@ def test_barrett_finger_lost_correction_shifts_the_hand_onto_the_object(engine: 
     assert abs(robot.object_pose()[0, 3] - 0.165) < 0.006  # nudged while closing: 3.7 mm on main, 5.1 mm since holds must settle
 
 
-def test_barrett_hold_that_never_settles_is_an_error_naming_the_pads_before_the_timeout() -> None:
-    """A grasp force beyond what the fingers can press: force adaptation never settles. The
-    hold is given SETTLE_LIMIT, then the grasp ends in its own error, with the pad forces,
-    inside the 20 s the examples give a grasp state."""
+def test_barrett_asked_more_than_its_fingers_press_holds_at_its_strongest_squeeze_and_says_so() -> None:
+    """A grasp force beyond what the fingers can press: with every finger at its effort
+    limit and the pads steady, the hold is all the hand has (docs/robust-grasp.md, evidence
+    17): the grasp ends done, inside the 20 s the examples give it, saying the squeeze fell
+    short of the force asked and what the pads feel."""
     robot = simulated("tombatossals", "right", box_scene())
     pinch = dict(preshape="pinch_grasp_preshape", grasp_shape="pinch_grasp", grasp_force=150.0)
     estd = machine(
@@ -107,9 +107,7 @@ def test_barrett_hold_that_never_settles_is_an_error_naming_the_pads_before_the_
         failures={"s1": (EventType.ERROR, leaf("hand_error"))},
     )
     outcome, executor = execute(estd, robot)
-    assert not outcome.succeeded
-    reason = last_reasons(executor)[0]
-    assert reason.startswith(f"pads never settled at 150.0 N within {SETTLE_LIMIT:.0f} s (tactile_f1 "), reason
-    assert "tactile_f2" in reason and reason.endswith("after 0 corrections"), reason
-    grasp = next(r for r in executor.trace.records if r["type"] == "exit" and r["state"] == "s1")
-    assert grasp["transition"] != "s1->failed#t"  # the grasp's own error, not the timeout
+    assert outcome.succeeded, outcome.summary
+    held = next(r for r in last_reasons(executor) if r.startswith("object held"))
+    assert held.endswith("(the hand's strongest squeeze, short of the 150.0 N asked)"), held
+    assert "tactile_f1 " in held and "tactile_f2 " in held, held

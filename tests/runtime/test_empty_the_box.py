@@ -3,13 +3,18 @@ sensors, with values passed from perceive to the pick-and-place round."""
 
 from __future__ import annotations
 
+import base64
 import json
+import subprocess
+from pathlib import Path
 
 import numpy as np
 import pytest
+from mcap.reader import make_reader
 
 from atd.model.estd import Controller, EstdState
 from atd.model.vocabulary import StateType
+from atd.review.load import load
 from atd.runtime.values import MissingValue, arm_for, bind_inputs
 from primitives.values import Approach, Contact, NothingFound
 from tests.conftest import EXAMPLES, REPO
@@ -36,13 +41,39 @@ def test_vision_empties_a_box_of_two_objects_on_the_melfa_and_says_what_it_took_
     assert len(found) == 2 and all(-0.05 < p[0] < 0.25 and -0.2 < p[1] < 0.04 for p in found)
 
 
-def test_an_empty_box_ends_in_success_on_nothing_found_with_no_grasp(tmp_path):
-    trace = tmp_path / "t.jsonl"
-    result = atd("run", str(EXAMPLES / "empty_the_box_vision.xml"), "--robot", "melfa", "--trace", str(trace), "-q")
+@pytest.fixture(scope="module")
+def empty_box(tmp_path_factory) -> tuple[subprocess.CompletedProcess, Path]:
+    """Vision on an empty box, traced and recorded: one picture, no grasp."""
+    where = tmp_path_factory.mktemp("empty_box")
+    result = atd("run", str(EXAMPLES / "empty_the_box_vision.xml"), "--robot", "melfa", "--trace",
+                 str(where / "t.jsonl"), "--record", str(where / "run.mcap"), "-q")
+    return result, where
+
+
+def test_an_empty_box_ends_in_success_on_nothing_found_with_no_grasp(empty_box):
+    result, where = empty_box
     assert result.returncode == 0 and "outcome: succeeded: reached 'box_empty'" in result.stdout
-    entered = [r["state"] for r in json.loads("[" + ",".join(trace.read_text().splitlines()) + "]")
+    entered = [r["state"] for r in json.loads("[" + ",".join((where / "t.jsonl").read_text().splitlines()) + "]")
                if r["type"] == "enter"]
     assert entered == ["aside", "look", "box_empty"] and "grasp attempts" not in result.stdout
+
+
+def test_the_recording_of_a_vision_run_holds_the_picture_and_its_points_and_the_report_shows_it(empty_box):
+    result, where = empty_box
+    assert result.returncode == 0, result.stdout + result.stderr
+    (picture,) = load(where / "run.mcap").pictures  # the one perceive state's
+    seen = picture.depth[picture.depth > 0]
+    assert picture.camera and picture.depth.ndim == 2 and seen.size > picture.depth.size / 2
+    assert 0.3 < float(np.median(seen)) < 3.0  # metres: the table and the box, seen from the robot's camera
+    with open(where / "run.mcap", "rb") as f:
+        clouds = [json.loads(m.data) for _, c, m in make_reader(f).iter_messages(topics=["/camera/points"])]
+    (cloud,) = clouds
+    assert cloud["frame_id"] == "world" and len(base64.b64decode(cloud["data"])) == 12 * seen.size
+    page = where / "run.html"
+    report = atd("report", str(where / "run.mcap"), "-o", str(page))
+    assert report.returncode == 0, report.stdout + report.stderr
+    text = page.read_text()
+    assert "<h2>Depth camera</h2>" in text and '<figure id="pictures"><svg' in text and "<image" in text
 
 
 MOVE = Controller(name="cartesian_move", params={"max_speed": 0.15})

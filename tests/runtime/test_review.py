@@ -12,7 +12,9 @@ from typing import NamedTuple
 import pytest
 from lxml import etree, html
 
+from atd.graph.style import FADED_BORDER, FADED_FILL, TAKEN_WIDTH
 from atd.review.load import RecordingError, load
+from factories.melfa import description as melfa
 from tests.conftest import REPO
 
 
@@ -88,6 +90,77 @@ def test_the_report_is_one_offline_page_with_the_graph_every_plot_and_the_events
     events = tree.xpath("//table[@id='events']//tr")[1:]
     fired = load(recordings[name]).events()
     assert len(events) == len(fired) and any("grasp_stable" in r.text_content() for r in events)
+
+
+@pytest.fixture(scope="module")
+def melfa_page(recordings, tmp_path_factory) -> html.HtmlElement:
+    """The report of the Melfa's pick and place in MuJoCo, as a browser would parse it."""
+    page = tmp_path_factory.mktemp("page") / "report.html"
+    result = _atd("report", str(recordings["melfa_mj"]), "-o", str(page), cwd=page.parent)
+    assert result.returncode == 0, result.stderr
+    return html.fromstring(page.read_text())
+
+
+def _graph_svg(page: html.HtmlElement) -> etree._Element:
+    (svg,) = page.xpath("//figure[@id='graph']/*[local-name()='svg']")
+    return svg
+
+
+def _boxes(svg: etree._Element) -> dict[str, str]:
+    """Each state's fill, from the library layout's SVG or graphviz's."""
+    fills = {}
+    for g in svg.iter("{*}g"):
+        name = g.get("data-state") or (g.findtext("{*}title") if g.get("class") == "node" else None)
+        if name:
+            fills[name] = next(e.get("fill") for e in g if e.get("fill") not in (None, "none"))
+    return fills
+
+
+def _arrows(svg: etree._Element) -> list[tuple[str, float]]:
+    """Each arrow's colour and width."""
+    return [(path.get("stroke"), float(path.get("stroke-width", 1))) for g in svg.iter("{*}g")
+            if g.get("class") == "edge" for path in g.iter("{*}path") if path.get("fill") == "none"]
+
+
+def test_the_report_colours_the_path_taken_and_folds_the_failure_fan(melfa_page) -> None:
+    svg = _graph_svg(melfa_page)
+    fills = _boxes(svg)
+    path = ["approach", "descend", "grasp", "lift", "carry", "put_down", "let_go", "retreat", "done"]
+    assert fills["failed"] == FADED_FILL and all(fills[state] != FADED_FILL for state in path)
+    arrows = _arrows(svg)
+    assert [w for _, w in arrows].count(TAKEN_WIDTH) == len(path) - 1, "each transition taken drawn thick"
+    grey = [colour for colour, _ in arrows if colour == FADED_BORDER]
+    assert len(grey) == 8, "one grey arrow into 'failed' per state, not the 18 failure transitions"
+    (note,) = melfa_page.xpath("//figure[@id='graph']/following-sibling::p[1]")
+    assert "The 15 failure transitions never taken are folded into 5 grey arrows" in note.text_content()
+
+
+def test_the_report_draws_the_graph_at_a_readable_size_and_scrolls_it(melfa_page) -> None:
+    css = re.sub(r"/\*.*?\*/", "", " ".join(melfa_page.xpath("//style/text()")), flags=re.S)
+    rules = {selector.strip(): body for selector, body in re.findall(r"([^{}]+)\{([^}]*)\}", css)}
+    assert "overflow: auto" in rules["#graph"], "the graph scrolls"
+    assert "max-width: none" in rules["#graph svg"], "the graph is not shrunk to the page's width"
+    svg = _graph_svg(melfa_page)
+    width = float(re.match(r"[\d.]+", svg.get("width")).group())
+    assert width == float(svg.get("viewbox").split()[2]), "drawn at its own scale"  # an HTML parser lowercases
+    sizes = [float(e.get("font-size")) for e in svg.iter() if e.get("font-size")]
+    assert sizes and min(sizes) >= 11, "text at least 11 px"
+
+
+def test_the_report_names_each_joint_as_the_robot_does(melfa_page) -> None:
+    """The legends say the Melfa's j1..j6 and its jaw's `grip`, where they said q1..q6 and `dof 0`."""
+    robot = melfa.description()
+    signals = etree.tostring(melfa_page.xpath("//figure[@id='signals']")[0], encoding="unicode")
+    legends = set(re.findall(r"<!-- (.*?) -->", signals))  # matplotlib names each text it draws as paths
+    assert {*robot.arm_joints, *(dof.name for dof in robot.hand.dofs)} <= legends
+    assert not {"q1", "dof 0"} & legends
+
+
+def test_the_report_says_how_to_see_the_same_recording_in_3d_in_foxglove(melfa_page, recordings) -> None:
+    (note,) = melfa_page.xpath("//p[@id='foxglove']")
+    text = note.text_content()
+    assert "Foxglove" in text and str(recordings["melfa_mj"].resolve()) in text
+    assert str(REPO / "docs" / "foxglove-layout.json") in text and (REPO / "docs" / "foxglove-layout.json").is_file()
 
 
 @pytest.mark.parametrize("a, b", [("melfa_mj", "melfa_pb"), ("panda_mj", "panda_pb"), ("barrett_mj", "sdh2_pb"),

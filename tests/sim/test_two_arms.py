@@ -1,12 +1,16 @@
 """Two arms of one robot in one MuJoCo world: each behind its own robot interface, the added
-one parked beside the work area, and one step of the first moving both as commanded."""
+one parked where its description says, and one step of the first moving both as commanded."""
 
 from __future__ import annotations
+
+import dataclasses
 
 import numpy as np
 import pytest
 
 from atd.sim import load_description, make_arms
+from atd.sim.scene import SceneError
+from atd.sim.two_arms import parked
 
 
 @pytest.mark.parametrize("robot", ["baxter", "tombatossals"])
@@ -29,3 +33,13 @@ def test_both_arms_live_in_one_world_and_move_with_one_step(robot: str) -> None:
         assert second.read().time == first.read().time == pytest.approx(0.5)
     finally:
         first.close()
+
+
+def test_an_added_arm_waits_where_its_description_parks_it() -> None:
+    left = load_description("tombatossals", "left")
+    elsewhere = parked(dataclasses.replace(left, park=(0.10, 0.25, 0.20)))
+    tcp = elsewhere.tcp_pose(np.array(elsewhere.home))
+    np.testing.assert_allclose(tcp[:3, 3], (0.10, 0.25, 0.20), atol=2e-3)
+    assert tcp[2, 2] < -0.999  # the hand still points down
+    with pytest.raises(SceneError, match="says nowhere for it to wait"):
+        parked(dataclasses.replace(left, park=None))

@@ -91,6 +91,9 @@ def test_every_robot_maps_perception_with_its_own_hand_and_reads_targets_at_run_
         assert look.arm.name == "perceive" and look.arm.params["method"] == "vision"
         assert look.arm.params["hand_radius"] == round(factory.robot.hand_radius("closed"), 6)
         assert look.arm.params["grasp_extent"] == tuple(round(e, 6) for e in factory.robot.hand_extent("open"))
+        # the approach keeps the hand clear of the rim whatever the grasp opens it to (an SDH2
+        # perceives closed, its fingertips 9 cm short of its TCP)
+        assert look.arm.params["grasp_reach"] >= max(map(factory.robot.hand_reach, factory.robot.hand.postures)) - 1e-6
         assert look.arm.params["container_size"] == (0.30, 0.25, 0.10)
         found_it = next(t for t in estd.transitions if t.atd == "look->take_one_out").events[0].condition
         assert (found_it.kind, found_it.params) == ("object_found", {"value": "approach"})

@@ -1,0 +1,46 @@
+"""The walls a grasp keeps inside: the containers the task knows (belief, the ATD's
+<container>, never the simulator's) and how far the open hand reaches sideways from its
+TCP. The parallel-jaw and the multi-finger grasps share it, so both keep their moves inside
+a box and both tell its floor from an object the same way."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from primitives.base import Context
+from primitives.perception.container import ContainerBelief, clear_of_walls, container_under
+
+
+@dataclass(frozen=True)
+class KnownWalls:
+    """The known containers and the open hand's reach (along its x, along its y; m)."""
+
+    containers: tuple[ContainerBelief, ...]
+    extent: tuple[float, float]
+
+    @classmethod
+    def of(cls, ctx: Context) -> KnownWalls:
+        """From the task's environment and the controller's `hand_extent` parameter."""
+        known = ctx.environment.containers if ctx.environment is not None else ()
+        extent = ctx.params["hand_extent"]
+        return cls(tuple(ContainerBelief.known(c) for c in known), (float(extent[0]), float(extent[1])))
+
+    def inside(self, rotation: np.ndarray, position: np.ndarray) -> np.ndarray:
+        """`position` (world) moved sideways, as little as it takes, for the hand turned by
+        `rotation` (world) to stay inside the walls of the container it is over; the same
+        array over none (a grasp on the table)."""
+        if not self.containers:
+            return position
+        pose = np.eye(4)
+        pose[:3, :3], pose[:3, 3] = rotation, position
+        moved = clear_of_walls(list(self.containers), pose, self.extent)
+        return position if moved is pose else moved[:3, 3]
+
+    def support(self, position: np.ndarray) -> float:
+        """Height of the support under `position` (world): the floor of a known container it
+        is over (a box's floor stands its wall's thickness over the table), else the table's
+        z = 0."""
+        container = container_under(list(self.containers), position)
+        return 0.0 if container is None else container.floor
