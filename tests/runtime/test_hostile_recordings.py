@@ -37,7 +37,7 @@ from atd.model.estd_xml import estd_to_xml
 from atd.model.vocabulary import EventType, StateType
 from atd.review.load import RecordingError, load
 from atd.review.mcap_records import CHUNK_CAP, INFLATION_FLOOR
-from atd.review.plots import BUCKETS, _envelope
+from atd.review.zoomable import BUCKETS, envelope
 from atd.runtime.recording_format import RECORDING_FORMAT, Layout
 from atd.runtime.recording_writer import RecordingWriter
 from tests.conftest import REPO
@@ -349,16 +349,16 @@ def test_an_attached_estd_that_does_not_parse_is_said_on_the_page(genuine, tmp_p
     assert "the ESTD this recording holds cannot be read: task.estd.xml:" in page.read_text()
 
 
-def test_a_long_line_is_drawn_as_its_envelope() -> None:
+def test_a_long_line_is_drawn_as_itsenvelope() -> None:
     t = np.arange(100_000) * 0.001
     values = np.sin(t * 50)
     values[500] = 7.0  # one spike: the envelope keeps it
     values[60_000:60_200] = np.nan  # a gap: kept as one
-    shown_t, shown = _envelope(t, values)
+    shown_t, shown = envelope(t, values)
     assert len(shown) <= 2 * BUCKETS and np.all(np.diff(shown_t) > 0)
     assert np.nanmax(shown) == 7.0 and np.nanmin(shown) == pytest.approx(-1.0, abs=1e-3)
     assert np.isnan(shown).any()
-    assert len(_envelope(t[:300], values[:300])[1]) == 300, "a short line is drawn whole"
+    assert len(envelope(t[:300], values[:300])[1]) == 300, "a short line is drawn whole"
 
 
 def test_compare_of_runs_with_no_state_in_common_is_refused_in_one_line(genuine, tmp_path) -> None:
