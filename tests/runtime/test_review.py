@@ -134,6 +134,10 @@ def test_the_report_is_one_offline_page_with_the_graph_every_plot_and_the_events
     assert "visited 1x" in graph and "grasp" in graph
     assert f"succeeded: reached &#39;{run.end}&#39;" in text or f"succeeded: reached '{run.end}'" in text
     assert set(legends(tree)) >= run.pads, "a pad-force line for each of the hand's pads"
+    entered = [r for r in load(recordings[name]).trace if r.type == "enter" and "/" not in r.state]
+    frames = tree.xpath("//figure[@id='keyframes']/img")
+    assert [f.get("alt") for f in frames] == [f"{r.state} at {r.t:.2f} s" for r in entered], "a picture per state entered"
+    assert all(f.get("src").startswith("data:image/jpeg;base64,") for f in frames)
     events = tree.xpath("//table[@id='events']//tr")[1:]
     fired = load(recordings[name]).events()
     assert len(events) == len(fired) and any("grasp_stable" in r.text_content() for r in events)
