@@ -18,6 +18,7 @@ from dataclasses import dataclass
 from xml.sax.saxutils import quoteattr
 
 import numpy as np
+from mcap.records import Channel, Message
 
 from atd.model.files import InputError, read_capped
 from atd.review.load import RECORDING_CAP, Recording
@@ -101,10 +102,9 @@ def _read(recording: Recording, times: list[float]) -> tuple[SceneMessage | None
     latest: list[tuple[float, bytes] | None] = [None] * len(times)  # per time: the last message since the one before
     earliest: tuple[float, bytes] | None = None
     for record in records(data):
-        kind = type(record).__name__
-        if kind == "Channel":
+        if isinstance(record, Channel):
             topics[record.id] = record.topic
-        elif kind == "Message" and topics.get(record.channel_id) in (_SCENE, _TF):
+        elif isinstance(record, Message) and topics.get(record.channel_id) in (_SCENE, _TF):
             t = record.log_time / 1e9
             if topics[record.channel_id] == _SCENE:
                 if scene is None or t < scene[0]:

@@ -328,6 +328,7 @@ def test_a_20000_visit_loop_makes_a_short_page_in_seconds(tmp_path) -> None:
     assert "... 19960 more stays" in text and "... 19960 more events" in text
     assert "visited 10000x" in text, "the graph still counts every visit"
     assert "20000 stays and 20000 events are too many to mark" in text
+    assert "No pictures of the run: the recording holds no /truth/scene" in text, "written with no scene"
 
 
 def test_a_long_chain_draws_its_first_and_last_states_and_says_so(tmp_path) -> None:

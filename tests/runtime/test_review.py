@@ -5,6 +5,7 @@ from __future__ import annotations
 import base64
 import gzip
 import json
+import os
 import re
 import subprocess
 import sys
@@ -223,6 +224,19 @@ def test_the_report_plots_zoom_together_with_their_data_and_bokeh_inline(melfa_p
     sources = {s["id"]: dict(s["attributes"]["data"]["entries"]) for s in _objects(document, "ColumnDataSource")}
     shaded = sorted(x for r in strips[:2] for x in array(sources[r["attributes"]["data_source"]["id"]]["x0"]))
     assert shaded == pytest.approx([r.t for r in load(recordings["melfa_mj"]).trace if r.type == "enter"])
+
+
+def test_without_opengl_the_report_says_why_it_has_no_pictures(recordings, tmp_path) -> None:
+    page = tmp_path / "report.html"
+    result = subprocess.run([sys.executable, "-m", "atd", "report", str(recordings["melfa_mj"]), "-o", str(page)],
+                            cwd=tmp_path, capture_output=True, text=True, timeout=300,
+                            env={**os.environ, "MUJOCO_GL": "nonsense"})
+    assert result.returncode == 0 and "Traceback" not in result.stderr, result.stderr
+    tree = html.fromstring(page.read_text())
+    assert not tree.xpath("//figure[@id='keyframes']")
+    (said,) = tree.xpath("//p[@id='no-keyframes']")
+    assert "offscreen rendering failed" in said.text_content() and "MUJOCO_GL=egl" in said.text_content()
+    assert tree.xpath("//figure[@id='signals']//div[@data-root-id]"), "the rest of the page is there"
 
 
 def test_the_report_says_how_to_see_the_same_recording_in_3d_in_foxglove(melfa_page, recordings) -> None:
