@@ -187,3 +187,79 @@ def signals(sensors: Timed[SensorsMessage], truth: Timed[TruthMessage]) -> Signa
         tcp_z=np.array([r.tcp.position.z for r in rows], float),
         truth_t=truth_t,
         object_z=np.array([np.nan if r.object is None else r.object.position.z for r in truth_rows], float))
+
+
+# What Foxglove's 3D panel draws, and the report's key frames with it (atd/runtime/recording_scene.py).
+class _Vector(_Checked):
+    x: float
+    y: float
+    z: float
+
+
+class _Quaternion(_Checked):
+    x: float
+    y: float
+    z: float
+    w: float
+
+
+class ScenePose(_Checked):
+    position: _Vector
+    orientation: _Quaternion
+
+
+class _Colour(_Checked):
+    r: float = Field(ge=0, le=1)
+    g: float = Field(ge=0, le=1)
+    b: float = Field(ge=0, le=1)
+    a: float = Field(ge=0, le=1)
+
+
+class Sized(_Checked):
+    """A cube, a sphere or a cylinder: its full size along x, y and z."""
+
+    pose: ScenePose
+    size: _Vector
+    color: _Colour
+
+
+class Model(_Checked):
+    """A mesh carried in the message (STL or OBJ, base64)."""
+
+    pose: ScenePose
+    scale: _Vector
+    color: _Colour
+    media_type: Literal["model/stl", "model/obj"]
+    data: str
+
+
+Shapes = Annotated[list[Sized], Field(max_length=1000)]
+
+
+class Entity(_Checked):
+    """A body of the scene: its shapes, each posed in the frame it moves with."""
+
+    frame_id: PadName
+    cubes: Shapes = []
+    spheres: Shapes = []
+    cylinders: Shapes = []
+    models: Annotated[list[Model], Field(max_length=1000)] = []
+
+
+class SceneMessage(_Checked):
+    """Of /truth/scene: the bodies of the run."""
+
+    entities: Annotated[list[Entity], Field(max_length=10_000)]
+
+
+class Transform(_Checked):
+    parent_frame_id: PadName
+    child_frame_id: PadName
+    translation: _Vector
+    rotation: _Quaternion
+
+
+class TransformsMessage(_Checked):
+    """Of /truth/tf: where each frame is in its parent, at one time."""
+
+    transforms: Annotated[list[Transform], Field(max_length=10_000)]

@@ -1,5 +1,6 @@
 """`atd report`: one self-contained HTML page for one recorded run, readable offline: the
-outcome in ATD terms, the task graph with the path taken, a timeline, the signals with
+outcome in ATD terms, the task graph with the path taken, a picture of the scene as each
+state began, a timeline, the signals with
 the events on them, and the readings that fired each event."""
 
 from __future__ import annotations
@@ -17,9 +18,11 @@ from atd.graph.layout import MAX_ELEMENTS
 from atd.graph.model import Graph, from_estd
 from atd.graph.render import render
 from atd.graph.trail import on_trail
+from atd.review.keyframes import key_frames
 from atd.review.load import Recording
 from atd.review.messages import TraceRecord
-from atd.review.plots import pictures, signals, timeline
+from atd.review.plots import pictures
+from atd.review.zoomable import figures
 from atd.runtime.report import ends
 
 _PAGE = Environment(autoescape=True).from_string("""<!DOCTYPE html>
@@ -35,20 +38,33 @@ figure { margin: 0; overflow-x: auto; } figure svg { max-width: 100%; height: au
 /* The task graph at its own size, its text as drawn (12 px), scrolled rather than shrunk to fit */
 #graph { overflow: auto; max-height: 85vh; border: 1px solid #eee; } #graph svg { max-width: none; }
 code { font-size: .9em; }
-</style></head><body>
+#keyframes { display: grid; grid-template-columns: repeat(3, 1fr); gap: .5em; } #keyframes img { width: 100%; display: block; }
+</style>
+{{ figures.library|safe }}
+</head><body>
 <h1>{{ title }}</h1>
 <p class="outcome {{ 'succeeded' if succeeded else 'failed' }}">{{ outcome.summary or "no outcome recorded" }}
  &middot; {{ "%.2f"|format(end_time) }} s simulated &middot; seed {{ run.seed }}</p>
 <h2>The task, and the path taken</h2>
 <figure id="graph">{{ graph|safe }}</figure>
 <p class="note">{{ graph_note }}</p>
+<h2>The run, state by state</h2>
+{% set first, left_out, last = keyframes.first, keyframes.left_out, keyframes.last %}
+{% if first %}<p>The scene as it stood when the task entered each state{% if left_out %} (the first and last;
+{{ left_out }} more between){% endif %}, drawn from the recording by MuJoCo through the video's camera.</p>
+<figure id="keyframes">{% macro frame(f) %}<img src="{{ f.source }}" alt="{{ f.state }} at {{ "%.2f"|format(f.t) }} s"
+ title="{{ f.state }} at {{ "%.2f"|format(f.t) }} s">{% endmacro %}{% for f in first %}{{ frame(f) }}{% endfor %}
+{% for f in last %}{{ frame(f) }}{% endfor %}</figure>
+{% else %}<p id="no-keyframes">No pictures of the run: {{ keyframes.problem }}.</p>{% endif %}
 <h2>The robot in 3D</h2>
 <p id="foxglove">Foxglove's 3D panel draws the robot, the table and the objects of this run, moving, from the
 same recording: in Foxglove (desktop app) choose <em>Open local file</em>, <code>{{ recording_path }}</code>; then,
 in the Layout menu, <em>Import from file</em>, <code>{{ layout }}</code>
 (a 3D panel, the task's states over time, the forces and the trace).</p>
 <h2>Timeline</h2>
-<figure id="timeline">{{ timeline|safe }}</figure>
+<p>Drag across a plot to zoom into that time, on every plot at once; the tools beside it pan, zoom
+with the wheel and reset. A click on a legend's entry hides its line.</p>
+<figure id="timeline">{{ figures.timeline|safe }}</figure>
 <table><tr><th>state</th><th>entered (s)</th><th>left (s)</th><th>time spent (s)</th></tr>
 {% macro stay(s) %}{% set state, start, end = s %}<tr><td>{{ state }}</td><td>{{ "%.3f"|format(start) }}</td>
 <td>{{ "%.3f"|format(end) if end is not none else "(the end)" }}</td>
@@ -60,7 +76,7 @@ in the Layout menu, <em>Import from file</em>, <code>{{ layout }}</code>
 <h2>Signals</h2>
 <p>States are shaded; a dashed red line is an event firing. The last panel is the simulator's
 ground truth, which the robot does not see.</p>
-<figure id="signals">{{ signals|safe }}</figure>
+<figure id="signals">{{ figures.signals|safe }}</figure>
 {% if pictures %}<h2>Depth camera</h2>
 <p>What the robot's depth camera saw each time a state took a picture, nearest darkest, nothing
 seen blank{% if pictures_left_out %} (the first and last; {{ pictures_left_out }} more between){% endif %}.
@@ -75,6 +91,7 @@ The recording also holds each picture's points, in the world as the robot believ
 {% if left_out %}<tr><td colspan="4">... {{ left_out }} more events</td></tr>{% endif %}
 {% for e in last %}{{ event(e) }}{% endfor %}
 </table>
+{{ figures.script|safe }}
 </body></html>
 """)
 
@@ -133,7 +150,7 @@ def report_page(recording: Recording) -> str:
     return _PAGE.render(
         title=title, run=run, outcome=recording.outcome, succeeded=recording.outcome.get("succeeded") == "true",
         recording_path=recording.path.resolve(), layout=_layout(),
-        end_time=recording.end_time, graph=graph, graph_note=graph_note, timeline=timeline(recording),
-        signals=signals(recording), visits=ends(recording.visits), pictures=drawn,
+        end_time=recording.end_time, graph=graph, graph_note=graph_note, figures=figures(recording), keyframes=key_frames(recording),
+        visits=ends(recording.visits), pictures=drawn,
         pictures_left_out=pictures_left_out,
         events=([_event(e) for e in first], left_out, [_event(e) for e in last]))

@@ -28,7 +28,7 @@ from factories.description import DepthCamera, RobotDescription
 VIDEO_QUALITY = {"offsamples": 0, "numslices": 12, "numstacks": 8, "numquads": 1}
 
 
-def _video_renderer(model: mujoco.MjModel, width: int, height: int) -> mujoco.Renderer:
+def video_renderer(model: mujoco.MjModel, width: int, height: int) -> mujoco.Renderer:
     """A renderer for video frames at VIDEO_QUALITY, without shadows. The scene's light and
     the headlight still shade it."""
     quality = model.vis.quality  # read when the renderer's context is made, only then
@@ -44,6 +44,14 @@ def _video_renderer(model: mujoco.MjModel, width: int, height: int) -> mujoco.Re
             setattr(quality, name, value)
     renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = False
     return renderer
+
+
+def workspace_view() -> mujoco.MjvCamera:
+    """The free camera on the work area that videos look through by default."""
+    view = mujoco.MjvCamera()
+    view.lookat[:] = CAMERA_TARGET
+    view.distance, view.azimuth, view.elevation = CAMERA_DISTANCE, CAMERA_AZIMUTH, CAMERA_ELEVATION
+    return view
 
 
 def _id(m: mujoco.MjModel, kind: mujoco.mjtObj, name: str) -> int:
@@ -324,12 +332,9 @@ class MujocoRobot(SimRobot):
         if self._renderer is None or (self._renderer.width, self._renderer.height) != (width, height):
             if self._renderer is not None:
                 self._renderer.close()
-            self._renderer = _video_renderer(self.model, width, height)
+            self._renderer = video_renderer(self.model, width, height)
         if camera == WORKSPACE_CAMERA:
-            view = mujoco.MjvCamera()
-            view.lookat[:] = CAMERA_TARGET
-            view.distance, view.azimuth, view.elevation = CAMERA_DISTANCE, CAMERA_AZIMUTH, CAMERA_ELEVATION
-            self._renderer.update_scene(self.data, view)
+            self._renderer.update_scene(self.data, workspace_view())
         else:
             self._renderer.update_scene(self.data, camera)
         return self._renderer.render()

@@ -37,7 +37,7 @@ from atd.model.estd_xml import estd_to_xml
 from atd.model.vocabulary import EventType, StateType
 from atd.review.load import RecordingError, load
 from atd.review.mcap_records import CHUNK_CAP, INFLATION_FLOOR
-from atd.review.plots import BUCKETS, _envelope
+from atd.review.zoomable import BUCKETS, envelope
 from atd.runtime.recording_format import RECORDING_FORMAT, Layout
 from atd.runtime.recording_writer import RecordingWriter
 from tests.conftest import REPO
@@ -328,6 +328,7 @@ def test_a_20000_visit_loop_makes_a_short_page_in_seconds(tmp_path) -> None:
     assert "... 19960 more stays" in text and "... 19960 more events" in text
     assert "visited 10000x" in text, "the graph still counts every visit"
     assert "20000 stays and 20000 events are too many to mark" in text
+    assert "No pictures of the run: the recording holds no /truth/scene" in text, "written with no scene"
 
 
 def test_a_long_chain_draws_its_first_and_last_states_and_says_so(tmp_path) -> None:
@@ -349,16 +350,16 @@ def test_an_attached_estd_that_does_not_parse_is_said_on_the_page(genuine, tmp_p
     assert "the ESTD this recording holds cannot be read: task.estd.xml:" in page.read_text()
 
 
-def test_a_long_line_is_drawn_as_its_envelope() -> None:
+def test_a_long_line_is_drawn_as_itsenvelope() -> None:
     t = np.arange(100_000) * 0.001
     values = np.sin(t * 50)
     values[500] = 7.0  # one spike: the envelope keeps it
     values[60_000:60_200] = np.nan  # a gap: kept as one
-    shown_t, shown = _envelope(t, values)
+    shown_t, shown = envelope(t, values)
     assert len(shown) <= 2 * BUCKETS and np.all(np.diff(shown_t) > 0)
     assert np.nanmax(shown) == 7.0 and np.nanmin(shown) == pytest.approx(-1.0, abs=1e-3)
     assert np.isnan(shown).any()
-    assert len(_envelope(t[:300], values[:300])[1]) == 300, "a short line is drawn whole"
+    assert len(envelope(t[:300], values[:300])[1]) == 300, "a short line is drawn whole"
 
 
 def test_compare_of_runs_with_no_state_in_common_is_refused_in_one_line(genuine, tmp_path) -> None:
