@@ -319,9 +319,9 @@ def test_a_20000_visit_loop_makes_a_short_page_in_seconds(tmp_path) -> None:
     up as `atd run`'s summary sums them, and its marks drawn as pixels or not at all."""
     path = looping(tmp_path / "loop.mcap", visits=20_000, samples=2_000)
     page = tmp_path / "loop.html"
-    started = time.monotonic()
+    started = time.process_time()  # this process's CPU: the bound is on the work, not on the machine's load
     result = CliRunner().invoke(main, ["report", str(path), "-o", str(page)])
-    took = time.monotonic() - started
+    took = time.process_time() - started
     assert result.exit_code == 0, result.output
     assert took < SECONDS and page.stat().st_size < PAGE_BYTES, (took, page.stat().st_size)
     text = page.read_text()
@@ -350,7 +350,7 @@ def test_an_attached_estd_that_does_not_parse_is_said_on_the_page(genuine, tmp_p
     assert "the ESTD this recording holds cannot be read: task.estd.xml:" in page.read_text()
 
 
-def test_a_long_line_is_drawn_as_itsenvelope() -> None:
+def test_a_long_line_is_drawn_as_its_envelope() -> None:
     t = np.arange(100_000) * 0.001
     values = np.sin(t * 50)
     values[500] = 7.0  # one spike: the envelope keeps it
