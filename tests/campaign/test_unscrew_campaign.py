@@ -76,11 +76,11 @@ def test_a_cap_unscrewed_and_on_the_table_while_the_task_said_failure_is_unscrew
     assert verdict.reason.endswith("but the task did not say it put it there")
 
 
-def test_the_unscrews_time_and_twists_come_from_the_trace() -> None:
+def test_the_unscrews_time_and_twists_come_from_the_trace_the_count_as_a_number_not_read_from_words() -> None:
     belief = translate(load_task(TASK)[0], create("tombatossals", "left")).estd
     records = [{"t": 3.0, "type": "enter", "state": "unscrew_cap"},
                {"t": 15.0, "type": "event", "state": "unscrew_cap", "conditions": [
-                   {"reason": "cap off after 4 twists, pulled 4.0 cm with the pads on it (0 alignments)"},
+                   {"arm": "done", "reason": "cap off after 3 twists, pulled 4.0 cm with the pads on it", "twists": 4},
                    {"reason": "holding the cap"}]},
                {"t": 15.0, "type": "exit", "state": "unscrew_cap"}]
     assert unscrew_measures(belief, records, 24.0) == {"unscrew_time": 12.0, "twists": 4.0}
