@@ -102,6 +102,15 @@ def test_the_cap_approach_noise_shifts_the_moves_to_the_unscrew_only() -> None:
             assert after == before, before.name
 
 
+def test_on_the_touch_task_the_cap_approach_noise_moves_the_hand_over_the_cap_and_the_touch_carries_it() -> None:
+    """examples/unscrew_by_touch.xml: only the move over the believed object has a target to
+    shift; the explore starts where it ended and every later move is read from its contact."""
+    belief = translate(load_task(EXAMPLES / "unscrew_by_touch.xml")[0], create("tombatossals", "left")).estd
+    assert approach_states(belief, StateType.UNSCREW) == {"above_cap"}
+    assert {s.name for s in belief.states if s.target_from == "cap_top"} == {
+        "over_cap", "open_over_cap", "around_cap", "carry_cap"}
+
+
 def test_the_naive_grasp_mode_unscrews_without_the_alignment() -> None:
     task, _ = load_task(TASK)
     for mode, aligned in (("naive", False), ("robust", True)):
