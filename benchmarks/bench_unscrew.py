@@ -13,6 +13,8 @@ width and the hand's heights written for that object as a user would write them 
 gripper whose TCP lies at the middle of its pads (the pads' lower ends 1 mm over the cap's
 lower rim, `pad_height`), and the unscrew's timeout 80 s per turn of its thread, at least
 the example's 150 s.
+examples/unscrew_by_touch.xml needs none of this (it finds each cap by touch):
+examples/campaigns/unscrew.toml measures it over the eight objects, docs/unscrew-campaign.md.
 
     python benchmarks/bench_unscrew.py [--runs 5] [--noise 0.0] [--robot tombatossals --arm left] [--engine mujoco]
     python benchmarks/bench_unscrew.py --robot melfa --arm "" --task examples/unscrew_fixture_jaws.xml --objects all
@@ -31,11 +33,11 @@ import numpy as np
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO))
 
+from atd.campaign.unscrew import twists_said  # noqa: E402
 from atd.model import load_task  # noqa: E402
 from atd.sim.library import get, library  # noqa: E402
 from atd.runtime.session import Run, world_scene  # noqa: E402
 from factories.registry import create  # noqa: E402
-from primitives.arm.unscrew import twists_in  # noqa: E402
 from translator import translate  # noqa: E402
 
 TASK = REPO / "examples" / "unscrew_fixture.xml"
@@ -107,8 +109,7 @@ def trial(robot: str, arm: str, engine: str, alignment: bool, noise: float, inde
         run = Run(estd, factory, engine=engine, seed=index, scene=truth)
         outcome = run.execute(afterwards=lambda sim: caps.update(sim.caps()))
     [cap] = caps.values()
-    reasons = [c.get("reason", "") for r in run.trace.records if r["type"] == "event" for c in r["conditions"]]
-    said = [n for reason in reasons if (n := twists_in(reason)) is not None]
+    said = [n for r in run.trace.records if r["type"] == "event" for n in twists_said(r)]
     moves = said[-1] if said else None  # None: ended on a timeout, uncounted
     return {"task": outcome.succeeded, "off": bool(cap.free), "moves": moves, "time": outcome.sim_time,
             "offset": offset, "summary": outcome.summary}

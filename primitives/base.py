@@ -86,10 +86,13 @@ class Controller(ABC):
         self.params = ctx.params
         self.status = Status.RUNNING
         self.reason = ""  # why it is done, gave up or faulted, for the trace
+        self.counts: dict[str, int] = {}  # what it counted on the way, for the trace beside the reason
 
-    def finish(self, status: Status, reason: str) -> None:
+    def finish(self, status: Status, reason: str, **counts: int) -> None:
+        """End with `status`, saying why; `counts` (e.g. an unscrew's `twists`) travel with the
+        reason into the trace as numbers, so nothing reads them back out of its words."""
         if self.status is Status.RUNNING:
-            self.status, self.reason = status, reason
+            self.status, self.reason, self.counts = status, reason, counts
 
     @abstractmethod
     def start(self, readings: Readings) -> None:
@@ -110,6 +113,7 @@ class StateView:
     subtask: Status | None = None  # DONE / ERROR once a sub-task's machine has ended
     subtask_end: str | None = None  # the end state it ended in
     reasons: dict[str, str] = field(default_factory=dict)
+    counts: dict[str, dict[str, int]] = field(default_factory=dict)  # "arm"/"hand": what its controller's end counted
 
 
 class Condition(ABC):

@@ -56,7 +56,7 @@ class StatusIs(Condition):
         if not self.debounce(actual is self.status, dt):
             return False
         self.evidence = {self.which: actual.value, "reason": state.reasons.get(self.which, ""),
-                         "held_for": self.debounce.held}
+                         **state.counts.get(self.which, {}), "held_for": self.debounce.held}
         return True
 
 

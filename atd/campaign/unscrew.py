@@ -7,7 +7,14 @@ from typing import Any, Iterable
 
 from atd.model.estd import Estd
 from atd.model.vocabulary import StateType
-from primitives.arm.unscrew import twists_in
+
+TWISTS = "twists"  # the count an unscrew's arm ends with (`UnscrewArm.finish`): in its event's evidence
+
+
+def twists_said(event: dict[str, Any]) -> list[int]:
+    """The twist moves (thesis Table 3.4 "Moves") an event's conditions carry from the unscrew
+    that ended; none for any other event (a run that ended while it still twisted never said)."""
+    return [int(c[TWISTS]) for c in event["conditions"] if TWISTS in c]
 
 
 def unscrew_measures(belief: Estd, records: Iterable[dict[str, Any]], sim_time: float) -> dict[str, float]:
@@ -23,7 +30,7 @@ def unscrew_measures(belief: Estd, records: Iterable[dict[str, Any]], sim_time: 
         elif r["type"] == "exit" and r["state"] in unscrews and entered is not None:
             time, entered = time + r["t"] - entered, None
         elif r["type"] == "event" and r["state"] in unscrews:
-            twists += [n for c in r["conditions"] if (n := twists_in(c.get("reason", ""))) is not None]
+            twists += twists_said(r)
     if entered is not None:
         time += sim_time - entered
     return {"unscrew_time": time, **({"twists": float(sum(twists))} if twists else {})}

@@ -81,7 +81,8 @@ def _machine(parent: etree._Element | None, estd: Estd) -> etree._Element:
             if controller is not None:
                 _params(etree.SubElement(node, role, controller=controller.name), controller.params)
         if state.target_from is not None:
-            etree.SubElement(node, "target", {"from": state.target_from})
+            offset = {"offset": format_value(state.target_offset)} if state.target_offset else {}
+            etree.SubElement(node, "target", {"from": state.target_from, **offset})
         for value in state.writes:
             value_element(node, "writes", value)
         for name, source in state.inputs.items():
@@ -150,6 +151,12 @@ def _read_condition(node: etree._Element) -> Condition | ConditionGroup:
                      params=_typed_params(node, dict(CONDITIONS[kind].params), f"condition '{kind}'"))
 
 
+def _offset(target: etree._Element | None) -> tuple[float, ...] | None:
+    """A `<target>`'s offset (the schema has made it three numbers), or None."""
+    words = target.get("offset") if target is not None else None
+    return tuple(float(w) for w in words.split()) if words else None
+
+
 def _read_machine(node: etree._Element, doc: ParsedXml) -> Estd:
     reader = TaskReader(doc)
     fields: dict = {k: node.get(k) for k in ("robot", "arm", "source", "initial") if node.get(k) is not None}
@@ -174,6 +181,7 @@ def _read_machine(node: etree._Element, doc: ParsedXml) -> Estd:
                 hand=_read_controller(hand) if hand is not None else None,
                 machine=_read_machine(sub, doc) if sub is not None else None,
                 target_from=target.get("from") if target is not None else None,
+                target_offset=_offset(target),
                 writes=tuple(reader.value_declaration(w, "value") for w in child.iterchildren("writes")),
                 inputs={i.get("name"): i.get("from") for i in child.iterchildren("input")}))
         else:

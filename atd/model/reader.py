@@ -502,7 +502,7 @@ class TaskReader:
                             else "<state> has both <path> and <trajectory>", child, "keep one")
                 continue
             seen[key] = child
-            self._check_attributes(child, ("from",) if key == "target" else ())
+            self._check_attributes(child, ("from", "offset") if key == "target" else ())
             if key == "movement":
                 fields["movement"] = self._enum(child, Movement, "movement")
             elif key in ("hand_shape", "preshape"):
@@ -522,11 +522,12 @@ class TaskReader:
             elif key == "max_distance":
                 fields["max_distance"] = self._value(child, "max distance", ranges.DISTANCE)
             elif key == "target":
-                fields["target_from"] = self._target(child)
+                fields["target_from"], fields["target_offset"] = self._target(child)
         if "path" in seen and "target" in seen:
             self._error("ATD109", f"<state> has both <{seen['path'].tag}> and <target>", seen["target"],
                         "keep one: a fixed path, or the target a value gives at run time")
             fields.pop("target_from", None)
+            fields.pop("target_offset", None)
         if parameters:
             fields["parameters"] = parameters
         if writes:
@@ -554,10 +555,16 @@ class TaskReader:
             return None
         return name if self._identifier(node, name, "value name") else None
 
-    def _target(self, node: etree._Element) -> str | None:
-        """`<target from="approach"/>`: the state's target is a value written by an earlier state."""
+    def _target(self, node: etree._Element) -> tuple[str | None, tuple[float, ...] | None]:
+        """`<target from="approach"/>`: the state's target is a value written by an earlier state;
+        `offset="x y z"` (m, world frame) goes that far from it, e.g. a pinch a known depth below
+        the top an explore felt."""
         self._no_children(node)
-        return self._reference(node, "from", 'e.g. <target from="approach"/>, naming a value an earlier state writes')
+        name = self._reference(node, "from", 'e.g. <target from="approach"/>, naming a value an earlier state writes')
+        offset = node.get("offset")
+        if offset is None:
+            return name, None
+        return name, self._numbers(node, "target offset", 3, ranges.COORDINATE, words=offset.split())
 
     def _binding(self, node: etree._Element, into: dict[str, str]) -> None:
         """`<input name="approach" from="found"/>` on a sub-task state: its input from this task's value."""

@@ -221,6 +221,7 @@ class State(AtdElement):
     max_distance: float | None = None  # explore: m to go before giving up
     writes: tuple[Value, ...] = ()  # perceptual primitives: the values it produces
     target_from: str | None = None  # arm primitives: the named value that is its target
+    target_offset: Vec3 | None = None  # m, world frame: added to the value's position (`<target offset>`)
     inputs: dict[str, str] = Field(default_factory=dict)  # task: sub-task input -> this task's value
     role: str | None = None  # which of the task's arm roles does it; None: the task's only role
 

@@ -93,7 +93,8 @@ def _state(parent: etree._Element, state: State) -> None:
             _child(path, point.kind, _numbers(point.values))
     _optional(node, state, "preshape", "object_size", "hand_opening")
     if state.target_from is not None:
-        _child(node, "target", **{"from": state.target_from})
+        offset = {"offset": _numbers(state.target_offset)} if state.target_offset is not None else {}
+        _child(node, "target", **{"from": state.target_from}, **offset)
     _optional(node, state, "method", "direction", "contact_force", "max_distance")
     for name, value in state.parameters.items():
         _child(node, "parameter", value, name=name)

@@ -188,6 +188,7 @@ class Machine:
             subtask=sub,
             subtask_end=end,
             reasons={k: c.reason for k, c in (("arm", self.arm), ("hand", self.hand)) if c and c.reason},
+            counts={k: c.counts for k, c in (("arm", self.arm), ("hand", self.hand)) if c and c.counts},
         )
 
     def _fired(self, readings: Readings, dt: float) -> Edge | None:

@@ -45,13 +45,22 @@ def targeted(arm: Controller, target: Mapping[str, Any]) -> Controller:
     return arm.model_copy(update={"params": {**arm.params, **{k: v for k, v in target.items() if k in takes}}})
 
 
+def offset_by(target: dict[str, Any], offset: tuple[float, float, float] | None) -> dict[str, Any]:
+    """The parameters a value sets with its position moved by the state's `<target offset>`
+    (m, world frame): a place known relative to what was found, as a pinch a known depth
+    below the top an explore felt."""
+    if offset is None:
+        return target
+    return {**target, "target": _rounded(np.add(target["target"], offset))}
+
+
 def arm_for(state: EstdState, memory: Mapping[str, Any]) -> Controller | None:
-    """The state's arm controller as it runs now: with its target read from memory when the
-    state takes it from a named value."""
+    """The state's arm controller as it runs now: with its target read from memory (and
+    offset as the state says) when the state takes it from a named value."""
     if state.arm is None or state.target_from is None:
         return state.arm
     try:
-        return targeted(state.arm, target_of(memory.get(state.target_from)))
+        return targeted(state.arm, offset_by(target_of(memory.get(state.target_from)), state.target_offset))
     except MissingValue as exc:
         raise MissingValue(f"state '{state.name}' takes its target from '{state.target_from}': {exc}") from None
 

@@ -9,8 +9,6 @@ in `primitives.arm.unscrew_phases`; docs/writing-a-primitive.md draws the machin
 
 from __future__ import annotations
 
-import re
-
 import numpy as np
 
 from atd.model.frames import axis_rotation
@@ -126,7 +124,7 @@ class UnscrewArm(Controller):
             self._hold_here(readings, Phase.OFF)
             self.ctx.blackboard.cap_off = True
             self.finish(Status.DONE, f"cap off after {self.tally.twists} twists, pulled {pulled * 100:.1f} cm with "
-                                     f"the pads on it ({self.tally.aligned} alignments)")
+                                     f"the pads on it ({self.tally.aligned} alignments)", twists=self.tally.twists)
         elif pulled >= self.cap_removed_distance:
             self._again(readings, "pulled CAP_REMOVED_DISTANCE with no cap between the pads")
         if self.phase is not Phase.PULL:
@@ -171,7 +169,8 @@ class UnscrewArm(Controller):
             self._hold_here(readings, Phase.FAILED)
             self.finish(Status.ERROR, f"the wrist joint '{self.ctx.info.arm_joints[-1]}' has "
                                       f"{np.degrees(angle + WRIST_MARGIN):.0f} degrees left to turn the cap open: "
-                                      "turn the hand the other way about its approach before the unscrew")
+                                      "turn the hand the other way about its approach before the unscrew",
+                        twists=self.tally.twists)
             return
         self.tally.twists += 1
         self.wrench.start(readings)  # the squeeze's own load is no torque of the thread's
@@ -197,7 +196,7 @@ class UnscrewArm(Controller):
         if self.tally.pinches >= self.max_pinches:
             self._hold_here(readings, Phase.FAILED)
             self.finish(Status.ERROR, f"cap still on after {self.tally.pinches} pinches and {self.tally.twists} "
-                                      f"twists: {why}")
+                                      f"twists: {why}", twists=self.tally.twists)
             return
         self._align()
         self._hold_here(readings, Phase.RELEASE)
@@ -228,13 +227,3 @@ class UnscrewArm(Controller):
         w, _ = orientation_twist(pose.rotation, readings.tcp[:3, :3])
         return np.concatenate([clamp_norm(GAIN * (pose.position - readings.tcp[:3, 3]), speed), w])
 
-
-#: The start of the unscrew's verdicts (`UnscrewArm.finish`), which say how many twists it made.
-TWISTS_SAID = re.compile(r"^cap (?:off after|still on after \d+ pinches and) (\d+) twists")
-
-
-def twists_in(reason: str) -> int | None:
-    """The twist moves (thesis Table 3.4 "Moves") an unscrew's verdict says it made; None for
-    any other reason (a run that ended while it still twisted never said)."""
-    said = TWISTS_SAID.match(reason)
-    return int(said.group(1)) if said else None

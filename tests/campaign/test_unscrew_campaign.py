@@ -76,11 +76,11 @@ def test_a_cap_unscrewed_and_on_the_table_while_the_task_said_failure_is_unscrew
     assert verdict.reason.endswith("but the task did not say it put it there")
 
 
-def test_the_unscrews_time_and_twists_come_from_the_trace() -> None:
+def test_the_unscrews_time_and_twists_come_from_the_trace_the_count_as_a_number_not_read_from_words() -> None:
     belief = translate(load_task(TASK)[0], create("tombatossals", "left")).estd
     records = [{"t": 3.0, "type": "enter", "state": "unscrew_cap"},
                {"t": 15.0, "type": "event", "state": "unscrew_cap", "conditions": [
-                   {"reason": "cap off after 4 twists, pulled 4.0 cm with the pads on it (0 alignments)"},
+                   {"arm": "done", "reason": "cap off after 3 twists, pulled 4.0 cm with the pads on it", "twists": 4},
                    {"reason": "holding the cap"}]},
                {"t": 15.0, "type": "exit", "state": "unscrew_cap"}]
     assert unscrew_measures(belief, records, 24.0) == {"unscrew_time": 12.0, "twists": 4.0}
@@ -100,6 +100,15 @@ def test_the_cap_approach_noise_shifts_the_moves_to_the_unscrew_only() -> None:
             assert np.allclose(moved, (values["cap_dx"], values["cap_dy"], 0.0))
         else:
             assert after == before, before.name
+
+
+def test_on_the_touch_task_the_cap_approach_noise_moves_the_hand_over_the_cap_and_the_touch_carries_it() -> None:
+    """examples/unscrew_by_touch.xml: only the move over the believed object has a target to
+    shift; the explore starts where it ended and every later move is read from its contact."""
+    belief = translate(load_task(EXAMPLES / "unscrew_by_touch.xml")[0], create("tombatossals", "left")).estd
+    assert approach_states(belief, StateType.UNSCREW) == {"above_cap"}
+    assert {s.name for s in belief.states if s.target_from == "cap_top"} == {
+        "over_cap", "open_over_cap", "around_cap", "carry_cap"}
 
 
 def test_the_naive_grasp_mode_unscrews_without_the_alignment() -> None:

@@ -19,7 +19,8 @@ from atd.sim.simrobot import robot_info
 from factories.registry import create
 from primitives.arm.unscrew import UnscrewArm
 from primitives.arm.unscrew_phases import Phase
-from primitives.base import Context, Status
+from primitives.base import Context, StateView, Status
+from primitives.conditions import StatusIs
 from primitives.hands.extension import ExtensionGauge
 from primitives.hands.unscrew import UnscrewHand
 from primitives.registry import build_controller
@@ -162,13 +163,14 @@ def test_a_cap_that_comes_free_is_pulled_off_after_a_regrasp_on_the_pull_force()
     robot, arm, hand = _run(Cap(turns_to_free=55.0 / 360.0))
     assert arm.status is Status.DONE and hand.status is Status.DONE, (arm.reason, hand.reason)
     assert arm.tally.twists == 2 and "cap off after 2 twists" in arm.reason, arm.reason
+    assert arm.counts == {"twists": 2}  # the count the trace carries as a number (atd.campaign.unscrew)
     assert "PULL_FORCE_LIMIT" in arm.tally.ended
     assert robot.cap.free and robot.tcp[2, 3] > 0.3 + 0.039
 
 
 def test_a_stuck_cap_ends_each_twist_at_the_torque_limit_and_the_unscrew_gives_up() -> None:
     robot, arm, _ = _run(Cap(stuck=True), max_pinches=3)
-    assert arm.status is Status.ERROR and arm.tally.twists == 3, arm.reason
+    assert arm.status is Status.ERROR and arm.tally.twists == 3 and arm.counts == {"twists": 3}, arm.reason
     assert "above UNSCREW_TORQUE_LIMIT" in arm.reason, arm.reason
     assert robot.cap.turned < np.radians(30.0) / 2  # no twist got anywhere near TWIST_ANGLE
 
@@ -203,3 +205,13 @@ def test_a_pinch_one_pad_of_which_never_feels_the_grasp_force_is_given_up_after_
     assert arm.status is Status.ERROR and arm.tally.twists == 0, arm.reason
     assert "did not all press the grasp force within 6 s" in arm.reason, arm.reason
     assert robot.time < 10.0
+
+
+def test_the_arm_done_condition_carries_the_unscrews_twist_count_into_the_events_evidence() -> None:
+    """What the trace records of the event that ends the unscrew: the reason and, as a number
+    beside it, the twists (atd.campaign.unscrew reads that, never the reason's words)."""
+    done = StatusIs(Context(info=INFO, params={}), (), "arm", Status.DONE)
+    view = StateView(elapsed=12.0, arm=Status.DONE, hand=Status.DONE, reasons={"arm": "cap off after 4 twists"},
+                     counts={"arm": {"twists": 4}})
+    assert done.holds(None, view, 0.01)
+    assert done.evidence["twists"] == 4 and done.evidence["reason"] == "cap off after 4 twists"

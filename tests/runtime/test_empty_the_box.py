@@ -89,6 +89,8 @@ def test_a_target_from_a_value_is_its_tcp_position_and_an_approach_s_yaw_read_as
                                                              "yaw": pytest.approx(60.0)}
     touched = Contact(np.array([0.2, 0.0, 0.06]), "wrist", 4.0, np.array([0.0, 0.0, -1.0]), 3.0)
     assert arm_for(REACH, {"approach": touched}).params == {"max_speed": 0.15, "target": (0.2, 0.0, 0.06)}
+    below = REACH.model_copy(update={"target_offset": (0.0, 0.01, -0.02)})
+    assert arm_for(below, {"approach": touched}).params == {"max_speed": 0.15, "target": (0.2, 0.01, 0.04)}
     put = EstdState(name="put", type=StateType.PLACE, atd="put", arm=Controller(name="place"), target_from="approach")
     assert arm_for(put, {"approach": approach}).params == {"target": (0.1, -0.05, 0.2)}  # a place does not turn
     with pytest.raises(MissingValue, match="state 'reach' takes its target from 'approach': it holds NothingFound"):
