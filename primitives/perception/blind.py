@@ -39,8 +39,10 @@ BACK_OFF = 0.01  # m the hand backs off what a sweep met before it rises: its fi
 # the next state, tared on that, read its going as a contact
 LIFT_OFF = 0.01
 # m out from where the hand landed on an object's top, along each of the container's axes, that
-# it feels whether the top goes on: jaws opening 6.8 cm (the Melfa's) close round what ends within
-# 3.4 cm of their middle, so a top reaching 3 cm out both ways is better closed across (ours)
+# it feels whether the top goes on (the hand's tip comes down with its nearer edge there): jaws
+# opening 6.8 cm (the Melfa's) close round what ends within 3.4 cm of their middle, so a top
+# reaching 3 cm out both ways is better closed across; the library's objects are 3.8-5.2 cm
+# across their narrow side and 6.5-8.5 cm along their long one (ours)
 SIDE_STEP = 0.03
 SIDE_RISE = 0.01  # m over the top found that the hand moves from one side to the next
 # m below the top found that the hand comes down at a side before it takes the top not to go
@@ -189,20 +191,21 @@ class BlindExploration(Perceiver):
         elif kind is Leg.PROBE:
             top = self._top(contact)
             if top is not None:
-                self._approach(np.array([*contact.point[:2], top]), f"the probe felt it: {self._felt(contact)}", True)
+                self._approach(readings, np.array([*contact.point[:2], top]),
+                               f"the probe felt it: {self._felt(contact)}", True)
             else:
                 self.plan = self._sweep(readings)
         elif kind is Leg.SWEEP and contact is not None:
             self.swept = Swept(contact, self._ahead(readings, contact))
             self.plan = self._feel(readings, self.swept)
         elif kind is Leg.RETREAT and contact is not None:
-            self._estimated(f"a contact on the way back and over it ({self._felt(contact)})")
+            self._estimated(readings, f"a contact on the way back and over it ({self._felt(contact)})")
         elif kind is Leg.FEEL:
             top = self._top(contact)
             if top is None:
-                self._estimated("the descent beside it met the floor")
+                self._estimated(readings, "the descent beside it met the floor")
             else:
-                self._approach(np.array([*contact.point[:2], top]),
+                self._approach(readings, np.array([*contact.point[:2], top]),
                                f"the sweep felt it ({self._felt(self.swept.contact)}), the descent onto it its top "
                                f"({self._felt(contact)})", True)
 
@@ -215,32 +218,35 @@ class BlindExploration(Perceiver):
     def _felt(contact: Contact) -> str:
         return f"{contact.sensor} {contact.force:.1f} N"
 
-    def _estimated(self, why: str) -> None:
+    def _estimated(self, readings: Readings, why: str) -> None:
         """The approach where the sweep placed the object, its top unknown (at least the sweep's height)."""
-        self._approach(self.swept.estimate, f"the sweep felt it ({self._felt(self.swept.contact)}); {why}: "
-                                            f"its top unknown", False)
+        self._approach(readings, self.swept.estimate,
+                       f"the sweep felt it ({self._felt(self.swept.contact)}); {why}: its top unknown", False)
 
-    def _approach(self, point: np.ndarray, how: str, top: bool) -> None:
+    def _approach(self, readings: Readings, point: np.ndarray, how: str, top: bool) -> None:
         """An object is felt at `point`: lift the hand off it, and where its `top` is known feel
         how far the top reaches each way (`_sides`) before saying where to grasp (`_conclude`)."""
         self.result = Finding(point, how)
         self.plan = [Waypoint(self.explore.rest + np.array([0.0, 0.0, LIFT_OFF]), Leg.LIFT)]
         if top:
-            self.plan += self._sides(point)
+            self.plan += self._sides(readings, point)
 
-    def _sides(self, point: np.ndarray) -> list[Waypoint]:
-        """Over the top at `point` (world) and down beside it SIDE_STEP out along each of the
-        container's axes, both ways, where that keeps the hand as far inside the walls as the
+    def _sides(self, readings: Readings, point: np.ndarray) -> list[Waypoint]:
+        """Over the top at `point` (world) and down beside it along each of the container's
+        axes, both ways, the hand's tip (`sweep_extent`, the hand turned as it is) reaching to
+        SIDE_STEP out and no nearer, where that keeps the hand as far inside the walls as the
         sweep does; from one side to the next SIDE_RISE over the top."""
         above = float(point[2]) + self.approaching.reach + SIDE_RISE
         down = above - SIDE_RISE - SIDE_DEPTH
         low, high = self.container.footprint(self.room)
         centre = self.container.to_local(point[None])[0]
+        # how far the tip reaches along each of the container's axes
+        tip = np.abs(readings.tcp[:3, :3].T @ self.container.pose[:3, :2])[:2].T @ self.tip
         legs = [Waypoint(np.array([*self.explore.rest[:2], above]), Leg.ABOVE)]
         for axis in (0, 1):
             for sign in (1, -1):
                 local = centre.copy()
-                local[axis] += sign * SIDE_STEP
+                local[axis] += sign * (SIDE_STEP + tip[axis])
                 if not np.all((local[:2] >= low - 1e-9) & (local[:2] <= high + 1e-9)):
                     continue  # a side the hand cannot come down at: not felt
                 x, y, _ = self.container.to_world(local[None])[0]
@@ -252,8 +258,8 @@ class BlindExploration(Perceiver):
     def _conclude(self) -> None:
         """The approach over what was felt: moved SIDE_STEP / 2 towards a side the top reaches
         where the other side's does not, and turned to close the jaws (along the hand's y)
-        across the container's x where the top reaches out both ways along its y and not
-        along its x, else across its y."""
+        across the container's x where the top is long along its y and not along its x
+        (`_long`), else across its y."""
         finding = self.result
         local = self.container.to_local(finding.point[None])[0]
         reaches = finding.reaches
@@ -261,7 +267,7 @@ class BlindExploration(Perceiver):
             plus, minus = reaches.get((axis, 1)), reaches.get((axis, -1))
             if plus is not None and minus is not None and plus != minus:
                 local[axis] += (1 if plus else -1) * SIDE_STEP / 2
-        along = [reaches.get((axis, 1), False) and reaches.get((axis, -1), False) for axis in (0, 1)]
+        along = [_long(reaches.get((axis, 1)), reaches.get((axis, -1))) for axis in (0, 1)]
         yaw = math.pi / 2 if along[1] and not along[0] else 0.0
         point = self.container.to_world(local[None])[0]
         point[2] = finding.point[2]
@@ -293,7 +299,8 @@ class BlindExploration(Perceiver):
         clear = self._clear(readings)
         x, y = swept.estimate[:2]
         return [Waypoint(back, Leg.RETREAT), Waypoint(np.array([back[0], back[1], clear]), Leg.RETREAT),
-                Waypoint(np.array([x, y, clear]), Leg.RETREAT), Waypoint(np.array([x, y, self._below_floor()]), Leg.FEEL)]
+                Waypoint(np.array([x, y, clear]), Leg.RETREAT),
+                Waypoint(np.array([x, y, self._below_floor()]), Leg.FEEL)]
 
     def _sweep(self, readings: Readings) -> list[Waypoint]:
         """Up to the sweep's height, then lanes along the container's x, `lane_spacing` apart
@@ -314,3 +321,10 @@ class BlindExploration(Perceiver):
         world = self.container.to_world(np.array([[x, y, 0.0] for x, y in points]))
         world[:, 2] = height
         return [Waypoint(np.array([here[0], here[1], height]), Leg.TRANSIT)] + [Waypoint(p, Leg.SWEEP) for p in world]
+
+
+def _long(plus: bool | None, minus: bool | None) -> bool:
+    """Whether a top is long along an axis from whether it reaches out that way on either side
+    (None: a side the hand could not come down at, by a wall): it reaches out on one side and
+    is not known to stop on the other."""
+    return (plus is True or minus is True) and plus is not False and minus is not False

@@ -165,6 +165,21 @@ def test_blind_exploration_comes_down_over_an_object_the_sweep_meets_in_the_open
     assert found.point[2] == pytest.approx(FLOOR + 0.05, abs=0.003)
 
 
+def test_blind_exploration_turns_the_jaws_across_a_bar_lying_along_the_box() -> None:
+    """A 3 x 9 cm bar, 4 cm tall, along the box's y: longer than the Melfa's jaws open (6.8 cm)
+    that way, its top reaching past 3 cm both ways along it and not across: the approach turns
+    the hand a quarter turn, its jaws (the hand's y) closing across the bar, over the bar."""
+    robot = box_world(cube("bar", OPEN, size=(0.03, 0.09), height=0.04))
+    truth = robot.object_poses()["bar"][:3, 3]
+    outcome, found, cause = _explore_blind(robot)
+    robot.close()
+    assert outcome.succeeded, outcome.summary
+    closing = found.pose[:3, 1]
+    assert abs(closing[0]) > 0.99  # the jaws close along the box's x, across the bar
+    assert abs(found.point[0] - truth[0]) < 0.015 and abs(found.point[1] - truth[1]) < 0.045
+    assert found.point[2] == pytest.approx(FLOOR + 0.04, abs=0.003)
+
+
 def test_blind_exploration_lands_on_an_object_under_its_probe_and_knows_its_top() -> None:
     """A 15 x 15 cm slab, 3 cm tall, covers every point the probe can come down on."""
     robot = box_world(cube("slab", (0.18, 0.15), size=0.15, height=0.03))
