@@ -8,8 +8,10 @@ sweep: the hand, its lowest point just above the floor, goes along the container
 (a boustrophedon) until it feels something, which is an object ahead of it; a sweep that
 feels nothing found nothing. A sweep's contact places the object only by its near side, at
 the height of the hand's tip, so the hand then feels for its top: it backs off, rises clear,
-comes over the object's near part and goes down onto it. The approach is over where it
-landed, the object's top known; landing on the floor, the approach keeps the sweep's estimate.
+comes over the object's near part and goes down onto it (landing on the floor, the approach
+keeps the sweep's estimate, its top unknown). On a top, found either way, the hand comes down
+beside it along the container's axes to feel how far it reaches, and the approach is moved
+towards where it goes on and turned so the jaws close across a top long along the box's y.
 """
 
 from __future__ import annotations
