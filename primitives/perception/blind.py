@@ -88,9 +88,10 @@ class Swept:
 
 @dataclass
 class Finding:
-    """What the hand has felt of an object: a point on it (world; on its top where `top` is
-    known), how it was felt, and whether its top reaches SIDE_STEP out each way it felt:
-    (the container's axis, +1 or -1) -> reaches."""
+    """What the hand has felt of an object: a point on it (world: on its top, or at the sweep's
+    height where the sweep alone placed it), how it was felt, and whether its top reaches
+    SIDE_STEP out each way the hand came down beside it: (the container's axis, +1 or -1) ->
+    reaches."""
 
     point: np.ndarray  # (3,)
     how: str
