@@ -57,6 +57,10 @@ CARRIED_MARGIN = {StateType.TRANSPORT: 0.0, StateType.PLACE: 0.01}
 # eased from 2.1 to 1.2 N 1.6 s after (MuJoCo duck trial 16, PyBullet mug trial 11 of the
 # preset's approach error)
 HELD_FOR = 2.0
+# m above the hand's lowest point that its sweeping tip spans: a blind exploration sweeps 2 cm
+# over the floor and every library object stands 3.8 cm or more whichever way it lies, so only
+# links this low meet it (the Melfa's fingers, not the gripper body 6 cm above them)
+SWEEPING_TIP = 0.02
 WRIST_ALIGNED = 0.99  # cos: a last joint within 8 degrees of the approach axis rolls the hand about it (ours)
 
 
@@ -305,7 +309,8 @@ class Factory(ABC):
                               container_pose=container.pose.matrix, container_size=container.size,
                               container_wall=container.wall, hand_reach=round(reach, 6), hand_radius=round(radius, 6),
                               grasp_reach=round(max(self.robot.hand_reach(p) for p in self.robot.hand.postures), 6),
-                              grasp_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)))
+                              grasp_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)),
+                              sweep_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture, SWEEPING_TIP)))
         return NodeMapping("perceive", arm, self.controller("hand_shape", shape=posture), notes)
 
     @abstractmethod

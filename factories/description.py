@@ -479,16 +479,22 @@ class RobotDescription:
                        for name in self.hand_links for shape in self.links_by_name[name].shapes)
         return farthest - float(tcp[:3, 3] @ approach)
 
-    def hand_extent(self, posture: str | np.ndarray) -> tuple[float, float]:
+    def hand_extent(self, posture: str | np.ndarray, within: float | None = None) -> tuple[float, float]:
         """How far the hand's links reach sideways from the TCP's axis in a posture (its name,
         or its DOF values), along the hand's x and along its y, each the further of its two
         sides: a parallel jaw opens along one, so a hand pointing down can come nearer a wall
-        with the other towards it."""
+        with the other towards it. With `within` (m), only the links reaching to within that
+        of the hand's lowest point, pointing down: its tip, the part a hand sweeping low over a
+        floor meets objects with (the Melfa's fingers, not the gripper body 6 cm above them)."""
         poses, tcp = self._hand_in(posture)
+        approach = tcp[:3, 2]
+        shapes = [(poses[name], shape) for name in self.hand_links for shape in self.links_by_name[name].shapes]
+        if within is not None:
+            lowest = max(shape.support(pose, approach) for pose, shape in shapes)
+            shapes = [(pose, shape) for pose, shape in shapes if shape.support(pose, approach) >= lowest - within]
 
         def reach(way: np.ndarray) -> float:
-            return max(shape.support(poses[name], way) - float(tcp[:3, 3] @ way)
-                       for name in self.hand_links for shape in self.links_by_name[name].shapes)
+            return max(shape.support(pose, way) - float(tcp[:3, 3] @ way) for pose, shape in shapes)
 
         x, y = (max(reach(tcp[:3, axis]), reach(-tcp[:3, axis])) for axis in (0, 1))
         return x, y

@@ -405,6 +405,10 @@ _ARM_CONTROLLERS = (
                                "(ours)", 0.02, unit="m"),
             "lane_spacing": _p(NUM, "blind exploration: the sweep's lanes lie at most this far apart (ours: under "
                                "the width of a hand)", 0.05, unit="m"),
+            "sweep_extent": _p(VEC, "blind exploration: how far the hand's tip (its links within 2 cm of its lowest "
+                               "point) reaches sideways along its x and its y: what meets an object in a sweep, which "
+                               "places the object's near side ahead of the TCP (the robot's own geometry: "
+                               "`RobotDescription.hand_extent` within 2 cm)", (0.015, 0.01), unit="m", length=2),
             "floor_band": _p(NUM, "blind exploration: a contact of the hand's lowest point within this of the "
                              "floor is the floor (ours)", 0.015, unit="m"),
             "camera": _p(WORD, "vision: the depth camera to look with; unset: the robot's first"),

@@ -6,13 +6,19 @@ random, clear of its rim, and goes down until it feels something. A contact abov
 the hand's reach) is an object's top: the approach is there. The floor itself starts a
 sweep: the hand, its lowest point just above the floor, goes along the container in lanes
 (a boustrophedon) until it feels something, which is an object ahead of it; a sweep that
-feels nothing found nothing.
+feels nothing found nothing. A sweep's contact places the object only by its near side, at
+the height of the hand's tip, so the hand then feels for its top: it backs off, rises clear,
+comes over the object's near part and goes down onto it (landing on the floor, the approach
+keeps the sweep's estimate, its top unknown). On a top, found either way, the hand comes down
+beside it along the container's axes to feel how far it reaches, and the approach is moved
+towards where it goes on and turned so the jaws close across a top long along the box's y.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
+from enum import Enum
 
 import numpy as np
 
@@ -25,19 +31,71 @@ from primitives.robot import Readings
 from primitives.values import Approach, Contact
 
 PROBE_BEYOND = 0.02  # m below the believed floor the probe goes before it gives up: the floor is not there
-# m beyond where a sweep felt an object that its middle is taken to be: the contact is its near
-# side, `hand_radius` ahead of the TCP; its size is not known
-OBJECT_BEYOND = 0.02
+# m past an object's near side, along the sweep, where the hand comes down to feel its top: the
+# library's objects are 3.8-7.5 cm across whichever way they lie, so their middle lies 1.9-3.8 cm
+# past it (ours)
+FEEL_INTO = 0.025
+BACK_OFF = 0.01  # m the hand backs off what a sweep met before it rises: its fingers rubbing the side read as a contact
+# m the hand rises off what it came down on before it says so: stopped on a contact it still
+# presses (the Melfa's wrist read 13 N on the floor 0.1 s after a 4 cm/s descent stopped), and
+# the next state, tared on that, read its going as a contact
+LIFT_OFF = 0.01
+# m out from where the hand landed on an object's top, along each of the container's axes, that
+# it feels whether the top goes on (the hand's tip comes down with its nearer edge there): jaws
+# opening 6.8 cm (the Melfa's) close round what ends within 3.4 cm of their middle, so a top
+# reaching 3 cm out both ways is better closed across; the library's objects are 3.8-5.2 cm
+# across their narrow side and 6.5-8.5 cm along their long one (ours)
+SIDE_STEP = 0.03
+SIDE_RISE = 0.01  # m over the top found that the hand moves from one side to the next
+# m below the top found that the hand comes down at a side before it takes the top not to go
+# on there: a lying cylinder's top curves away, and what lies below is the floor or another object
+SIDE_DEPTH = 0.015
+# m more than the hand's reach that the sweep keeps from the walls: at exactly its reach the
+# Melfa's gripper body, below the rim, rubbed the wall along a lane and read 9.9 N
+WALL_CLEARANCE = 0.005
+
+
+class Leg(Enum):
+    """What an explore move is for, and so what a contact on the way means."""
+
+    TRANSIT = "transit"  # over the container to the probe: something in the way, an error
+    PROBE = "probe"  # down onto the floor: an object's top, or the floor
+    SWEEP = "sweep"  # along the floor: an object ahead
+    RETREAT = "retreat"  # back, up and over what a sweep met: the sweep's estimate is the approach
+    FEEL = "feel"  # down onto what a sweep met: its top, or the floor beside it
+    LIFT = "lift"  # off what the hand came down on
+    ABOVE = "above"  # over the top found, from side to side: a contact ends the feeling
+    SIDE = "side"  # down beside the top found: whether it reaches there
 
 
 @dataclass(frozen=True)
 class Waypoint:
-    """Where the next explore move goes, and what a contact on the way means: `transit`
-    (over the container: something in the way, an error), `probe` (down onto the floor: an
-    object, or the floor) or `sweep` (along the floor: an object)."""
+    """Where the next explore move goes (the TCP's, world), and what it is for."""
 
-    to: np.ndarray  # (3,), world, the TCP's
-    kind: str
+    to: np.ndarray  # (3,)
+    kind: Leg
+    side: tuple[int, int] = (0, 0)  # a SIDE's: the container's axis (0 x, 1 y) and which way (+1, -1)
+
+
+@dataclass(frozen=True)
+class Swept:
+    """What a sweep met: its contact, and where the hand comes down to feel the object's top
+    (world, at the sweep's height: the approach if the feel finds nothing higher)."""
+
+    contact: Contact
+    estimate: np.ndarray  # (3,)
+
+
+@dataclass
+class Finding:
+    """What the hand has felt of an object: a point on it (world: on its top, or at the sweep's
+    height where the sweep alone placed it), how it was felt, and whether its top reaches
+    SIDE_STEP out each way the hand came down beside it: (the container's axis, +1 or -1) ->
+    reaches."""
+
+    point: np.ndarray  # (3,)
+    how: str
+    reaches: dict[tuple[int, int], bool] = field(default_factory=dict)
 
 
 class BlindExploration(Perceiver):
@@ -51,9 +109,11 @@ class BlindExploration(Perceiver):
         super().__init__(ctx)
         p = self.params
         self.margin = float(p["hand_radius"])
+        self.room = self.margin + WALL_CLEARANCE  # the sweep's, from the walls
         self.sweep_height = float(p["sweep_height"])
         self.lane_spacing = float(p["lane_spacing"])
         self.floor_band = float(p["floor_band"])
+        self.tip = np.array(p["sweep_extent"], float)
         inner = self.container.inner
         if np.any(inner[:2] <= 2 * self.margin):
             raise ValueError(f"a hand reaching {self.margin:g} m sideways cannot sweep a container "
@@ -63,16 +123,24 @@ class BlindExploration(Perceiver):
     def start(self, readings: Readings) -> None:
         super().start(readings)
         here = readings.tcp[:3, 3]
-        reach = self.approaching.reach
-        clear = max(float(here[2]), self.container.rim + self.approaching.height + reach)
-        low, high = self.container.footprint(self.margin)
+        clear = self._clear(readings)
+        low, high = self.container.footprint(self.room)
         probe = self.container.to_world(np.array([[*self.ctx.rng.uniform(low, high), 0.0]]))[0]
-        floor = self.container.floor + reach - PROBE_BEYOND
-        self.plan = [Waypoint(np.array([here[0], here[1], clear]), "transit"),
-                     Waypoint(np.array([probe[0], probe[1], clear]), "transit"),
-                     Waypoint(np.array([probe[0], probe[1], floor]), "probe")]
+        self.plan = [Waypoint(np.array([here[0], here[1], clear]), Leg.TRANSIT),
+                     Waypoint(np.array([probe[0], probe[1], clear]), Leg.TRANSIT),
+                     Waypoint(np.array([probe[0], probe[1], self._below_floor()]), Leg.PROBE)]
         self.explore: Explore | None = None
+        self.swept: Swept | None = None
+        self.result: Finding | None = None  # once the hand has felt an object
         self._next(readings)
+
+    def _clear(self, readings: Readings) -> float:
+        """The TCP's height over the container with the hand clear of its rim, or higher where it is."""
+        return max(float(readings.tcp[2, 3]), self.container.rim + self.approaching.height + self.approaching.reach)
+
+    def _below_floor(self) -> float:
+        """The TCP's height with the hand PROBE_BEYOND below the believed floor: where a descent gives up."""
+        return self.container.floor + self.approaching.reach - PROBE_BEYOND
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         if self.explore is None:
@@ -95,7 +163,11 @@ class BlindExploration(Perceiver):
         while self.plan and np.linalg.norm(self.plan[0].to - here) < ARRIVED:
             self.plan.pop(0)
         if not self.plan:
-            self.found(None, f"swept the container's floor {self.sweep_height * 100:g} cm above it without a contact")
+            if self.result is not None:
+                self._conclude()
+            else:
+                self.found(None, f"swept the container's floor {self.sweep_height * 100:g} cm above it without a "
+                                 f"contact")
             return
         self.leg = self.plan.pop(0)
         way = self.leg.to - here
@@ -108,39 +180,137 @@ class BlindExploration(Perceiver):
     def _ended(self, readings: Readings) -> None:
         """What the explore move just ended tells: go on, found, or give up."""
         contact, kind = self.explore.found, self.leg.kind
-        if kind == "transit" and contact is not None:
+        if kind is Leg.ABOVE and contact is not None:
+            self.plan = []  # something higher than the top found: what is known so far will do
+        elif kind is Leg.SIDE:
+            self.result.reaches[self.leg.side] = contact is not None
+        elif kind is Leg.TRANSIT and contact is not None:
             x, y, z = contact.point
             self.finish(Status.ERROR, f"something in the way over the container: a contact at ({x:.3f}, {y:.3f}, "
                                       f"{z:.3f}) on the way to the probe")
-        elif kind == "probe" and contact is None:
+        elif kind in (Leg.PROBE, Leg.FEEL) and contact is None:
             self.finish(Status.ERROR, f"no floor within {PROBE_BEYOND * 100:g} cm below where the container's "
                                       f"floor is believed to be ({self.container.floor:.3f} m)")
-        elif kind == "probe":
-            height = float(contact.point[2]) - self.approaching.reach
-            if height > self.container.floor + self.floor_band:
-                self._approach(contact, np.array([*contact.point[:2], height]))
+        elif kind is Leg.PROBE:
+            top = self._top(contact)
+            if top is not None:
+                self._approach(readings, np.array([*contact.point[:2], top]),
+                               f"the probe felt it: {self._felt(contact)}", True)
             else:
                 self.plan = self._sweep(readings)
-        elif contact is not None:
-            ahead = contact.point[:2] + (self.margin + OBJECT_BEYOND) * contact.direction[:2]
-            local = self.container.to_local(np.array([[*ahead, self.container.floor]]))[0]
-            low, high = self.container.footprint(OBJECT_BEYOND)
-            local[:2] = np.clip(local[:2], low, high)  # an object's middle lies inside the walls
-            point = self.container.to_world(local[None])[0]
-            point[2] = float(contact.point[2]) - self.approaching.reach  # its top is at least that high
-            self._approach(contact, point)
+        elif kind is Leg.SWEEP and contact is not None:
+            self.swept = Swept(contact, self._ahead(readings, contact))
+            self.plan = self._feel(readings, self.swept)
+        elif kind is Leg.RETREAT and contact is not None:
+            self._estimated(readings, f"a contact on the way back and over it ({self._felt(contact)})")
+        elif kind is Leg.FEEL:
+            top = self._top(contact)
+            if top is None:
+                self._estimated(readings, "the descent beside it met the floor")
+            else:
+                self._approach(readings, np.array([*contact.point[:2], top]),
+                               f"the sweep felt it ({self._felt(self.swept.contact)}), the descent onto it its top "
+                               f"({self._felt(contact)})", True)
 
-    def _approach(self, contact: Contact, point: np.ndarray) -> None:
-        pose = approach_pose(self.container, point, self.approaching.grasp_reach, self.approaching.height)
-        self.found(Approach(pose, point, self.method), "", f"the {self.leg.kind} felt it: {contact.sensor} "
-                                                           f"{contact.force:.1f} N")
+    def _top(self, contact: Contact) -> float | None:
+        """The height of the hand's lowest point at `contact`, if it is over the floor: an object's top."""
+        height = float(contact.point[2]) - self.approaching.reach
+        return height if height > self.container.floor + self.floor_band else None
+
+    @staticmethod
+    def _felt(contact: Contact) -> str:
+        return f"{contact.sensor} {contact.force:.1f} N"
+
+    def _estimated(self, readings: Readings, why: str) -> None:
+        """The approach where the sweep placed the object, its top unknown (at least the sweep's height)."""
+        self._approach(readings, self.swept.estimate,
+                       f"the sweep felt it ({self._felt(self.swept.contact)}); {why}: its top unknown", False)
+
+    def _approach(self, readings: Readings, point: np.ndarray, how: str, top: bool) -> None:
+        """An object is felt at `point`: lift the hand off it, and where its `top` is known feel
+        how far the top reaches each way (`_sides`) before saying where to grasp (`_conclude`)."""
+        self.result = Finding(point, how)
+        self.plan = [Waypoint(self.explore.rest + np.array([0.0, 0.0, LIFT_OFF]), Leg.LIFT)]
+        if top:
+            self.plan += self._sides(readings, point)
+
+    def _sides(self, readings: Readings, point: np.ndarray) -> list[Waypoint]:
+        """Over the top at `point` (world) and down beside it along each of the container's
+        axes, both ways, the hand's tip (`sweep_extent`, the hand turned as it is) reaching to
+        SIDE_STEP out and no nearer, where that keeps the hand as far inside the walls as the
+        sweep does; from one side to the next SIDE_RISE over the top."""
+        above = float(point[2]) + self.approaching.reach + SIDE_RISE
+        down = above - SIDE_RISE - SIDE_DEPTH
+        low, high = self.container.footprint(self.room)
+        centre = self.container.to_local(point[None])[0]
+        # how far the tip reaches along each of the container's axes
+        tip = np.abs(readings.tcp[:3, :3].T @ self.container.pose[:3, :2])[:2].T @ self.tip
+        legs = [Waypoint(np.array([*self.explore.rest[:2], above]), Leg.ABOVE)]
+        for axis in (0, 1):
+            for sign in (1, -1):
+                local = centre.copy()
+                local[axis] += sign * (SIDE_STEP + tip[axis])
+                if not np.all((local[:2] >= low - 1e-9) & (local[:2] <= high + 1e-9)):
+                    continue  # a side the hand cannot come down at: not felt
+                x, y, _ = self.container.to_world(local[None])[0]
+                legs += [Waypoint(np.array([x, y, above]), Leg.ABOVE),
+                         Waypoint(np.array([x, y, down]), Leg.SIDE, (axis, sign)),
+                         Waypoint(np.array([x, y, above]), Leg.ABOVE)]
+        return legs
+
+    def _conclude(self) -> None:
+        """The approach over what was felt: moved SIDE_STEP / 2 towards a side the top reaches
+        where the other side's does not, and turned to close the jaws (along the hand's y)
+        across the container's x where the top is long along its y and not along its x
+        (`_long`), else across its y."""
+        finding = self.result
+        local = self.container.to_local(finding.point[None])[0]
+        reaches = finding.reaches
+        for axis in (0, 1):
+            plus, minus = reaches.get((axis, 1)), reaches.get((axis, -1))
+            if plus is not None and minus is not None and plus != minus:
+                local[axis] += (1 if plus else -1) * SIDE_STEP / 2
+        along = [_long(reaches.get((axis, 1)), reaches.get((axis, -1))) for axis in (0, 1)]
+        yaw = math.pi / 2 if along[1] and not along[0] else 0.0
+        point = self.container.to_world(local[None])[0]
+        point[2] = finding.point[2]
+        pose = approach_pose(self.container, point, self.approaching.grasp_reach, self.approaching.height, yaw)
+        felt = ", ".join(f"{'+' if sign > 0 else '-'}{'xy'[axis]} {'yes' if on else 'no'}"
+                         for (axis, sign), on in reaches.items())
+        how = finding.how + (f"; its top reaches {SIDE_STEP * 100:g} cm out: {felt}" if felt else "")
+        self.found(Approach(pose, point, self.method), "", how)
+
+    def _ahead(self, readings: Readings, contact: Contact) -> np.ndarray:
+        """Where, at the sweep's height, the hand comes down to feel what the sweep met: its
+        near side is where the hand's tip reaches along the sweep (`sweep_extent`, the hand
+        turned as it is), and the hand comes down FEEL_INTO past it, kept inside the walls by
+        its reach (`hand_radius`) as the sweep is."""
+        way = contact.direction[:3] * np.array([1.0, 1.0, 0.0])
+        way = way / np.linalg.norm(way)
+        along_hand = np.abs(readings.tcp[:3, :3].T @ way)[:2]
+        ahead = contact.point + (float(along_hand @ self.tip) + FEEL_INTO) * way
+        local = self.container.to_local(ahead[None])[0]
+        low, high = self.container.footprint(self.room)
+        local[:2] = np.clip(local[:2], low, high)
+        point = self.container.to_world(local[None])[0]
+        point[2] = float(contact.point[2]) - self.approaching.reach  # its top is at least that high
+        return point
+
+    def _feel(self, readings: Readings, swept: Swept) -> list[Waypoint]:
+        """Back off what the sweep met, up clear of the rim, over where it lies, and down onto it."""
+        back = readings.tcp[:3, 3] - BACK_OFF * swept.contact.direction
+        clear = self._clear(readings)
+        x, y = swept.estimate[:2]
+        return [Waypoint(back, Leg.RETREAT), Waypoint(np.array([back[0], back[1], clear]), Leg.RETREAT),
+                Waypoint(np.array([x, y, clear]), Leg.RETREAT),
+                Waypoint(np.array([x, y, self._below_floor()]), Leg.FEEL)]
 
     def _sweep(self, readings: Readings) -> list[Waypoint]:
         """Up to the sweep's height, then lanes along the container's x, `lane_spacing` apart
         at most, from the corner nearest the hand."""
         here = readings.tcp[:3, 3]
         height = self.container.floor + self.sweep_height + self.approaching.reach
-        low, high = self.container.footprint(self.margin)
+        low, high = self.container.footprint(self.room)
         local = self.container.to_local(here[None])[0]
         lanes = max(1, math.ceil((high[1] - low[1]) / self.lane_spacing) + 1) if high[1] > low[1] else 1
         ys = np.linspace(low[1], high[1], lanes)
@@ -153,4 +323,11 @@ class BlindExploration(Perceiver):
             points += [(first, y), (last, y)]
         world = self.container.to_world(np.array([[x, y, 0.0] for x, y in points]))
         world[:, 2] = height
-        return [Waypoint(np.array([here[0], here[1], height]), "transit")] + [Waypoint(p, "sweep") for p in world]
+        return [Waypoint(np.array([here[0], here[1], height]), Leg.TRANSIT)] + [Waypoint(p, Leg.SWEEP) for p in world]
+
+
+def _long(plus: bool | None, minus: bool | None) -> bool:
+    """Whether a top is long along an axis from whether it reaches out that way on either side
+    (None: a side the hand could not come down at, by a wall): it reaches out on one side and
+    is not known to stop on the other."""
+    return (plus is True or minus is True) and plus is not False and minus is not False

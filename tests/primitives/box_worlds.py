@@ -22,12 +22,15 @@ CORNER = (0.26, 0.21)  # a 5 cm cube here stands 0.5 cm from the far walls of th
 MELFA_REACH = load_description("melfa").hand_reach("open")  # m the Melfa's fingertips reach below its TCP
 
 
-def cube(name: str, xy: tuple[float, float], size: float = 0.05, height: float | None = None) -> Body:
-    """A box standing on the box's floor at `xy`: a cube of `size`, or `height` tall."""
-    tall = size if height is None else height
+def cube(name: str, xy: tuple[float, float], size: float | tuple[float, float] = 0.05,
+         height: float | None = None) -> Body:
+    """A box standing on the box's floor at `xy`: a cube of `size`, or `height` tall; `size`
+    (x, y) for a bar."""
+    x, y = (size, size) if isinstance(size, float) else size
+    tall = x if height is None else height
     pose = np.eye(4)
     pose[:3, 3] = (*xy, FLOOR + tall / 2)
-    return Body(name, "box", (size, size, tall), pose, 0.2, DEFAULT_FRICTION)
+    return Body(name, "box", (x, y, tall), pose, 0.2, DEFAULT_FRICTION)
 
 
 def box_world(*objects: Body, engine: str = "mujoco") -> SimRobot:

@@ -23,6 +23,7 @@ SETTINGS = VisionSettings(floor_margin=0.01, wall_margin=0.01, above_rim=0.1, vo
                           grasp_extent=(0.04, 0.05))
 APPROACHING = Approaching(reach=MELFA_REACH, height=0.05, grasp_reach=MELFA_REACH)
 RIM = 0.08
+OPEN = (0.20, 0.13)  # a 5 cm cube here lies across two of the sweep's lanes, 4.5 cm or more from the walls
 
 
 # -- the pieces ----------------------------------------------------------------------------
@@ -139,15 +140,44 @@ def _explore_blind(robot) -> tuple:
     return outcome, executor.machine.base.memory.get("found"), events(executor)[-1]["conditions"][0]
 
 
-def test_blind_exploration_sweeps_the_floor_to_the_corner_object() -> None:
+def test_blind_exploration_sweeps_to_the_corner_object_and_comes_down_on_it() -> None:
+    """The sweep meets the cube's near side; the hand comes down on its top: the approach is
+    over the cube (the hand, 5 cm wide, cannot go nearer the walls), its top known."""
     robot = box_world(cube("block", CORNER))
     truth = robot.object_poses()["block"][:3, 3]
     outcome, found, cause = _explore_blind(robot)
     robot.close()
     assert outcome.succeeded, outcome.summary
     assert isinstance(found, Approach) and cause["kind"] == "object_found"
-    assert np.linalg.norm(found.point[:2] - truth[:2]) < 0.03
-    assert found.pose[2, 3] == pytest.approx(RIM + 0.05 + MELFA_REACH)  # over the rim: the top is not known
+    assert np.all(np.abs(found.point[:2] - truth[:2]) < 0.025 + 0.005)  # over the cube's 5 cm, within 5 mm
+    assert found.point[2] == pytest.approx(FLOOR + 0.05, abs=0.003)
+    assert found.pose[2, 3] == pytest.approx(RIM + 0.05 + MELFA_REACH)  # over the rim: its top is lower
+
+
+def test_blind_exploration_comes_down_over_an_object_the_sweep_meets_in_the_open() -> None:
+    """A 5 cm cube between the sweep's lanes: the approach lies within 1.5 cm of its middle."""
+    robot = box_world(cube("block", OPEN))
+    truth = robot.object_poses()["block"][:3, 3]
+    outcome, found, cause = _explore_blind(robot)
+    robot.close()
+    assert outcome.succeeded, outcome.summary
+    assert np.linalg.norm(found.point[:2] - truth[:2]) < 0.015
+    assert found.point[2] == pytest.approx(FLOOR + 0.05, abs=0.003)
+
+
+def test_blind_exploration_turns_the_jaws_across_a_bar_lying_along_the_box() -> None:
+    """A 3 x 9 cm bar, 4 cm tall, along the box's y: longer than the Melfa's jaws open (6.8 cm)
+    that way, its top reaching past 3 cm both ways along it and not across: the approach turns
+    the hand a quarter turn, its jaws (the hand's y) closing across the bar, over the bar."""
+    robot = box_world(cube("bar", OPEN, size=(0.03, 0.09), height=0.04))
+    truth = robot.object_poses()["bar"][:3, 3]
+    outcome, found, cause = _explore_blind(robot)
+    robot.close()
+    assert outcome.succeeded, outcome.summary
+    closing = found.pose[:3, 1]
+    assert abs(closing[0]) > 0.99  # the jaws close along the box's x, across the bar
+    assert abs(found.point[0] - truth[0]) < 0.015 and abs(found.point[1] - truth[1]) < 0.045
+    assert found.point[2] == pytest.approx(FLOOR + 0.04, abs=0.003)
 
 
 def test_blind_exploration_lands_on_an_object_under_its_probe_and_knows_its_top() -> None:

@@ -91,6 +91,10 @@ def test_every_robot_maps_perception_with_its_own_hand_and_reads_targets_at_run_
         assert look.arm.name == "perceive" and look.arm.params["method"] == "vision"
         assert look.arm.params["hand_radius"] == round(factory.robot.hand_radius("closed"), 6)
         assert look.arm.params["grasp_extent"] == tuple(round(e, 6) for e in factory.robot.hand_extent("open"))
+        # the part of the closed hand a sweep meets objects with: its tip, never wider than the hand
+        tip = look.arm.params["sweep_extent"]
+        assert tip == tuple(round(e, 6) for e in factory.robot.hand_extent("closed", 0.02))
+        assert all(t <= e for t, e in zip(tip, factory.robot.hand_extent("closed")))
         # the approach keeps the hand clear of the rim whatever the grasp opens it to (an SDH2
         # perceives closed, its fingertips 9 cm short of its TCP)
         assert look.arm.params["grasp_reach"] >= max(map(factory.robot.hand_reach, factory.robot.hand.postures)) - 1e-6
