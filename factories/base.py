@@ -662,6 +662,8 @@ class Factory(ABC):
         flags = arm_motion_flags(state)
         if state.type is StateType.PUSH:
             return self.controller("push", target=target, waypoints=via, keep_orientation=flags["keep_orientation"])
+        if state.target_from is not None and any(self.acting_point(state)):  # read at run time: the move places it
+            extra = {**extra, "hand_point": tuple(round(v, 6) for v in self.acting_point(state))}
         margin = CARRIED_MARGIN.get(state.type)
         carried: dict[str, ParamValue] = {} if margin is None else {"contact_margin": margin}
         turn = self.rolled(target_turn(state))
@@ -682,15 +684,20 @@ class Factory(ABC):
         and that finger's lowest point (`grasp_centres` off the TCP, `hand_reach` below it)
         stands in for the TCP, so a push meets the object where the path says.
         """
+        x, y, z = (float(v) for v in self._hand_down @ np.asarray(self.acting_point(state), float))
+        return (x, y, z)
+
+    def acting_point(self, state: State) -> Vec3:
+        """Where the state's hand shape acts, from the TCP in the hand frame (`shape_offset`
+        says which point that is); the TCP itself when the state names no shape."""
         if state.hand_shape is None:
             return (0.0, 0.0, 0.0)
         made, _ = self.shape(state.hand_shape)
         posture = self.posture(made, state)
         robot = self.robot
-        centre = robot.hand.grasp_centres.get(posture, (0.0, 0.0, 0.0))
+        x, y, z = (float(v) for v in robot.hand.grasp_centres.get(posture, (0.0, 0.0, 0.0)))
         if posture != made.value:  # a push posture of its own: its lowest point
-            centre = (centre[0], centre[1], robot.hand_reach(posture))
-        x, y, z = (float(v) for v in self._hand_down @ np.asarray(centre, float))
+            z = robot.hand_reach(posture)
         return (x, y, z)
 
     @cached_property

@@ -162,6 +162,10 @@ _MOVE = {
                    "degrees of where the first such turn started; unset keeps the yaw it starts with. A target from "
                    "an approach sets it to the approach's (ours, thesis 3.4.3)", unit="deg",
               limits=ranges.YAW),
+    "hand_point": _p(VEC, "the point of the hand the target is for, from the TCP in the hand frame at the target: "
+                     "a target read from a named value is for where the state's hand shape acts (the SDH2's "
+                     "pinch, 19 mm off its TCP), so the TCP stops that far from it (ours); zeros: the TCP",
+                     (0.0, 0.0, 0.0), unit="m", length=3),
     "contact_margin": _p(NUM, "how near the target a contact must come to end a guarded move as arrived (a place "
                          "meeting its surface); one further away stops it short, an error (a transport meeting "
                          "resistance); negative = any contact, for a move that looks for one (ours)", -1.0, unit="m",

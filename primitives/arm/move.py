@@ -92,7 +92,9 @@ class CartesianMove(Controller):
     def __init__(self, ctx: Context) -> None:
         super().__init__(ctx)
         p = self.params
-        self.via = [np.asarray(w, float) for w in p.get("waypoints", ())] + [np.asarray(p["target"], float)]
+        self.target = np.asarray(p["target"], float)
+        self.hand_point = np.asarray(p["hand_point"], float)
+        self.via = [np.asarray(w, float) for w in p.get("waypoints", ())] + [self.target]
         self.straight = bool(p["straight_line"])
         self.keep_orientation = bool(p["keep_orientation"])
         self.threshold = float(p["force_threshold"])
@@ -119,6 +121,7 @@ class CartesianMove(Controller):
             turn = turn_to_yaw(level, self.yaw, reference)
             level, start = turn @ level, turn @ start
         self.rotation = self.tilt @ (level if self.level else start)
+        self.via[-1] = self.target - self.rotation @ self.hand_point  # the yaw, and so where that point is, known now
         if self.level:
             self.ctx.memory[HAND_LEVEL] = level
         self.leg = 0

@@ -235,6 +235,26 @@ def test_a_move_to_an_approach_turns_the_jaws_to_its_yaw_a_contact_only_moves_th
     assert abs(turn - 60.0) < 3.0, turn  # within the move's 2 degrees; the contact's move kept the turn
 
 
+def test_a_move_to_an_approach_for_a_point_off_the_tcp_puts_that_point_there_turned_with_the_hand() -> None:
+    """A pinch that closes 19 mm off the TCP (the SDH2's) goes to vision's approach with its
+    pinch, not its TCP, over the object, whichever way the approach turns the hand."""
+    robot = melfa(ASIDE)
+    turned = math.radians(_heading(robot.read().tcp[:3, :3]) + 60.0)
+    pose = np.eye(4)
+    pose[:3, 0], pose[:3, 2] = (math.cos(turned), math.sin(turned), 0.0), (0.0, 0.0, -1.0)
+    pose[:3, 1] = np.cross(pose[:3, 2], pose[:3, 0])
+    pose[:3, 3] = (0.05, 0.12, 0.22)
+    estd = machine(Stage(use("cartesian_move", hand_point=(0.019, 0.0, 0.0)), use("hold_position"), both_done()))
+    states = (estd.states[0].model_copy(update={"target_from": "approach"}), *estd.states[1:])
+    memory = {"approach": Approach(pose, np.array([0.05, 0.12, 0.05]), "vision", 1)}
+    outcome, _ = execute(estd.model_copy(update={"states": states}), robot, memory=memory)
+    assert outcome.succeeded, outcome.summary
+    hand = robot.read().tcp
+    pinch = hand[:3, 3] + hand[:3, :3] @ (0.019, 0.0, 0.0)
+    assert np.linalg.norm(pinch - (0.05, 0.12, 0.22)) < 0.0035
+    assert np.linalg.norm(hand[:3, 3] - (0.05, 0.12, 0.22)) > 0.015  # the TCP stands off, along the turned hand x
+
+
 def test_a_yaw_a_half_turn_away_turns_the_jaws_the_shorter_way_unless_that_winds_the_wrist_up() -> None:
     """Parallel jaws grip alike turned a half turn: asked for 120 degrees from where it points,
     the hand turns 60 the other way, so the wrist turns at most a quarter turn; but not past
