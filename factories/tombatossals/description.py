@@ -15,7 +15,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from factories.description import RUBBER, FingerPad, Hand, HandDof, Joint, Link, Origin, RobotDescription, SensorModel, Servo, Site
+from factories.description import FingerPad, Hand, HandDof, Joint, Link, Origin, RobotDescription, SensorModel, Servo, Site
 from factories.parts import DARK, METAL, box, capsule, cylinder
 
 D = np.pi / 180
@@ -161,7 +161,7 @@ def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
     # bottom, and F3, flat in the pinch, stands up off the table instead of 7 cm into it.
     hand = Hand("barrett_bh8_280", dofs, tuple(pads), postures, test_grasp="pinch_grasp",
                 grasp_centres={"push": pointing}, push_posture="push", rising_grasps=frozenset({"pinch_grasp"}),
-                side_roll=-np.pi / 2, surface_friction=RUBBER)  # rubber fingertip and palm pads
+                side_roll=-np.pi / 2)  # the object's friction: rubber pads kept its finger-lost correction from moving a 5 kg box (PyBullet; docs/slide.md)
     return tuple(links), hand, 0.155
 
 
