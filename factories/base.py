@@ -662,8 +662,8 @@ class Factory(ABC):
         flags = arm_motion_flags(state)
         if state.type is StateType.PUSH:
             return self.controller("push", target=target, waypoints=via, keep_orientation=flags["keep_orientation"])
-        if state.target_from is not None and any(self.acting_point(state)):  # read at run time: the move places it
-            extra = {**extra, "hand_point": tuple(round(v, 6) for v in self.acting_point(state))}
+        if state.target_from is not None and any(point := self.acting_point(state)):  # read at run time: the move places it
+            extra = {**extra, "hand_point": tuple(round(v, 6) for v in point)}
         margin = CARRIED_MARGIN.get(state.type)
         carried: dict[str, ParamValue] = {} if margin is None else {"contact_margin": margin}
         turn = self.rolled(target_turn(state))
