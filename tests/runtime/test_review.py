@@ -118,12 +118,29 @@ def recordings(tmp_path_factory) -> _Recordings:
     return _Recordings(tmp_path_factory.mktemp("recordings"))
 
 
+class _Pages(dict):
+    """The text of each recording's `atd report` page, made the first time a test asks for it."""
+
+    def __init__(self, recordings: _Recordings, folder: Path) -> None:
+        super().__init__()
+        self.recordings, self.folder = recordings, folder
+
+    def __missing__(self, name: str) -> str:
+        page = self.folder / f"{name}.html"
+        result = _atd("report", str(self.recordings[name]), "-o", str(page), cwd=self.folder)
+        assert result.returncode == 0, result.stderr
+        self[name] = page.read_text()
+        return self[name]
+
+
+@pytest.fixture(scope="module")
+def pages(recordings, tmp_path_factory) -> _Pages:
+    return _Pages(recordings, tmp_path_factory.mktemp("pages"))
+
+
 @pytest.mark.parametrize("name", list(RUNS))
-def test_the_report_is_one_offline_page_with_the_graph_every_plot_and_the_events(recordings, name, tmp_path) -> None:
-    run, page = RUNS[name], tmp_path / "report.html"
-    result = _atd("report", str(recordings[name]), "-o", str(page), cwd=tmp_path)
-    assert result.returncode == 0, result.stderr
-    text = page.read_text()
+def test_the_report_is_one_offline_page_with_the_graph_every_plot_and_the_events(recordings, pages, name) -> None:
+    run, text = RUNS[name], pages[name]
     tree = html.fromstring(text)
     assert_loads_nothing(tree)
     (node,) = tree.xpath("//figure[@id='graph']")
@@ -145,12 +162,9 @@ def test_the_report_is_one_offline_page_with_the_graph_every_plot_and_the_events
 
 
 @pytest.fixture(scope="module")
-def melfa_page(recordings, tmp_path_factory) -> html.HtmlElement:
+def melfa_page(pages) -> html.HtmlElement:
     """The report of the Melfa's pick and place in MuJoCo, as a browser would parse it."""
-    page = tmp_path_factory.mktemp("page") / "report.html"
-    result = _atd("report", str(recordings["melfa_mj"]), "-o", str(page), cwd=page.parent)
-    assert result.returncode == 0, result.stderr
-    return html.fromstring(page.read_text())
+    return html.fromstring(pages["melfa_mj"])
 
 
 def _graph_svg(page: html.HtmlElement) -> etree._Element:
