@@ -51,6 +51,33 @@ def test_the_3d_channels_carry_foxglove_schemas_by_name_in_json(recording: dict)
     assert recording["channels"]["/tcp"][0].metadata["ground_truth"] == "false", "the believed TCP is no truth"
 
 
+def _foxglove_rejects(schema: dict, where: str) -> list[str]:
+    """Where Foxglove's JSON Schema reader (Studio 1.48, mcap-support parseJsonSchema) gives up
+    on a channel: every property needs one type (or number-valued oneOf), objects their
+    properties, arrays items of one type other than array."""
+    if schema.get("type") != "object" or not isinstance(schema.get("properties"), dict):
+        return [f"{where}: an object needs its properties"]
+    found = []
+    for name, field in schema["properties"].items():
+        kind, at = field.get("type"), f"{where}.{name}"
+        if "oneOf" in field:
+            found += [] if all(isinstance(a.get("const"), (int, float)) for a in field["oneOf"]) else [at]
+        elif kind == "object":
+            found += _foxglove_rejects(field, at)
+        elif kind == "array":
+            item = field.get("items", {})
+            found += _foxglove_rejects(item, at) if item.get("type") == "object" else \
+                [] if item.get("type") in ("boolean", "string", "number", "integer") else [at]
+        elif kind not in ("boolean", "string", "number", "integer"):
+            found.append(at)
+    return found
+
+
+def test_foxglove_reads_the_schemas_of_the_3d_channels(recording: dict) -> None:
+    for topic, name in FOXGLOVE.items():
+        assert _foxglove_rejects(json.loads(recording["channels"][topic][1].data), name) == []
+
+
 def test_every_frame_reaches_world_and_each_transform_lies_within_the_run(recording: dict) -> None:
     tfs = recording["messages"]["/truth/tf"]
     end_ns = recording["end"] * 1e9 + 1
