@@ -73,9 +73,18 @@ def _foxglove_rejects(schema: dict, where: str) -> list[str]:
     return found
 
 
-def test_foxglove_reads_the_schemas_of_the_3d_channels(recording: dict) -> None:
-    for topic, name in FOXGLOVE.items():
-        assert _foxglove_rejects(json.loads(recording["channels"][topic][1].data), name) == []
+def test_foxglove_reads_every_channel_and_finds_each_field_the_layout_plots(recording: dict) -> None:
+    declared = {topic: json.loads(schema.data) for topic, (_, schema) in recording["channels"].items()}
+    for topic, schema in declared.items():
+        assert _foxglove_rejects(schema, topic) == []
+    panels = json.loads((REPO / "docs" / "foxglove-layout.json").read_text())["configById"]
+    plotted = [p["value"] for panel in panels.values() for p in panel.get("paths", ())]
+    assert "/sensors.pads.tactile_left.force" in plotted and "/truth.object.position.z" in plotted
+    for path in plotted:
+        topic, *fields = path.split(".")
+        schema = declared[topic]
+        for field in fields:
+            schema = schema["properties"][field.split("[")[0]]  # a KeyError: Foxglove plots nothing there
 
 
 def test_every_frame_reaches_world_and_each_transform_lies_within_the_run(recording: dict) -> None:
