@@ -30,31 +30,37 @@ JOINTS = ("arm_q", "arm_dq", "arm_effort", "hand_q", "hand_dq", "hand_effort")  
 COMMANDED = ("twist", "joint_velocity", "hand_values")  # vectors of /commands
 
 _NUMBERS = {"type": "array", "items": {"type": "number"}}
-_MAYBE_NUMBERS = {"type": ["array", "null"], "items": {"type": "number"}}
 _VECTOR3 = {"type": "object", "properties": {a: {"type": "number"} for a in "xyz"}}
 _POSE = {"type": "object", "properties": {
     "position": _VECTOR3, "orientation": {"type": "object", "properties": {a: {"type": "number"} for a in "xyzw"}}}}
-_PAD = {"type": "object", "properties": {"force": {"type": "number"},
-                                         "taxels": {"type": ["array", "null"], "items": _NUMBERS}}}
-SCHEMAS: dict[str, dict[str, Any]] = {
-    "atd.Sensors": {"type": "object", "properties": {
-        **{k: _NUMBERS for k in JOINTS},
-        "tcp": _POSE,
-        "wrench": {"type": "object", "properties": {"force": _VECTOR3, "torque": _VECTOR3}},
-        "pads": {"type": "object", "additionalProperties": _PAD},
-        "range": {"type": ["number", "null"]}}},
-    "atd.Commands": {"type": "object", "properties": {
-        "twist": _MAYBE_NUMBERS, "joint_velocity": _MAYBE_NUMBERS, "hand_values": _MAYBE_NUMBERS,
-        "hand_modes": {"type": "array", "items": {"type": "string"}}}},
-    "atd.State": {"type": "object", "properties": {"path": {"type": "string"}, "atd": {"type": "string"}}},
-    "atd.TraceRecord": {"type": "object", "properties": {"type": {"type": "string"}, "state": {"type": "string"}}},
-    "atd.Truth": {"type": "object", "properties": {
-        "object": {"oneOf": [_POSE, {"type": "null"}]}, "objects": {"type": "object", "additionalProperties": _POSE},
-        "tcp": _POSE,
-        "pad_contacts": {"type": "array", "items": {"type": "object", "properties": {
-            "pad": {"type": "string"}, "x": {"type": "number"}, "y": {"type": "number"},
-            "force": {"type": "number"}}}}}},
-}
+
+
+def schemas_of(layout: Layout) -> dict[str, dict[str, Any]]:
+    """The JSON Schemas of one robot's recording, in the form Foxglove's JSON Schema reader
+    takes (it drops a whole channel at a field of two types, a oneOf other than numbers or an
+    object without properties): the pads and objects named as this recording has them; the
+    fields that may be null (`range`, a pad's `taxels`, the commanded vectors) left
+    undeclared, as JSON Schema allows, rather than declared in a form Foxglove refuses."""
+    return {
+        "atd.Sensors": {"type": "object", "properties": {
+            **{k: _NUMBERS for k in JOINTS},
+            "tcp": _POSE,
+            "wrench": {"type": "object", "properties": {"force": _VECTOR3, "torque": _VECTOR3}},
+            "pads": {"type": "object", "properties": {
+                name: {"type": "object", "properties": {"force": {"type": "number"}}} for name, _ in layout.pads}}}},
+        "atd.Commands": {"type": "object", "properties": {"hand_modes": {"type": "array", "items": {"type": "string"}}}},
+        "atd.State": {"type": "object", "properties": {"path": {"type": "string"}, "atd": {"type": "string"}}},
+        "atd.TraceRecord": {"type": "object", "properties": {"type": {"type": "string"}, "state": {"type": "string"}}},
+        "atd.Truth": {"type": "object", "properties": {
+            **({"object": _POSE} if layout.objects else {}),
+            "objects": {"type": "object", "properties": {name: _POSE for name in layout.objects}},
+            "tcp": _POSE,
+            "pad_contacts": {"type": "array", "items": {"type": "object", "properties": {
+                "pad": {"type": "string"}, "x": {"type": "number"}, "y": {"type": "number"},
+                "force": {"type": "number"}}}}}},
+    }
+
+
 #: topic, schema, ground truth
 CHANNELS = (("/sensors", "atd.Sensors", False), ("/commands", "atd.Commands", False),
             ("/task/state", "atd.State", False), ("/task/trace", "atd.TraceRecord", False),

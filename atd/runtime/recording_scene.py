@@ -49,9 +49,9 @@ _ENTITY = {"type": "object", "title": "foxglove.SceneEntity", "properties": {
     "metadata": {"type": "array", "items": {"type": "object", "properties": {
         "key": {"type": "string"}, "value": {"type": "string"}}}},
     "cubes": {"type": "array", "items": _SIZED}, "spheres": {"type": "array", "items": _SIZED},
-    "cylinders": {"type": "array", "items": _CYLINDER}, "models": {"type": "array", "items": _MODEL},
-    "arrows": {"type": "array"}, "lines": {"type": "array"}, "triangles": {"type": "array"},
-    "texts": {"type": "array"}}}
+    "cylinders": {"type": "array", "items": _CYLINDER}, "models": {"type": "array", "items": _MODEL}}}
+# Only the primitives written are declared: Foxglove's JSON Schema reader (Studio 1.48) drops the
+# whole channel at an array without `items`, and fills absent primitive lists with [] itself.
 _TRANSFORM = {"type": "object", "title": "foxglove.FrameTransform", "properties": {
     "timestamp": _TIME, "parent_frame_id": {"type": "string"}, "child_frame_id": {"type": "string"},
     "translation": _VECTOR3, "rotation": _QUATERNION}}

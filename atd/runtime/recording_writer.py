@@ -27,7 +27,7 @@ from mcap.writer import CompressionType, Writer
 
 from atd.model.files import OutputError, write_output
 from atd.runtime import recording_images, recording_scene
-from atd.runtime.recording_format import CHANNELS, PROFILE, SCHEMAS, Layout, encode, messages
+from atd.runtime.recording_format import CHANNELS, PROFILE, Layout, encode, messages, schemas_of
 from atd.runtime.recording_scene import SceneWriter
 
 WRITTEN = "written"  # the writer's answer when the file is
@@ -140,7 +140,7 @@ def _write(path: Path, feed: BinaryIO) -> str | None:
             return None
         if item[0] == "start":
             _, layout, meta, info, attachments = item
-            channels = _start(writer, meta, info, attachments)
+            channels = _start(writer, layout, meta, info, attachments)
         elif item[0] == "scene":
             scene = SceneWriter(item[1])
             channels |= _register(writer, recording_scene.SCHEMAS, recording_scene.CHANNELS, {})
@@ -185,10 +185,11 @@ def _register(writer: Writer, schemas: dict[str, dict[str, Any]], topics: tuple[
     return channels
 
 
-def _start(writer: Writer, meta: dict[str, str], info: dict[str, str], attachments: dict[str, bytes]) -> dict[str, int]:
-    """Schemas, channels (each with `ground_truth`, /sensors with `meta`), the run's metadata
+def _start(writer: Writer, layout: Layout, meta: dict[str, str], info: dict[str, str],
+           attachments: dict[str, bytes]) -> dict[str, int]:
+    """This robot's schemas, channels (each with `ground_truth`, /sensors with `meta`), the run's metadata
     and attachments; the channel id of each topic."""
-    channels = _register(writer, SCHEMAS, CHANNELS, meta)
+    channels = _register(writer, schemas_of(layout), CHANNELS, meta)
     for name, data in info.items():
         writer.add_metadata(name, {"value": data})
     for name, data in attachments.items():

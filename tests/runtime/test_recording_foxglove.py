@@ -51,6 +51,42 @@ def test_the_3d_channels_carry_foxglove_schemas_by_name_in_json(recording: dict)
     assert recording["channels"]["/tcp"][0].metadata["ground_truth"] == "false", "the believed TCP is no truth"
 
 
+def _foxglove_rejects(schema: dict, where: str) -> list[str]:
+    """Where Foxglove's JSON Schema reader (Studio 1.48, mcap-support parseJsonSchema) gives up
+    on a channel: every property needs one type (or number-valued oneOf), objects their
+    properties, arrays items of one type other than array."""
+    if schema.get("type") != "object" or not isinstance(schema.get("properties"), dict):
+        return [f"{where}: an object needs its properties"]
+    found = []
+    for name, field in schema["properties"].items():
+        kind, at = field.get("type"), f"{where}.{name}"
+        if "oneOf" in field:
+            found += [] if all(isinstance(a.get("const"), (int, float)) for a in field["oneOf"]) else [at]
+        elif kind == "object":
+            found += _foxglove_rejects(field, at)
+        elif kind == "array":
+            item = field.get("items", {})
+            found += _foxglove_rejects(item, at) if item.get("type") == "object" else \
+                [] if item.get("type") in ("boolean", "string", "number", "integer") else [at]
+        elif kind not in ("boolean", "string", "number", "integer"):
+            found.append(at)
+    return found
+
+
+def test_foxglove_reads_every_channel_and_finds_each_field_the_layout_plots(recording: dict) -> None:
+    declared = {topic: json.loads(schema.data) for topic, (_, schema) in recording["channels"].items()}
+    for topic, schema in declared.items():
+        assert _foxglove_rejects(schema, topic) == []
+    panels = json.loads((REPO / "docs" / "foxglove-layout.json").read_text())["configById"]
+    plotted = [p["value"] for panel in panels.values() for p in panel.get("paths", ())]
+    assert "/sensors.pads.tactile_left.force" in plotted and "/truth.object.position.z" in plotted
+    for path in plotted:
+        topic, *fields = path.split(".")
+        schema = declared[topic]
+        for field in fields:
+            schema = schema["properties"][field.split("[")[0]]  # a KeyError: Foxglove plots nothing there
+
+
 def test_every_frame_reaches_world_and_each_transform_lies_within_the_run(recording: dict) -> None:
     tfs = recording["messages"]["/truth/tf"]
     end_ns = recording["end"] * 1e9 + 1
