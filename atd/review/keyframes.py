@@ -105,7 +105,7 @@ def _read(recording: Recording, times: list[float]) -> tuple[SceneMessage | None
         if isinstance(record, Channel):
             topics[record.id] = record.topic
         elif isinstance(record, Message) and topics.get(record.channel_id) in (_SCENE, _TF):
-            t = record.log_time / 1e9
+            t = (record.log_time - recording.zero) / 1e9
             if topics[record.channel_id] == _SCENE:
                 if scene is None or t < scene[0]:
                     scene = (t, bytes(record.data))

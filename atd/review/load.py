@@ -20,7 +20,7 @@ from atd.model.files import InputError, read_capped
 from atd.review.mcap_records import Damaged, records
 from atd.review.messages import (RUN_TIME, DepthMessage, MessageProblem, RunInfo, SensorsMessage, Signals, Timed,
                                  TraceRecord, TruthMessage, parsed, signals)
-from atd.runtime.recording_format import RECORDING_FORMAT
+from atd.runtime.recording_format import CLOCK, RECORDING_FORMAT
 
 RECORDING_CAP = 2 << 30  # bytes: hours of a run at 100 Hz
 ESTD_ATTACHMENT = "task.estd.xml"
@@ -57,6 +57,7 @@ class Recording:
     pictures: list[Picture]  # the depth camera's, in time order (a run that took none: none)
     arm_joints: tuple[str, ...]  # a name per column of signals.arm_dq
     hand_dofs: tuple[str, ...]  # a name per column of signals.hand_q
+    zero: int  # ns: the log time of simulated 0 (the wall clock when the run started)
 
     @cached_property
     def visits(self) -> list[tuple[str, float, float | None]]:
@@ -99,14 +100,19 @@ def _read(path: Path, data: bytes) -> Recording:
     estd_xml: bytes | None = None
     timed: dict[str, Timed] = {topic: Timed() for topic in _READ}
     sensors_meta: dict[str, str] = {}
+    zero: int | None = None  # ns: the log time of simulated 0, once a message has been read
     for record in records(data):
         if isinstance(record, Message):
             if record.channel_id not in topics:
                 raise MessageProblem(f"a message on channel {record.channel_id}, which no channel record before it "
                                      f"declares: the file is damaged")
             topic = topics[record.channel_id]
+            zero = _zero(meta) if zero is None else zero
+            if record.log_time < zero:
+                raise MessageProblem(f"a message logged before the run started (its {CLOCK} metadata): "
+                                     f"the recording is damaged")
             if topic is not None:
-                t = record.log_time / 1e9
+                t = (record.log_time - zero) / 1e9
                 timed[topic].add(t, parsed(_READ[topic], record.data, f"its {topic} message at {t:.3f} s"))
         elif isinstance(record, Schema):
             schemas[record.id] = record
@@ -115,6 +121,8 @@ def _read(path: Path, data: bytes) -> Recording:
             if record.topic == "/sensors":
                 sensors_meta = record.metadata
         elif isinstance(record, Metadata):
+            if record.name == CLOCK and zero is not None:
+                raise MessageProblem(f"its {CLOCK} metadata comes after its first message: the file is damaged")
             meta[record.name] = record.metadata
         elif isinstance(record, Attachment) and record.name == ESTD_ATTACHMENT:
             estd_xml = record.data
@@ -135,7 +143,7 @@ def _read(path: Path, data: bytes) -> Recording:
     drawn = signals(timed["/sensors"], timed["/truth"])
     return Recording(path, run, outcome, end_time, estd, estd_problem, trace, drawn, pictures,
                      _names(sensors_meta.get("arm_joints", ""), drawn.arm_dq.shape[1], "q{}", 1),
-                     _names(sensors_meta.get("hand_dofs", ""), drawn.hand_q.shape[1], "dof {}", 0))
+                     _names(sensors_meta.get("hand_dofs", ""), drawn.hand_q.shape[1], "dof {}", 0), zero or 0)
 
 
 def _names(recorded: str, count: int, fallback: str, first: int) -> tuple[str, ...]:
@@ -161,6 +169,15 @@ def _topic(channel: Channel, schemas: dict[int, Schema]) -> str | None:
             raise MessageProblem(f"its {channel.topic} channel's schema is {schema.encoding[:40]!r}, not the JSON "
                                  f"Schema ('jsonschema') that JSON messages carry")
     return channel.topic
+
+
+def _zero(meta: dict[str, dict[str, str]]) -> int:
+    """The log time (ns) of the run's simulated 0: the wall clock when it started, or 0 in a
+    recording that says none (its log times are simulated time)."""
+    value = meta.get(CLOCK, {}).get("value", "0")
+    if not value.isdigit():
+        raise MessageProblem(f"its {CLOCK} metadata {value[:40]!r} is not a time in ns: the recording is damaged")
+    return int(value)
 
 
 def _run(meta: dict[str, dict[str, str]]) -> RunInfo:

@@ -22,6 +22,7 @@ from primitives.robot import Readings
 
 PROFILE = "atd"
 RECORDING_FORMAT = 1  # the channels and fields below; a reader refuses another
+CLOCK = "atd.clock"  # metadata: the wall clock (ns since 1970) at simulated 0, the origin of every log time
 DEFAULT_RATE = 100.0  # Hz of simulated time
 DECIMALS = 6  # as the trace: micro-units (um, uN, urad) are finer than any sensor here tells apart,
 # and a short number costs JSON about half of what a full-precision one does

@@ -39,10 +39,11 @@ SCHEMAS: dict[str, dict[str, Any]] = {
 CHANNELS = ((DEPTH, "foxglove.RawImage", False), (POINTS, "foxglove.PointCloud", False))
 
 
-def image_messages(image: DepthImage) -> Iterator[tuple[str, int, dict[str, Any]]]:
-    """(topic, time in ns, message) of one picture: the depth image, then its points."""
+def image_messages(image: DepthImage, zero: int = 0) -> Iterator[tuple[str, int, dict[str, Any]]]:
+    """(topic, simulated time in ns, message) of one picture: the depth image, then its points,
+    their timestamps `zero` ns (the run's wall clock at simulated 0) later."""
     ns = round(image.time * 1e9)
-    stamp = {"sec": ns // 1_000_000_000, "nsec": ns % 1_000_000_000}
+    stamp = {"sec": (zero + ns) // 1_000_000_000, "nsec": (zero + ns) % 1_000_000_000}
     depth = np.ascontiguousarray(image.depth, dtype="<f4")
     height, width = depth.shape
     yield DEPTH, ns, {"timestamp": stamp, "frame_id": image.sensor, "width": width, "height": height,

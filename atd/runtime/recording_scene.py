@@ -200,19 +200,20 @@ class SceneWriter:
     """The writer process's drawing of a run: from each row's true joint positions, object
     poses and believed TCP, the messages of CHANNELS at SCENE_RATE."""
 
-    def __init__(self, frames: Frames) -> None:
+    def __init__(self, frames: Frames, zero: int = 0) -> None:
         self.frames = frames
+        self.zero = zero  # ns of wall clock at simulated 0: the messages' own timestamps are wall-clock times
         self.next_tf = 0.0
         self.next_scene = 0.0
 
     def messages(self, t: float, joints: np.ndarray, objects: np.ndarray,
                  believed_tcp: np.ndarray) -> Iterator[tuple[str, int, dict[str, Any]]]:
-        """(topic, time in ns, message) due at `t` s: none between SCENE_RATE's ticks."""
+        """(topic, simulated time in ns, message) due at `t` s: none between SCENE_RATE's ticks."""
         if t + 1e-9 < self.next_tf:
             return
         self.next_tf = t + 1.0 / SCENE_RATE
         ns = int(round(t * 1e9))
-        stamp = _time(ns)
+        stamp = _time(self.zero + ns)
         if t + 1e-9 >= self.next_scene:
             self.next_scene = t + SCENE_REPEAT
             yield "/truth/scene", ns, {"deletions": [], "entities": [{"timestamp": stamp, **e}

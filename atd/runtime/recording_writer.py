@@ -20,6 +20,7 @@ import json
 import os
 import pickle
 import signal
+import time
 from pathlib import Path
 from typing import Any, BinaryIO, Iterator, NoReturn
 
@@ -27,7 +28,7 @@ from mcap.writer import CompressionType, Writer
 
 from atd.model.files import OutputError, write_output
 from atd.runtime import recording_images, recording_scene
-from atd.runtime.recording_format import CHANNELS, PROFILE, Layout, encode, messages, schemas_of
+from atd.runtime.recording_format import CHANNELS, CLOCK, PROFILE, Layout, encode, messages, schemas_of
 from atd.runtime.recording_scene import SceneWriter
 
 WRITTEN = "written"  # the writer's answer when the file is
@@ -133,6 +134,14 @@ def _write(path: Path, feed: BinaryIO) -> str | None:
     layout: Layout | None = None
     scene: SceneWriter | None = None
     sequence = 0
+    zero = 0  # ns: the wall clock when the run started (its "start" item), so a viewer shows when it ran
+
+    def add(found: Iterator[tuple[str, int, dict[str, Any]]]) -> None:
+        nonlocal sequence
+        for topic, ns, message in found:
+            sequence += 1
+            writer.add_message(channels[topic], zero + ns, encode(message), zero + ns, sequence)
+
     while True:
         try:
             item: tuple[Any, ...] = pickle.load(feed)
@@ -140,24 +149,21 @@ def _write(path: Path, feed: BinaryIO) -> str | None:
             return None
         if item[0] == "start":
             _, layout, meta, info, attachments = item
-            channels = _start(writer, layout, meta, info, attachments)
+            zero = time.time_ns()
+            channels = _start(writer, layout, meta, {**info, CLOCK: str(zero)}, attachments)
         elif item[0] == "scene":
-            scene = SceneWriter(item[1])
+            scene = SceneWriter(item[1], zero)
             channels |= _register(writer, recording_scene.SCHEMAS, recording_scene.CHANNELS, {})
         elif item[0] == "image":
             if recording_images.DEPTH not in channels:
                 channels |= _register(writer, recording_images.SCHEMAS, recording_images.CHANNELS, {})
-            for topic, ns, message in recording_images.image_messages(item[1]):
-                sequence += 1
-                writer.add_message(channels[topic], ns, encode(message), ns, sequence)
+            add(recording_images.image_messages(item[1], zero))
         elif item[0] == "rows":
             assert layout is not None, "the feed starts with the layout"
             found = messages(layout, *item[1:])
             if scene is not None:
                 found = itertools.chain(found, _drawn(scene, layout, item[1]))
-            for topic, ns, message in found:
-                sequence += 1
-                writer.add_message(channels[topic], ns, encode(message), ns, sequence)
+            add(found)
         else:
             writer.add_metadata("atd.outcome", item[1])
             writer.finish()

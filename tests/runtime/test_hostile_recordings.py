@@ -261,6 +261,8 @@ def test_bytes_flipped_at_random_are_read_or_refused_in_words(genuine, tmp_path)
     ("nan_time", _outcome(sim_time="nan"), ["sim_time 'nan'", "not a finite number"]),
     ("far_time", _outcome(sim_time="1e300"), ["sim_time", "outside [0, 86400] s"]),
     ("early_end", _outcome(sim_time="0.5"), ["comes after the run's end at 0.500 s"]),
+    ("clock", lambda n, m: {"value": "yesterday"} if n == "atd.clock" else m, ["atd.clock", "not a time in ns"]),
+    ("late_clock", lambda n, m: {"value": "2" + "0" * 18} if n == "atd.clock" else m, ["before the run started"]),
 ])
 def test_bad_metadata_is_one_line_naming_it(genuine, tmp_path, name, meta, words) -> None:
     refused(rewritten(genuine, tmp_path, f"{name}.mcap", meta=meta), *words)

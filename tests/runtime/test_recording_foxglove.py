@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import base64
 import json
+import time
 from dataclasses import replace
 from pathlib import Path
 
@@ -13,6 +14,7 @@ import pytest
 from mcap.reader import make_reader
 
 from atd.model import load_task
+from atd.runtime.recording_format import CLOCK
 from atd.runtime.recording_scene import SCENE_RATE, Arm, frames_of
 from atd.runtime.session import Run
 from atd.sim.scene import Body, Scene
@@ -31,15 +33,17 @@ def recording(tmp_path_factory: pytest.TempPathFactory) -> dict:
     path = tmp_path_factory.mktemp("fox") / "run.mcap"
     task, _ = load_task(REPO / "examples" / "simple_move.xml")
     factory = create("melfa")
+    before = time.time_ns()
     outcome = Run(translate(task, factory).estd, factory, record=path).execute()
     found: dict[str, list[tuple[int, dict]]] = {}
     with path.open("rb") as f:
         reader = make_reader(f)
         channels = {c.topic: (c, reader.get_summary().schemas[c.schema_id])
                     for c in reader.get_summary().channels.values()}
+        zero = int({m.name: m.metadata for m in reader.iter_metadata()}[CLOCK]["value"])
         for _, channel, message in reader.iter_messages():
-            found.setdefault(channel.topic, []).append((message.log_time, json.loads(message.data)))
-    return {"channels": channels, "messages": found, "end": outcome.sim_time}
+            found.setdefault(channel.topic, []).append((message.log_time - zero, json.loads(message.data)))
+    return {"channels": channels, "messages": found, "end": outcome.sim_time, "zero": zero, "before": before}
 
 
 def test_the_3d_channels_carry_foxglove_schemas_by_name_in_json(recording: dict) -> None:
@@ -87,6 +91,13 @@ def test_foxglove_reads_every_channel_and_finds_each_field_the_layout_plots(reco
             schema = schema["properties"][field.split("[")[0]]  # a KeyError: Foxglove plots nothing there
 
 
+def test_log_times_and_timestamps_are_the_wall_clock_of_the_run(recording: dict) -> None:
+    """So a viewer shows when the run happened, not 1970: simulated 0 is the moment it started."""
+    assert recording["before"] <= recording["zero"] <= time.time_ns()
+    tfs = recording["messages"]["/truth/tf"]
+    assert 0 <= tfs[0][0] < 1e8 and tfs[-1][0] == pytest.approx(recording["end"] * 1e9, abs=1e8)
+
+
 def test_every_frame_reaches_world_and_each_transform_lies_within_the_run(recording: dict) -> None:
     tfs = recording["messages"]["/truth/tf"]
     end_ns = recording["end"] * 1e9 + 1
@@ -101,7 +112,7 @@ def test_every_frame_reaches_world_and_each_transform_lies_within_the_run(record
                 assert frame not in seen, f"a cycle through {frame}"
                 seen.add(frame)
         for t in message["transforms"]:
-            ns = t["timestamp"]["sec"] * 1_000_000_000 + t["timestamp"]["nsec"]
+            ns = t["timestamp"]["sec"] * 1_000_000_000 + t["timestamp"]["nsec"] - recording["zero"]
             assert ns == log_time and 0 <= ns <= end_ns
             q = t["rotation"]
             assert q["x"] ** 2 + q["y"] ** 2 + q["z"] ** 2 + q["w"] ** 2 == pytest.approx(1.0, abs=1e-5)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import base64
 import gzip
+import io
 import json
 import os
 import re
@@ -15,6 +16,7 @@ from typing import NamedTuple
 import numpy as np
 import pytest
 from lxml import etree, html
+from PIL import Image
 
 from atd.graph.style import FADED_BORDER, FADED_FILL, TAKEN_WIDTH
 from atd.review.load import RecordingError, load
@@ -92,6 +94,12 @@ def array(column: dict | list) -> np.ndarray:
     return np.frombuffer(gzip.decompress(data) if data[:2] == b"\x1f\x8b" else data, column["dtype"])
 
 
+def _below_label(source: str) -> np.ndarray:
+    """A key frame's pixels under its label (the state and time, drawn at the top)."""
+    picture = Image.open(io.BytesIO(base64.b64decode(source.split(",", 1)[1]))).convert("L")
+    return np.asarray(picture, float)[picture.height // 6:]
+
+
 def _atd(*args: str, cwd: Path) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "atd", *args], cwd=cwd, capture_output=True, text=True, timeout=300)
 
@@ -156,6 +164,9 @@ def test_the_report_is_one_offline_page_with_the_graph_every_plot_and_the_events
     frames = tree.xpath("//figure[@id='keyframes']/img")
     assert [f.get("alt") for f in frames] == [f"{r.state} at {r.t:.2f} s" for r in entered], "a picture per state entered"
     assert all(f.get("src").startswith("data:image/jpeg;base64,") for f in frames)
+    scenes = [_below_label(f.get("src")) for f in frames]
+    moved = sum(np.abs(a - b).mean() > 1.0 for a, b in zip(scenes, scenes[1:]))
+    assert moved >= len(frames) // 2, "the pictures show the run moving, not one moment labelled again and again"
     events = tree.xpath("//table[@id='events']//tr")[1:]
     fired = load(recordings[name]).events()
     assert len(events) == len(fired) and any("grasp_stable" in r.text_content() for r in events)
