@@ -12,6 +12,8 @@ comes over the object's near part and goes down onto it (landing on the floor, t
 keeps the sweep's estimate, its top unknown). On a top, found either way, the hand comes down
 beside it along the container's axes to feel how far it reaches, and the approach is moved
 towards where it goes on and turned so the jaws close across a top long along the box's y.
+A look after another starts where that one's approach lay: landing on an object there, the
+grasp took nothing out, and the jaws are turned another way this time (`TURNS`).
 """
 
 from __future__ import annotations
@@ -53,6 +55,12 @@ SIDE_DEPTH = 0.015
 # m more than the hand's reach that the sweep keeps from the walls: at exactly its reach the
 # Melfa's gripper body, below the rim, rubbed the wall along a lane and read 9.9 N
 WALL_CLEARANCE = 0.005
+# rad the jaws turn from what the feel chose, the 1st, 2nd, 3rd, ... time in a row the probe,
+# come down where the last approach lay, lands on an object there: a quarter turn first (the
+# feel chose the wrong one of the box's axes), then the diagonals (a wood block or a spray can
+# lying 32-45 degrees off the box's axes is longer than the Melfa's jaws open along either)
+TURNS = (0.0, math.pi / 2, math.pi / 4, -math.pi / 4)
+TRIED = "blind_exploration_tried"  # in Context.memory: the last approach given (`Tried`)
 
 
 class Leg(Enum):
@@ -98,6 +106,16 @@ class Finding:
     reaches: dict[tuple[int, int], bool] = field(default_factory=dict)
 
 
+@dataclass(frozen=True)
+class Tried:
+    """The last approach this run's blind exploration gave: over `point` (world), with the
+    jaws turned by TURNS[times % len(TURNS)] from what the feel chose, `times` being how many
+    looks in a row before it had landed on an object where the approach before lay."""
+
+    point: np.ndarray  # (3,)
+    times: int
+
+
 class BlindExploration(Perceiver):
     """The blind exploration generator as a controller: each explore move tared afresh from a
     hand held still for SETTLE after the one before, as the robust grasp does after its moves
@@ -125,7 +143,12 @@ class BlindExploration(Perceiver):
         here = readings.tcp[:3, 3]
         clear = self._clear(readings)
         low, high = self.container.footprint(self.room)
-        probe = self.container.to_world(np.array([[*self.ctx.rng.uniform(low, high), 0.0]]))[0]
+        self.tried: Tried | None = self.ctx.memory.get(TRIED)
+        self.again = False  # the probe landed on an object where the last approach lay
+        # down where the last approach lay: what it did not take out is likely still there
+        xy = self.ctx.rng.uniform(low, high) if self.tried is None else \
+            np.clip(self.container.to_local(self.tried.point[None])[0][:2], low, high)
+        probe = self.container.to_world(np.array([[*xy, 0.0]]))[0]
         self.plan = [Waypoint(np.array([here[0], here[1], clear]), Leg.TRANSIT),
                      Waypoint(np.array([probe[0], probe[1], clear]), Leg.TRANSIT),
                      Waypoint(np.array([probe[0], probe[1], self._below_floor()]), Leg.PROBE)]
@@ -194,6 +217,7 @@ class BlindExploration(Perceiver):
         elif kind is Leg.PROBE:
             top = self._top(contact)
             if top is not None:
+                self.again = self.tried is not None
                 self._approach(readings, np.array([*contact.point[:2], top]),
                                f"the probe felt it: {self._felt(contact)}", True)
             else:
@@ -274,10 +298,16 @@ class BlindExploration(Perceiver):
         yaw = math.pi / 2 if along[1] and not along[0] else 0.0
         point = self.container.to_world(local[None])[0]
         point[2] = finding.point[2]
-        pose = approach_pose(self.container, point, self.approaching.grasp_reach, self.approaching.height, yaw)
+        times = self.tried.times + 1 if self.again else 0
+        turn = TURNS[times % len(TURNS)]
+        self.ctx.memory[TRIED] = Tried(point, times)
+        pose = approach_pose(self.container, point, self.approaching.grasp_reach, self.approaching.height, yaw + turn)
         felt = ", ".join(f"{'+' if sign > 0 else '-'}{'xy'[axis]} {'yes' if on else 'no'}"
                          for (axis, sign), on in reaches.items())
         how = finding.how + (f"; its top reaches {SIDE_STEP * 100:g} cm out: {felt}" if felt else "")
+        if times:
+            how += (f"; landed where the last approach lay ({times} in a row): the jaws turned "
+                    f"{math.degrees(turn):g} deg")
         self.found(Approach(pose, point, self.method), "", how)
 
     def _ahead(self, readings: Readings, contact: Contact) -> np.ndarray:

@@ -13,6 +13,7 @@ from atd.sim import load_description
 from primitives.base import Context, StateView, Status
 from primitives.perception.clusters import euclidean_clusters
 from primitives.perception.container import ContainerBelief
+from primitives.perception.blind import TRIED, Tried
 from primitives.perception.generators import Approaching, VisionSettings, random_blind, vision
 from primitives.registry import BuildError, build_condition, build_controller
 from primitives.values import Approach, NothingFound
@@ -132,11 +133,11 @@ def test_what_an_earlier_round_found_fires_nothing_while_this_round_looks() -> N
 
 
 # -- blind exploration ----------------------------------------------------------------------
-def _explore_blind(robot) -> tuple:
+def _explore_blind(robot, memory: dict | None = None) -> tuple:
     stage = Stage(perceive("blind_exploration", speed=0.06), use("hand_shape", shape="closed"),
                   leaf("object_found", value="found"), seconds=60.0)
     estd = machine(stage, failures={"s0": (EventType.ERROR, leaf("nothing_found", value="found"))})
-    outcome, executor = execute(estd, robot)
+    outcome, executor = execute(estd, robot, memory=memory)
     return outcome, executor.machine.base.memory.get("found"), events(executor)[-1]["conditions"][0]
 
 
@@ -178,6 +179,22 @@ def test_blind_exploration_turns_the_jaws_across_a_bar_lying_along_the_box() -> 
     assert abs(closing[0]) > 0.99  # the jaws close along the box's x, across the bar
     assert abs(found.point[0] - truth[0]) < 0.015 and abs(found.point[1] - truth[1]) < 0.045
     assert found.point[2] == pytest.approx(FLOOR + 0.04, abs=0.003)
+
+
+def test_an_object_felt_again_where_the_last_approach_lay_gets_the_jaws_turned_the_other_way() -> None:
+    """The last approach, over the cube, took nothing out: this look comes down there first,
+    lands on the cube's top (no sweep), and turns the jaws a quarter turn from the feel's
+    choice (a square top: jaws closing along the box's y), now closing along its x."""
+    robot = box_world(cube("block", OPEN))
+    truth = robot.object_poses()["block"][:3, 3]
+    last = Tried(np.array([OPEN[0] + 0.01, OPEN[1], FLOOR + 0.05]), 0)
+    outcome, found, cause = _explore_blind(robot, {TRIED: last})
+    robot.close()
+    assert outcome.succeeded, outcome.summary
+    assert outcome.sim_time < 20.0  # no sweep: a sweep to the corner cube and its feel take 30.8 s
+    assert abs(found.pose[0, 1]) > 0.99  # the jaws close along the box's x
+    assert np.linalg.norm(found.point[:2] - truth[:2]) < 0.02
+    assert found.point[2] == pytest.approx(FLOOR + 0.05, abs=0.003)
 
 
 def test_blind_exploration_lands_on_an_object_under_its_probe_and_knows_its_top() -> None:
