@@ -724,9 +724,9 @@ class Factory(ABC):
         turned about the vertical so that its pads close across the object's narrowest width
         as the task believes it stands (`grasp_turn`), by the least turn the arm reaches (a
         quarter turn either way closes alike: TIE_SHORT). `_hand_down` itself (the home yaw)
-        where no turn is needed or reached, where the task turns the hand on the way there
-        (`_turnable`), or where it does not say the object's shape or size. A grasp state is
-        turned as the move it comes from."""
+        where no turn is needed (the open pads take the object with room) or reached, where
+        the task turns the hand on the way there (`_turnable`), or where it does not say the
+        object's shape or size. A grasp state is turned as the move it comes from."""
         if state.type is StateType.GRASP:  # as the move it comes from left the hand
             before = arriving(context.task, state)
             return self.coming_down(before, context) if before is not None and before.type is StateType.MOVE \
@@ -746,7 +746,7 @@ class Factory(ABC):
         if line is None:
             return self._hand_down
         closing = self._hand_down @ (np.cos(line), np.sin(line), 0.0)  # the pads' line in the world, at home
-        turn = grasp_turn(obj, float(np.arctan2(closing[1], closing[0])))
+        turn = grasp_turn(obj, float(np.arctan2(closing[1], closing[0])), self.robot.pad_opening(start, line))
         if abs(turn) < TURN_TOLERANCE:
             return self._hand_down
         ways = (turn, turn - np.copysign(np.pi, turn)) if abs(turn) > np.pi / 2 - TIE_SHORT else (turn,)

@@ -536,6 +536,16 @@ class RobotDescription:
             return None
         return float(np.arctan2(axes[1, 1], axes[0, 1]) % np.pi)
 
+    def pad_opening(self, posture: str, line: float) -> float:
+        """How far apart the tactile pads' surfaces stand along the line at `line` (rad from
+        the hand's x, about its approach axis) in `posture` (m): the widest object a hand
+        closing along that line from that posture can take between its pads."""
+        poses, tcp = self._hand_in(posture)
+        to_hand = np.linalg.inv(tcp)
+        way = np.array([np.cos(line), np.sin(line)])
+        along = [float((to_hand @ poses[p.link] @ p.origin.matrix())[:2, 3] @ way) for p in self.hand.pads]
+        return max(along) - min(along) if along else 0.0
+
     def hand_in_boxes(self, posture: str, tcp: np.ndarray, boxes: list[tuple[Vec3, Vec3]]) -> dict[int, list[str]]:
         """Which of the world-aligned `boxes` (centre, size) the hand's links would cut into
         with its TCP at the pose `tcp` (4x4, world) and its fingers in `posture`: box index ->

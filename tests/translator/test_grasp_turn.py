@@ -1,6 +1,7 @@
 """A grasp comes down turned to the object as the task believes it stands (issue 33): every
-hand's pads close across a turned box's narrow side; a round object, or a box its home yaw
-already closes across, leaves the hand at its home yaw, so such tasks translate as before."""
+hand whose pads open too little around a turned box's length closes across its narrow side;
+a round object, a box its home yaw already closes across, or a hand whose pads open wide
+around it leaves the hand at its home yaw, so such tasks translate as before."""
 
 from __future__ import annotations
 
@@ -16,8 +17,8 @@ from atd.model.vocabulary import ObjectClass, StateType
 from factories.registry import create
 from translator import translate
 
-ARMS = [("melfa", None), ("tombatossals", "right"), ("tombatossals", "left"), ("baxter", "right"),
-        ("baxter", "left"), ("panda", None)]
+# Every hand whose pads open under 17 cm (the 7 cm block and ROOM): the grippers and the SDH2.
+ARMS = [("melfa", None), ("tombatossals", "left"), ("baxter", "right"), ("baxter", "left"), ("panda", None)]
 WOOD = (0.07, 0.04, 0.045)  # the library's beech block: its narrow side 4 cm across
 GRASP_AND_LIFT = Path(__file__).resolve().parents[2] / "examples" / "grasp_and_lift.xml"
 
@@ -67,3 +68,15 @@ def test_a_round_object_or_a_box_the_hand_already_closes_across_leaves_the_hand_
     assert approach_yaws(grasp_and_lift_with(turned(ObjectClass.BOX, WOOD, 0.0)), robot, arm) == [None, None]
     assert approach_yaws(grasp_and_lift_with(turned(ObjectClass.BOX, (0.05, 0.05, 0.05), 90.0)), robot, arm) \
         == [None, None]  # a cube turned a quarter turn is as it was
+
+
+@pytest.mark.parametrize("degrees", [90.0, 0.0])
+def test_a_hand_whose_pads_open_wide_around_the_box_keeps_its_home_yaw(degrees: float) -> None:
+    """The Barrett's pinch opens 25 cm along its x, around the 7 cm block either way; turned
+    a quarter turn to the preset's duck its fingers came down on the duck and the grasp timed
+    out (tests/primitives/test_finger_search.py, trial 13)."""
+    factory = create("tombatossals", "right")
+    task = grasp_and_lift_with(turned(ObjectClass.BOX, WOOD, degrees))
+    line = factory.robot.closing_line(*factory.grasp_postures(task.states_by_name["grasp_object"]))
+    assert line is not None and factory.robot.pad_opening("pinch_grasp_preshape", line) > 0.2
+    assert approach_yaws(task, "tombatossals", "right") == [None, None]
