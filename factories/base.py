@@ -35,7 +35,8 @@ from factories.config import RobotConfig, load_config
 from factories.description import RobotDescription
 from factories.reach import Reach
 from factories.robot_info import robot_info
-from factories.turns import KEEPING, arriving, target_turn, turn_at_start
+from factories.grasp_turn import grasp_turn
+from factories.turns import KEEPING, arriving, grasp_ahead, target_turn, turn_at_start
 from primitives.robot import RobotInfo
 
 ConditionNode = Condition | ConditionGroup
@@ -61,6 +62,11 @@ HELD_FOR = 2.0
 # over the floor and every library object stands 3.8 cm or more whichever way it lies, so only
 # links this low meet it (the Melfa's fingers, not the gripper body 6 cm above them)
 SWEEPING_TIP = 0.02
+# rad: a quarter turn either way closes a gripper alike; the hand turns this much short of it, the
+# way the arm reaches, so a move's shorter turn (`turn_to_yaw`) goes that way whatever the noise in
+# the hand's heading
+TIE_SHORT = np.radians(1.0)
+TURN_TOLERANCE = np.radians(1.0)  # rad: a turn to the object under a degree changes no grasp; the hand keeps its yaw
 WRIST_ALIGNED = 0.99  # cos: a last joint within 8 degrees of the approach axis rolls the hand about it (ours)
 
 
@@ -442,7 +448,7 @@ class Factory(ABC):
         if context.object is None or context.object.pose is None:
             return
         centre = np.asarray(context.object.pose.position, float)
-        rotation, line = self._grasp_line(context, state, centre)
+        rotation, line, from_above = self._grasp_line(context, state, centre)
         tcps = {}
         for posture in postures:
             grasp_centre = line + float((centre - line) @ rotation[:, 2]) * rotation[:, 2]
@@ -451,22 +457,25 @@ class Factory(ABC):
             self.check_reach(context.object.pose.position)
         else:
             self.check_pose(tuple(tcps[postures[0]]), rotation, f"grasping the object at "
-                            f"({', '.join(f'{v:g}' for v in centre)}) from the side")
+                            f"({', '.join(f'{v:g}' for v in centre)}) from "
+                            f"{'above, turned to it' if from_above else 'the side'}")
         for posture in postures:
             self.check_hand_room(context, posture, rotation, tcps[posture], f"closing on the object at "
                                  f"({', '.join(f'{v:g}' for v in centre)})")
 
-    def _grasp_line(self, context: MappingContext, state: State, centre: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """The hand's rotation as a grasp begins and a point of the line its approach follows:
-        top-down through the object's centre, unless the state before turned the hand further
-        than a grasp from above levels (the robust grasp's `level_within`); then along the
-        turned hand's axis through where that state put the grasp centre."""
+    def _grasp_line(self, context: MappingContext, state: State,
+                    centre: np.ndarray) -> tuple[np.ndarray, np.ndarray, bool]:
+        """The hand's rotation as a grasp begins, a point of the line its approach follows, and
+        whether it comes from above: top-down through the object's centre, turned to the
+        object (`coming_down`), unless the state before turned the hand further than a grasp
+        from above levels (the robust grasp's `level_within`); then along the turned hand's
+        axis through where that state put the grasp centre."""
         turn = self.rolled(turn_at_start(context.task, state))
         if turn is None or self._from_above(turn):
-            return self._hand_down, centre
+            return self.coming_down(state, context), centre, True
         before = arriving(context.task, state)
         line = np.asarray(before.path[-1].position, float) if before is not None and before.path else centre
-        return turn @ self._hand_down, line
+        return turn @ self._hand_down, line, False
 
     def rolled(self, turn: np.ndarray | None) -> np.ndarray | None:
         """The task's `turn` of the hand with the hand's own roll about its approach axis
@@ -509,7 +518,7 @@ class Factory(ABC):
                 f"{_listed(links)}: it would close on {them} or land on {them}, not on the object",
                 "give the hand more room around the object (move the obstacle away), "
                 "or choose a robot or arm with a smaller hand")
-        if rotation is self._hand_down:
+        if float(rotation[2, 2]) <= -1.0 + 1e-9:
             return  # a hand pointing down meets the table with its fingertips, as its grasp expects
         lowest, links = self.robot.hand_below(posture, tcp, HAND_CLEARANCE)
         if links:
@@ -540,8 +549,7 @@ class Factory(ABC):
         """A parallel gripper's grasp (thesis 7.3, Melfa): the jaws close until the grip force
         is reached, while the arm corrects the approach on contact (thesis 3.3.1)."""
         notes = self.shape(state.hand_shape)[1] if state.hand_shape else ()
-        shape = self.shape(state.hand_shape)[0].value if state.hand_shape else HandShape.CLOSED.value
-        self.check_object_reach(context, state, HandShape.OPEN.value, shape)
+        self.check_object_reach(context, state, *self.grasp_postures(state))
         arm = self.controller("jaw_grasp_correction", wrist_to_tcp=round(self._wrist_to_tcp, 6),
                               fingertip_reach=round(self.robot.hand_reach(HandShape.OPEN.value), 6),
                               hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)))
@@ -631,11 +639,16 @@ class Factory(ABC):
         if state.target_from is not None:
             return None, ()
         turn = self.rolled(target_turn(state))
-        offset = np.asarray(self.shape_offset(state), float)
+        down = self.coming_down(state, context)
+        offset = np.asarray(self.shape_offset(state, down), float)
         dx, dy, dz = offset if turn is None else turn @ offset
         points = [w.position for w in state.path] if state.path else [derived_target(state, context.object)]
         # To the micrometre, so the ESTD's 9-digit numbers read back equal.
         points = [(round(x - dx, 6), round(y - dy, 6), round(z - dz, 6)) for x, y, z in points]
+        if down is not self._hand_down:
+            for point in points:
+                self.check_pose(point, down, f"of {state.type.value} state '{state.name}', turned to the object")
+            return points[-1], tuple(points[:-1])
         held = turn if turn is not None or state.type not in KEEPING else \
             self.rolled(turn_at_start(context.task, state))
         if held is None or (turn is None and self._from_above(held)):
@@ -652,13 +665,15 @@ class Factory(ABC):
                                  f"at the target of {state.type.value} state '{state.name}'")
         return points[-1], tuple(points[:-1])
 
-    def arm_motion(self, state: State, target: Vec3, via: tuple[Vec3, ...], **extra: ParamValue) -> Controller:
+    def arm_motion(self, state: State, context: MappingContext, target: Vec3, via: tuple[Vec3, ...],
+                   **extra: ParamValue) -> Controller:
         """The arm controller of a move-like state: `push` for an ATD push (a guarded move
         that must feel the object), `cartesian_move` with the ATD's movement type otherwise.
         A move carrying the object has arrived only where it was going: a transport that
         meets resistance on the way, or a place that meets it above its surface, stopped
         short (`contact_margin`). A path ending on a `<pose>` turns the hand as the pose
-        says (`tilt`); otherwise a transport keeps the hand's orientation (`level` off)."""
+        says (`tilt`); otherwise a transport keeps the hand's orientation (`level` off), and
+        a move the hand comes down on the object by turns it to the object (`coming_down`: `yaw`)."""
         flags = arm_motion_flags(state)
         if state.type is StateType.PUSH:
             return self.controller("push", target=target, waypoints=via, keep_orientation=flags["keep_orientation"])
@@ -667,15 +682,19 @@ class Factory(ABC):
         margin = CARRIED_MARGIN.get(state.type)
         carried: dict[str, ParamValue] = {} if margin is None else {"contact_margin": margin}
         turn = self.rolled(target_turn(state))
+        down = self.coming_down(state, context)
         if turn is not None:
             carried["tilt"] = tilt_of(turn)
         elif state.type is StateType.TRANSPORT:  # the object as the grasp holds it: see cartesian_move's `level`
             carried["level"] = False
+        elif down is not self._hand_down:
+            carried["yaw"] = round(float(np.degrees(np.arctan2(down[1, 0], down[0, 0]))), 6)
         return self.controller("cartesian_move", target=target, waypoints=via, **{**flags, **carried, **extra})
 
-    def shape_offset(self, state: State) -> Vec3:
-        """Where the state's hand shape acts, from the TCP, in the world frame (the hand
-        pointing down with the yaw it has at home, which every arm controller keeps).
+    def shape_offset(self, state: State, down: np.ndarray) -> Vec3:
+        """Where the state's hand shape acts, from the TCP, in the world frame, the hand
+        pointing down turned as `down` (its yaw at home, or turned to the object it comes
+        down on: `coming_down`), which every arm controller keeps.
 
         The task's positions are for that point. A pinch closes where the hand says
         (`Hand.grasp_centres`: the SDH2's two fingers face each other 19 mm off its TCP).
@@ -684,7 +703,7 @@ class Factory(ABC):
         and that finger's lowest point (`grasp_centres` off the TCP, `hand_reach` below it)
         stands in for the TCP, so a push meets the object where the path says.
         """
-        x, y, z = (float(v) for v in self._hand_down @ np.asarray(self.acting_point(state), float))
+        x, y, z = (float(v) for v in down @ np.asarray(self.acting_point(state), float))
         return (x, y, z)
 
     def acting_point(self, state: State) -> Vec3:
@@ -699,6 +718,58 @@ class Factory(ABC):
         if posture != made.value:  # a push posture of its own: its lowest point
             z = robot.hand_reach(posture)
         return (x, y, z)
+
+    def coming_down(self, state: State, context: MappingContext) -> np.ndarray:
+        """The hand pointing down as a move brings it onto the object a grasp then closes on,
+        turned about the vertical so that its pads close across the object's narrowest width
+        as the task believes it stands (`grasp_turn`), by the least turn the arm reaches (a
+        quarter turn either way closes alike: TIE_SHORT). `_hand_down` itself (the home yaw)
+        where no turn is needed (the open pads take the object with room) or reached, where
+        the task turns the hand on the way there (`_turnable`), or where it does not say the
+        object's shape or size. A grasp state is turned as the move it comes from."""
+        if state.type is StateType.GRASP:  # as the move it comes from left the hand
+            before = arriving(context.task, state)
+            return self.coming_down(before, context) if before is not None and before.type is StateType.MOVE \
+                else self._hand_down
+        grasp = grasp_ahead(context.task, state) if state.type is StateType.MOVE and self._turnable(state) else None
+        before = arriving(context.task, grasp) if grasp is not None else None
+        if grasp is None or before is None or not self._turnable(before):
+            return self._hand_down
+        obj = context.acting_on(grasp.object).object
+        if obj is None or obj.pose is None or not (obj.size or obj.object_class):
+            return self._hand_down
+        try:
+            start, end = self.grasp_postures(grasp)
+        except Unmappable:  # the grasp state says why
+            return self._hand_down
+        line = self.robot.closing_line(start, end)
+        if line is None:
+            return self._hand_down
+        closing = self._hand_down @ (np.cos(line), np.sin(line), 0.0)  # the pads' line in the world, at home
+        turn = grasp_turn(obj, float(np.arctan2(closing[1], closing[0])), self.robot.pad_opening(start, line))
+        if abs(turn) < TURN_TOLERANCE:
+            return self._hand_down
+        ways = (turn, turn - np.copysign(np.pi, turn)) if abs(turn) > np.pi / 2 - TIE_SHORT else (turn,)
+        centre = np.asarray(obj.pose.position, float)
+        for way in ways:
+            down = rotation_rpy((0.0, 0.0, float(np.clip(way, TIE_SHORT - np.pi / 2, np.pi / 2 - TIE_SHORT)))) \
+                @ self._hand_down
+            centres = (np.asarray(self.robot.hand.grasp_centres.get(p, (0.0,) * 3)) for p in (start, end))
+            if all(self._reach.why_not(tuple(centre - down @ c), down) is None for c in centres):
+                return down
+        return self._hand_down
+
+    @staticmethod
+    def _turnable(move: State) -> bool:
+        """A move whose hand's turn the task leaves to the robot: its target neither a `<pose>`
+        nor a named value (a perceived approach brings its own yaw)."""
+        return move.target_from is None and target_turn(move) is None
+
+    def grasp_postures(self, state: State) -> tuple[str, str]:
+        """The postures a grasp state's hand closes from and to: a gripper's open jaws to its
+        grasp (`jaw_grasp`)."""
+        closed = self.shape(state.hand_shape)[0] if state.hand_shape else HandShape.CLOSED
+        return HandShape.OPEN.value, closed.value
 
     @cached_property
     def _hand_down(self) -> np.ndarray:

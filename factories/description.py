@@ -21,6 +21,11 @@ from atd.model.meshcheck import mesh_points
 
 Vec3 = tuple[float, float, float]
 
+# times: pads whose sideways motion along one line, squared and summed, is under this many times
+# that across it (twice as far) close from all round, with no line to turn the hand by (the
+# Barrett's spherical grasp: 1.0; its pinch, the SDH2's and the grippers': no motion across at all)
+CLEAR_LINE = 4.0
+
 
 @dataclass(frozen=True)
 class Origin:
@@ -512,6 +517,34 @@ class RobotDescription:
         a, b = (np.asarray(self.hand.postures[p], float) for p in (start, end))
         reach = self.hand_reach(a)
         return max(0.0, max(self.hand_reach(a + t * (b - a)) for t in np.linspace(0.0, 1.0, steps + 1)) - reach)
+
+    def closing_line(self, start: str, end: str) -> float | None:
+        """The line (rad from the hand's x, about its approach axis, in [0, pi)) along which
+        the tactile pads close from posture `start` to posture `end`: the main direction of
+        their sideways motion. None where they close from all round (no direction carries
+        CLEAR_LINE times another's motion) or do not move: such a hand grasps alike at any turn."""
+        if not self.hand.pads:
+            return None
+        moved = []
+        for posture in (start, end):
+            poses, tcp = self._hand_in(posture)
+            to_hand = np.linalg.inv(tcp)
+            moved.append(np.array([(to_hand @ poses[p.link] @ p.origin.matrix())[:2, 3] for p in self.hand.pads]))
+        sideways = moved[1] - moved[0]
+        spread, axes = np.linalg.eigh(sideways.T @ sideways)
+        if spread[1] <= 0.0 or spread[1] < CLEAR_LINE * spread[0]:
+            return None
+        return float(np.arctan2(axes[1, 1], axes[0, 1]) % np.pi)
+
+    def pad_opening(self, posture: str, line: float) -> float:
+        """How far apart the tactile pads' surfaces stand along the line at `line` (rad from
+        the hand's x, about its approach axis) in `posture` (m): the widest object a hand
+        closing along that line from that posture can take between its pads."""
+        poses, tcp = self._hand_in(posture)
+        to_hand = np.linalg.inv(tcp)
+        way = np.array([np.cos(line), np.sin(line)])
+        along = [float((to_hand @ poses[p.link] @ p.origin.matrix())[:2, 3] @ way) for p in self.hand.pads]
+        return max(along) - min(along) if along else 0.0
 
     def hand_in_boxes(self, posture: str, tcp: np.ndarray, boxes: list[tuple[Vec3, Vec3]]) -> dict[int, list[str]]:
         """Which of the world-aligned `boxes` (centre, size) the hand's links would cut into

@@ -74,7 +74,8 @@ class ParallelJawFactory(Factory):
             return self.release(state, arm="hold")
         target, via = self.motion(state, context)
         # A place is a transport that ends on contact: it descends straight onto the surface.
-        arm = self.arm_motion(state, target, via, **({"straight_line": True} if kind is StateType.PLACE else {}))
+        straight = {"straight_line": True} if kind is StateType.PLACE else {}
+        arm = self.arm_motion(state, context, target, via, **straight)
         if kind in (StateType.TRANSPORT, StateType.PLACE):
             return NodeMapping("transport", arm, self.controller("squeeze"))
         return NodeMapping("move", arm, *self.hand_for_motion(state))
@@ -134,7 +135,8 @@ class MultiFingerFactory(Factory):
             target, _ = self.motion(state.model_copy(update={"hand_shape": HandShape.HOOK_GRASP_PRESHAPE}), context)
             return NodeMapping("slide", self.controller("slide", target=target),
                                self.controller("hand_shape", shape=shape.value), notes)
-        arm = self.arm_motion(state, target, via, **(obstacle_params(context) if kind is StateType.TRANSPORT else {}))
+        extra = obstacle_params(context) if kind is StateType.TRANSPORT else {}
+        arm = self.arm_motion(state, context, target, via, **extra)
         if kind is StateType.TRANSPORT:  # the fingers keep the grasp as it was
             return NodeMapping("transport", arm, self.controller("hold_position"))
         return NodeMapping("transport", arm, *self.hand_for_motion(state))
@@ -142,8 +144,7 @@ class MultiFingerFactory(Factory):
     def finger_grasp(self, state: State, context: MappingContext) -> NodeMapping:
         """The robust grasp (thesis 3.3.1): the state's grasp, or the one its preshape leads
         to, or a power grasp; refused when the hand cannot make it or would hit an obstacle."""
-        grasp = state.hand_shape or (GRASP_OF.get(state.preshape) if state.preshape else None) or DEFAULT_GRASP
-        grasp, preshape_made, notes = self.grasp_shapes(state, grasp)
+        grasp, preshape_made, notes = self.grasp_shapes(state, self.grasp_of(state))
         self.check_object_reach(context, state, grasp.value, *((preshape_made.value,) if preshape_made else ()))
         configured = float(self.controller("robust_grasp_hand").params["grasp_force"])
         refuse_uncarriable(context.object, f"grasp state '{state.name}'")
@@ -163,6 +164,15 @@ class MultiFingerFactory(Factory):
                               grasp_centre=tuple(round(float(c), 6) for c in
                                                  self.robot.hand.grasp_centres.get(grasp.value, (0.0, 0.0, 0.0))))
         return NodeMapping("robust_grasp", arm, hand, notes)
+
+    def grasp_of(self, state: State) -> HandShape:
+        """The grasp a grasp state asks for: its own, or the one its preshape leads to, or a power grasp."""
+        return state.hand_shape or (GRASP_OF.get(state.preshape) if state.preshape else None) or DEFAULT_GRASP
+
+    def grasp_postures(self, state: State) -> tuple[str, str]:
+        """The postures the robust grasp's hand closes from and to: its preshape (or open) to its grasp."""
+        grasp, preshape_made, _ = self.grasp_shapes(state, self.grasp_of(state))
+        return (preshape_made or HandShape.OPEN).value, grasp.value
 
     def unscrew(self, state: State) -> NodeMapping:
         """Thesis 3.3.6: the state's grasp (by default a two-finger pinch, GRASPING_FINGERS 2)
@@ -196,8 +206,8 @@ class MultiFingerFactory(Factory):
         if context.object is None or context.object.pose is None:
             return None
         centre = np.asarray(context.object.pose.position, float)
-        rotation, line = self._grasp_line(context, state, centre)
-        if rotation is self._hand_down:
+        rotation, line, from_above = self._grasp_line(context, state, centre)
+        if from_above:
             return None
         return round(max(0.0, float((centre - line) @ rotation[:, 2])) + SIDE_MARGIN, 6)
 

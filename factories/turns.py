@@ -46,3 +46,22 @@ def turn_at_start(task: Task, state: State) -> np.ndarray | None:
         seen.add(before.name)
         before = arriving(task, before)
     return None
+
+
+def grasp_ahead(task: Task, state: State) -> State | None:
+    """The grasp a move leads to: the first grasp state reached from `state` through moves
+    only (transitions in document order), the one the hand comes down for; None if none."""
+    seen = {state.name}
+    frontier = [state]
+    while frontier:
+        here = frontier.pop(0)
+        for transition in task.transitions:
+            after = task.states_by_name.get(transition.destination)
+            if transition.origin != here.name or after is None or after.name in seen:
+                continue
+            if after.type is StateType.GRASP:
+                return after
+            seen.add(after.name)
+            if after.type is StateType.MOVE:
+                frontier.append(after)
+    return None

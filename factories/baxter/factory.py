@@ -80,7 +80,7 @@ class BaxterFactory(Factory):
             return NodeMapping("slide", self.controller("slide", target=target),
                                self.controller("hand_shape", shape=HandShape.PINCH_GRASP.value))
         extra = obstacle_params(context) if kind is StateType.TRANSPORT else {}
-        arm = self.arm_motion(state, target, via, **extra)
+        arm = self.arm_motion(state, context, target, via, **extra)
         if kind is StateType.TRANSPORT:
             return NodeMapping("transport", arm, self.controller("squeeze"))
         return NodeMapping("move", arm, *self.hand_for_motion(state))
