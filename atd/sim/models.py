@@ -180,13 +180,11 @@ def _body(body: Body, name: str | None = None) -> dict:
 
 
 def cap_timeconst(thread: Thread, body_mass: float) -> float:
-    """The time constant (s) of a threaded body's cap's contacts. MuJoCo gives way more under
-    a contact the lighter its body (a penetration per newton in proportion to the inverse
-    mass, times the time constant squared): on CONTACT_TIMECONST the water bottle's 2.5 g cap
-    gave way 5-6 mm under 0.6-0.8 N, the SDH2's pads sank into it and the tips of their links
-    pressed the neck below it instead (docs/unscrew-campaign.md). Scaled by the root of the cap's
-    mass over the body's, a cap gives way as little as the bottle under it; MuJoCo keeps a
-    time constant of at least two steps."""
+    """The time constant (s) of a threaded body's cap's contacts. MuJoCo lets a contact give way
+    in proportion to its body's inverse mass: on CONTACT_TIMECONST a cap of a few grams let the
+    pads sink millimetres into it (docs/unscrew-campaign.md). Scaled by the root of the cap's
+    mass over the body's, a cap gives way as little as the bottle under it (MuJoCo keeps at
+    least two steps)."""
     return CONTACT_TIMECONST * math.sqrt(thread.cap_mass / body_mass)
 
 
