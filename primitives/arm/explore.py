@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from primitives.arm.approach_phases import APPROACH_ACCELERATION
-from primitives.arm.motion import GAIN, TwistShaper, clamp_norm, orientation_twist, unit
+from primitives.arm.motion import GAIN, TwistShaper, clamp_norm, norm, orientation_twist, unit
 from primitives.arm.move import EASE_OFF, arm_output
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import ARM_TWIST
@@ -20,12 +20,15 @@ from primitives.robot import Readings
 from primitives.values import Contact
 
 ARRIVED = 0.001  # m short of max_distance that counts as having gone all the way
+SETTLED = 0.0005  # m from the eased-off rest where a touch is over: the next motion tares the wrist there, not mid-impact
+SETTLE_LIMIT = 1.0  # s after the touch it is over in any case: an arm that cannot ease off does not hold the task
 
 
 class Explore(Controller):
     """Move the TCP along `direction` (world frame) at `speed` until the wrist, or a pad, feels
-    `force_threshold` more than it did at the start: DONE, the contact written to
-    `Context.memory` under `writes` (a `Contact`), the hand resting EASE_OFF back from it.
+    `force_threshold` more than it did at the start: the contact written to `Context.memory`
+    under `writes` (a `Contact`), then DONE once the hand rests EASE_OFF back from it (a
+    motion that began at the touch tared the wrist mid-impact and read its ring as a contact).
     Having gone `max_distance` without one: ERROR, "nothing within D m". The hand keeps the
     orientation it started with; it speeds up at the robust grasp's gentle
     APPROACH_ACCELERATION (a faster start reads as a contact on the wrist) and slows down
@@ -68,7 +71,10 @@ class Explore(Controller):
     def update(self, readings: Readings, dt: float) -> ControlData:
         position = readings.tcp[:3, 3]
         w, _ = orientation_twist(self.rotation, readings.tcp[:3, :3])
-        if self.status is Status.RUNNING:
+        if self.status is Status.RUNNING and (found := self.found) is not None:
+            if norm(self.rest - position) < SETTLED or readings.time - found.time > SETTLE_LIMIT:
+                self._report(found)
+        elif self.status is Status.RUNNING:
             self.contact.update(readings, dt)
             travelled = float((position - self.origin) @ self.direction)
             felt = self.felt(readings)
@@ -93,6 +99,10 @@ class Explore(Controller):
         self.found = Contact(position.copy(), sensor, force, self.direction.copy(), readings.time)
         if self.writes:
             self.ctx.memory[self.writes] = self.found
-        x, y, z = position
-        self.finish(Status.DONE, f"contact after {travelled * 100:.1f} cm: {sensor} {force:.1f} N "
+        self.travelled = travelled
+
+    def _report(self, found: Contact) -> None:
+        """Eased off what it touched: done, saying where it touched."""
+        x, y, z = found.point
+        self.finish(Status.DONE, f"contact after {self.travelled * 100:.1f} cm: {found.sensor} {found.force:.1f} N "
                                  f">= {self.threshold:g} N at ({x:.3f}, {y:.3f}, {z:.3f})")

@@ -11,6 +11,7 @@ import pytest
 
 from atd.model.vocabulary import EventType
 from primitives.arm.explore import Explore
+from primitives.arm.move import EASE_OFF
 from primitives.base import Context, Status
 from primitives.values import Contact
 from tests.primitives.box_worlds import CORNER, FLOOR, MELFA_REACH, box_world, cube
@@ -65,8 +66,12 @@ def test_a_pad_s_force_over_its_start_is_a_contact_and_named() -> None:
     explore.update(dataclasses.replace(held, pad_force=np.array([6.5, 0.0])), 0.005)
     assert explore.status is Status.RUNNING  # 6.5 N, but only 2.5 N more than it held at the start
     explore.update(dataclasses.replace(held, pad_force=np.array([7.5, 0.0])), 0.005)
-    assert explore.status is Status.DONE
     pad = robot.info.hand.pads[0].name
     assert ctx.memory["touched"].sensor == pad and ctx.memory["touched"].force == pytest.approx(3.5)
+    assert explore.status is Status.RUNNING  # easing off what it touched
+    eased = held.tcp.copy()
+    eased[2, 3] += EASE_OFF
+    explore.update(dataclasses.replace(held, tcp=eased), 0.005)
+    assert explore.status is Status.DONE  # done once off it: the next motion starts from rest
     robot.close()
 
