@@ -352,5 +352,10 @@ class JawGraspCorrection(Controller):
         nudge = board.arm_nudge
         if nudge is None:
             return np.zeros(3)
-        self.goal = self.goal + np.asarray(nudge, float) * dt
-        return np.asarray(nudge, float)
+        nudged = self.goal + np.asarray(nudge, float) * dt
+        # Inside the known walls like every other move: an object against a wall draws the
+        # re-centring after it, and the goal, growing without bound, pressed the hand into the
+        # wall at 190-270 N until the grasp's time ran out (Melfa, MuJoCo, docs/empty-the-box.md).
+        kept = self.walls.inside(self.rotation, nudged)
+        self.goal = kept
+        return np.asarray(nudge, float) if np.array_equal(kept, nudged) else np.zeros(3)

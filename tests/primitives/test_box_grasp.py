@@ -63,6 +63,32 @@ def test_a_jaw_grasp_over_a_known_box_starts_its_descent_clear_of_the_wall() -> 
     assert ends[0][2] == pytest.approx(start[2, 3] + 0.02)  # risen by its clearance, then across
 
 
+def test_closing_jaws_that_follow_an_object_against_a_wall_stop_at_the_wall() -> None:
+    """While the jaws close the arm follows the pads' contact (`arm_nudge`); an object pressed
+    against a wall draws it on, and over a known box the hand goes no nearer the wall than its
+    reach (it pressed into the wall at 190-270 N before); on the table it follows on."""
+    info = robot_info(load_description("melfa"))
+    box = ContainerInfo(name="box", pose=Pose(matrix=tuple(BOX_POSE.reshape(-1))), size=BOX.size, wall=WALL)
+    start = _tcp(0.20, HIGH_Y - 0.06)
+    zeros = np.zeros(6)
+    readings = Readings(time=0.0, arm_q=zeros, arm_dq=zeros, arm_effort=zeros, hand_q=np.zeros(2),
+                        hand_dq=np.zeros(2), hand_effort=np.zeros(2), tcp=start, wrench=zeros, taxels={},
+                        pad_force=np.zeros(2), range=None)
+    goals = []
+    for environment in (Environment(containers=(box,)), None):
+        ctx = Context(info=info, params={}, environment=environment)
+        grasp = build_controller(Controller(name="jaw_grasp_correction", params={"hand_extent": MELFA_OPEN}), "arm",
+                                 ctx)
+        grasp.start(readings)
+        grasp._close_here(readings, 0.0)
+        ctx.blackboard.arm_nudge = np.array([0.0, 0.01, 0.0])  # 1 cm/s towards the wall
+        for _ in range(400):  # 2 s
+            grasp.update(readings, 0.005)
+        goals.append(grasp.goal)
+    assert goals[0][1] == pytest.approx(HIGH_Y - 0.05)  # the open jaws' reach from the wall
+    assert goals[1][1] == pytest.approx(HIGH_Y - 0.04)  # 2 cm on
+
+
 def _top(centre: tuple[float, float], length: float, width: float, yaw: float) -> np.ndarray:
     """Points of a flat rectangular top at the rim's height, turned by `yaw` about the vertical."""
     u, v = np.meshgrid(np.linspace(-length / 2, length / 2, 17), np.linspace(-width / 2, width / 2, 9))
