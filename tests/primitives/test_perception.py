@@ -117,6 +117,25 @@ def test_vision_chooses_first_the_object_earlier_rounds_aimed_at_least(two_apart
     assert chosen == {0, 1}
 
 
+def test_vision_aims_at_each_of_two_touching_objects_once_their_seam_was_missed() -> None:
+    """Touching, of one height, they make one cluster, and its middle is the seam between
+    them, where jaws close on nothing; the next rounds aim at one half of it, then the other."""
+    robot = box_world(cube("a", (0.15, 0.15)), cube("b", (0.2005, 0.15)))
+    truth = [pose[:3, 3] for pose in robot.object_poses().values()]
+    image = robot.capture("kinect")
+    robot.close()
+    aimed: tuple[np.ndarray, ...] = ()
+    nearest = []
+    for _ in range(3):
+        found = vision(image, BELIEF, np.random.default_rng(0), SETTINGS, APPROACHING, aimed)
+        assert found.candidates == 1
+        aimed = (*aimed, found.point)
+        nearest.append(sorted((np.linalg.norm(found.point[:2] - t[:2]), k) for k, t in enumerate(truth)))
+    assert nearest[0][0][0] > 0.015  # the seam, 2-3 cm from either middle
+    assert nearest[1][0][0] < 0.01 and nearest[2][0][0] < 0.01  # then over each cube's middle
+    assert {nearest[1][0][1], nearest[2][0][1]} == {0, 1}
+
+
 def test_of_two_touching_objects_vision_comes_down_over_the_taller() -> None:
     """Touching, they make one cluster; its top is the taller's, and the approach is over it."""
     robot = box_world(cube("tall", (0.15, 0.15)), cube("flat", (0.2005, 0.15), height=0.02))
