@@ -142,19 +142,13 @@ def aimed_at(cluster: np.ndarray, aimed: Sequence[np.ndarray]) -> list[np.ndarra
     return [point for point in aimed if float(np.min(np.hypot(*(flat - point[:2]).T))) <= AIMED_NEAR]
 
 
-def times_aimed(cluster: np.ndarray, aimed: Sequence[np.ndarray]) -> int:
-    """How many of the earlier approaches were aimed at this cluster (`aimed_at`)."""
-    return len(aimed_at(cluster, aimed))
-
-
 def part_to_aim_at(top: np.ndarray, container: ContainerBelief, earlier: Sequence[np.ndarray]) -> np.ndarray:
     """The points of a cluster's top (world) to aim at: all of it, or, after earlier rounds
     aimed at it (`earlier`, their points) and missed, of it and its two halves (split across
     its long axis at its middle) the one aimed at least near its middle, then furthest from
-    where they aimed. Two objects touching, their tops
-    alike, are one cluster whose middle is the seam between them, and every round aimed there
-    closed on nothing; its halves are the objects (or, for one long object, a grip off its
-    middle)."""
+    where they aimed. Two objects touching, their tops alike, are one cluster whose middle is
+    the seam between them, and every round aimed there closed on nothing; its halves are the
+    objects (or, for one long object, grips off its middle)."""
     if not earlier:
         return top
     axis, _ = principal_axis(top, container)
@@ -182,7 +176,7 @@ def vision(image: DepthImage, container: ContainerBelief, rng: np.random.Generat
     clusters = objects_seen(image, container, settings)
     if not clusters:
         return None
-    counts = [times_aimed(cluster, aimed) for cluster in clusters]
+    counts = [len(aimed_at(cluster, aimed)) for cluster in clusters]
     least = [cluster for cluster, count in zip(clusters, counts) if count == min(counts)]
     chosen = least[int(rng.integers(len(least)))]
     part = part_to_aim_at(near_top(chosen), container, aimed_at(chosen, aimed))
