@@ -40,6 +40,10 @@ def test_a_hand_near_a_wall_is_moved_in_by_its_reach_and_slides_along_it() -> No
     np.testing.assert_array_equal(clear_of_walls([BELIEF], middle, MELFA_OPEN), middle)
     on_the_table = _tcp(0.50, 0.15)
     np.testing.assert_array_equal(clear_of_walls([BELIEF], on_the_table, MELFA_OPEN), on_the_table)
+    beyond = _tcp(0.20, HIGH_Y + 0.03)  # past the wall: from the table, the table's
+    np.testing.assert_array_equal(clear_of_walls([BELIEF], beyond, MELFA_OPEN), beyond)
+    from_inside = clear_of_walls([BELIEF], beyond, MELFA_OPEN, start=np.array([0.20, HIGH_Y - 0.06, 0.05]))
+    np.testing.assert_allclose(from_inside[:2, 3], (0.20, HIGH_Y - 0.05))  # from inside the box: kept in it
 
 
 def test_a_jaw_grasp_over_a_known_box_starts_its_descent_clear_of_the_wall() -> None:
