@@ -62,8 +62,12 @@ def test_a_jaw_grasp_over_a_known_box_starts_its_descent_clear_of_the_wall() -> 
                                  Context(info=info, params={}, environment=environment))
         grasp.start(readings)
         ends.append(grasp.route[-1])
+        grasp._rise(readings, np.array([0.0, 0.05, 0.0]))  # a search point past the far wall
+        ends.append(grasp.route[-1])
     np.testing.assert_allclose(ends[0][:2], (0.20, HIGH_Y - 0.05))
-    np.testing.assert_allclose(ends[1][:2], (0.20, HIGH_Y - 0.015))
+    np.testing.assert_allclose(ends[1][:2], (0.20, HIGH_Y - 0.05))  # kept inside the box it started in
+    np.testing.assert_allclose(ends[2][:2], (0.20, HIGH_Y - 0.015))
+    np.testing.assert_allclose(ends[3][:2], (0.20, HIGH_Y + 0.035))
     assert ends[0][2] == pytest.approx(start[2, 3] + 0.02)  # risen by its clearance, then across
 
 
