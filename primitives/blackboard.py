@@ -106,6 +106,10 @@ YAW_REFERENCE = "yaw_reference"
 """In `Context.memory`: the yaw (rad, world) of the hand's x when a move first turned it to a
 given `yaw`; later turns keep the hand within WIND_LIMIT of it (primitives/arm/motion.py)."""
 
+AIMED = "aimed"
+"""In `Context.memory`: the points (each (3,), world) every vision round of the run chose to
+approach, in order. The run's, not one arm's: a cluster still seen near one was missed."""
+
 ARM_TWIST = "arm_twist"
 """In `Context.memory`: (6,) the TCP twist the arm was last commanded (world frame, m/s and
 rad/s), kept by the executor. A motion that takes the arm over ramps from it: one that

@@ -177,7 +177,9 @@ class JawGraspCorrection(Controller):
         """Back clear of the contact (at least to depth `height`), then `across` (world frame), then descend again."""
         here = readings.tcp[:3, 3]
         up = self._at_depth(here, max(self._depth(here) + self.clearance, height))
-        self.route = [up, self.walls.inside(self.rotation, up + self._level(across))]
+        # from inside a box, a search point beyond its wall is a move into the wall (it pressed
+        # the hand there at 240 N; Melfa, MuJoCo, docs/empty-the-box.md): kept inside it
+        self.route = [up, self.walls.inside(self.rotation, up + self._level(across), here)]
         self.phase = "move"
         self.nearest, self.nearest_at = np.inf, readings.time  # m from the waypoint, and when
         self.towards: np.ndarray | None = None  # the waypoint `nearest` is measured to
@@ -352,5 +354,10 @@ class JawGraspCorrection(Controller):
         nudge = board.arm_nudge
         if nudge is None:
             return np.zeros(3)
-        self.goal = self.goal + np.asarray(nudge, float) * dt
-        return np.asarray(nudge, float)
+        nudged = self.goal + np.asarray(nudge, float) * dt
+        # Inside the known walls like every other move: an object against a wall draws the
+        # re-centring after it, and the goal, growing without bound, pressed the hand into the
+        # wall at 190-270 N until the grasp's time ran out (Melfa, MuJoCo, docs/empty-the-box.md).
+        kept = self.walls.inside(self.rotation, nudged, self.goal)
+        self.goal = kept
+        return np.asarray(nudge, float) if np.array_equal(kept, nudged) else np.zeros(3)

@@ -27,15 +27,16 @@ class KnownWalls:
         extent = ctx.params["hand_extent"]
         return cls(tuple(ContainerBelief.known(c) for c in known), (float(extent[0]), float(extent[1])))
 
-    def inside(self, rotation: np.ndarray, position: np.ndarray) -> np.ndarray:
+    def inside(self, rotation: np.ndarray, position: np.ndarray, start: np.ndarray | None = None) -> np.ndarray:
         """`position` (world) moved sideways, as little as it takes, for the hand turned by
-        `rotation` (world) to stay inside the walls of the container it is over; the same
-        array over none (a grasp on the table)."""
+        `rotation` (world) to stay inside the walls of the container it is over, or that a
+        move to it starts over (`start`, world); the same array over none (a grasp on the
+        table)."""
         if not self.containers:
             return position
         pose = np.eye(4)
         pose[:3, :3], pose[:3, 3] = rotation, position
-        moved = clear_of_walls(list(self.containers), pose, self.extent)
+        moved = clear_of_walls(list(self.containers), pose, self.extent, start)
         return position if moved is pose else moved[:3, 3]
 
     def support(self, position: np.ndarray) -> float:

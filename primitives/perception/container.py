@@ -88,12 +88,17 @@ def container_under(containers: list[ContainerBelief], position: np.ndarray) -> 
     return None
 
 
-def clear_of_walls(containers: list[ContainerBelief], tcp: np.ndarray, extent: tuple[float, float]) -> np.ndarray:
+def clear_of_walls(containers: list[ContainerBelief], tcp: np.ndarray, extent: tuple[float, float],
+                   start: np.ndarray | None = None) -> np.ndarray:
     """The TCP pose `tcp` (4x4, world) moved sideways, as little as it takes, so that a hand
     reaching `extent` (along its x, along its y) stays inside the walls of the container it is
-    over; unchanged over none (a grasp on the table). Moves along the walls are free, so a
-    grasp's corrections slide along a wall instead of pressing into it."""
+    over, or of the one a move to it starts over (`start`, world: a move from inside a box to
+    beyond its wall goes into the wall); unchanged over none (a grasp on the table). Moves
+    along the walls are free, so a grasp's corrections slide along a wall instead of pressing
+    into it."""
     container = container_under(containers, tcp[:3, 3])
+    if container is None and start is not None:
+        container = container_under(containers, start)
     if container is None:
         return tcp
     local = container.to_local(tcp[None, :3, 3])[0]

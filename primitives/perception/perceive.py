@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import Callable, Mapping
 
 from primitives.base import Context, Status
+from primitives.blackboard import AIMED
 from primitives.perception.blind import BlindExploration
 from primitives.perception.generators import VisionSettings, random_blind, vision
 from primitives.perception.perceiver import Perceiver
@@ -26,7 +27,8 @@ class RandomBlind(Perceiver):
 
 class Vision(Perceiver):
     """Vision: one picture of the depth camera `camera` (the robot's first when empty), its
-    points inside the container clustered, one cluster chosen at random."""
+    points inside the container clustered, one cluster chosen at random among those the run's
+    earlier vision rounds aimed at least often (`AIMED`)."""
 
     method = "vision"
 
@@ -49,7 +51,11 @@ class Vision(Perceiver):
             self.finish(Status.ERROR, "this run gives the controller no camera to take a picture with")
             return
         image = self.ctx.camera(self.camera)
-        self.found(vision(image, self.container, self.ctx.rng, self.settings, self.approaching),
+        aimed = self.ctx.memory.get(AIMED, ())
+        approach = vision(image, self.container, self.ctx.rng, self.settings, self.approaching, aimed)
+        if approach is not None:
+            self.ctx.memory[AIMED] = (*aimed, approach.point)
+        self.found(approach,
                    f"no cluster of {self.settings.min_points} points or more inside the container in the "
                    f"'{self.camera}' picture")
 

@@ -199,6 +199,10 @@ def test_sdh2_makes_a_cylinder_where_a_move_asks_for_a_hook():
 def test_baxter_reads_its_noisy_force_sensor_with_raised_filtered_thresholds():
     place = _map("baxter", _state(StateType.PLACE)).arm
     assert place.params["force_threshold"] == 10.0 and place.params["filter_time"] == 0.05
+    down = _state(StateType.EXPLORE, direction=(0.0, 0.0, -1.0))
+    explore = create("baxter").map_state(down, MappingContext(one_state_task(down))).arm
+    assert explore.params["force_threshold"] == 8.0 and explore.params["filter_time"] == 0.05  # 3 N raw: noise
+    assert create("melfa").map_state(down, MappingContext(one_state_task(down))).arm.params["force_threshold"] == 3.0
     task = one_state_task(_state(StateType.GRASP))
     factory = create("baxter")
     ctx = MappingContext(task)

@@ -40,6 +40,10 @@ def test_a_hand_near_a_wall_is_moved_in_by_its_reach_and_slides_along_it() -> No
     np.testing.assert_array_equal(clear_of_walls([BELIEF], middle, MELFA_OPEN), middle)
     on_the_table = _tcp(0.50, 0.15)
     np.testing.assert_array_equal(clear_of_walls([BELIEF], on_the_table, MELFA_OPEN), on_the_table)
+    beyond = _tcp(0.20, HIGH_Y + 0.03)  # past the wall: from the table, the table's
+    np.testing.assert_array_equal(clear_of_walls([BELIEF], beyond, MELFA_OPEN), beyond)
+    from_inside = clear_of_walls([BELIEF], beyond, MELFA_OPEN, start=np.array([0.20, HIGH_Y - 0.06, 0.05]))
+    np.testing.assert_allclose(from_inside[:2, 3], (0.20, HIGH_Y - 0.05))  # from inside the box: kept in it
 
 
 def test_a_jaw_grasp_over_a_known_box_starts_its_descent_clear_of_the_wall() -> None:
@@ -58,9 +62,39 @@ def test_a_jaw_grasp_over_a_known_box_starts_its_descent_clear_of_the_wall() -> 
                                  Context(info=info, params={}, environment=environment))
         grasp.start(readings)
         ends.append(grasp.route[-1])
+        grasp._rise(readings, np.array([0.0, 0.05, 0.0]))  # a search point past the far wall
+        ends.append(grasp.route[-1])
     np.testing.assert_allclose(ends[0][:2], (0.20, HIGH_Y - 0.05))
-    np.testing.assert_allclose(ends[1][:2], (0.20, HIGH_Y - 0.015))
+    np.testing.assert_allclose(ends[1][:2], (0.20, HIGH_Y - 0.05))  # kept inside the box it started in
+    np.testing.assert_allclose(ends[2][:2], (0.20, HIGH_Y - 0.015))
+    np.testing.assert_allclose(ends[3][:2], (0.20, HIGH_Y + 0.035))
     assert ends[0][2] == pytest.approx(start[2, 3] + 0.02)  # risen by its clearance, then across
+
+
+def test_closing_jaws_that_follow_an_object_against_a_wall_stop_at_the_wall() -> None:
+    """While the jaws close the arm follows the pads' contact (`arm_nudge`); an object pressed
+    against a wall draws it on, and over a known box the hand goes no nearer the wall than its
+    reach (it pressed into the wall at 190-270 N before); on the table it follows on."""
+    info = robot_info(load_description("melfa"))
+    box = ContainerInfo(name="box", pose=Pose(matrix=tuple(BOX_POSE.reshape(-1))), size=BOX.size, wall=WALL)
+    start = _tcp(0.20, HIGH_Y - 0.06)
+    zeros = np.zeros(6)
+    readings = Readings(time=0.0, arm_q=zeros, arm_dq=zeros, arm_effort=zeros, hand_q=np.zeros(2),
+                        hand_dq=np.zeros(2), hand_effort=np.zeros(2), tcp=start, wrench=zeros, taxels={},
+                        pad_force=np.zeros(2), range=None)
+    goals = []
+    for environment in (Environment(containers=(box,)), None):
+        ctx = Context(info=info, params={}, environment=environment)
+        grasp = build_controller(Controller(name="jaw_grasp_correction", params={"hand_extent": MELFA_OPEN}), "arm",
+                                 ctx)
+        grasp.start(readings)
+        grasp._close_here(readings, 0.0)
+        ctx.blackboard.arm_nudge = np.array([0.0, 0.01, 0.0])  # 1 cm/s towards the wall
+        for _ in range(400):  # 2 s
+            grasp.update(readings, 0.005)
+        goals.append(grasp.goal)
+    assert goals[0][1] == pytest.approx(HIGH_Y - 0.05)  # the open jaws' reach from the wall
+    assert goals[1][1] == pytest.approx(HIGH_Y - 0.04)  # 2 cm on
 
 
 def _top(centre: tuple[float, float], length: float, width: float, yaw: float) -> np.ndarray:

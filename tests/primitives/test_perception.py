@@ -11,11 +11,13 @@ from atd.model.estd import Condition
 from atd.model.vocabulary import EventType
 from atd.sim import load_description
 from primitives.base import Context, StateView, Status
+from primitives.blackboard import AIMED
 from primitives.perception.clusters import euclidean_clusters
 from primitives.perception.container import ContainerBelief
 from primitives.perception.blind import TRIED, Tried
 from primitives.perception.generators import Approaching, VisionSettings, random_blind, vision
 from primitives.registry import BuildError, build_condition, build_controller
+from primitives.robot import DepthImage
 from primitives.values import Approach, NothingFound
 from tests.primitives.box_worlds import BELIEF, BOX_POSE, CORNER, FLOOR, MELFA_REACH, box_world, cube, perceive
 from tests.primitives.conftest import Stage, events, execute, leaf, machine, use
@@ -78,16 +80,61 @@ def test_vision_finds_the_corner_object_and_nothing_in_an_empty_box(engine: str)
     empty.close()
 
 
-def test_vision_separates_two_objects_apart_and_chooses_each_at_random() -> None:
+@pytest.fixture(scope="module")
+def two_apart() -> tuple[DepthImage, list[np.ndarray]]:
+    """A picture of two cubes apart in the box, and their true centres."""
     robot = box_world(cube("a", (0.12, 0.1)), cube("b", (0.24, 0.2)))
     truth = [pose[:3, 3] for pose in robot.object_poses().values()]
     image = robot.capture("kinect")
     robot.close()
+    return image, truth
+
+
+def test_vision_separates_two_objects_apart_and_chooses_each_at_random(two_apart) -> None:
+    image, truth = two_apart
     picks = [vision(image, BELIEF, np.random.default_rng(seed), SETTINGS, APPROACHING) for seed in range(8)]
     assert {p.candidates for p in picks} == {2}
     chosen = {int(np.argmin([np.linalg.norm(p.point[:2] - t[:2]) for t in truth])) for p in picks}
     assert chosen == {0, 1}
     assert all(min(np.linalg.norm(p.point[:2] - t[:2]) for t in truth) < 0.02 for p in picks)
+
+
+def test_vision_chooses_first_the_object_earlier_rounds_aimed_at_least(two_apart) -> None:
+    """An object still there after a round aimed at it was missed: the next round takes the
+    other, whatever the draw, and once both were missed alike, either again."""
+    image, truth = two_apart
+    first = vision(image, BELIEF, np.random.default_rng(0), SETTINGS, APPROACHING)
+    missed = int(np.argmin([np.linalg.norm(first.point[:2] - t[:2]) for t in truth]))
+    nudged = first.point + (0.015, 0.0, 0.0)  # a miss moves what it came down on a little
+    for seed in range(8):
+        again = vision(image, BELIEF, np.random.default_rng(seed), SETTINGS, APPROACHING, (first.point,))
+        assert np.linalg.norm(again.point[:2] - truth[1 - missed][:2]) < 0.02, seed
+        assert np.linalg.norm(vision(image, BELIEF, np.random.default_rng(seed), SETTINGS, APPROACHING,
+                                     (nudged,)).point[:2] - truth[1 - missed][:2]) < 0.02, seed
+    both = (first.point, truth[1 - missed])
+    chosen = {int(np.argmin([np.linalg.norm(vision(image, BELIEF, np.random.default_rng(seed), SETTINGS,
+                                                   APPROACHING, both).point[:2] - t[:2]) for t in truth]))
+              for seed in range(8)}
+    assert chosen == {0, 1}
+
+
+def test_vision_aims_at_each_of_two_touching_objects_once_their_seam_was_missed() -> None:
+    """Touching, of one height, they make one cluster, and its middle is the seam between
+    them, where jaws close on nothing; the next rounds aim at one half of it, then the other."""
+    robot = box_world(cube("a", (0.15, 0.15)), cube("b", (0.2005, 0.15)))
+    truth = [pose[:3, 3] for pose in robot.object_poses().values()]
+    image = robot.capture("kinect")
+    robot.close()
+    aimed: tuple[np.ndarray, ...] = ()
+    nearest = []
+    for _ in range(3):
+        found = vision(image, BELIEF, np.random.default_rng(0), SETTINGS, APPROACHING, aimed)
+        assert found.candidates == 1
+        aimed = (*aimed, found.point)
+        nearest.append(sorted((np.linalg.norm(found.point[:2] - t[:2]), k) for k, t in enumerate(truth)))
+    assert nearest[0][0][0] > 0.015  # the seam, 2-3 cm from either middle
+    assert nearest[1][0][0] < 0.01 and nearest[2][0][0] < 0.01  # then over each cube's middle
+    assert {nearest[1][0][1], nearest[2][0][1]} == {0, 1}
 
 
 def test_of_two_touching_objects_vision_comes_down_over_the_taller() -> None:
@@ -109,6 +156,7 @@ def test_perceive_by_vision_ends_on_object_found_or_on_nothing_found() -> None:
     approach = executor.machine.base.memory["found"]
     assert isinstance(approach, Approach) and approach.method == "vision"
     assert approach.candidates == 1 and events(executor)[-1]["conditions"][0]["kind"] == "object_found"
+    assert executor.machine.base.memory[AIMED] == (approach.point,)  # the next round knows where this one aimed
     robot.close()
     empty = box_world()
     outcome, executor = execute(estd, empty)
