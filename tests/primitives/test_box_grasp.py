@@ -46,20 +46,30 @@ def test_a_hand_near_a_wall_is_moved_in_by_its_reach_and_slides_along_it() -> No
     np.testing.assert_allclose(from_inside[:2, 3], (0.20, HIGH_Y - 0.05))  # from inside the box: kept in it
 
 
+def _still_at(tcp: np.ndarray) -> Readings:
+    """The Melfa's readings, still, its TCP at `tcp`, touching nothing."""
+    zeros = np.zeros(6)
+    return Readings(time=0.0, arm_q=zeros, arm_dq=zeros, arm_effort=zeros, hand_q=np.zeros(2), hand_dq=np.zeros(2),
+                    hand_effort=np.zeros(2), tcp=tcp, wrench=zeros, taxels={}, pad_force=np.zeros(2), range=None)
+
+
+def _melfa_contexts() -> tuple[Context, Context]:
+    """The Melfa's controller contexts: knowing the box, and knowing no container."""
+    info = robot_info(load_description("melfa"))
+    box = ContainerInfo(name="box", pose=Pose(matrix=tuple(BOX_POSE.reshape(-1))), size=BOX.size, wall=WALL)
+    return (Context(info=info, params={}, environment=Environment(containers=(box,))),
+            Context(info=info, params={}, environment=None))
+
+
 def test_a_jaw_grasp_over_a_known_box_starts_its_descent_clear_of_the_wall() -> None:
     """The grasp's first move (and each move across or search after it) keeps the open jaws
     inside the walls; with no container known it descends where the approach left it."""
-    info = robot_info(load_description("melfa"))
-    box = ContainerInfo(name="box", pose=Pose(matrix=tuple(BOX_POSE.reshape(-1))), size=BOX.size, wall=WALL)
     start = _tcp(0.20, HIGH_Y - 0.015)
-    zeros = np.zeros(6)
-    readings = Readings(time=0.0, arm_q=zeros, arm_dq=zeros, arm_effort=zeros, hand_q=np.zeros(2),
-                        hand_dq=np.zeros(2), hand_effort=np.zeros(2), tcp=start, wrench=zeros, taxels={},
-                        pad_force=np.zeros(2), range=None)
+    readings = _still_at(start)
     ends = []
-    for environment in (Environment(containers=(box,)), None):
+    for ctx in _melfa_contexts():
         grasp = build_controller(Controller(name="jaw_grasp_correction", params={"hand_extent": MELFA_OPEN}), "arm",
-                                 Context(info=info, params={}, environment=environment))
+                                 ctx)
         grasp.start(readings)
         ends.append(grasp.route[-1])
         grasp._rise(readings, np.array([0.0, 0.05, 0.0]))  # a search point past the far wall
@@ -75,16 +85,9 @@ def test_closing_jaws_that_follow_an_object_against_a_wall_stop_at_the_wall() ->
     """While the jaws close the arm follows the pads' contact (`arm_nudge`); an object pressed
     against a wall draws it on, and over a known box the hand goes no nearer the wall than its
     reach (it pressed into the wall at 190-270 N before); on the table it follows on."""
-    info = robot_info(load_description("melfa"))
-    box = ContainerInfo(name="box", pose=Pose(matrix=tuple(BOX_POSE.reshape(-1))), size=BOX.size, wall=WALL)
-    start = _tcp(0.20, HIGH_Y - 0.06)
-    zeros = np.zeros(6)
-    readings = Readings(time=0.0, arm_q=zeros, arm_dq=zeros, arm_effort=zeros, hand_q=np.zeros(2),
-                        hand_dq=np.zeros(2), hand_effort=np.zeros(2), tcp=start, wrench=zeros, taxels={},
-                        pad_force=np.zeros(2), range=None)
+    readings = _still_at(_tcp(0.20, HIGH_Y - 0.06))
     goals = []
-    for environment in (Environment(containers=(box,)), None):
-        ctx = Context(info=info, params={}, environment=environment)
+    for ctx in _melfa_contexts():
         grasp = build_controller(Controller(name="jaw_grasp_correction", params={"hand_extent": MELFA_OPEN}), "arm",
                                  ctx)
         grasp.start(readings)
