@@ -525,12 +525,7 @@ class RobotDescription:
         CLEAR_LINE times another's motion) or do not move: such a hand grasps alike at any turn."""
         if not self.hand.pads:
             return None
-        moved = []
-        for posture in (start, end):
-            poses, tcp = self._hand_in(posture)
-            to_hand = np.linalg.inv(tcp)
-            moved.append(np.array([(to_hand @ poses[p.link] @ p.origin.matrix())[:2, 3] for p in self.hand.pads]))
-        sideways = moved[1] - moved[0]
+        sideways = self._pads_across(end) - self._pads_across(start)
         spread, axes = np.linalg.eigh(sideways.T @ sideways)
         if spread[1] <= 0.0 or spread[1] < CLEAR_LINE * spread[0]:
             return None
@@ -540,11 +535,17 @@ class RobotDescription:
         """How far apart the tactile pads' surfaces stand along the line at `line` (rad from
         the hand's x, about its approach axis) in `posture` (m): the widest object a hand
         closing along that line from that posture can take between its pads."""
+        if not self.hand.pads:
+            return 0.0
+        along = self._pads_across(posture) @ np.array([np.cos(line), np.sin(line)])
+        return float(along.max() - along.min())
+
+    def _pads_across(self, posture: str) -> np.ndarray:
+        """Where each tactile pad stands across the approach axis in `posture`: (pads, 2), m,
+        x y in the hand's frame (its TCP)."""
         poses, tcp = self._hand_in(posture)
         to_hand = np.linalg.inv(tcp)
-        way = np.array([np.cos(line), np.sin(line)])
-        along = [float((to_hand @ poses[p.link] @ p.origin.matrix())[:2, 3] @ way) for p in self.hand.pads]
-        return max(along) - min(along) if along else 0.0
+        return np.array([(to_hand @ poses[p.link] @ p.origin.matrix())[:2, 3] for p in self.hand.pads])
 
     def hand_in_boxes(self, posture: str, tcp: np.ndarray, boxes: list[tuple[Vec3, Vec3]]) -> dict[int, list[str]]:
         """Which of the world-aligned `boxes` (centre, size) the hand's links would cut into
