@@ -88,7 +88,9 @@ class CloseUntilForce(Controller):
     pads feel the object off their middle along the jaws' width, and ask the arm to move
     that way first: a pad's rim closing on a round object pushes it aside. That move stops
     after `max_recentre`: a contact still off-centre by then moves with the pad (a slanted
-    face pushed along), and following it would drag the object across the table.
+    face pushed along), and following it would drag the object across the table. A grip is
+    done only once that arm no longer rises off the support (`pressing`): until then, jaws
+    that close empty say so and the arm looks again.
     """
 
     def __init__(self, ctx: Context) -> None:
@@ -120,7 +122,8 @@ class CloseUntilForce(Controller):
                     board.jaws_brushed = self.brushed
                 else:
                     self.finish(Status.ERROR, "the jaws closed on nothing")
-            elif self.pressing and abs(float(readings.hand_dq[0])) < STILL and self._gripped(force):
+            elif (self.pressing and abs(float(readings.hand_dq[0])) < STILL and self._gripped(force)
+                  and not board.pressing):
                 board.fingers_stopped = True
                 limit = ", the squeeze at its limit" if force < CONFIRM * self.grasp_force else ""
                 self.finish(Status.DONE, f"grip force {force:.1f} N (asked {self.grasp_force:g} N{limit})")
