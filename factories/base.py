@@ -755,9 +755,9 @@ class Factory(ABC):
         turn = grasp_turn(obj, float(np.arctan2(closing[1], closing[0])), self.robot.pad_opening(start, line))
         if abs(turn) < TURN_TOLERANCE:
             return self._hand_down
-        # the same line half a turn further closes alike; within a quarter turn, TIE_SHORT short of it
-        ways = [float(np.clip(w, TIE_SHORT - np.pi / 2, np.pi / 2 - TIE_SHORT)) if abs(w) <= np.pi / 2 else w
-                for w in (turn, turn - np.copysign(np.pi, turn))]
+        ways = [turn, turn - np.copysign(np.pi, turn)]  # half a turn further the pads close along the same line
+        if abs(turn) > np.pi / 2 - TIE_SHORT:  # a quarter turn either way: each TIE_SHORT short of it
+            ways = [float(np.clip(w, TIE_SHORT - np.pi / 2, np.pi / 2 - TIE_SHORT)) for w in ways]
         centre = np.asarray(obj.pose.position, float)
         reached = []
         for way in ways:
