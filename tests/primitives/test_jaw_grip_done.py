@@ -1,7 +1,8 @@
 """A jaw grip is done only once the correcting arm no longer rises off the support: the
 Panda's jaws held a speaker's top edge for 1.5 s while its arm rose to take their press off
 the table, then closed empty; the hand had already said it held the object, so neither side
-looked again and the grasp waited out the task's 20 s (generalisation.toml, base seed 52391)."""
+looked again and the grasp waited out the task's 20 s (generalisation.toml, base seed 52391). And jaws
+pressing on something their pads do not feel look again."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ from atd.model.estd import Controller
 from atd.sim import load_description
 from atd.sim.simrobot import robot_info
 from primitives.base import Context, Status
+from primitives.hands.parallel_jaw import UNFELT_TIME
 from primitives.registry import build_controller
 from primitives.robot import Readings
 
@@ -49,3 +51,21 @@ def test_a_grip_lost_while_the_arm_rises_off_the_support_is_looked_for_again() -
     assert hand.status is Status.RUNNING and not ctx.blackboard.fingers_stopped
     hand.update(_jaws(0.0, 0.0), MELFA.control_period)  # slipped out: the jaws closed on nothing
     assert hand.status is Status.RUNNING and ctx.blackboard.jaws_empty
+
+
+def test_jaws_pressing_on_something_their_pads_do_not_feel_look_again() -> None:
+    """The Melfa's fingers stood on a tape roll's rim beside their pads, pressing with the pads
+    feeling nothing, until the task's timeout (PyBullet, the same campaign): after UNFELT_TIME
+    of that the jaws count as closed on nothing, reopen, and the arm looks elsewhere."""
+    ctx = Context(info=MELFA, params={}, environment=None)
+    ctx.blackboard.contact = True
+    hand = build_controller(Controller(name="close_until_force", params={}), "hand", ctx)
+    hand.start(_jaws(0.03, 0.0))
+    period = MELFA.control_period
+    empty_at = []
+    for tick in range(round(1.0 / period)):  # the jaws held at 3 cm, their pads touching nothing
+        hand.update(_jaws(0.03, 0.0), period)
+        if ctx.blackboard.jaws_empty:
+            empty_at.append(tick * period)
+    assert hand.status is Status.RUNNING
+    assert empty_at and UNFELT_TIME <= empty_at[0] <= UNFELT_TIME + 0.15, empty_at
