@@ -693,6 +693,8 @@ class Factory(ABC):
             carried["level"] = False
         elif down is not self._hand_down:
             carried["yaw"] = round(float(np.degrees(np.arctan2(down[1, 0], down[0, 0]))), 6)
+            if float(down[:, 0] @ self._hand_down[:, 0]) < 0.0:  # half a turn further: the wrist's way, not the shorter
+                carried["either_way"] = False
         return self.controller("cartesian_move", target=target, waypoints=via, **{**flags, **carried, **extra})
 
     def shape_offset(self, state: State, down: np.ndarray) -> Vec3:

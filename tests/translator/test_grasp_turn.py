@@ -15,6 +15,7 @@ from atd.model import load_task
 from atd.model.task import ObjectInfo, Pose, Task
 from atd.model.vocabulary import ObjectClass, StateType
 from factories.base import TURN_MARGIN
+from primitives.arm.motion import turn_to_yaw
 from factories.reach import Reach
 from factories.registry import create
 from translator import translate
@@ -102,6 +103,13 @@ def test_a_turn_that_would_leave_a_wrist_joint_near_its_stop_goes_half_a_turn_fu
     home = factory.robot.tcp_pose(np.asarray(factory.robot.home, float))[:3, 0]
     turn = math.remainder(math.radians(yaws[0]) - math.atan2(home[1], home[0]), math.tau)
     assert abs(turn) > math.pi / 2, yaws  # the least turn, -60 degrees, left the wrist no room
+    result = translate(task, factory)
+    assert result.estd is not None
+    moves = [s.arm for s in result.estd.states if s.type is StateType.MOVE and s.arm is not None]
+    assert all(m.params.get("either_way") is False for m in moves)  # the move turns that way, not the shorter
+    level = np.array([[-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]])  # at home: hand x along -x, down
+    np.testing.assert_allclose((turn_to_yaw(level, math.radians(yaws[0]), math.pi, either_way=False) @ level)[:2, 0],
+                               (math.cos(math.radians(yaws[0])), math.sin(math.radians(yaws[0]))), atol=1e-9)
     reach = Reach(factory.robot)
     c, s = math.cos(math.radians(yaws[0])), math.sin(math.radians(yaws[0]))
     down = np.array([[c, s, 0.0], [s, -c, 0.0], [0.0, 0.0, -1.0]])
