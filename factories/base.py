@@ -27,6 +27,7 @@ from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamValue, SensorKin
 from atd.model.estd import Condition, ConditionGroup, Controller
 from atd.model.frames import GRAVITY, rotation_rpy, rpy_of
 from atd.model.ranges import FORCE, WEIGHT
+from atd.model.validate import value_kinds
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
 from atd.model.vocabulary import (FIRED_BY, PERCEPTUAL_PRIMITIVES, EventType, HandShape, Movement, PerceptionMethod,
                                   StateType, ValueKind)
@@ -298,8 +299,10 @@ class Factory(ABC):
         """explore and perceive: the same controllers on every robot (docs/perception.md),
         given this robot's own geometry; refused where the robot cannot do what they need."""
         if state.type is StateType.EXPLORE:
+            touching = self.acting_point(state, touching=True)
             arm = self.controller("explore", direction=state.direction, force_threshold=state.contact_force,
-                                  max_distance=state.max_distance, writes=written(state, ValueKind.POINT))
+                                  max_distance=state.max_distance, writes=written(state, ValueKind.POINT),
+                                  hand_point=tuple(round(v, 6) for v in touching) if any(touching) else None)
             return NodeMapping("explore", arm, *self.hand_for_motion(state))
         # The hand perceives in the state's shape, closed by default: the narrowest sweep.
         made, notes = self.shape(state.hand_shape or HandShape.CLOSED)
@@ -544,8 +547,8 @@ class Factory(ABC):
 
     def posture(self, shape: HandShape, state: State) -> str:
         """The hand's posture for a shape in a state: a closed hand holds nothing, so in a
-        move or push it takes the posture its description pushes with (`Hand.push_posture`)."""
-        if shape is HandShape.CLOSED and state.type in (StateType.MOVE, StateType.PUSH):
+        move, push or explore it takes the posture its description pushes with (`Hand.push_posture`)."""
+        if shape is HandShape.CLOSED and state.type in (StateType.MOVE, StateType.PUSH, StateType.EXPLORE):
             return self.robot.hand.push_posture
         return shape.value
 
@@ -681,7 +684,9 @@ class Factory(ABC):
         flags = arm_motion_flags(state)
         if state.type is StateType.PUSH:
             return self.controller("push", target=target, waypoints=via, keep_orientation=flags["keep_orientation"])
-        if state.target_from is not None and any(point := self.acting_point(state)):  # read at run time: the move places it
+        touched = state.target_from is not None and value_kinds(context.task).get(state.target_from, (None,))[0] \
+            is ValueKind.POINT
+        if state.target_from is not None and any(point := self.acting_point(state, touched)):  # read at run time
             extra = {**extra, "hand_point": tuple(round(v, 6) for v in point)}
         margin = CARRIED_MARGIN.get(state.type)
         carried: dict[str, ParamValue] = {} if margin is None else {"contact_margin": margin}
@@ -712,16 +717,21 @@ class Factory(ABC):
         x, y, z = (float(v) for v in down @ np.asarray(self.acting_point(state), float))
         return (x, y, z)
 
-    def acting_point(self, state: State) -> Vec3:
+    def acting_point(self, state: State, touching: bool = False) -> Vec3:
         """Where the state's hand shape acts, from the TCP in the hand frame (`shape_offset`
-        says which point that is); the TCP itself when the state names no shape."""
+        says which point that is); the TCP itself when the state names no shape. `touching`:
+        the state touches, or goes to a point an explore touched (a `point` value), so its
+        hand acts with its lowest point (`hand_reach`) under that: the task says where the
+        fingertips go from a felt surface (a pinch 18 mm down a cap from its top), and each
+        hand's own geometry (the SDH2's thumb 21 mm under its TCP and 57 mm from its pinch,
+        a gripper's jaws 10-24 mm under its TCP) puts its TCP there."""
         if state.hand_shape is None:
             return (0.0, 0.0, 0.0)
         made, _ = self.shape(state.hand_shape)
         posture = self.posture(made, state)
         robot = self.robot
         x, y, z = (float(v) for v in robot.hand.grasp_centres.get(posture, (0.0, 0.0, 0.0)))
-        if posture != made.value:  # a push posture of its own: its lowest point
+        if touching or posture != made.value:  # a push posture of its own: its lowest point
             z = robot.hand_reach(posture)
         return (x, y, z)
 
