@@ -68,6 +68,10 @@ SWEEPING_TIP = 0.02
 # the hand's heading
 TIE_SHORT = np.radians(1.0)
 TURN_TOLERANCE = np.radians(1.0)  # rad: a turn to the object under a degree changes no grasp; the hand keeps its yaw
+# rad: room each arm joint keeps from its limit where a turned grasp puts it: the approach error
+# turns the hand up to 15 degrees about each axis (thesis 3.4.1), and Baxter's left wrist roll, left
+# 8 degrees from its stop by a -60 degree turn at (0.20, -0.12), stopped 2 of 4 approaches there
+TURN_MARGIN = np.radians(15.0)
 WRIST_ALIGNED = 0.99  # cos: a last joint within 8 degrees of the approach axis rolls the hand about it (ours)
 
 
@@ -694,6 +698,8 @@ class Factory(ABC):
             carried["level"] = False
         elif down is not self._hand_down:
             carried["yaw"] = round(float(np.degrees(np.arctan2(down[1, 0], down[0, 0]))), 6)
+            if float(down[:, 0] @ self._hand_down[:, 0]) < 0.0:  # half a turn further: the wrist's way, not the shorter
+                carried["either_way"] = False
         return self.controller("cartesian_move", target=target, waypoints=via, **{**flags, **carried, **extra})
 
     def shape_offset(self, state: State, down: np.ndarray) -> Vec3:
@@ -732,8 +738,10 @@ class Factory(ABC):
     def coming_down(self, state: State, context: MappingContext) -> np.ndarray:
         """The hand pointing down as a move brings it onto the object a grasp then closes on,
         turned about the vertical so that its pads close across the object's narrowest width
-        as the task believes it stands (`grasp_turn`), by the least turn the arm reaches (a
-        quarter turn either way closes alike: TIE_SHORT). `_hand_down` itself (the home yaw)
+        as the task believes it stands (`grasp_turn`), by the least turn the arm reaches with
+        every joint TURN_MARGIN from its limits, else half a turn further (the pads close
+        along the same line) where that keeps the margin, else the least turn it reaches at
+        all (a quarter turn either way closes alike: TIE_SHORT). `_hand_down` itself (the home yaw)
         where no turn is needed (the open pads take the object with room) or reached, where
         the task turns the hand on the way there (`_turnable`), or where it does not say the
         object's shape or size. A grasp state is turned as the move it comes from."""
@@ -759,15 +767,20 @@ class Factory(ABC):
         turn = grasp_turn(obj, float(np.arctan2(closing[1], closing[0])), self.robot.pad_opening(start, line))
         if abs(turn) < TURN_TOLERANCE:
             return self._hand_down
-        ways = (turn, turn - np.copysign(np.pi, turn)) if abs(turn) > np.pi / 2 - TIE_SHORT else (turn,)
+        ways = [turn, turn - np.copysign(np.pi, turn)]  # half a turn further the pads close along the same line
+        if abs(turn) > np.pi / 2 - TIE_SHORT:  # a quarter turn either way: each TIE_SHORT short of it
+            ways = [float(np.clip(w, TIE_SHORT - np.pi / 2, np.pi / 2 - TIE_SHORT)) for w in ways]
         centre = np.asarray(obj.pose.position, float)
+        reached = []
         for way in ways:
-            down = rotation_rpy((0.0, 0.0, float(np.clip(way, TIE_SHORT - np.pi / 2, np.pi / 2 - TIE_SHORT)))) \
-                @ self._hand_down
-            centres = (np.asarray(self.robot.hand.grasp_centres.get(p, (0.0,) * 3)) for p in (start, end))
-            if all(self._reach.why_not(tuple(centre - down @ c), down) is None for c in centres):
-                return down
-        return self._hand_down
+            down = rotation_rpy((0.0, 0.0, way)) @ self._hand_down
+            tcps = [tuple(centre - down @ np.asarray(self.robot.hand.grasp_centres.get(p, (0.0,) * 3)))
+                    for p in (start, end)]
+            if all(self._reach.why_not(tcp, down) is None for tcp in tcps):
+                if min(self._reach.margin(tcp, down) for tcp in tcps) >= TURN_MARGIN:
+                    return down
+                reached.append(down)
+        return reached[0] if reached else self._hand_down
 
     @staticmethod
     def _turnable(move: State) -> bool:

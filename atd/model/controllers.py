@@ -162,6 +162,8 @@ _MOVE = {
                    "degrees of where the first such turn started; unset keeps the yaw it starts with. A target from "
                    "an approach sets it to the approach's (ours, thesis 3.4.3)", unit="deg",
               limits=ranges.YAW),
+    "either_way": _p(FLAG, "with yaw: the opposite way too where that is the smaller turn; off, that yaw itself, "
+                           "the way the factory rehearsed for a wrist kept off its stops (ours, issue 33)", True),
     "hand_point": _p(VEC, "the point of the hand the target is for, from the TCP in the hand frame at the target: "
                      "a target read from a named value is for where the state's hand shape acts (the SDH2's "
                      "pinch, 19 mm off its TCP; at a point an explore touched, the hand's lowest point under it), "
