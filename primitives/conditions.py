@@ -110,7 +110,7 @@ class Fault(Condition):
         if self.side == "arm":
             q = readings.arm_q
             stuck = (q <= self.lower) | (q >= self.upper)
-            if self.on_limit(bool(stuck.any()), dt):
+            if self.on_limit(np.count_nonzero(stuck) > 0, dt):
                 joint = self.ctx.info.arm_joints[int(np.argmax(stuck))]
                 self.evidence = {"joint_on_limit": joint, "q": q[np.argmax(stuck)], "for": self.on_limit.held}
                 return True
@@ -285,9 +285,10 @@ class FingersStill(Debounced):
     def test(self, readings: Readings, dt: float) -> bool:
         q = readings.hand_q[self.joints]
         self.recent.add(readings.time, q, readings.time - self.tau)
-        spread = np.ptp(self.recent.rows(), axis=0) / max(self.tau, dt)
+        rows = self.recent.rows()
+        spread = (rows.max(axis=0) - rows.min(axis=0)) / max(self.tau, dt)  # np.ptp without its wrappers
         speed = np.maximum(np.abs(q - self.mean(q, dt)) / max(self.tau, dt), spread)
-        rate = float(np.max(speed / self.travel, initial=0.0))
+        rate = float((speed / self.travel).max(initial=0.0))
         self.evidence = {"drift": round(rate, 4), "still_below": self.drift}
         return rate < self.drift
 

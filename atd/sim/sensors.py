@@ -95,7 +95,7 @@ class TaxelImages:
 
     def __call__(self, pad: np.ndarray, xy: np.ndarray, force: np.ndarray) -> tuple[dict[str, np.ndarray | None], np.ndarray]:
         """Images by pad name (None for a pad without an array) and the force on each pad."""
-        if len(pad) == 0 or not force.any():  # a hand touching nothing, most of a run: all zero
+        if len(pad) == 0 or not np.count_nonzero(force):  # a hand touching nothing, most of a run: all zero
             flat, total = np.zeros(self._size), np.zeros(self._n)
         else:
             # MuJoCo reports the same contact slots every tick: their constants are gathered once.
