@@ -73,8 +73,14 @@ class ConditionTree:
         if self.leaf:
             return self.leaf.verdict
         if self.every:
-            return all(child.holds() for child in self.children)
-        return any(child.holds() for child in self.children)
+            for child in self.children:
+                if not child.holds():
+                    return False
+            return True
+        for child in self.children:
+            if child.holds():
+                return True
+        return False
 
     def evidence(self) -> list[dict]:
         """The leaves behind a verdict, with the readings each recorded."""
@@ -195,7 +201,10 @@ class Machine:
         for leaf in self.leaves:
             leaf.verdict = leaf.condition.holds(readings, view, dt)
         for edge in self.edges:
-            if all(tree.holds() for _, tree in edge.events):
+            for _, tree in edge.events:
+                if not tree.holds():
+                    break
+            else:
                 return edge
         return None
 
