@@ -95,6 +95,8 @@ class JawGraspCorrection(Controller):
         self.jaw_half_width = float(p["jaw_half_width"])
         self.step = float(p["search_step"])
         self.offsets = search_offsets(self.step, int(p["search_points"]))
+        top = p.get("object_top")
+        self.seen_top = None if top is None else float(top)  # m, world z: the top a perceive state saw
         self.walls = KnownWalls.of(ctx)
         self.contact = ContactWrench(float(p["filter_time"]))
         self.shaper = TwistShaper()  # a sudden reversal shakes the wrist like a contact
@@ -148,10 +150,11 @@ class JawGraspCorrection(Controller):
 
     def _object_top(self) -> float:
         """The depth of the object's face the hand meets first, as the task believes it: its
-        top, or its side facing a grasp from the side (-inf: the task does not say)."""
+        top, or its side facing a grasp from the side; for a task that knows no object, the
+        top a perceive state saw (`object_top`) from above (-inf: neither says)."""
         obj = self.ctx.object
         if obj is None or obj.pose is None:
-            return -np.inf
+            return self.seen_top if self.seen_top is not None and self.vertical else -np.inf
         centre = np.asarray(obj.pose.position, float)
         return self._depth(centre) + (obj.half_height if self.vertical else obj.footprint_width / 2.0)
 
