@@ -160,11 +160,17 @@ class JawGraspCorrection(Controller):
 
     def _grasp_height(self) -> float:
         """The depth where the TCP closes on the object: level with its centre, as the task
-        believes it, or higher for an object shorter than the jaws' pads, whose fingertips
-        would otherwise press on the support (and its pads feel that as a grip); on its axis
-        for a grasp from the side."""
+        believes it (or halfway down to the support from the top a perceive state saw: the
+        middle of an object standing there), or higher for an object shorter than the jaws'
+        pads, whose fingertips would otherwise press on the support (and its pads feel that
+        as a grip); on its axis for a grasp from the side."""
         obj = self.ctx.object
-        centre = -np.inf if obj is None or obj.pose is None else self._depth(np.asarray(obj.pose.position, float))
+        if obj is not None and obj.pose is not None:
+            centre = self._depth(np.asarray(obj.pose.position, float))
+        elif self.seen_top is not None and self.vertical:
+            centre = (self.seen_top + self._support()) / 2.0
+        else:
+            centre = -np.inf
         return max(centre, self._support() + self.reach + FLOOR_CLEARANCE) if self.vertical else centre
 
     def _support(self) -> float:
