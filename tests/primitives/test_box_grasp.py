@@ -173,3 +173,25 @@ def test_a_jaw_grasp_told_the_top_vision_saw_clears_it_and_closes_halfway_down_t
     assert made[0] == (pytest.approx(0.095 + 0.04), pytest.approx((0.095 + 0.01) / 2))  # a standing can: its middle
     assert made[1] == (pytest.approx(0.12), pytest.approx(over_the_floor))  # 2 cm up; a 3.5 cm object: low
     assert made[2] == (pytest.approx(0.12), pytest.approx(over_the_floor))
+
+
+def test_a_jaw_grasp_told_the_top_vision_saw_does_not_close_above_it() -> None:
+    """A jaw meeting something with the TCP still over the seen top (the fingertips less than
+    their reach past it) would grip the top's edge at best: the hand goes on to where the
+    contact placed the object instead of closing there; under the top, and with no top told,
+    it closes."""
+    box, _ = _melfa_contexts()
+    phases = []
+    for top, tcp_z in ((0.05, 0.06), (0.05, 0.045), (None, 0.06)):
+        params = {"hand_extent": MELFA_OPEN, "fingertip_reach": 0.0238, "max_shifts": 0,
+                  **({} if top is None else {"object_top": top})}
+        grasp = build_controller(Controller(name="jaw_grasp_correction", params=params), "arm", box)
+        at = _tcp(0.18, 0.15)
+        at[2, 3] = tcp_z
+        grasp.start(_still_at(at))
+        grasp._start_descent(_still_at(at))
+        force = np.array([0.0, 0.0, -5.0])  # pushed up, in the hand's frame (its z points down)
+        lever = np.array([0.0, 0.03, grasp.wrist_to_tcp])  # under one jaw, 3 cm across
+        grasp._met(_still_at(at), np.concatenate([force, np.cross(lever, force)]))
+        phases.append(grasp.phase)
+    assert phases == ["move", "close", "close"]
