@@ -64,6 +64,10 @@ PRESSED = 5.0  # N up on the wrist, beyond the empty hand's load, while the jaws
 RELIEF_GAIN = 0.002  # m/s per newton pressed beyond PRESSED: the arm rises to take it off
 MAX_RELIEF = 0.02  # m the arm rises for that in one close, at most
 FREE_LOAD_WINDOW = 0.1  # s: the empty hand's load is the wrist's mean over the end of a move in free air
+# m the fingertips must reach past a top a perceive state saw for the jaws to close: closed with
+# them at that top they held nothing, while 1.2 cm under a wood block's top they lifted it
+# (Melfa, MuJoCo, docs/empty-the-box.md); a seen top is good to a few millimetres
+PAST_SEEN_TOP = 0.005
 
 
 def bisected(across: float, last: float) -> float:
@@ -291,13 +295,12 @@ class JawGraspCorrection(Controller):
             on_support = self.vertical and float(readings.tcp[2, 3]) - self.reach - self._support() < SUPPORT_BAND
             self.hint = None if not off_centre or on_support or self.hinted else \
                 readings.tcp[:3, 3] + readings.tcp[:3, :3] @ clamp_norm(across, self.max_shift)
-            if self.seen_top is not None and not below_top:
-                # Over a top a perceive state saw, the pads would hold at most its edge: jaws
-                # closed 0.7 cm under a leaning roll of tape's top gripped it at 10-13 N and lost
-                # it at once, and closed at the top, nothing (Melfa, MuJoCo, docs/empty-the-box.md).
-                # The hand goes on as if they had closed there on nothing.
+            if self.seen_top is not None and self._depth(readings.tcp[:3, 3]) - self.reach > \
+                    self.seen_top - PAST_SEEN_TOP:
+                # The fingertips barely past the top a perceive state saw: the pads would close
+                # over it. The hand goes on as if they had closed there on nothing.
                 self.goal = readings.tcp[:3, 3].copy()
-                self._search_on(readings, "a jaw met what it came down on above its seen top")
+                self._search_on(readings, "a jaw met something with the fingertips at the seen top")
                 return
             self._close_here(readings, self.back_off)
             return
