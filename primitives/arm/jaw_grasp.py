@@ -17,7 +17,9 @@ palm's contact placed the object, or a step beyond the pads' edge that brushed i
 way (`jaws_brushed`), or else to the next point of a bounded search along
 the jaws' width, alternating sides, around where the approach left it and the moves
 across have since taken it. While the jaws close it follows the hand's `arm_nudge`
-(re-centring on the pads' contact) and ends once `fingers_stopped`.
+(re-centring on the pads' contact) and ends once `fingers_stopped`. A task that knows no
+object may give it the top a perceive state saw (`object_top`): it stands in for the object's
+top, and the jaws do not close before the fingertips are past it.
 """
 
 from __future__ import annotations
@@ -295,8 +297,8 @@ class JawGraspCorrection(Controller):
             on_support = self.vertical and float(readings.tcp[2, 3]) - self.reach - self._support() < SUPPORT_BAND
             self.hint = None if not off_centre or on_support or self.hinted else \
                 readings.tcp[:3, 3] + readings.tcp[:3, :3] @ clamp_norm(across, self.max_shift)
-            if self.seen_top is not None and self._depth(readings.tcp[:3, 3]) - self.reach > \
-                    self.seen_top - PAST_SEEN_TOP:
+            if self.seen_top is not None and self.vertical and \
+                    float(readings.tcp[2, 3]) - self.reach > self.seen_top - PAST_SEEN_TOP:
                 # The fingertips barely past the top a perceive state saw: the pads would close
                 # over it. The hand goes on as if they had closed there on nothing.
                 self.goal = readings.tcp[:3, 3].copy()
