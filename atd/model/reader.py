@@ -581,7 +581,8 @@ class TaskReader:
             self._error("ATD103", "<object_top> holds no number", node,
                         'name the value that gives it at run time: <object_top from="approach"/>')
             return None
-        return self._reference(node, "from", 'e.g. <object_top from="approach"/>, naming a value a perceive state writes')
+        return self._reference(node, "from",
+                               'e.g. <object_top from="approach"/>, naming a value a perceive state writes')
 
     def _binding(self, node: etree._Element, into: dict[str, str]) -> None:
         """`<input name="approach" from="found"/>` on a sub-task state: its input from this task's value."""

@@ -257,9 +257,9 @@ def _kinds(task: Task) -> list[Diagnostic]:
                                "read a value a perceive (pose) or explore (point) state writes"))
         if state.top_from in kinds and kinds[state.top_from][0] not in TOP_KINDS:
             kind, by = kinds[state.top_from]
-            found.append(error("ATD222", f"state '{state.name}' takes the object's top from '{state.top_from}', a "
-                                         f"{kind.value} ({by}); a top is read from a perceive state's approach (a pose)",
-                               state.loc, "read the pose a perceive state writes"))
+            found.append(error("ATD222", f"state '{state.name}' takes the object's top from '{state.top_from}', "
+                                         f"a {kind.value} ({by}); a top is read from a perceive state's approach "
+                                         "(a pose)", state.loc, "read the pose a perceive state writes"))
     return found
 
 
