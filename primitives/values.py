@@ -15,7 +15,8 @@ import numpy as np
 
 @dataclass(frozen=True)
 class Contact:
-    """Where an `explore` move felt something: the TCP's position when it did (world frame),
+    """Where an `explore` move felt something: the position (world frame) of the point of the
+    hand that touched when it did (the TCP where its state names no hand shape),
     which sensor felt it ("wrist", or the pad's name), how hard (N), and the direction the
     hand was moving in (a unit world vector). An ATD `point` value."""
 

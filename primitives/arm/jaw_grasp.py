@@ -215,6 +215,7 @@ class JawGraspCorrection(Controller):
         relieved = True
         if self.phase == "close":
             relieved = self._relieve(readings, dt)
+        board.pressing = not relieved
         if self.phase in ("close", "hold"):
             v = GAIN * (self.goal - position) + (v if self.phase == "close" else 0.0)
         if self.phase == "close" and board.fingers_stopped and relieved:

@@ -274,7 +274,7 @@ def test_the_seen_top_a_grasp_reads_is_read_written_and_translated(tmp_path) -> 
 
 
 def test_a_target_offset_is_read_written_and_translated_with_its_value(tmp_path) -> None:
-    """examples/unscrew_by_touch.xml pinches a known height over the cap top an explore felt."""
+    """examples/unscrew_by_touch.xml pinches a known depth under the cap top an explore felt."""
     from atd.model.estd_xml import estd_to_xml, parse_estd
     from factories.registry import create
     from translator import translate
@@ -282,13 +282,13 @@ def test_a_target_offset_is_read_written_and_translated_with_its_value(tmp_path)
     original, found = load_task(REPO / "examples" / "unscrew_by_touch.xml")
     assert not found
     assert original.states_by_name["around_cap"].target_from == "cap_top"
-    assert original.states_by_name["around_cap"].target_offset == (0.038, 0.0, -0.022)
+    assert original.states_by_name["around_cap"].target_offset == (0.0, 0.0, -0.018)
     copy = tmp_path / "copy.xml"
     copy.write_bytes(task_to_xml(original))
     assert load_task(copy)[0] == original
     estd = translate(original, create("tombatossals", "left")).estd
     read, problems = parse_estd(estd_to_xml(estd), "x.estd.xml")
-    assert not problems and read.states_by_name["carry_cap"].target_offset == (0.057, -0.15, 0.08)
+    assert not problems and read.states_by_name["carry_cap"].target_offset == (0.0, -0.15, 0.1)
 
 
 def test_validate_prints_located_lines_and_exits_1_without_a_traceback(atd_file) -> None:
