@@ -25,7 +25,7 @@ from atd.model.estd import ConditionGroup, Estd, EstdEvent, EstdState, EstdTrans
 from atd.model.vocabulary import StateType
 from atd.runtime.arbitrator import RobotCommand, arbitrate
 from atd.runtime.trace import Trace
-from atd.runtime.values import ArmMemory, arm_for, bind_inputs, targeted
+from atd.runtime.values import ArmMemory, arm_for, bind_inputs, targeted, topped
 from primitives.base import Condition, Context, ControlData, Status, StateView
 from primitives.blackboard import ARM_TWIST, Blackboard
 from primitives.registry import BuildError, build_condition, build_controller
@@ -148,7 +148,7 @@ class Machine:
         outer, readings = readings, self._mine(readings)
         self.entered = readings.time
         ctx = replace(base, blackboard=Blackboard())
-        arm = arm_for(state, base.memory)
+        arm = topped(arm_for(state, base.memory), state, base.memory)
         self.arm = build_controller(arm, "arm", ctx) if arm else None
         self.hand = build_controller(state.hand, "hand", ctx) if state.hand else None
         leaves: dict[tuple, SharedLeaf] = {}
