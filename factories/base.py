@@ -27,6 +27,7 @@ from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamValue, SensorKin
 from atd.model.estd import Condition, ConditionGroup, Controller
 from atd.model.frames import GRAVITY, rotation_rpy, rpy_of
 from atd.model.ranges import FORCE, WEIGHT
+from atd.model.validate import value_kinds
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
 from atd.model.vocabulary import (FIRED_BY, PERCEPTUAL_PRIMITIVES, EventType, HandShape, Movement, PerceptionMethod,
                                   StateType, ValueKind)
@@ -67,6 +68,10 @@ SWEEPING_TIP = 0.02
 # the hand's heading
 TIE_SHORT = np.radians(1.0)
 TURN_TOLERANCE = np.radians(1.0)  # rad: a turn to the object under a degree changes no grasp; the hand keeps its yaw
+# rad: room each arm joint keeps from its limit where a turned grasp puts it: the approach error
+# turns the hand up to 15 degrees about each axis (thesis 3.4.1), and Baxter's left wrist roll, left
+# 8 degrees from its stop by a -60 degree turn at (0.20, -0.12), stopped 2 of 4 approaches there
+TURN_MARGIN = np.radians(15.0)
 WRIST_ALIGNED = 0.99  # cos: a last joint within 8 degrees of the approach axis rolls the hand about it (ours)
 
 
@@ -294,8 +299,10 @@ class Factory(ABC):
         """explore and perceive: the same controllers on every robot (docs/perception.md),
         given this robot's own geometry; refused where the robot cannot do what they need."""
         if state.type is StateType.EXPLORE:
+            touching = self.acting_point(state, touching=True)
             arm = self.controller("explore", direction=state.direction, force_threshold=state.contact_force,
-                                  max_distance=state.max_distance, writes=written(state, ValueKind.POINT))
+                                  max_distance=state.max_distance, writes=written(state, ValueKind.POINT),
+                                  hand_point=tuple(round(v, 6) for v in touching) if any(touching) else None)
             return NodeMapping("explore", arm, *self.hand_for_motion(state))
         # The hand perceives in the state's shape, closed by default: the narrowest sweep.
         made, notes = self.shape(state.hand_shape or HandShape.CLOSED)
@@ -540,8 +547,8 @@ class Factory(ABC):
 
     def posture(self, shape: HandShape, state: State) -> str:
         """The hand's posture for a shape in a state: a closed hand holds nothing, so in a
-        move or push it takes the posture its description pushes with (`Hand.push_posture`)."""
-        if shape is HandShape.CLOSED and state.type in (StateType.MOVE, StateType.PUSH):
+        move, push or explore it takes the posture its description pushes with (`Hand.push_posture`)."""
+        if shape is HandShape.CLOSED and state.type in (StateType.MOVE, StateType.PUSH, StateType.EXPLORE):
             return self.robot.hand.push_posture
         return shape.value
 
@@ -677,7 +684,9 @@ class Factory(ABC):
         flags = arm_motion_flags(state)
         if state.type is StateType.PUSH:
             return self.controller("push", target=target, waypoints=via, keep_orientation=flags["keep_orientation"])
-        if state.target_from is not None and any(point := self.acting_point(state)):  # read at run time: the move places it
+        touched = state.target_from is not None and value_kinds(context.task).get(state.target_from, (None,))[0] \
+            is ValueKind.POINT
+        if state.target_from is not None and any(point := self.acting_point(state, touched)):  # read at run time
             extra = {**extra, "hand_point": tuple(round(v, 6) for v in point)}
         margin = CARRIED_MARGIN.get(state.type)
         carried: dict[str, ParamValue] = {} if margin is None else {"contact_margin": margin}
@@ -689,6 +698,8 @@ class Factory(ABC):
             carried["level"] = False
         elif down is not self._hand_down:
             carried["yaw"] = round(float(np.degrees(np.arctan2(down[1, 0], down[0, 0]))), 6)
+            if float(down[:, 0] @ self._hand_down[:, 0]) < 0.0:  # half a turn further: the wrist's way, not the shorter
+                carried["either_way"] = False
         return self.controller("cartesian_move", target=target, waypoints=via, **{**flags, **carried, **extra})
 
     def shape_offset(self, state: State, down: np.ndarray) -> Vec3:
@@ -706,24 +717,31 @@ class Factory(ABC):
         x, y, z = (float(v) for v in down @ np.asarray(self.acting_point(state), float))
         return (x, y, z)
 
-    def acting_point(self, state: State) -> Vec3:
+    def acting_point(self, state: State, touching: bool = False) -> Vec3:
         """Where the state's hand shape acts, from the TCP in the hand frame (`shape_offset`
-        says which point that is); the TCP itself when the state names no shape."""
+        says which point that is); the TCP itself when the state names no shape. `touching`:
+        the state touches, or goes to a point an explore touched (a `point` value), so its
+        hand acts with its lowest point (`hand_reach`) under that: the task says where the
+        fingertips go from a felt surface (a pinch 18 mm down a cap from its top), and each
+        hand's own geometry (the SDH2's thumb 21 mm under its TCP and 57 mm from its pinch,
+        a gripper's jaws 10-24 mm under its TCP) puts its TCP there."""
         if state.hand_shape is None:
             return (0.0, 0.0, 0.0)
         made, _ = self.shape(state.hand_shape)
         posture = self.posture(made, state)
         robot = self.robot
         x, y, z = (float(v) for v in robot.hand.grasp_centres.get(posture, (0.0, 0.0, 0.0)))
-        if posture != made.value:  # a push posture of its own: its lowest point
+        if touching or posture != made.value:  # a push posture of its own: its lowest point
             z = robot.hand_reach(posture)
         return (x, y, z)
 
     def coming_down(self, state: State, context: MappingContext) -> np.ndarray:
         """The hand pointing down as a move brings it onto the object a grasp then closes on,
         turned about the vertical so that its pads close across the object's narrowest width
-        as the task believes it stands (`grasp_turn`), by the least turn the arm reaches (a
-        quarter turn either way closes alike: TIE_SHORT). `_hand_down` itself (the home yaw)
+        as the task believes it stands (`grasp_turn`), by the least turn the arm reaches with
+        every joint TURN_MARGIN from its limits, else half a turn further (the pads close
+        along the same line) where that keeps the margin, else the least turn it reaches at
+        all (a quarter turn either way closes alike: TIE_SHORT). `_hand_down` itself (the home yaw)
         where no turn is needed (the open pads take the object with room) or reached, where
         the task turns the hand on the way there (`_turnable`), or where it does not say the
         object's shape or size. A grasp state is turned as the move it comes from."""
@@ -749,15 +767,20 @@ class Factory(ABC):
         turn = grasp_turn(obj, float(np.arctan2(closing[1], closing[0])), self.robot.pad_opening(start, line))
         if abs(turn) < TURN_TOLERANCE:
             return self._hand_down
-        ways = (turn, turn - np.copysign(np.pi, turn)) if abs(turn) > np.pi / 2 - TIE_SHORT else (turn,)
+        ways = [turn, turn - np.copysign(np.pi, turn)]  # half a turn further the pads close along the same line
+        if abs(turn) > np.pi / 2 - TIE_SHORT:  # a quarter turn either way: each TIE_SHORT short of it
+            ways = [float(np.clip(w, TIE_SHORT - np.pi / 2, np.pi / 2 - TIE_SHORT)) for w in ways]
         centre = np.asarray(obj.pose.position, float)
+        reached = []
         for way in ways:
-            down = rotation_rpy((0.0, 0.0, float(np.clip(way, TIE_SHORT - np.pi / 2, np.pi / 2 - TIE_SHORT)))) \
-                @ self._hand_down
-            centres = (np.asarray(self.robot.hand.grasp_centres.get(p, (0.0,) * 3)) for p in (start, end))
-            if all(self._reach.why_not(tuple(centre - down @ c), down) is None for c in centres):
-                return down
-        return self._hand_down
+            down = rotation_rpy((0.0, 0.0, way)) @ self._hand_down
+            tcps = [tuple(centre - down @ np.asarray(self.robot.hand.grasp_centres.get(p, (0.0,) * 3)))
+                    for p in (start, end)]
+            if all(self._reach.why_not(tcp, down) is None for tcp in tcps):
+                if min(self._reach.margin(tcp, down) for tcp in tcps) >= TURN_MARGIN:
+                    return down
+                reached.append(down)
+        return reached[0] if reached else self._hand_down
 
     @staticmethod
     def _turnable(move: State) -> bool:

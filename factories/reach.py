@@ -46,7 +46,8 @@ class Reach:
         self.lower = np.array([robot.joints[n].lower for n in robot.arm_joints])
         self.upper = np.array([robot.joints[n].upper for n in robot.arm_joints])
         self.speeds = np.array([robot.joints[n].velocity for n in robot.arm_joints])
-        self._known: dict[tuple[float, ...], str | None] = {}
+        # per point and rotation: why the arm does not get there (None: it does), and the joints it ends at
+        self._known: dict[tuple[float, ...], tuple[str | None, np.ndarray]] = {}
 
     def reachable(self, point: Vec3) -> bool:
         """The TCP at `point` with the hand pointing down (its home yaw)."""
@@ -55,24 +56,36 @@ class Reach:
     def why_not(self, point: Vec3, rotation: np.ndarray) -> str | None:
         """None when the arm puts the TCP at `point` with the hand's `rotation` (world), else
         what stops it: 'beyond the arm's reach', the joint at its limit, or a singularity."""
+        return self._solved(point, rotation)[0]
+
+    def margin(self, point: Vec3, rotation: np.ndarray) -> float:
+        """How near its limit (rad, or m for a sliding joint) the arm's closest joint stands
+        where it gets to `point` with the hand's `rotation`: room left for an approach that
+        arrives turned off its plan."""
+        q = self._solved(point, rotation)[1]
+        return float(np.min(np.minimum(q - self.lower, self.upper - q)))
+
+    def _solved(self, point: Vec3, rotation: np.ndarray) -> tuple[str | None, np.ndarray]:
         key = tuple(round(float(v), 4) for v in (*point, *np.asarray(rotation).ravel()))
         if key not in self._known:
             self._known[key] = self._solve(np.asarray(point, float), np.asarray(rotation, float))
         return self._known[key]
 
-    def _solve(self, point: np.ndarray, rotation: np.ndarray) -> str | None:
+    def _solve(self, point: np.ndarray, rotation: np.ndarray) -> tuple[str | None, np.ndarray]:
         if np.linalg.norm(point - self.shoulder) > self.stretched:
-            return f"it lies {np.linalg.norm(point - self.shoulder):.2f} m from the shoulder, beyond the arm's reach"
+            return (f"it lies {np.linalg.norm(point - self.shoulder):.2f} m from the shoulder, beyond the arm's reach",
+                    self.home)
         target = np.eye(4)
         target[:3, :3] = rotation
         target[:3, 3] = point
         if np.allclose(rotation, self.rotation):
-            _, error = self.robot.inverse_kinematics(target, self.home)
-            return None if error < TOLERANCE else "the arm cannot put the TCP there with the hand pointing down"
+            q, error = self.robot.inverse_kinematics(target, self.home)
+            return None if error < TOLERANCE else "the arm cannot put the TCP there with the hand pointing down", q
         return self._rehearse(target)
 
-    def _rehearse(self, target: np.ndarray) -> str | None:
-        """Move from home towards `target` as the run would; None once there, else why not."""
+    def _rehearse(self, target: np.ndarray) -> tuple[str | None, np.ndarray]:
+        """Move from home towards `target` as the run would; None once there, else why not;
+        with the joints where it ended."""
         q = self.home.copy()
         best, best_at, t = np.inf, 0.0, 0.0
         while t < LONGEST:
@@ -81,17 +94,17 @@ class Reach:
             turn = rotation_error(target[:3, :3], pose[:3, :3])
             distance, angle = float(np.linalg.norm(offset)), float(np.linalg.norm(turn))
             if distance < TOLERANCE and angle < TURNED_WITHIN:
-                return None
+                return None, q
             if distance + angle < best - PROGRESS:
                 best, best_at = distance + angle, t
             elif t - best_at > PATIENCE:
-                return self._stopped(q, distance, angle)
+                return self._stopped(q, distance, angle), q
             twist = np.concatenate([_clamp(GAIN * offset, SPEED), _clamp(GAIN * turn, SPEED * 4)])
             jacobian = self.robot.tcp_jacobian(q)
             dq = limited_joint_velocities(jacobian, twist, TWIST_DAMPING, q, self.lower, self.upper)
             q = np.clip(q + np.clip(dq, -self.speeds, self.speeds) * STEP, self.lower, self.upper)
             t += STEP
-        return self._stopped(q, distance, angle)
+        return self._stopped(q, distance, angle), q
 
     def _stopped(self, q: np.ndarray, distance: float, angle: float) -> str:
         """What stops an arm stalled at `q`, `distance` and `angle` short of its target."""

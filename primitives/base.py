@@ -12,6 +12,7 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from enum import StrEnum
+from types import MappingProxyType
 from typing import Any, Callable, Mapping
 
 import numpy as np
@@ -120,14 +121,17 @@ class Condition(ABC):
     """A leaf condition: a test on sensors or controller status, possibly debounced.
 
     `evidence` holds the readings that made the last verdict, so a run can say why an
-    event fired ("grasp_lost: pad forces 0.0 0.1 N < 0.5 N for 0.05 s").
+    event fired ("grasp_lost: pad forces 0.0 0.1 N < 0.5 N for 0.05 s"). It is read on the
+    tick the event fires: a condition tested every tick may work it out only then, from
+    what its latest verdict kept.
     """
+
+    evidence: Mapping[str, Any] = MappingProxyType({})  # before any verdict has set its own
 
     def __init__(self, ctx: Context, sensors: tuple[str, ...] = ()) -> None:
         self.ctx = ctx
         self.params = ctx.params
         self.sensors = sensors
-        self.evidence: dict[str, Any] = {}
 
     def start(self, readings: Readings) -> None:
         """Called when the state is entered; conditions that tare or count time reset here."""

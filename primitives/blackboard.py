@@ -50,7 +50,12 @@ class Blackboard:
 
     pressing: bool = False
     """Arm -> hand: True while the sliding grasp feels the closing fingers press on the surface
-    it rides harder than it allows (Eq. 3.2 backing off): the fingers wait for the arm to rise."""
+    it rides harder than it allows (Eq. 3.2 backing off): the fingers wait for the arm to rise.
+    Also while the jaw grasp's arm rises to take off the support a press its closing jaws put on
+    the wrist: the jaws say they hold the object only once it has, since a grip that slips out
+    meanwhile must be looked for again, not waited out by a hand already done (the Panda's jaws
+    held a speaker's top edge 1.5 s while the arm rose, then closed empty; both sides sat done
+    until the task's timeout)."""
 
     fingers_stopped: bool = False
     """Hand -> arm: True once the fingers can close no further (object held, or limits)."""

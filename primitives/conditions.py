@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import math
 from abc import abstractmethod
+from typing import Any
+
 import numpy as np
 
 from atd.model.frames import GRAVITY
@@ -72,10 +74,18 @@ class SubtaskEndedIn(Condition):
 
 
 class Timeout(Condition):
+    def __init__(self, ctx: Context, sensors: tuple[str, ...] = ()) -> None:
+        super().__init__(ctx, sensors)
+        self.limit = float(self.params["seconds"])
+        self.elapsed = 0.0  # s in the state at the latest verdict
+
     def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
-        limit = float(self.params["seconds"])
-        self.evidence = {"elapsed": state.elapsed, "seconds": limit}
-        return state.elapsed >= limit - 1e-9
+        self.elapsed = state.elapsed
+        return state.elapsed >= self.limit - 1e-9
+
+    @property
+    def evidence(self) -> dict[str, Any]:
+        return {"elapsed": self.elapsed, "seconds": self.limit}
 
 
 class Fault(Condition):
@@ -110,7 +120,7 @@ class Fault(Condition):
         if self.side == "arm":
             q = readings.arm_q
             stuck = (q <= self.lower) | (q >= self.upper)
-            if self.on_limit(bool(stuck.any()), dt):
+            if self.on_limit(np.count_nonzero(stuck) > 0, dt):
                 joint = self.ctx.info.arm_joints[int(np.argmax(stuck))]
                 self.evidence = {"joint_on_limit": joint, "q": q[np.argmax(stuck)], "for": self.on_limit.held}
                 return True
@@ -160,13 +170,20 @@ class Debounced(Condition):
         self.debounce.reset()
 
     def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
-        verdict = self.debounce(self.test(readings, dt), dt)
-        self.evidence["held_for"] = max(self.debounce.held, 0.0)
-        return verdict
+        return self.debounce(self.test(readings, dt), dt)
+
+    @property
+    def evidence(self) -> dict[str, Any]:
+        """Worked out when asked (the tick an event fires), not on every tick's test."""
+        return {**self.explain(), "held_for": max(self.debounce.held, 0.0)}
 
     @abstractmethod
     def test(self, readings: Readings, dt: float) -> bool:
-        """The undebounced verdict; sets `evidence`."""
+        """The undebounced verdict; keeps what `explain` needs."""
+
+    @abstractmethod
+    def explain(self) -> dict[str, Any]:
+        """The readings behind the latest `test`."""
 
 
 class TactileForce(Debounced):
@@ -181,11 +198,12 @@ class TactileForce(Debounced):
         self.above = above
 
     def test(self, readings: Readings, dt: float) -> bool:
-        forces = readings.pad_force[self.pads].tolist()  # a few pads: plain floats are cheaper than array ops
-        touching = sum(force >= self.threshold for force in forces)
-        self.evidence = {"pad_force": dict(zip(self.sensors, forces)), "threshold": self.threshold,
-                         "min_pads": self.min_pads}
+        self.forces = readings.pad_force[self.pads].tolist()  # a few pads: plain floats are cheaper than array ops
+        touching = sum(force >= self.threshold for force in self.forces)
         return (touching >= self.min_pads) == self.above
+
+    def explain(self) -> dict[str, Any]:
+        return {"pad_force": dict(zip(self.sensors, self.forces)), "threshold": self.threshold, "min_pads": self.min_pads}
 
 
 class TactileLoadChange(Debounced):
@@ -202,9 +220,11 @@ class TactileLoadChange(Debounced):
         self.initial = float(readings.pad_force[self.pads].sum())
 
     def test(self, readings: Readings, dt: float) -> bool:
-        total = float(readings.pad_force[self.pads].sum())
-        self.evidence = {"pad_force_sum": total, "at_start": self.initial, "force_change": self.change}
-        return abs(total - self.initial) > self.change
+        self.total = float(readings.pad_force[self.pads].sum())
+        return abs(self.total - self.initial) > self.change
+
+    def explain(self) -> dict[str, Any]:
+        return {"pad_force_sum": self.total, "at_start": self.initial, "force_change": self.change}
 
 
 class WristForceAbove(Debounced):
@@ -222,10 +242,12 @@ class WristForceAbove(Debounced):
         self.contact.start(readings)
 
     def test(self, readings: Readings, dt: float) -> bool:
-        wrench = self.contact.update(readings, dt)
-        value = self.contact.force if self.axis == "norm" else -float(wrench[2])
-        self.evidence = {"force": value, "axis": self.axis, "threshold": self.threshold, "contact_wrench": wrench}
-        return value > self.threshold
+        self.wrench = wrench = self.contact.update(readings, dt)
+        self.value = self.contact.force if self.axis == "norm" else -float(wrench[2])
+        return self.value > self.threshold
+
+    def explain(self) -> dict[str, Any]:
+        return {"force": self.value, "axis": self.axis, "threshold": self.threshold, "contact_wrench": self.wrench}
 
 
 class LoadHeld(Debounced):
@@ -248,11 +270,15 @@ class LoadHeld(Debounced):
         empty = self.ctx.memory.get(EMPTY_HAND)
         load = self.load(world_load(readings), dt)
         if empty is None:
-            self.evidence = {"empty_hand": "never measured"}
+            self.carried: float | None = None
             return False
-        carried = float(empty[2] - load[2]) / GRAVITY  # kg: a weight pulls the wrist down, along world -z
-        self.evidence = {"carried": round(carried, 3), "weight": self.weight}
-        return carried >= self.weight
+        self.carried = float(empty[2] - load[2]) / GRAVITY  # kg: a weight pulls the wrist down, along world -z
+        return self.carried >= self.weight
+
+    def explain(self) -> dict[str, Any]:
+        if self.carried is None:
+            return {"empty_hand": "never measured"}
+        return {"carried": round(self.carried, 3), "weight": self.weight}
 
 
 class FingersStill(Debounced):
@@ -285,11 +311,14 @@ class FingersStill(Debounced):
     def test(self, readings: Readings, dt: float) -> bool:
         q = readings.hand_q[self.joints]
         self.recent.add(readings.time, q, readings.time - self.tau)
-        spread = np.ptp(self.recent.rows(), axis=0) / max(self.tau, dt)
+        rows = self.recent.rows()
+        spread = (rows.max(axis=0) - rows.min(axis=0)) / max(self.tau, dt)  # np.ptp without its wrappers
         speed = np.maximum(np.abs(q - self.mean(q, dt)) / max(self.tau, dt), spread)
-        rate = float(np.max(speed / self.travel, initial=0.0))
-        self.evidence = {"drift": round(rate, 4), "still_below": self.drift}
-        return rate < self.drift
+        self.rate = float((speed / self.travel).max(initial=0.0))
+        return self.rate < self.drift
+
+    def explain(self) -> dict[str, Any]:
+        return {"drift": round(self.rate, 4), "still_below": self.drift}
 
 
 class Gripper(Debounced):
@@ -310,8 +339,11 @@ class Gripper(Debounced):
             value = max(0.0, self.closing * float(readings.hand_effort[0]))
         else:
             value = 2.0 * abs(float(readings.hand_q[0]) - self.closed)  # both jaws move
-        self.evidence = {self.quantity: value, "threshold": self.threshold}
+        self.value = value
         return (value > self.threshold) if self.above else (value < self.threshold)
+
+    def explain(self) -> dict[str, Any]:
+        return {self.quantity: self.value, "threshold": self.threshold}
 
 
 class Range(Debounced):
@@ -326,9 +358,11 @@ class Range(Debounced):
         self.above = above
 
     def test(self, readings: Readings, dt: float) -> bool:
-        value = math.inf if readings.range is None else float(readings.range)
-        self.evidence = {"range": value if math.isfinite(value) else "out of range", "distance": self.distance}
+        self.value = value = math.inf if readings.range is None else float(readings.range)
         return (value > self.distance) if self.above else (value < self.distance)
+
+    def explain(self) -> dict[str, Any]:
+        return {"range": self.value if math.isfinite(self.value) else "out of range", "distance": self.distance}
 
 
 class Perceived(Condition):

@@ -15,7 +15,8 @@ import numpy as np
 
 @dataclass(frozen=True)
 class Contact:
-    """Where an `explore` move felt something: the TCP's position when it did (world frame),
+    """Where an `explore` move felt something: the position (world frame) of the point of the
+    hand that touched when it did (the TCP where its state names no hand shape),
     which sensor felt it ("wrist", or the pad's name), how hard (N), and the direction the
     hand was moving in (a unit world vector). An ATD `point` value."""
 
@@ -31,13 +32,16 @@ class Approach:
     """Where to grasp next (thesis 3.4.3's approach vector): `pose` is a top-down TCP pose
     (4x4, world) above the object, clear of the container's rim, for the grasp to descend
     from; `point` the highest place known to be on the object (world; for random blind, the
-    container's floor under the pose). `method` says which generator found it and
-    `candidates` how many objects it saw (None: it cannot count). An ATD `pose` value."""
+    container's floor under the pose). `method` says which generator found it,
+    `candidates` how many objects it saw (None: it cannot count) and `top` the height (world
+    z) of the top it saw under the pose (None: it does not know it), which a grasp's
+    `<object_top from>` reads. An ATD `pose` value."""
 
     pose: np.ndarray  # (4, 4)
     point: np.ndarray  # (3,)
     method: str
     candidates: int | None = None
+    top: float | None = None
 
 
 @dataclass(frozen=True)

@@ -135,7 +135,7 @@ class _Translator:
              binding: Binding) -> EstdState | None:
         base = {"name": state.name, "type": state.type, "atd": state.name, "loc": _loc_text(state.loc),
                 "object": state.object, "writes": state.writes, "target_from": state.target_from,
-                "target_offset": state.target_offset, "inputs": state.inputs}
+                "target_offset": state.target_offset, "top_from": state.top_from, "inputs": state.inputs}
         if state.type.is_end:
             return EstdState(**base)
         role = task.role_of(state)

@@ -162,9 +162,12 @@ _MOVE = {
                    "degrees of where the first such turn started; unset keeps the yaw it starts with. A target from "
                    "an approach sets it to the approach's (ours, thesis 3.4.3)", unit="deg",
               limits=ranges.YAW),
+    "either_way": _p(FLAG, "with yaw: the opposite way too where that is the smaller turn; off, that yaw itself, "
+                           "the way the factory rehearsed for a wrist kept off its stops (ours, issue 33)", True),
     "hand_point": _p(VEC, "the point of the hand the target is for, from the TCP in the hand frame at the target: "
                      "a target read from a named value is for where the state's hand shape acts (the SDH2's "
-                     "pinch, 19 mm off its TCP), so the TCP stops that far from it (ours); zeros: the TCP",
+                     "pinch, 19 mm off its TCP; at a point an explore touched, the hand's lowest point under it), "
+                     "so the TCP stops that far from it (ours); zeros: the TCP",
                      (0.0, 0.0, 0.0), unit="m", length=3),
     "contact_margin": _p(NUM, "how near the target a contact must come to end a guarded move as arrived (a place "
                          "meeting its surface); one further away stops it short, an error (a transport meeting "
@@ -292,6 +295,9 @@ _ARM_CONTROLLERS = (
             "search_step": _p(NUM, "spacing of the search along the jaws' width (ours: under a finger's "
                               "width plus the object's)", 0.03, unit="m"),
             "search_points": _p(INT, "points searched after the jaws close on nothing (ours)", 4),
+            "object_top": _p(NUM, "height (world z) of the object's top as a perceive state saw it, for a task "
+                             "that knows no object: set at run time from the value the ATD's <object_top from> "
+                             "names; unset = the task's object, or none", unit="m", limits=ranges.COORDINATE),
             "filter_time": _FILTER,
         },
     ),
@@ -372,6 +378,9 @@ _ARM_CONTROLLERS = (
             **_EXPLORING,
             "max_distance": _p(NUM, "how far to go without a contact before giving up (ours)", 0.3, unit="m"),
             "writes": _p(WORD, "the name the contact (a point) is written under for later states; unset: none"),
+            "hand_point": _p(VEC, "the point of the hand that touches, from the TCP in the hand frame: the contact "
+                             "written is where it was (the lowest point of the state's hand shape; ours); zeros: "
+                             "the TCP", (0.0, 0.0, 0.0), unit="m", length=3),
         },
     ),
     ControllerSpec(

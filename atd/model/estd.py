@@ -103,6 +103,7 @@ class EstdState(EstdElement):
     writes: tuple[Value, ...] = ()  # the values it writes when it leaves on its finding event
     target_from: str | None = None  # the value its target is read from when it starts
     target_offset: tuple[float, float, float] | None = None  # m, world frame, added to that value's position
+    top_from: str | None = None  # a grasp: the value whose seen top its arm controller takes as the object's
     inputs: dict[str, str] = Field(default_factory=dict)  # sub-task input -> this machine's value
     role: str | None = None  # the ATD role doing it, in a task that names roles
     robot_arm: str | None = None  # the robot's arm that runs it, where the task names roles; None: `Estd.arm`

@@ -76,7 +76,7 @@ def _machine(parent: etree._Element | None, estd: Estd) -> etree._Element:
     for state in estd.states:
         node = etree.SubElement(root, "state", _attrs(
             name=state.name, type=state.type.value, atd=state.atd, loc=state.loc, primitive=state.primitive,
-            object=state.object, role=state.role, robot_arm=state.robot_arm))
+            object=state.object, role=state.role, robot_arm=state.robot_arm, top_from=state.top_from))
         for role, controller in (("arm", state.arm), ("hand", state.hand)):
             if controller is not None:
                 _params(etree.SubElement(node, role, controller=controller.name), controller.params)
@@ -176,7 +176,7 @@ def _read_machine(node: etree._Element, doc: ParsedXml) -> Estd:
             states.append(EstdState(
                 name=child.get("name"), type=child.get("type"), atd=child.get("atd"), loc=child.get("loc"),
                 primitive=child.get("primitive"), object=child.get("object"), role=child.get("role"),
-                robot_arm=child.get("robot_arm"),
+                robot_arm=child.get("robot_arm"), top_from=child.get("top_from"),
                 arm=_read_controller(arm) if arm is not None else None,
                 hand=_read_controller(hand) if hand is not None else None,
                 machine=_read_machine(sub, doc) if sub is not None else None,

@@ -59,6 +59,7 @@ CONTAINER_CHILDREN = ("pose", "size", "wall")
 STATE_CHILDREN = (
     "movement", "hand_shape", "path", "trajectory", "preshape", "object_size", "hand_opening", "parameter",
     "method", "direction", "contact_force", "max_distance", "writes", "target", "input",
+    "object_top",
 )
 STATE_ATTRIBUTES = ("name", "type", "file", "object", "container", "role")
 IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
@@ -461,6 +462,10 @@ class TaskReader:
             self._error("ATD103", f"<target> is for arm primitives, not type=\"{kind.value}\"", node,
                         "an arm primitive (move, transport, place, push, slide) takes its target from a value")
             fine = False
+        if "top_from" in fields and kind is not StateType.GRASP:
+            self._error("ATD103", f"<object_top> is for grasp states, not type=\"{kind.value}\"", node,
+                        "a grasp aims its close at the top a perceive state saw; remove it here")
+            fine = False
         produces = PRODUCES.get(kind, frozenset())
         kinds_written: set[ValueKind] = set()
         for value in fields.get("writes", ()):
@@ -502,7 +507,7 @@ class TaskReader:
                             else "<state> has both <path> and <trajectory>", child, "keep one")
                 continue
             seen[key] = child
-            self._check_attributes(child, ("from", "offset") if key == "target" else ())
+            self._check_attributes(child, {"target": ("from", "offset"), "object_top": ("from",)}.get(key, ()))
             if key == "movement":
                 fields["movement"] = self._enum(child, Movement, "movement")
             elif key in ("hand_shape", "preshape"):
@@ -523,6 +528,8 @@ class TaskReader:
                 fields["max_distance"] = self._value(child, "max distance", ranges.DISTANCE)
             elif key == "target":
                 fields["target_from"], fields["target_offset"] = self._target(child)
+            elif key == "object_top":
+                fields["top_from"] = self._top_from(child)
         if "path" in seen and "target" in seen:
             self._error("ATD109", f"<state> has both <{seen['path'].tag}> and <target>", seen["target"],
                         "keep one: a fixed path, or the target a value gives at run time")
@@ -565,6 +572,17 @@ class TaskReader:
         if offset is None:
             return name, None
         return name, self._numbers(node, "target offset", 3, ranges.COORDINATE, words=offset.split())
+
+    def _top_from(self, node: etree._Element) -> str | None:
+        """`<object_top from="approach"/>`: the object's top is the one a perceive state saw,
+        read when the grasp starts (the task knows no object; its perception does)."""
+        self._no_children(node)
+        if (node.text or "").strip():
+            self._error("ATD103", "<object_top> holds no number", node,
+                        'name the value that gives it at run time: <object_top from="approach"/>')
+            return None
+        return self._reference(node, "from",
+                               'e.g. <object_top from="approach"/>, naming a value a perceive state writes')
 
     def _binding(self, node: etree._Element, into: dict[str, str]) -> None:
         """`<input name="approach" from="found"/>` on a sub-task state: its input from this task's value."""

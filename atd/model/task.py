@@ -222,6 +222,7 @@ class State(AtdElement):
     writes: tuple[Value, ...] = ()  # perceptual primitives: the values it produces
     target_from: str | None = None  # arm primitives: the named value that is its target
     target_offset: Vec3 | None = None  # m, world frame: added to the value's position (`<target offset>`)
+    top_from: str | None = None  # grasp: the named value whose seen top is the object's (`<object_top from>`)
     inputs: dict[str, str] = Field(default_factory=dict)  # task: sub-task input -> this task's value
     role: str | None = None  # which of the task's arm roles does it; None: the task's only role
 
@@ -232,8 +233,9 @@ class State(AtdElement):
 
     @property
     def reads(self) -> tuple[str, ...]:
-        """The named values the state needs when it starts: its target's, its sub-task's inputs'."""
-        named = (self.target_from,) if self.target_from else ()
+        """The named values the state needs when it starts: its target's, its object's top's,
+        its sub-task's inputs'."""
+        named = tuple(v for v in (self.target_from, self.top_from) if v)
         return named + tuple(self.inputs.values())
 
 

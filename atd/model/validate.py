@@ -10,7 +10,7 @@ from pathlib import Path
 from atd.model.diagnostics import Diagnostic, Suggester, did_you_mean, error, has_errors, warning
 from atd.model.graph import TaskGraph
 from atd.model.task import Location, ObjectInfo, State, Task
-from atd.model.vocabulary import FINDING_EVENT, FIRED_BY, TARGET_KINDS, StateType, ValueKind
+from atd.model.vocabulary import FINDING_EVENT, FIRED_BY, TARGET_KINDS, TOP_KINDS, StateType, ValueKind
 
 LONGEST_PATH_SHOWN = 6  # states of a path a diagnostic spells out; longer ones elide their middle
 
@@ -240,7 +240,7 @@ def value_kinds(task: Task) -> dict[str, tuple[ValueKind, str]]:
 
 
 def _kinds(task: Task) -> list[Diagnostic]:
-    """A value holds one kind, and a target is a pose or a point."""
+    """A value holds one kind, a target is a pose or a point, and a top is read from a pose."""
     found = []
     kinds = value_kinds(task)
     for state in task.states:
@@ -255,6 +255,11 @@ def _kinds(task: Task) -> list[Diagnostic]:
             found.append(error("ATD222", f"state '{state.name}' takes its target from '{state.target_from}', a "
                                          f"{kind.value} ({by}); a target is a pose or a point", state.loc,
                                "read a value a perceive (pose) or explore (point) state writes"))
+        if state.top_from in kinds and kinds[state.top_from][0] not in TOP_KINDS:
+            kind, by = kinds[state.top_from]
+            found.append(error("ATD222", f"state '{state.name}' takes the object's top from '{state.top_from}', "
+                                         f"a {kind.value} ({by}); a top is read from a perceive state's approach "
+                                         "(a pose)", state.loc, "read the pose a perceive state writes"))
     return found
 
 

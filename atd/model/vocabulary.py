@@ -134,6 +134,8 @@ FIRED_BY: dict[EventType, frozenset[StateType]] = {
 # Where a value may be read, and the kinds each place takes: an arm primitive's target is a
 # pose (the hand turned as it says) or a point (the hand top-down).
 TARGET_KINDS = frozenset({ValueKind.POSE, ValueKind.POINT})
+# A grasp's `<object_top from>` reads a perceive state's approach: the top it saw there.
+TOP_KINDS = frozenset({ValueKind.POSE})
 
 
 class ObjectClass(StrEnum):

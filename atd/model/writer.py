@@ -95,6 +95,8 @@ def _state(parent: etree._Element, state: State) -> None:
     if state.target_from is not None:
         offset = {"offset": _numbers(state.target_offset)} if state.target_offset is not None else {}
         _child(node, "target", **{"from": state.target_from}, **offset)
+    if state.top_from is not None:
+        _child(node, "object_top", **{"from": state.top_from})
     _optional(node, state, "method", "direction", "contact_force", "max_distance")
     for name, value in state.parameters.items():
         _child(node, "parameter", value, name=name)

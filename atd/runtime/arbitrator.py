@@ -38,7 +38,7 @@ def _mean(pairs: list[tuple[np.ndarray, float]]) -> np.ndarray | None:
 
 
 def _hand(hands: list[HandCommand], hand_dof: int) -> tuple[np.ndarray | None, tuple[HandMode, ...]]:
-    if len(hands) == 1 and not np.isnan(hands[0].values).any():  # one controller drives every DOF
+    if len(hands) == 1 and not np.count_nonzero(np.isnan(hands[0].values)):  # one controller drives every DOF
         return np.array(hands[0].values, float), tuple(hands[0].modes)
     values = np.full(hand_dof, np.nan)
     modes = [HandMode.VELOCITY] * hand_dof

@@ -25,7 +25,7 @@ from atd.model.estd import ConditionGroup, Estd, EstdEvent, EstdState, EstdTrans
 from atd.model.vocabulary import StateType
 from atd.runtime.arbitrator import RobotCommand, arbitrate
 from atd.runtime.trace import Trace
-from atd.runtime.values import ArmMemory, arm_for, bind_inputs, targeted
+from atd.runtime.values import ArmMemory, arm_for, bind_inputs, targeted, topped
 from primitives.base import Condition, Context, ControlData, Status, StateView
 from primitives.blackboard import ARM_TWIST, Blackboard
 from primitives.registry import BuildError, build_condition, build_controller
@@ -41,13 +41,7 @@ class SharedLeaf:
 
     def __init__(self, condition: Condition) -> None:
         self.condition = condition
-        self.tick = -1  # the tick of `verdict`
-        self.verdict = False
-
-    def holds(self, readings: Readings, view: StateView, dt: float, tick: int) -> bool:
-        if tick != self.tick:
-            self.tick, self.verdict = tick, self.condition.holds(readings, view, dt)
-        return self.verdict
+        self.verdict = False  # this tick's
 
 
 def _leaf_key(leaf: Leaf) -> tuple:
@@ -55,9 +49,10 @@ def _leaf_key(leaf: Leaf) -> tuple:
 
 
 class ConditionTree:
-    """An event's `all`/`any` tree of leaf conditions, evaluated without short-circuit so
-    that every debounce timer sees every tick. Leaves already in `shared` (by kind, sensors
-    and parameters) are those; new ones are added to it."""
+    """An event's `all`/`any` tree of leaf conditions. Leaves already in `shared` (by kind,
+    sensors and parameters) are those; new ones are added to it. The state asks every
+    leaf of `shared` once a tick, so that every debounce timer sees every tick; the tree
+    then only combines their verdicts."""
 
     def __init__(self, node: Leaf | ConditionGroup, ctx: Context, shared: dict[tuple, SharedLeaf] | None = None) -> None:
         self.node = node
@@ -73,11 +68,19 @@ class ConditionTree:
             self.children = [ConditionTree(child, ctx, shared) for child in node.children]
         self.every = isinstance(node, ConditionGroup) and node.op == "all"
 
-    def holds(self, readings: Readings, view: StateView, dt: float, tick: int) -> bool:
+    def holds(self) -> bool:
+        """The tree's verdict on this tick's leaf verdicts."""
         if self.leaf:
-            return self.leaf.holds(readings, view, dt, tick)
-        verdicts = [child.holds(readings, view, dt, tick) for child in self.children]
-        return all(verdicts) if self.every else any(verdicts)
+            return self.leaf.verdict
+        if self.every:
+            for child in self.children:
+                if not child.holds():
+                    return False
+            return True
+        for child in self.children:
+            if child.holds():
+                return True
+        return False
 
     def evidence(self) -> list[dict]:
         """The leaves behind a verdict, with the readings each recorded."""
@@ -145,7 +148,7 @@ class Machine:
         outer, readings = readings, self._mine(readings)
         self.entered = readings.time
         ctx = replace(base, blackboard=Blackboard())
-        arm = arm_for(state, base.memory)
+        arm = topped(arm_for(state, base.memory), state, base.memory)
         self.arm = build_controller(arm, "arm", ctx) if arm else None
         self.hand = build_controller(state.hand, "hand", ctx) if state.hand else None
         leaves: dict[tuple, SharedLeaf] = {}
@@ -159,9 +162,9 @@ class Machine:
         for controller in (self.arm, self.hand):
             if controller:
                 controller.start(readings)
-        for leaf in leaves.values():
+        self.leaves = list(leaves.values())  # in the order the edges first name them
+        for leaf in self.leaves:
             leaf.condition.start(readings)
-        self.checks = 0  # ticks the edges were checked on in this state, for the shared leaves
         self.sub = Machine(state.machine, f"{self.visit.path}/", self.base, self.trace, self.visits, self.others) \
             if state.machine is not None else None
         if self.sub:
@@ -192,16 +195,18 @@ class Machine:
         )
 
     def _fired(self, readings: Readings, dt: float) -> Edge | None:
+        """The first edge whose events all hold; every leaf is asked first, whatever the
+        edges make of it, so that every timer counts on."""
         view = self._view(readings)
-        self.checks += 1
-        fired = None
+        for leaf in self.leaves:
+            leaf.verdict = leaf.condition.holds(readings, view, dt)
         for edge in self.edges:
-            held = True
-            for _, tree in edge.events:  # every tree, whatever the others say: their timers count on
-                held = tree.holds(readings, view, dt, self.checks) and held
-            if fired is None and held:
-                fired = edge
-        return fired
+            for _, tree in edge.events:
+                if not tree.holds():
+                    break
+            else:
+                return edge
+        return None
 
     def tick(self, readings: Readings, dt: float) -> list[Output]:
         """Take a transition if one fires, then return the current state's control outputs,
@@ -333,7 +338,7 @@ class Executor:
             if name is None:
                 self.command = command
             dq = still if command.joint_velocity is None else command.joint_velocity
-            if command.twist is not None and command.twist.any():
+            if command.twist is not None and np.count_nonzero(command.twist):  # a third of .any()'s cost, every tick
                 dq = dq + robot.twist_velocities(command.twist)
             ctx.memory[ARM_TWIST] = command.twist
             robot.command_arm_velocity(dq)

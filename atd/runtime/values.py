@@ -65,6 +65,21 @@ def arm_for(state: EstdState, memory: Mapping[str, Any]) -> Controller | None:
         raise MissingValue(f"state '{state.name}' takes its target from '{state.target_from}': {exc}") from None
 
 
+def topped(arm: Controller | None, state: EstdState, memory: Mapping[str, Any]) -> Controller | None:
+    """A grasp's arm controller as it runs now: where the state reads the object's top from a
+    value (`<object_top from>`), with `object_top` set to the top that value's approach saw,
+    if the controller takes one; unchanged where the approach saw none (random blind)."""
+    if arm is None or state.top_from is None or "object_top" not in ARM_CONTROLLERS[arm.name].params:
+        return arm
+    value = memory.get(state.top_from)
+    if not isinstance(value, Approach):
+        raise MissingValue(f"state '{state.name}' takes the object's top from '{state.top_from}': it holds "
+                           f"{type(value).__name__ if value is not None else 'nothing'}, not an approach")
+    if value.top is None:
+        return arm
+    return arm.model_copy(update={"params": {**arm.params, "object_top": round(value.top, 6)}})
+
+
 def bind_inputs(state: EstdState, memory: MutableMapping[str, Any]) -> None:
     """A sub-task state starting: each of the sub-task's inputs holds the value its parent
     names (`<input name="i" from="v"/>`), by the sub-task's own name."""

@@ -92,19 +92,25 @@ class TaxelImages:
         ]
         self._contacts_of = b""  # the pads of the contacts last seen, and their constants
         self._per_contact: tuple[np.ndarray, ...] = ()
+        # What a hand touching nothing reads, most of a run: made once, read-only, shared by the ticks.
+        nothing, self._no_force = np.zeros(self._size), np.zeros(self._n)
+        nothing.flags.writeable = self._no_force.flags.writeable = False
+        self._untouched, _ = self._read(nothing, self._no_force)
 
     def __call__(self, pad: np.ndarray, xy: np.ndarray, force: np.ndarray) -> tuple[dict[str, np.ndarray | None], np.ndarray]:
         """Images by pad name (None for a pad without an array) and the force on each pad."""
-        if len(pad) == 0 or not force.any():  # a hand touching nothing, most of a run: all zero
-            flat, total = np.zeros(self._size), np.zeros(self._n)
-        else:
-            # MuJoCo reports the same contact slots every tick: their constants are gathered once.
-            if pad.tobytes() != self._contacts_of:
-                self._contacts_of = pad.tobytes()
-                self._per_contact = (*(column[pad] for column in self._pads), np.zeros((len(pad), 2)))
-            scale, centre, last, row_length, first, zero = self._per_contact
-            cell = np.minimum(np.maximum(np.floor(xy * scale + centre), zero), last)
-            index = (first + cell[:, 1] * row_length + cell[:, 0]).astype(np.intp)
-            flat = np.bincount(index, weights=force, minlength=self._size)
-            total = np.bincount(pad, weights=force, minlength=self._n)
+        if len(pad) == 0 or not np.count_nonzero(force):
+            return self._untouched, self._no_force
+        # MuJoCo reports the same contact slots every tick: their constants are gathered once.
+        if pad.tobytes() != self._contacts_of:
+            self._contacts_of = pad.tobytes()
+            self._per_contact = (*(column[pad] for column in self._pads), np.zeros((len(pad), 2)))
+        scale, centre, last, row_length, first, zero = self._per_contact
+        cell = np.minimum(np.maximum(np.floor(xy * scale + centre), zero), last)
+        index = (first + cell[:, 1] * row_length + cell[:, 0]).astype(np.intp)
+        return self._read(np.bincount(index, weights=force, minlength=self._size),
+                          np.bincount(pad, weights=force, minlength=self._n))
+
+    def _read(self, flat: np.ndarray, total: np.ndarray) -> tuple[dict[str, np.ndarray | None], np.ndarray]:
+        """The images by pad name, cut from all the pads' cells end to end, and the pad forces."""
         return {name: None if cells is None else flat[cells].reshape(shape) for name, cells, shape in self._images}, total

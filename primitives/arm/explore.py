@@ -27,7 +27,9 @@ SETTLE_LIMIT = 1.0  # s after the touch it is over in any case: an arm that cann
 class Explore(Controller):
     """Move the TCP along `direction` (world frame) at `speed` until the wrist, or a pad, feels
     `force_threshold` more than it did at the start: the contact written to `Context.memory`
-    under `writes` (a `Contact`), then DONE once the hand rests EASE_OFF back from it (a
+    under `writes` (a `Contact`, where the hand's `hand_point` was: the point of its shape
+    that leads, so that a later target from it is where the hand touched, whatever the
+    hand), then DONE once the hand rests EASE_OFF back from it (a
     motion that began at the touch tared the wrist mid-impact and read its ring as a contact).
     Having gone `max_distance` without one: ERROR, "nothing within D m". The hand keeps the
     orientation it started with; it speeds up at the robust grasp's gentle
@@ -42,6 +44,7 @@ class Explore(Controller):
         self.threshold = float(p["force_threshold"])
         self.max_distance = float(p["max_distance"])
         self.writes = str(p.get("writes", ""))
+        self.hand_point = np.asarray(p.get("hand_point", (0.0, 0.0, 0.0)), float)
         self.contact = ContactWrench(float(p["filter_time"]))
         self.shaper = TwistShaper(acceleration_limits=(APPROACH_ACCELERATION,) * 3 + (0.0,) * 3)
         self.found: Contact | None = None
@@ -96,7 +99,8 @@ class Explore(Controller):
         position = readings.tcp[:3, 3]
         self.shaper.stop()
         self.rest = position - EASE_OFF * self.direction  # or the arm goes on pressing on what it met
-        self.found = Contact(position.copy(), sensor, force, self.direction.copy(), readings.time)
+        touched = position + readings.tcp[:3, :3] @ self.hand_point
+        self.found = Contact(touched, sensor, force, self.direction.copy(), readings.time)
         if self.writes:
             self.ctx.memory[self.writes] = self.found
         self.travelled = travelled

@@ -17,7 +17,9 @@ palm's contact placed the object, or a step beyond the pads' edge that brushed i
 way (`jaws_brushed`), or else to the next point of a bounded search along
 the jaws' width, alternating sides, around where the approach left it and the moves
 across have since taken it. While the jaws close it follows the hand's `arm_nudge`
-(re-centring on the pads' contact) and ends once `fingers_stopped`.
+(re-centring on the pads' contact) and ends once `fingers_stopped`. A task that knows no
+object may give it the top a perceive state saw (`object_top`): it stands in for the object's
+top, and the jaws do not close before the fingertips are past it.
 """
 
 from __future__ import annotations
@@ -64,6 +66,10 @@ PRESSED = 5.0  # N up on the wrist, beyond the empty hand's load, while the jaws
 RELIEF_GAIN = 0.002  # m/s per newton pressed beyond PRESSED: the arm rises to take it off
 MAX_RELIEF = 0.02  # m the arm rises for that in one close, at most
 FREE_LOAD_WINDOW = 0.1  # s: the empty hand's load is the wrist's mean over the end of a move in free air
+# m the fingertips must reach past a top a perceive state saw for the jaws to close: closed with
+# them at that top they held nothing, while 1.2 cm under a wood block's top they lifted it
+# (Melfa, MuJoCo, docs/empty-the-box.md); a seen top is good to a few millimetres
+PAST_SEEN_TOP = 0.005
 
 
 def bisected(across: float, last: float) -> float:
@@ -95,6 +101,8 @@ class JawGraspCorrection(Controller):
         self.jaw_half_width = float(p["jaw_half_width"])
         self.step = float(p["search_step"])
         self.offsets = search_offsets(self.step, int(p["search_points"]))
+        top = p.get("object_top")
+        self.seen_top = None if top is None else float(top)  # m, world z: the top a perceive state saw
         self.walls = KnownWalls.of(ctx)
         self.contact = ContactWrench(float(p["filter_time"]))
         self.shaper = TwistShaper()  # a sudden reversal shakes the wrist like a contact
@@ -148,20 +156,27 @@ class JawGraspCorrection(Controller):
 
     def _object_top(self) -> float:
         """The depth of the object's face the hand meets first, as the task believes it: its
-        top, or its side facing a grasp from the side (-inf: the task does not say)."""
+        top, or its side facing a grasp from the side; for a task that knows no object, the
+        top a perceive state saw (`object_top`) from above (-inf: neither says)."""
         obj = self.ctx.object
         if obj is None or obj.pose is None:
-            return -np.inf
+            return self.seen_top if self.seen_top is not None and self.vertical else -np.inf
         centre = np.asarray(obj.pose.position, float)
         return self._depth(centre) + (obj.half_height if self.vertical else obj.footprint_width / 2.0)
 
     def _grasp_height(self) -> float:
         """The depth where the TCP closes on the object: level with its centre, as the task
-        believes it, or higher for an object shorter than the jaws' pads, whose fingertips
-        would otherwise press on the support (and its pads feel that as a grip); on its axis
-        for a grasp from the side."""
+        believes it (or halfway down to the support from the top a perceive state saw: the
+        middle of an object standing there), or higher for an object shorter than the jaws'
+        pads, whose fingertips would otherwise press on the support (and its pads feel that
+        as a grip); on its axis for a grasp from the side."""
         obj = self.ctx.object
-        centre = -np.inf if obj is None or obj.pose is None else self._depth(np.asarray(obj.pose.position, float))
+        if obj is not None and obj.pose is not None:
+            centre = self._depth(np.asarray(obj.pose.position, float))
+        elif self.seen_top is not None and self.vertical:
+            centre = (self.seen_top + self._support()) / 2.0
+        else:
+            centre = -np.inf
         return max(centre, self._support() + self.reach + FLOOR_CLEARANCE) if self.vertical else centre
 
     def _support(self) -> float:
@@ -200,6 +215,7 @@ class JawGraspCorrection(Controller):
         relieved = True
         if self.phase == "close":
             relieved = self._relieve(readings, dt)
+        board.pressing = not relieved
         if self.phase in ("close", "hold"):
             v = GAIN * (self.goal - position) + (v if self.phase == "close" else 0.0)
         if self.phase == "close" and board.fingers_stopped and relieved:
@@ -271,7 +287,8 @@ class JawGraspCorrection(Controller):
         """The first contact of a descent: where it sits across the hand says what it is."""
         across = self._contact_across(readings, wrench)
         off_centre = across is not None and norm(across) > self.centre_band and self.vertical
-        if self._depth(readings.tcp[:3, 3]) < self._object_top() or not off_centre or self.shifts >= self.max_shifts:
+        below_top = self._depth(readings.tcp[:3, 3]) < self._object_top()
+        if below_top or not off_centre or self.shifts >= self.max_shifts:
             # Below the object's top the jaws straddle its place: close, and should they
             # close on nothing, look first where the contact was (the palm on its top, as
             # wide as the hand; not the fingertips on the support, which say nothing of
@@ -281,6 +298,13 @@ class JawGraspCorrection(Controller):
             on_support = self.vertical and float(readings.tcp[2, 3]) - self.reach - self._support() < SUPPORT_BAND
             self.hint = None if not off_centre or on_support or self.hinted else \
                 readings.tcp[:3, 3] + readings.tcp[:3, :3] @ clamp_norm(across, self.max_shift)
+            if self.seen_top is not None and self.vertical and \
+                    float(readings.tcp[2, 3]) - self.reach > self.seen_top - PAST_SEEN_TOP:
+                # The fingertips barely past the top a perceive state saw: the pads would close
+                # over it. The hand goes on as if they had closed there on nothing.
+                self.goal = readings.tcp[:3, 3].copy()
+                self._search_on(readings, "a jaw met something with the fingertips at the seen top")
+                return
             self._close_here(readings, self.back_off)
             return
         shift = readings.tcp[:3, :3] @ self._jaw_move(across)
@@ -334,22 +358,27 @@ class JawGraspCorrection(Controller):
         self.brushed = True
         return readings.tcp[:3, 3] + self._searching(readings) * np.sign(brushed) * self.step
 
+    def _search_on(self, readings: Readings, why: str = "the jaws closed on nothing") -> None:
+        """Rise and go where the last contact placed the object (`hint`), else to the next
+        search point; with none left, fail, saying `why`."""
+        if self.hint is not None:
+            point, self.hint, self.hinted = self.hint, None, True
+        elif self.searched < len(self.offsets):
+            point = self.centre + self._searching(readings) * self.offsets[self.searched]
+            self.searched += 1
+        else:
+            self.phase = "hold"
+            self.finish(Status.ERROR, f"{why} at {self.searched + self.hinted + 1} points")
+            return
+        self._rise(readings, point - readings.tcp[:3, 3], self._above_object())
+
     def _close(self, readings: Readings, dt: float) -> np.ndarray:
         board = self.ctx.blackboard
         if board.jaws_empty:
             board.contact = False
             if self.hint is None:
                 self.hint = self._brushed_hint(readings, board.jaws_brushed)
-            if self.hint is not None:
-                point, self.hint, self.hinted = self.hint, None, True
-            elif self.searched < len(self.offsets):
-                point = self.centre + self._searching(readings) * self.offsets[self.searched]
-                self.searched += 1
-            else:
-                self.phase = "hold"
-                self.finish(Status.ERROR, f"the jaws closed on nothing at {self.searched + self.hinted + 1} points")
-                return np.zeros(3)
-            self._rise(readings, point - readings.tcp[:3, 3], self._above_object())
+            self._search_on(readings)
             return np.zeros(3)
         nudge = board.arm_nudge
         if nudge is None:

@@ -45,14 +45,19 @@ def top_down(rotation: np.ndarray) -> np.ndarray:
     return np.column_stack([x, np.cross(z, x), z])
 
 
-def turn_to_yaw(level: np.ndarray, yaw: float, reference: float) -> np.ndarray:
+def turn_to_yaw(level: np.ndarray, yaw: float, reference: float, either_way: bool = True) -> np.ndarray:
     """The turn about the world vertical (3x3) that brings the top-down hand `level`'s x to
     `yaw` (rad, from the world x) or the opposite way: the smaller of the two (parallel jaws
     grip alike either way, so the wrist turns at most a quarter turn), unless it takes the
     hand's x more than WIND_LIMIT from `reference` (rad): then the other, so turn after turn
     cannot wind the wrist up (a vision trial that emptied a box on the Melfa, always turning
-    the shorter way, took j6 to its limit at -360 degrees)."""
+    the shorter way, took j6 to its limit at -360 degrees). Not `either_way`: to `yaw` itself,
+    by the shorter way round (a factory that chose the longer turn to keep a wrist off its stop)."""
     heading = heading_of(level)
+    if not either_way:
+        turn = (yaw - heading + math.pi) % (2 * math.pi) - math.pi
+        c, s = math.cos(turn), math.sin(turn)
+        return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
     turn = (yaw - heading + math.pi / 2) % math.pi - math.pi / 2
     if abs((heading + turn - reference + math.pi) % (2 * math.pi) - math.pi) > WIND_LIMIT:
         turn -= math.copysign(math.pi, turn)

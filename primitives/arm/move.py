@@ -80,7 +80,7 @@ class CartesianMove(Controller):
     other move it is unexpected. Either way the controller gives up (status ERROR),
     leaving the collision event to say what happened. The hand ends
     top-down (hand z = world -z) with the yaw it started with, or given `yaw` that yaw or its
-    opposite (`turn_to_yaw`), turned by `tilt` where given; or, not `level`, as it started
+    opposite (`turn_to_yaw`; not `either_way`, that yaw itself), turned by `tilt` where given; or, not `level`, as it started
     (turned about the vertical to `yaw` where given), turned by `tilt`: a transport lifts the object as the
     grasp holds it. A gripper that grasped with the tilt the approach left, levelled on the
     lift, took the Melfa's wrist into its singularity (j5 = 0), where the turn it wanted
@@ -103,6 +103,7 @@ class CartesianMove(Controller):
         self.tilt = rotation_rpy(np.radians(np.asarray(p["tilt"], float)))
         self.level = bool(p["level"])
         self.yaw = None if p.get("yaw") is None else np.radians(float(p["yaw"]))
+        self.either_way = bool(p["either_way"])
         self.margin = float(p["contact_margin"])
         self.contact = ContactWrench(float(p["filter_time"]))
         self.shaper = TwistShaper(p["velocity_limits"], p["acceleration_limits"])
@@ -118,7 +119,7 @@ class CartesianMove(Controller):
         level = top_down(start) if turned is None else turned
         if self.yaw is not None:
             reference = self.ctx.memory.setdefault(YAW_REFERENCE, heading_of(level))
-            turn = turn_to_yaw(level, self.yaw, reference)
+            turn = turn_to_yaw(level, self.yaw, reference, self.either_way)
             level, start = turn @ level, turn @ start
         self.rotation = self.tilt @ (level if self.level else start)
         self.via[-1] = self.target - self.rotation @ self.hand_point  # the yaw, and so where that point is, known now

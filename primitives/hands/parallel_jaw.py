@@ -29,6 +29,10 @@ BLOCKED = 0.003  # m: still jaws this far short of their closing reference are h
 SQUEEZE_GAIN = 5.0  # 1/s: how fast the squeeze corrects the motor force towards the pad force wanted
 SQUEEZE_TRIM = 0.5  # the correction stays within +-50 % of the grasp force
 ALIGNED = 0.3  # of a pad's half width: a contact this near the pad's middle needs no move along the jaws
+# s tactile jaws may press with neither pad feeling anything before they count as closed on nothing:
+# the Melfa's fingers stood 8 s on a tape roll's rim beside their pads, pressing, until the task's
+# timeout (PyBullet, generalisation.toml at base seed 52391); a close's touch reaches both pads in 0.1 s
+UNFELT_TIME = 0.5
 
 
 class Jaws:
@@ -57,6 +61,10 @@ class Jaws:
         if self.source == "tactile":
             return bool((readings.pad_force > TOUCH).all())
         return self.force(readings) > MOTOR_TOUCH * grasp_force
+
+    def feel_nothing(self, readings: Readings) -> bool:
+        """Tactile pads, neither touching anything (a motor's force says nothing of where it pushes)."""
+        return self.source == "tactile" and bool((readings.pad_force <= TOUCH).all())
 
     def empty(self, readings: Readings) -> bool:
         return abs(float(readings.hand_q[0]) - self.closed) < EMPTY
@@ -88,7 +96,10 @@ class CloseUntilForce(Controller):
     pads feel the object off their middle along the jaws' width, and ask the arm to move
     that way first: a pad's rim closing on a round object pushes it aside. That move stops
     after `max_recentre`: a contact still off-centre by then moves with the pad (a slanted
-    face pushed along), and following it would drag the object across the table.
+    face pushed along), and following it would drag the object across the table. A grip is
+    done only once that arm no longer rises off the support (`pressing`): until then, jaws
+    that close empty say so and the arm looks again. Tactile jaws that press UNFELT_TIME with
+    neither pad feeling anything stand on something beside their pads: closed on nothing too.
     """
 
     def __init__(self, ctx: Context) -> None:
@@ -104,6 +115,7 @@ class CloseUntilForce(Controller):
         self.pressing = False
         self.recentred = 0.0  # m the arm has followed a contact along the jaws' width in this close
         self.brushed: float | None = None  # where along the jaws' width the pads last felt something in this close
+        self.unfelt = 0.0  # s the jaws have pressed with neither pad feeling anything
         self.ctx.memory[EMPTY_HAND] = world_load(readings)  # a grasp begins empty-handed
         self.guided = self.ctx.blackboard.contact is not None  # the arm says when to close
 
@@ -113,14 +125,18 @@ class CloseUntilForce(Controller):
             return self._reopen(dt)
         if self.status is Status.RUNNING:
             force = self.jaws.force(readings)
-            if self.jaws.empty(readings):  # a motor pressing on its end stop feels force too
+            self.unfelt = self.unfelt + dt if self.pressing and self.jaws.feel_nothing(readings) else 0.0
+            # a motor pressing on its end stop feels force too; fingers stopped beside the pads grip nothing
+            if self.jaws.empty(readings) or self.unfelt >= UNFELT_TIME:
                 self.pressing = False
                 if self.guided:
                     board.jaws_empty = True
                     board.jaws_brushed = self.brushed
                 else:
-                    self.finish(Status.ERROR, "the jaws closed on nothing")
-            elif self.pressing and abs(float(readings.hand_dq[0])) < STILL and self._gripped(force):
+                    self.finish(Status.ERROR, "the jaws closed on nothing" if self.jaws.empty(readings)
+                                else "the jaws stopped on something their pads do not feel")
+            elif (self.pressing and abs(float(readings.hand_dq[0])) < STILL and self._gripped(force)
+                  and not board.pressing):
                 board.fingers_stopped = True
                 limit = ", the squeeze at its limit" if force < CONFIRM * self.grasp_force else ""
                 self.finish(Status.DONE, f"grip force {force:.1f} N (asked {self.grasp_force:g} N{limit})")

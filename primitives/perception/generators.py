@@ -184,4 +184,4 @@ def vision(image: DepthImage, container: ContainerBelief, rng: np.random.Generat
     pose = approach_pose(container, point, approaching.grasp_reach, approaching.height,
                          jaw_yaw(part if principal_axis(part, container)[1] else near_top(chosen), container,
                                  settings.grasp_extent))
-    return Approach(pose, point, "vision", len(clusters))
+    return Approach(pose, point, "vision", len(clusters), float(point[2]))

@@ -108,7 +108,7 @@ def test_on_the_touch_task_the_cap_approach_noise_moves_the_hand_over_the_cap_an
     belief = translate(load_task(EXAMPLES / "unscrew_by_touch.xml")[0], create("tombatossals", "left")).estd
     assert approach_states(belief, StateType.UNSCREW) == {"above_cap"}
     assert {s.name for s in belief.states if s.target_from == "cap_top"} == {
-        "over_cap", "open_over_cap", "around_cap", "carry_cap"}
+        "off_cap", "open_over_cap", "around_cap", "carry_cap"}
 
 
 def test_the_naive_grasp_mode_unscrews_without_the_alignment() -> None:

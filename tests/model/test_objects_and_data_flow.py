@@ -142,6 +142,18 @@ CASES = {
         bad('    <writes name="approach" kind="point"/>') + "  </state>\n" + edge("look", "feel", "<object_found/>") +
         edge("look", "done", "<nothing_found/>") + edge("feel", "done", "<contact/>") +
         edge("feel", "failed", "<no_contact/>"))),
+    "an object top on a move": ("ATD103", task(
+        bad('  <state name="go" type="move"><path><position>0 0 0.2</position></path><object_top from="a"/></state>')
+        + edge("go", "done"), "go")),
+    "an object top that is a number": ("ATD103", task(
+        '  <state name="go" type="grasp">\n' + bad("    <object_top>0.05</object_top>") + "  </state>\n" +
+        edge("go", "done"), "go")),
+    "an object top read that nothing writes": ("ATD221", task(
+        bad('  <state name="go" type="grasp"><object_top from="approach"/></state>') + edge("go", "done"), "go")),
+    "a point as an object top": ("ATD222", task(
+        '  <state name="feel" type="explore"><direction>0 0 -1</direction><writes name="p" kind="point"/></state>\n'
+        + bad('  <state name="go" type="grasp"><object_top from="p"/></state>') + edge("feel", "go", "<contact/>") +
+        edge("feel", "failed", "<no_contact/>") + edge("go", "done"), "feel")),
     # outcomes
     "an outcome without a name": ("ATD102", task(
         MOVE_DONE + '  <transition origin="go" destination="failed">\n' + bad("    <outcome/>") + "  </transition>\n",
@@ -245,8 +257,24 @@ def test_the_new_language_survives_a_round_trip(tmp_path) -> None:
         assert load_task(copy)[0] == original
 
 
+def test_the_seen_top_a_grasp_reads_is_read_written_and_translated(tmp_path) -> None:
+    """examples/pick_one.xml's grasp aims its close at the top the approach saw."""
+    from atd.model.estd_xml import estd_to_xml, parse_estd
+    from factories.registry import create
+    from translator import translate
+
+    original, found = load_task(REPO / "examples" / "pick_one.xml")
+    assert not found and original.states_by_name["grasp"].top_from == "approach"
+    copy = tmp_path / "copy.xml"
+    copy.write_bytes(task_to_xml(original))
+    assert load_task(copy)[0] == original
+    estd = translate(original, create("melfa")).estd
+    read, problems = parse_estd(estd_to_xml(estd), "x.estd.xml")
+    assert not problems and read.states_by_name["grasp"].top_from == "approach"
+
+
 def test_a_target_offset_is_read_written_and_translated_with_its_value(tmp_path) -> None:
-    """examples/unscrew_by_touch.xml pinches a known height over the cap top an explore felt."""
+    """examples/unscrew_by_touch.xml pinches a known depth under the cap top an explore felt."""
     from atd.model.estd_xml import estd_to_xml, parse_estd
     from factories.registry import create
     from translator import translate
@@ -254,13 +282,13 @@ def test_a_target_offset_is_read_written_and_translated_with_its_value(tmp_path)
     original, found = load_task(REPO / "examples" / "unscrew_by_touch.xml")
     assert not found
     assert original.states_by_name["around_cap"].target_from == "cap_top"
-    assert original.states_by_name["around_cap"].target_offset == (0.038, 0.0, -0.022)
+    assert original.states_by_name["around_cap"].target_offset == (0.0, 0.0, -0.018)
     copy = tmp_path / "copy.xml"
     copy.write_bytes(task_to_xml(original))
     assert load_task(copy)[0] == original
     estd = translate(original, create("tombatossals", "left")).estd
     read, problems = parse_estd(estd_to_xml(estd), "x.estd.xml")
-    assert not problems and read.states_by_name["carry_cap"].target_offset == (0.057, -0.15, 0.08)
+    assert not problems and read.states_by_name["carry_cap"].target_offset == (0.0, -0.15, 0.1)
 
 
 def test_validate_prints_located_lines_and_exits_1_without_a_traceback(atd_file) -> None:

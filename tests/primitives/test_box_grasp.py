@@ -151,3 +151,46 @@ def test_a_multi_finger_grasp_over_a_known_box_first_moves_its_hand_clear_of_the
         if environment is not None:
             np.testing.assert_allclose(grasp.route[-1], (0.20, HIGH_Y - 0.06, start[2, 3]))
     assert phases[0] is Phase.ACROSS and phases[1] is Phase.APPROACH
+
+
+def test_a_jaw_grasp_told_the_top_vision_saw_clears_it_and_closes_halfway_down_to_the_floor() -> None:
+    """The task knows no object; the approach's top (`object_top`) stands in for it: the first
+    descent starts with the fingertips clear of that top, and with no contact the jaws close
+    round the middle of what stands under it (a short object: with the fingertips just over
+    the floor, as with no top told)."""
+    box, _ = _melfa_contexts()
+    made = []
+    for top in (0.095, 0.045, None):
+        params = {"hand_extent": MELFA_OPEN, "fingertip_reach": 0.0238, **({} if top is None else {"object_top": top})}
+        grasp = build_controller(Controller(name="jaw_grasp_correction", params=params), "arm", box)
+        start = _tcp(0.18, 0.15)
+        start[2, 3] = 0.10
+        grasp.start(_still_at(start))
+        rise = grasp.route[0][2]
+        grasp._start_descent(_still_at(start))
+        made.append((rise, grasp._grasp_height()))
+    over_the_floor = 0.01 + 0.0238 + 0.005  # the floor, the fingertips' reach under the TCP, their clearance
+    assert made[0] == (pytest.approx(0.095 + 0.04), pytest.approx((0.095 + 0.01) / 2))  # a standing can: its middle
+    assert made[1] == (pytest.approx(0.12), pytest.approx(over_the_floor))  # 2 cm up; a 3.5 cm object: low
+    assert made[2] == (pytest.approx(0.12), pytest.approx(over_the_floor))
+
+
+def test_a_jaw_grasp_told_the_top_vision_saw_does_not_close_with_the_fingertips_at_it() -> None:
+    """A jaw meeting something before the fingertips are past the seen top: the jaws would
+    close over it; the hand goes on to where the contact placed the object instead. With the
+    fingertips 1.2 cm under it (a wood block lifted so), and with no top told, it closes."""
+    box, _ = _melfa_contexts()
+    phases = []
+    for top, tcp_z in ((0.05, 0.0738), (0.05, 0.0618), (None, 0.0738)):
+        params = {"hand_extent": MELFA_OPEN, "fingertip_reach": 0.0238, "max_shifts": 0,
+                  **({} if top is None else {"object_top": top})}
+        grasp = build_controller(Controller(name="jaw_grasp_correction", params=params), "arm", box)
+        at = _tcp(0.18, 0.15)
+        at[2, 3] = tcp_z
+        grasp.start(_still_at(at))
+        grasp._start_descent(_still_at(at))
+        force = np.array([0.0, 0.0, -5.0])  # pushed up, in the hand's frame (its z points down)
+        lever = np.array([0.0, 0.03, grasp.wrist_to_tcp])  # under one jaw, 3 cm across
+        grasp._met(_still_at(at), np.concatenate([force, np.cross(lever, force)]))
+        phases.append(grasp.phase)
+    assert phases == ["move", "close", "close"]

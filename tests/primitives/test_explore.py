@@ -33,11 +33,12 @@ def test_explore_stops_on_the_object_top_and_on_the_floor_and_says_where(engine:
     robot = box_world(cube("block", CORNER), engine=engine)
     top = robot.object_poses()["block"][2, 3] + 0.025
     for xy, surface in ((CORNER, top), ((0.13, 0.12), FLOOR)):
-        outcome, executor = execute(machine(*_over_then_down(xy)), robot)
+        # written where the closed jaws' tips touched (`hand_point`: MELFA_REACH under the TCP)
+        outcome, executor = execute(machine(*_over_then_down(xy, hand_point=(0.0, 0.0, MELFA_REACH))), robot)
         assert outcome.succeeded, outcome.summary
         touched = executor.machine.base.memory["touched"]
         assert isinstance(touched, Contact) and touched.sensor == "wrist"
-        assert abs(touched.point[2] - MELFA_REACH - surface) < 0.003  # the fingertips' height, within 3 mm
+        assert abs(touched.point[2] - surface) < 0.003  # the fingertips' height, within 3 mm
         assert np.linalg.norm(touched.point[:2] - xy) < 0.003  # straight down, not pushed aside
         assert "contact after" in events(executor)[-1]["conditions"][0]["reason"]
     robot.close()

@@ -75,6 +75,7 @@ def test_vision_finds_the_corner_object_and_nothing_in_an_empty_box(engine: str)
     assert found is not None and found.candidates == 1
     assert np.linalg.norm(found.point[:2] - truth[:2]) < 0.02
     assert found.point[2] == pytest.approx(truth[2] + 0.025, abs=0.005)  # its top
+    assert found.top == found.point[2]  # the top the grasp is told (<object_top from>)
     empty = box_world(engine=engine)
     assert vision(empty.capture("kinect"), BELIEF, np.random.default_rng(0), SETTINGS, APPROACHING) is None
     empty.close()

@@ -15,7 +15,7 @@ from mcap.reader import make_reader
 from atd.model.estd import Controller, EstdState
 from atd.model.vocabulary import StateType
 from atd.review.load import load
-from atd.runtime.values import MissingValue, arm_for, bind_inputs
+from atd.runtime.values import MissingValue, arm_for, bind_inputs, topped
 from primitives.values import Approach, Contact, NothingFound
 from tests.conftest import EXAMPLES, REPO
 from tests.runtime.test_run_cli import atd
@@ -95,6 +95,21 @@ def test_a_target_from_a_value_is_its_tcp_position_and_an_approach_s_yaw_read_as
     assert arm_for(put, {"approach": approach}).params == {"target": (0.1, -0.05, 0.2)}  # a place does not turn
     with pytest.raises(MissingValue, match="state 'reach' takes its target from 'approach': it holds NothingFound"):
         arm_for(REACH, {"approach": NothingFound("vision", "empty")})
+
+
+def test_a_grasp_takes_the_top_its_approach_saw_as_the_state_starts():
+    """Vision says how high the top it aimed at is; random blind knows none, and the grasp
+    then runs as the task wrote it."""
+    grasp = EstdState(name="grasp", type=StateType.GRASP, atd="grasp", top_from="approach",
+                      arm=Controller(name="jaw_grasp_correction", params={"max_shifts": 1}))
+    seen = Approach(np.eye(4), np.array([0.1, -0.05, 0.052]), "vision", 3, 0.0523456789)
+    assert topped(grasp.arm, grasp, {"approach": seen}).params == {"max_shifts": 1, "object_top": 0.052346}
+    blind = Approach(np.eye(4), np.array([0.1, -0.05, 0.01]), "random_blind")
+    assert topped(grasp.arm, grasp, {"approach": blind}) is grasp.arm
+    with pytest.raises(MissingValue, match="state 'grasp' takes the object's top from 'approach': it holds nothing"):
+        topped(grasp.arm, grasp, {})
+    explore = Controller(name="explore", params={"direction": (0.0, 0.0, -1.0)})  # takes no top: left as it is
+    assert topped(explore, grasp, {"approach": seen}) is explore
 
 
 def test_a_sub_task_input_takes_the_parent_s_value_by_its_own_name():

@@ -140,3 +140,28 @@ def test_the_move_to_vision_s_approach_is_for_where_the_pinch_closes_on_each_han
         assert reach.arm.params["hand_point"] == tuple(round(float(c), 6) for c in centre), factory.name
     sdh2 = translate(task, create("tombatossals", arm="left")).estd.states_by_name["take_one_out"].machine
     assert sdh2.states_by_name["reach"].arm.params["hand_point"] == (0.019, 0.0, 0.0)
+
+
+def test_the_touch_and_the_pinch_under_it_are_each_hands_own_points():
+    """examples/unscrew_by_touch.xml names no hand's offsets: its explore writes where the
+    hand's lowest point touched (the SDH2's thumb, 38 mm off and 21 mm under its TCP; a
+    gripper's closed jaws under its TCP), and a move to that point puts the lowest point of
+    its shape there, under its grasp centre, so each TCP stops where its own hand says."""
+    task, found = load_task(EXAMPLES / "unscrew_by_touch.xml")
+    assert found == []
+    for factory in every_factory():
+        states = translate(task, factory).estd.states_by_name
+        robot = factory.robot
+        thumb = states["find_cap"].arm.params["hand_point"]
+        push = robot.hand.push_posture
+        assert thumb == tuple(round(v, 6) for v in (*robot.hand.grasp_centres.get(push, (0.0, 0.0))[:2],
+                                                     robot.hand_reach(push))), factory.name
+        pinch = states["around_cap"].arm.params["hand_point"]
+        centre = robot.hand.grasp_centres.get("pinch_grasp_preshape", (0.0, 0.0, 0.0))
+        assert pinch[:2] == tuple(centre[:2]) and pinch[2] == round(robot.hand_reach("pinch_grasp_preshape"), 6)
+        assert states["around_cap"].target_offset == (0.0, 0.0, -0.018)
+    sdh2 = translate(task, create("tombatossals", arm="left")).estd.states_by_name
+    assert sdh2["find_cap"].arm.params["hand_point"] == (-0.038, 0.0, 0.021)
+    melfa = translate(task, create("melfa")).estd.states_by_name
+    assert melfa["around_cap"].arm.params["hand_point"] == (0.0, 0.0, 0.0238)  # the jaws' tips, 23.8 mm down
+    # a move to a pose (vision's approach) is still for the grasp centre itself: see the test above
