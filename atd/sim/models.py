@@ -15,7 +15,7 @@ import numpy as np
 
 from atd.model.frames import rpy_of as matrix_to_rpy
 from atd.sim.scene import COLOURS, TABLE_CENTRE, TABLE_HALF, Body, Scene, bounding_box
-from atd.sim.thread import jaws
+from atd.sim.thread import Thread, jaws
 from factories.description import FingerPad, Link, Origin, RobotDescription, Shape
 from factories.parts import PAD
 
@@ -25,6 +25,8 @@ _MUJOCO_VIEW = np.diag([1.0, -1.0, -1.0, 1.0])
 #: Contacts reported per finger pad each physics step, strongest first: a box face on a pad
 #: makes four, an edge two; the weakest beyond these carry almost nothing.
 PAD_CONTACTS = 8
+#: s: MuJoCo's default contact time constant (solref), which every geom but a cap keeps.
+CONTACT_TIMECONST = 0.02
 
 
 def matrix_to_quat(r: np.ndarray) -> tuple[float, float, float, float]:
@@ -177,6 +179,15 @@ def _body(body: Body, name: str | None = None) -> dict:
             "inertia": _fmt(body.inertia()), "meshes": _meshes(body, name), "thread": _thread(body)}
 
 
+def cap_timeconst(thread: Thread, body_mass: float) -> float:
+    """The time constant (s) of a threaded body's cap's contacts. MuJoCo lets a contact give way
+    in proportion to its body's inverse mass: on CONTACT_TIMECONST a cap of a few grams let the
+    pads sink millimetres into it (docs/unscrew-campaign.md). Scaled by the root of the cap's
+    mass over the body's, a cap gives way as little as the bottle under it (MuJoCo keeps at
+    least two steps)."""
+    return CONTACT_TIMECONST * math.sqrt(thread.cap_mass / body_mass)
+
+
 def _thread(body: Body) -> dict | None:
     """A threaded body's parts for the template (atd/sim/thread.py): main part and neck as
     (centre, MJCF size), where its nut starts and where its cap stands, in the world."""
@@ -188,7 +199,7 @@ def _thread(body: Body) -> dict | None:
     main = (*body.half_extents[:-1], t.main_height(height) / 2)
     return {"t": t, "main": (_fmt((0, 0, main_z)), _fmt(main)), "neck": (_fmt((0, 0, neck_z)), _fmt((t.neck_radius, t.neck_height / 2))),
             "nut": _fmt((0, 0, cap_z)), "cap": Placed.of(t.closed_cap(body.pose, height)), "cap_size": _fmt((t.cap_radius, t.cap_height / 2)),
-            "cap_inertia": _fmt(t.cap_inertia()), "coupling": _fmt((0, t.pitch / (2 * math.pi), 0, 0, 0)),
+            "cap_inertia": _fmt(t.cap_inertia()), "cap_solref": _fmt((cap_timeconst(t, body.own_mass), 1)), "coupling": _fmt((0, t.pitch / (2 * math.pi), 0, 0, 0)),
             "jaws": [{"at": Placed.of(pose), "size": _fmt(s / 2 for s in size)}
                      for pose, size in (jaws(body.pose, bounding_box(body.kind, body.size)[:2], height) if t.fixture else [])]}
 
