@@ -23,7 +23,7 @@ import numpy as np
 from atd.model.vocabulary import ObjectClass
 from primitives.arm.motion import GAIN, clamp_norm, norm, orientation_twist, unit
 from primitives.arm.move import arm_output
-from primitives.arm.slide_edges import INSET, Sweep, shift, sweeps
+from primitives.arm.slide_edges import INSET, Sweep, moved, shift, sweeps
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.filters import ContactWrench, LowPass
 from primitives.robot import Readings
@@ -54,9 +54,10 @@ GRAVITY = 9.81
 DEFAULT_FRICTION = 1.0
 # s time constant of the low-pass on the felt drag: smooths stick-slip.
 DRAG_FILTER = 0.1
-# m of the drag's path over which the hand may have felt no carried drag and still say it
-# carried the object: the object stays behind the hand by as much (a drag builds up over the
-# first fraction of a millimetre); a share of the path would let centimetres slip by.
+# m the object may have stayed behind the hand and the slide still say it carried it: of the
+# drag's path without the carrying drag felt (a drag builds up over the first fraction of a
+# millimetre; a share of the path would let centimetres slip by), and, where a range sensor
+# sees its trailing edge after the drag, from where the target puts that edge.
 SLIP_LIMIT = 0.005
 # N of pressing under which the hand has let go of the object, rising after the drag.
 LET_GO_FORCE = 1.0
@@ -64,9 +65,9 @@ LET_GO_FORCE = 1.0
 # edges: clear of its top, which the state began touching (the pads' centres say nothing of
 # how far the fingers reach below them).
 SWEEP_RISE = 0.015
-# m/s the hand moves between sweeps; and sweeps, at 200 Hz ticks a 0.1 mm step of the edge.
-MOVE_SPEED = 0.05
-SWEEP_SPEED = 0.02
+# m/s the hand moves between sweeps; and sweeps, at 200 Hz ticks a 0.15 mm step of the edge.
+MOVE_SPEED = 0.08
+SWEEP_SPEED = 0.03
 # m from a point the hand moves to where it counts as there.
 ARRIVED = 0.001
 
@@ -77,12 +78,13 @@ class Phase(Enum):
     CLEAR = "_clear"  # rising CLEARANCE off whatever the state began touching
     TO_SWEEP = "_to_sweep"  # above the object's top, to where the next sweep starts (a range sensor only)
     SWEEP = "_sweep"  # the range sensor's beam moved outward until it drops off the object's edge
+    # after the trailing and side edges' sweeps: BACK; after the trailing edge's at the target: done or error
     BACK = "_back"  # back to where CLEAR rose to, the object located
     TARE = "_tare"  # still in free air: the wrist's empty reading is taken
     DESCEND = "_descend"  # down along -n at CONTACT_VELOCITY until the object's top is felt
     PRESS = "_press"  # Eq. 3.6's normal law only, until the force is in the band
     DRAG = "_drag"  # Eq. 3.6: in the band, towards the target at TARGET_VELOCITY, until within `tolerance`
-    RELEASE = "_release"  # at the target: rise until the object no longer loads the hand
+    RELEASE = "_release"  # at the target: rise until the object no longer loads the hand, then the check's sweep
 
 
 class Slide(Controller):
@@ -117,6 +119,7 @@ class Slide(Controller):
         self.rotation = readings.tcp[:3, :3].copy()
         self.phase = Phase.CLEAR
         self.hold = readings.tcp[:3, 3] + CLEARANCE * self.normal  # where the hand goes or stays
+        self.meant = self.hold.copy()  # where the task meant the hand to press, risen CLEARANCE
         self.clock = 0.0  # s in the current phase's condition (tare, settle, contact gone)
         self.top = 0.0  # height along n where the object's top was felt
         self.pressing = 0.0
@@ -126,9 +129,10 @@ class Slide(Controller):
         # the edges to look for, where the robot has a range sensor along its approach axis and
         # the task says where the object stands; elsewhere the slide trusts the task's pose
         way = self._tangential(self.target - readings.tcp[:3, 3])
-        self.sweeps: tuple[Sweep, ...] = (sweeps(self.ctx.object, self.normal, unit(way))
-                                          if self._sweeps_object() and norm(way) > self.tolerance else ())
-        self.edges: list[float] = []  # m from the believed centre along each sweep, as seen
+        self.sweeps: list[Sweep] = (list(sweeps(self.ctx.object, self.normal, unit(way)))
+                                    if self._sweeps_object() and norm(way) > self.tolerance else [])
+        self.locating = len(self.sweeps)  # the sweeps before the drag; the one after it checks
+        self.edges: list[float] = []  # m from each sweep's centre along it, as seen
         self.shift = np.zeros(3)  # m the object stands from its believed pose, from its edges
         self.floor = np.inf  # m the range read over the object's top as a sweep began
 
@@ -213,18 +217,26 @@ class Slide(Controller):
         self.floor = min(self.floor, seen)
         gone = float(self._tangential(position - sweep.start) @ sweep.outward)
         if seen > self.floor + self.ctx.object.half_height:
-            self.edges.append(float((position - np.asarray(self.ctx.object.pose.position, float)) @ sweep.outward))
-            if len(self.edges) == len(self.sweeps):
-                self.shift = shift(self.sweeps, self.edges)
-                self.phase = Phase.BACK
-            else:
-                self.phase = Phase.TO_SWEEP
+            self._found(float((position - sweep.centre) @ sweep.outward))
         elif gone > 2 * INSET:
-            self.finish(Status.ERROR, f"found no edge of the object: the range sensor read no drop off its top "
-                                      f"within {INSET * 100:.0f} cm either side of where the task says its edge is "
+            what, where = (("found no edge of the object", "the task says") if len(self.edges) < self.locating
+                           else ("the object is not at its target", "the target puts"))
+            self.finish(Status.ERROR, f"{what}: the range sensor read no drop off its top within "
+                                      f"{INSET * 100:.0f} cm either side of where {where} its edge "
                                       f"(read {self.floor:.3f} m at the least)")
         height = self._sweep_height() - self._height(position)
         return SWEEP_SPEED * sweep.outward + GAIN * height * self.normal
+
+    def _found(self, seen: float) -> None:
+        """An edge seen `seen` m from its sweep's centre: the next sweep; after the locating
+        ones, back to press where the object stands; after the check, the verdict."""
+        self.edges.append(seen)
+        if len(self.edges) < self.locating:
+            self.phase = Phase.TO_SWEEP
+        elif len(self.edges) == self.locating:
+            self.shift, self.phase = shift(self.sweeps, self.edges), Phase.BACK
+        else:
+            self._verdict(seen - self.sweeps[-1].edge)
 
     def _back(self, readings: Readings, position: np.ndarray, force: np.ndarray, dt: float) -> np.ndarray:
         """To where CLEAR rose to, moved as far as the object stands from its believed pose:
@@ -316,6 +328,24 @@ class Slide(Controller):
 
     def _release(self, readings: Readings, position: np.ndarray, force: np.ndarray, dt: float) -> np.ndarray:
         if self.pressing < LET_GO_FORCE and self._height(position) > self.top + CLEARANCE:
-            self.finish(Status.DONE, f"slid the object to the target: pressed all the way, carried drag felt "
-                                     f"over all but {self.slipped * 1000:.1f} mm of {self.travelled * 100:.1f} cm")
+            if self.locating:  # the trailing edge's sweep where the target puts the object
+                self.sweeps.append(moved(self.sweeps[0], self._tangential(self.target - self.meant)))
+                self.phase = Phase.TO_SWEEP
+            else:
+                self.finish(Status.DONE, self._carried())
         return self.contact_velocity * self.normal + GAIN * self._tangential(self.hold - position)
+
+    def _carried(self) -> str:
+        return (f"slid the object to the target: pressed all the way, carried drag felt over all but "
+                f"{self.slipped * 1000:.1f} mm of {self.travelled * 100:.1f} cm")
+
+    def _verdict(self, behind: float) -> None:
+        """The object's trailing edge seen `behind` m further back than the target puts it."""
+        if abs(behind) > SLIP_LIMIT:
+            what = "left the object behind" if behind > 0 else "pushed the object past its target"
+            self.finish(Status.ERROR, f"{what}: its trailing edge seen {abs(behind) * 100:.1f} cm "
+                                      f"{'short of' if behind > 0 else 'past'} where the target puts it "
+                                      f"(> {SLIP_LIMIT * 100:.1f} cm)")
+        else:
+            self.finish(Status.DONE, f"{self._carried()}, found {np.linalg.norm(self.shift) * 100:.1f} cm from where "
+                                     f"the task says and seen {behind * 1000:+.1f} mm from its target")

@@ -5,12 +5,13 @@ stands 2 cm from it ends 2 cm from its target however well it is carried.
 The beam is swept outward from over the object, along the believed centre line, across its
 trailing edge (behind it on the slide's way) and across the edge to the side of the way; where
 the beam drops off the top, the edge is. Each edge found moves the object's believed centre
-along the sweep by as much as the edge stands from where the believed pose puts it.
+along the sweep by as much as the edge stands from where the believed pose puts it. After
+the drag, the trailing edge's sweep moved along the way says whether the object came along.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -25,8 +26,9 @@ INSET = 0.03
 @dataclass(frozen=True)
 class Sweep:
     """One look across an edge: the beam starts over `start` and moves along `outward`
-    (unit, tangential); the believed edge stands `edge` m from the believed centre along it."""
+    (unit, tangential); the believed edge stands `edge` m from the believed `centre` along it."""
 
+    centre: np.ndarray
     start: np.ndarray
     outward: np.ndarray
     edge: float
@@ -40,8 +42,13 @@ def sweeps(obj: ObjectInfo, normal: np.ndarray, direction: np.ndarray) -> tuple[
     found = []
     for outward in (-direction, np.cross(normal, direction)):
         edge = _edge_distance(obj, pose[:3, :3], outward)
-        found.append(Sweep(centre + (edge - INSET) * outward, outward, edge))
+        found.append(Sweep(centre, centre + (edge - INSET) * outward, outward, edge))
     return found[0], found[1]
+
+
+def moved(sweep: Sweep, by: np.ndarray) -> Sweep:
+    """The same look, for the object moved `by` (m, world)."""
+    return replace(sweep, centre=sweep.centre + by, start=sweep.start + by)
 
 
 def _edge_distance(obj: ObjectInfo, rotation: np.ndarray, outward: np.ndarray) -> float:
