@@ -2,14 +2,17 @@
 object's top with a normal force between LOWER_ and UPPER_FORCE_THRESHOLD along
 SURFACE_NORMAL n and drags it to the target, the hand held in its (hook) preshape.
 
-It says success only when its own sensors say it carried the object: the contact was
-found where the object's top should be (the lowest of the hand's pads over the object,
-from its own kinematics, at the top the task believes the object has), held all the way,
-the hand went to within `tolerance` of the target, and over all the way but SLIP_LIMIT the
-wrist felt the drag of the object sliding on the surface rather than that of the hand's
-surfaces slipping over it (belief only: the object's
-believed friction and weight, the hand's surface friction from its description, never the
-simulator's). Anything else is an error, with why.
+It says success only when its own sensors say it carried the object to its target: the
+contact was found where the object's top should be (the lowest of the hand's pads over the
+object, from its own kinematics, at the top the task believes the object has), held all the
+way, the hand went to within `tolerance` of the target, and over all the way but SLIP_LIMIT
+the wrist felt the drag of the object sliding on the surface rather than that of the hand's
+surfaces slipping over it (belief only: the object's believed friction and weight, the
+hand's surface friction from its description, never the simulator's). Where the robot has a
+range sensor along its approach axis, it also finds the object's edges before pressing
+(`primitives.arm.slide_edges`: an object standing off its believed pose is pressed where the
+task meant and taken to its own target) and sees its trailing edge within SLIP_LIMIT of where
+the target puts it after the drag. Anything else is an error, with why.
 The wrench is read as in `primitives.arm.surface`: the contact force on the hand, tared in
 free air, pressing makes it point along +n.
 """
