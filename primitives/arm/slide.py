@@ -73,6 +73,9 @@ MOVE_SPEED = 0.08
 SWEEP_SPEED = 0.03
 # m from a point the hand moves to where it counts as there.
 ARRIVED = 0.001
+# Least cosine between the approach axis and -n for the range sensor's beam to fall on the
+# object's top across its edges (10 degrees); a hand held otherwise trusts the task's pose.
+BEAM_ALIGNMENT = 0.985
 
 
 class Phase(Enum):
@@ -132,8 +135,9 @@ class Slide(Controller):
         # the edges to look for, where the robot has a range sensor along its approach axis and
         # the task says where the object stands; elsewhere the slide trusts the task's pose
         way = self._tangential(self.target - readings.tcp[:3, 3])
+        looks_down = float(readings.tcp[:3, 2] @ -self.normal) > BEAM_ALIGNMENT
         self.sweeps: list[Sweep] = (list(sweeps(self.ctx.object, self.normal, unit(way)))
-                                    if self._sweeps_object() and norm(way) > self.tolerance else [])
+                                    if self._sweeps_object() and looks_down and norm(way) > self.tolerance else [])
         self.locating = len(self.sweeps)  # the sweeps before the drag; the one after it checks
         self.edges: list[float] = []  # m from each sweep's centre along it, as seen
         self.shift = np.zeros(3)  # m the object stands from its believed pose, from its edges
