@@ -351,7 +351,8 @@ _ARM_CONTROLLERS = (
                                         unit="N"),
             "target_velocity": _p(NUM, "speed towards the target (thesis TARGET_VELOCITY)", 0.005, unit="m/s"),
             "contact_velocity": _p(NUM, "speed along the normal (thesis CONTACT_VELOCITY)", 0.005, unit="m/s"),
-            "tolerance": _p(NUM, "distance to the target counted as reached (ours)", 0.005, unit="m"),
+            "tolerance": _p(NUM, "distance to the target counted as reached (ours): the object stops that much "
+                                 "short of its own", 0.001, unit="m"),
             "filter_time": _FILTER,
         },
     ),

@@ -2,13 +2,17 @@
 object's top with a normal force between LOWER_ and UPPER_FORCE_THRESHOLD along
 SURFACE_NORMAL n and drags it to the target, the hand held in its (hook) preshape.
 
-It says success only when its own sensors say it carried the object: the contact was
-found where the object's top should be (the lowest of the hand's pads over the object,
-from its own kinematics, at the top the task believes the object has), held all the way,
-and over most of the way the wrist felt the drag of the object sliding on the surface
-rather than that of the hand's surfaces slipping over it (belief only: the object's
-believed friction and weight, the hand's surface friction from its description, never the
-simulator's). Anything else is an error, with why.
+It says success only when its own sensors say it carried the object to its target: the
+contact was found where the object's top should be (the lowest of the hand's pads over the
+object, from its own kinematics, at the top the task believes the object has), held all the
+way, the hand went to within `tolerance` of the target, and over all the way but SLIP_LIMIT
+the wrist felt the drag of the object sliding on the surface rather than that of the hand's
+surfaces slipping over it (belief only: the object's believed friction and weight, the
+hand's surface friction from its description, never the simulator's). Where the robot has a
+range sensor along its approach axis, it also finds the object's edges before pressing
+(`primitives.arm.slide_edges`: an object standing off its believed pose is pressed where the
+task meant and taken to its own target) and sees its trailing edge within SLIP_LIMIT of where
+the target puts it after the drag. Anything else is an error, with why.
 The wrench is read as in `primitives.arm.surface`: the contact force on the hand, tared in
 free air, pressing makes it point along +n.
 """
@@ -20,8 +24,9 @@ from enum import Enum
 import numpy as np
 
 from atd.model.vocabulary import ObjectClass
-from primitives.arm.motion import GAIN, clamp_norm, orientation_twist, unit
+from primitives.arm.motion import GAIN, clamp_norm, norm, orientation_twist, unit
 from primitives.arm.move import arm_output
+from primitives.arm.slide_edges import INSET, Sweep, moved, shift, sweeps
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.filters import ContactWrench, LowPass
 from primitives.robot import Readings
@@ -52,21 +57,41 @@ GRAVITY = 9.81
 DEFAULT_FRICTION = 1.0
 # s time constant of the low-pass on the felt drag: smooths stick-slip.
 DRAG_FILTER = 0.1
-# Fraction of the drag's path over which the drag must have been felt.
-DRAG_SHARE = 0.8
+# m the object may have stayed behind the hand and the slide still say it carried it: of the
+# drag's path without the carrying drag felt (a drag builds up over the first fraction of a
+# millimetre; a share of the path would let centimetres slip by), and, where a range sensor
+# sees its trailing edge after the drag, from where the target puts that edge (seen to a few
+# millimetres; PyBullet's tray lags Baxter's left hand by 6-7 mm, carried all the same).
+SLIP_LIMIT = 0.01
 # N of pressing under which the hand has let go of the object, rising after the drag.
 LET_GO_FORCE = 1.0
+# m the hand rises above where CLEAR took it while the range sensor looks for the object's
+# edges: clear of its top, which the state began touching (the pads' centres say nothing of
+# how far the fingers reach below them).
+SWEEP_RISE = 0.015
+# m/s the hand moves between sweeps; and sweeps, at 200 Hz ticks a 0.15 mm step of the edge.
+MOVE_SPEED = 0.08
+SWEEP_SPEED = 0.03
+# m from a point the hand moves to where it counts as there.
+ARRIVED = 0.001
+# Least cosine between the approach axis and -n for the range sensor's beam to fall on the
+# object's top across its edges (10 degrees); a hand held otherwise trusts the task's pose.
+BEAM_ALIGNMENT = 0.985
 
 
 class Phase(Enum):
     """Where the slide is; the value is the method that runs a tick of it."""
 
     CLEAR = "_clear"  # rising CLEARANCE off whatever the state began touching
+    TO_SWEEP = "_to_sweep"  # above the object's top, to where the next sweep starts (a range sensor only)
+    SWEEP = "_sweep"  # the range sensor's beam moved outward until it drops off the object's edge
+    # after the trailing and side edges' sweeps: BACK; after the trailing edge's at the target: done or error
+    BACK = "_back"  # back to where CLEAR rose to, the object located
     TARE = "_tare"  # still in free air: the wrist's empty reading is taken
     DESCEND = "_descend"  # down along -n at CONTACT_VELOCITY until the object's top is felt
     PRESS = "_press"  # Eq. 3.6's normal law only, until the force is in the band
-    DRAG = "_drag"  # Eq. 3.6: in the band, towards the target at TARGET_VELOCITY
-    RELEASE = "_release"  # at the target: rise until the object no longer loads the hand
+    DRAG = "_drag"  # Eq. 3.6: in the band, towards the target at TARGET_VELOCITY, until within `tolerance`
+    RELEASE = "_release"  # at the target: rise until the object no longer loads the hand, then the check's sweep
 
 
 class Slide(Controller):
@@ -101,12 +126,23 @@ class Slide(Controller):
         self.rotation = readings.tcp[:3, :3].copy()
         self.phase = Phase.CLEAR
         self.hold = readings.tcp[:3, 3] + CLEARANCE * self.normal  # where the hand goes or stays
+        self.meant = self.hold.copy()  # where the task meant the hand to press, risen CLEARANCE
         self.clock = 0.0  # s in the current phase's condition (tare, settle, contact gone)
         self.top = 0.0  # height along n where the object's top was felt
         self.pressing = 0.0
         self.dragged = 0.0  # m of the drag's path with the drag felt
         self.travelled = 0.0  # m of the drag's path
         self.drag.reset(np.zeros(1))
+        # the edges to look for, where the robot has a range sensor along its approach axis and
+        # the task says where the object stands; elsewhere the slide trusts the task's pose
+        way = self._tangential(self.target - readings.tcp[:3, 3])
+        looks_down = float(readings.tcp[:3, 2] @ -self.normal) > BEAM_ALIGNMENT
+        self.sweeps: list[Sweep] = (list(sweeps(self.ctx.object, self.normal, unit(way)))
+                                    if self._sweeps_object() and looks_down and norm(way) > self.tolerance else [])
+        self.locating = len(self.sweeps)  # the sweeps before the drag; the one after it checks
+        self.edges: list[float] = []  # m from each sweep's centre along it, as seen
+        self.shift = np.zeros(3)  # m the object stands from its believed pose, from its edges
+        self.floor = np.inf  # m the range read over the object's top as a sweep began
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         if self.status is not Status.RUNNING:
@@ -119,6 +155,10 @@ class Slide(Controller):
             return arm_output(np.zeros(6))
         w, _ = orientation_twist(self.rotation, readings.tcp[:3, :3])
         return arm_output(np.concatenate([v, w]))
+
+    def _sweeps_object(self) -> bool:
+        obj = self.ctx.object
+        return self.ctx.info.has_range and obj is not None and obj.pose is not None
 
     def _believed_top(self) -> float:
         """Height along n of the object's top as the task believes it; without an object
@@ -146,7 +186,7 @@ class Slide(Controller):
         if obj is None or obj.pose is None:
             return np.ones(len(points), bool)
         pose = obj.pose.as_array()
-        local = (points - pose[:3, 3]) @ pose[:3, :3]
+        local = (points - pose[:3, 3] - self.shift) @ pose[:3, :3]
         size = obj.effective_size
         if (obj.object_class or ObjectClass.BOX) is ObjectClass.BOX:
             return np.all(np.abs(local[:, :2]) <= np.array(size[:2]) / 2, axis=1)
@@ -157,9 +197,64 @@ class Slide(Controller):
 
     def _clear(self, readings: Readings, position: np.ndarray, force: np.ndarray, dt: float) -> np.ndarray:
         to_go = self.hold - position
-        if float(to_go @ self.normal) <= 0.0005:
-            self.phase, self.clock = Phase.TARE, 0.0
+        if float(to_go @ self.normal) <= ARRIVED:
+            self.phase, self.clock = (Phase.TO_SWEEP if self.sweeps else Phase.TARE), 0.0
         return self.contact_velocity * self.normal + GAIN * self._tangential(to_go)
+
+    def _sweep_height(self) -> float:
+        """Height along n of the TCP while the range sensor looks for the object's edges."""
+        return self._height(self.hold) + SWEEP_RISE
+
+    def _to(self, goal: np.ndarray, position: np.ndarray, speed: float) -> tuple[np.ndarray, bool]:
+        """The velocity towards `goal`, and whether the hand is there."""
+        return clamp_norm(GAIN * (goal - position), speed), norm(goal - position) < ARRIVED
+
+    def _to_sweep(self, readings: Readings, position: np.ndarray, force: np.ndarray, dt: float) -> np.ndarray:
+        sweep = self.sweeps[len(self.edges)]
+        goal = self._tangential(sweep.start) + self._sweep_height() * self.normal
+        v, there = self._to(goal, position, MOVE_SPEED)
+        if there:
+            self.phase, self.floor = Phase.SWEEP, np.inf
+        return v
+
+    def _sweep(self, readings: Readings, position: np.ndarray, force: np.ndarray, dt: float) -> np.ndarray:
+        """Outward until the beam reads the object's half height further than over its top
+        (or nothing): the edge, where the beam is now."""
+        sweep = self.sweeps[len(self.edges)]
+        seen = np.inf if readings.range is None else float(readings.range)
+        self.floor = min(self.floor, seen)
+        gone = float(self._tangential(position - sweep.start) @ sweep.outward)
+        if seen > self.floor + self.ctx.object.half_height:
+            self._found(float((position - sweep.centre) @ sweep.outward))
+        elif gone > 2 * INSET:
+            what, where = (("found no edge of the object", "the task says") if len(self.edges) < self.locating
+                           else ("the object is not at its target", "the target puts"))
+            self.finish(Status.ERROR, f"{what}: the range sensor read no drop off its top within "
+                                      f"{INSET * 100:.0f} cm either side of where {where} its edge "
+                                      f"(read {self.floor:.3f} m at the least)")
+        height = self._sweep_height() - self._height(position)
+        return SWEEP_SPEED * sweep.outward + GAIN * height * self.normal
+
+    def _found(self, seen: float) -> None:
+        """An edge seen `seen` m from its sweep's centre: the next sweep; after the locating
+        ones, back to press where the object stands; after the check, the verdict."""
+        self.edges.append(seen)
+        if len(self.edges) < self.locating:
+            self.phase = Phase.TO_SWEEP
+        elif len(self.edges) == self.locating:
+            self.shift, self.phase = shift(self.sweeps, self.edges), Phase.BACK
+        else:
+            self._verdict(seen - self.sweeps[-1].edge)
+
+    def _back(self, readings: Readings, position: np.ndarray, force: np.ndarray, dt: float) -> np.ndarray:
+        """To where CLEAR rose to, moved as far as the object stands from its believed pose:
+        the hand presses where the task meant on the object, and the same target takes the
+        object to its own."""
+        goal = self.hold + self.shift
+        v, there = self._to(goal, position, MOVE_SPEED)
+        if there:
+            self.hold, self.phase, self.clock = goal, Phase.TARE, 0.0
+        return v
 
     def _tare(self, readings: Readings, position: np.ndarray, force: np.ndarray, dt: float) -> np.ndarray:
         self.clock += dt
@@ -227,17 +322,38 @@ class Slide(Controller):
         return felt >= DRAG_FORCE and abs(felt - carried) < abs(felt - slipping)
 
     def _arrive(self, left: float) -> np.ndarray:
-        share = self.dragged / self.travelled if self.travelled > 0 else 0.0
-        if share < DRAG_SHARE:
-            self.finish(Status.ERROR, f"moved nothing: drag felt over {share:.0%} of the {self.travelled * 100:.1f} cm "
-                                      f"slid (< {DRAG_SHARE:.0%}), the hand slipped over the object: "
-                                      f"no more drag than its own friction on it")
+        """At the target: the object is as far short of its own as the hand slipped over it
+        (no carried drag felt), which must be within SLIP_LIMIT."""
+        slipped = self.travelled - self.dragged
+        if slipped > SLIP_LIMIT:
+            what = "moved nothing" if self.dragged < SLIP_LIMIT else "left the object behind"
+            self.finish(Status.ERROR, f"{what}: no carried drag over {slipped * 100:.1f} cm of the "
+                                      f"{self.travelled * 100:.1f} cm slid (> {SLIP_LIMIT * 100:.1f} cm), the hand "
+                                      f"slipped over the object: no more drag than its own friction on it")
             return np.zeros(3)
-        self.phase, self.share = Phase.RELEASE, share
+        self.phase, self.slipped = Phase.RELEASE, slipped
         return np.zeros(3)
 
     def _release(self, readings: Readings, position: np.ndarray, force: np.ndarray, dt: float) -> np.ndarray:
         if self.pressing < LET_GO_FORCE and self._height(position) > self.top + CLEARANCE:
-            self.finish(Status.DONE, f"slid the object to the target: pressed all the way, drag felt over "
-                                     f"{self.share:.0%} of {self.travelled * 100:.1f} cm")
+            if self.locating:  # the trailing edge's sweep where the target puts the object
+                self.sweeps.append(moved(self.sweeps[0], self._tangential(self.target - self.meant)))
+                self.phase = Phase.TO_SWEEP
+            else:
+                self.finish(Status.DONE, self._carried())
         return self.contact_velocity * self.normal + GAIN * self._tangential(self.hold - position)
+
+    def _carried(self) -> str:
+        return (f"slid the object to the target: pressed all the way, carried drag felt over all but "
+                f"{self.slipped * 1000:.1f} mm of {self.travelled * 100:.1f} cm")
+
+    def _verdict(self, behind: float) -> None:
+        """The object's trailing edge seen `behind` m further back than the target puts it."""
+        if abs(behind) > SLIP_LIMIT:
+            what = "left the object behind" if behind > 0 else "pushed the object past its target"
+            self.finish(Status.ERROR, f"{what}: its trailing edge seen {abs(behind) * 100:.1f} cm "
+                                      f"{'short of' if behind > 0 else 'past'} where the target puts it "
+                                      f"(> {SLIP_LIMIT * 100:.1f} cm)")
+        else:
+            self.finish(Status.DONE, f"{self._carried()}, found {np.linalg.norm(self.shift) * 100:.1f} cm from where "
+                                     f"the task says and seen {behind * 1000:+.1f} mm from its target")
