@@ -68,9 +68,7 @@ SWEEPING_TIP = 0.02
 # the hand's heading
 TIE_SHORT = np.radians(1.0)
 TURN_TOLERANCE = np.radians(1.0)  # rad: a turn to the object under a degree changes no grasp; the hand keeps its yaw
-# rad: room each arm joint keeps from its limit where a turned grasp puts it: the approach error
-# turns the hand up to 15 degrees about each axis (thesis 3.4.1), and Baxter's left wrist roll, left
-# 8 degrees from its stop by a -60 degree turn at (0.20, -0.12), stopped 2 of 4 approaches there
+# rad each joint keeps from its limits in a turned grasp: the approach error turns the hand up to 15°
 TURN_MARGIN = np.radians(15.0)
 WRIST_ALIGNED = 0.99  # cos: a last joint within 8 degrees of the approach axis rolls the hand about it (ours)
 

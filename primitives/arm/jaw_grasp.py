@@ -66,9 +66,7 @@ PRESSED = 5.0  # N up on the wrist, beyond the empty hand's load, while the jaws
 RELIEF_GAIN = 0.002  # m/s per newton pressed beyond PRESSED: the arm rises to take it off
 MAX_RELIEF = 0.02  # m the arm rises for that in one close, at most
 FREE_LOAD_WINDOW = 0.1  # s: the empty hand's load is the wrist's mean over the end of a move in free air
-# m the fingertips must reach past a top a perceive state saw for the jaws to close: closed with
-# them at that top they held nothing, while 1.2 cm under a wood block's top they lifted it
-# (Melfa, MuJoCo, docs/empty-the-box.md); a seen top is good to a few millimetres
+# m the fingertips reach past a seen top before the jaws close: a seen top is good to a few mm (docs/empty-the-box.md)
 PAST_SEEN_TOP = 0.005
 
 

@@ -57,25 +57,18 @@ GRAVITY = 9.81
 DEFAULT_FRICTION = 1.0
 # s time constant of the low-pass on the felt drag: smooths stick-slip.
 DRAG_FILTER = 0.1
-# m the object may have stayed behind the hand and the slide still say it carried it: of the
-# drag's path without the carrying drag felt (a drag builds up over the first fraction of a
-# millimetre; a share of the path would let centimetres slip by), and, where a range sensor
-# sees its trailing edge after the drag, from where the target puts that edge (seen to a few
-# millimetres; PyBullet's tray lags Baxter's left hand by 6-7 mm, carried all the same).
+# m the object may lag the hand over the drag, felt or seen, and the slide still say it carried it (docs/slide.md)
 SLIP_LIMIT = 0.01
 # N of pressing under which the hand has let go of the object, rising after the drag.
 LET_GO_FORCE = 1.0
-# m the hand rises above where CLEAR took it while the range sensor looks for the object's
-# edges: clear of its top, which the state began touching (the pads' centres say nothing of
-# how far the fingers reach below them).
+# m the hand rises over where CLEAR took it while the beam looks for edges: clear of the object's top
 SWEEP_RISE = 0.015
 # m/s the hand moves between sweeps; and sweeps, at 200 Hz ticks a 0.15 mm step of the edge.
 MOVE_SPEED = 0.08
 SWEEP_SPEED = 0.03
 # m from a point the hand moves to where it counts as there.
 ARRIVED = 0.001
-# Least cosine between the approach axis and -n for the range sensor's beam to fall on the
-# object's top across its edges (10 degrees); a hand held otherwise trusts the task's pose.
+# cos: approach axis within 10° of -n, or the beam misses the top at its edges (the task's pose is then trusted)
 BEAM_ALIGNMENT = 0.985
 
 

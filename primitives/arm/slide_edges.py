@@ -18,8 +18,7 @@ import numpy as np
 from atd.model.task import ObjectInfo
 from atd.model.vocabulary import ObjectClass
 
-# m inside the believed edge a sweep starts: as far as the task's pose may be off and the
-# beam still start over the object; a sweep that has gone twice this far found no edge.
+# m inside a believed edge a sweep starts (how far the task's pose may be off); twice this without a drop: no edge
 INSET = 0.03
 
 

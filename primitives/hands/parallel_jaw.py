@@ -29,9 +29,7 @@ BLOCKED = 0.003  # m: still jaws this far short of their closing reference are h
 SQUEEZE_GAIN = 5.0  # 1/s: how fast the squeeze corrects the motor force towards the pad force wanted
 SQUEEZE_TRIM = 0.5  # the correction stays within +-50 % of the grasp force
 ALIGNED = 0.3  # of a pad's half width: a contact this near the pad's middle needs no move along the jaws
-# s tactile jaws may press with neither pad feeling anything before they count as closed on nothing:
-# the Melfa's fingers stood 8 s on a tape roll's rim beside their pads, pressing, until the task's
-# timeout (PyBullet, generalisation.toml at base seed 52391); a close's touch reaches both pads in 0.1 s
+# s tactile jaws press feeling nothing on either pad before they count as closed on nothing (a touch reaches both in 0.1 s)
 UNFELT_TIME = 0.5
 
 
