@@ -682,10 +682,10 @@ class Factory(ABC):
         flags = arm_motion_flags(state)
         if state.type is StateType.PUSH:
             return self.controller("push", target=target, waypoints=via, keep_orientation=flags["keep_orientation"])
-        touched = state.target_from is not None and value_kinds(context.task).get(state.target_from, (None,))[0] \
-            is ValueKind.POINT
-        if state.target_from is not None and any(point := self.acting_point(state, touched)):  # read at run time
-            extra = {**extra, "hand_point": tuple(round(v, 6) for v in point)}
+        if state.target_from is not None:  # read at run time: the move places the shape's point on it
+            touched = value_kinds(context.task).get(state.target_from, (None,))[0] is ValueKind.POINT
+            if any(point := self.acting_point(state, touched)):
+                extra = {**extra, "hand_point": tuple(round(v, 6) for v in point)}
         margin = CARRIED_MARGIN.get(state.type)
         carried: dict[str, ParamValue] = {} if margin is None else {"contact_margin": margin}
         turn = self.rolled(target_turn(state))
