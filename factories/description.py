@@ -35,6 +35,12 @@ class Origin:
     """Roll, pitch, yaw in radians (URDF order: about fixed x, then y, then z)."""
 
     def matrix(self) -> np.ndarray:
+        """A copy of `_matrix`: callers may change theirs."""
+        return self._matrix.copy()
+
+    @cached_property
+    def _matrix(self) -> np.ndarray:
+        """Made once per origin: forward kinematics asks each link's for every pose it computes."""
         m = np.eye(4)
         m[:3, :3] = rotation_rpy(self.rpy)
         m[:3, 3] = self.xyz

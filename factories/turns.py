@@ -55,9 +55,9 @@ def grasp_ahead(task: Task, state: State) -> State | None:
     frontier = [state]
     while frontier:
         here = frontier.pop(0)
-        for transition in task.transitions:
+        for _, transition in task.outgoing(here.name):
             after = task.states_by_name.get(transition.destination)
-            if transition.origin != here.name or after is None or after.name in seen:
+            if after is None or after.name in seen:
                 continue
             if after.type is StateType.GRASP:
                 return after

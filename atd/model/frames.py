@@ -3,6 +3,7 @@ the gravity of the world frame they turn in (z up)."""
 
 from __future__ import annotations
 
+from functools import lru_cache
 from typing import Sequence
 
 import numpy as np
@@ -39,6 +40,15 @@ def rotation_angle(rotation: np.ndarray) -> float:
 
 def axis_rotation(axis: np.ndarray, angle: float) -> np.ndarray:
     """Rodrigues' rotation about a unit axis."""
-    x, y, z = axis
+    k, kk = _cross_matrix(*(float(v) for v in axis))
+    return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * kk
+
+
+@lru_cache(maxsize=1024)
+def _cross_matrix(x: float, y: float, z: float) -> tuple[np.ndarray, np.ndarray]:
+    """The axis's cross-product matrix K and K @ K, made once per axis (forward kinematics
+    turns about each joint's own axis over and over), read-only."""
     k = np.array([[0, -z, y], [z, 0, -x], [-y, x, 0]])
-    return np.eye(3) + np.sin(angle) * k + (1 - np.cos(angle)) * (k @ k)
+    kk = k @ k
+    k.flags.writeable = kk.flags.writeable = False
+    return k, kk

@@ -358,8 +358,15 @@ class Task(AtdElement, KnowsObjects):
             ids.append(base if totals[key] == 1 else f"{base}#{seen[key]}")
         return tuple(ids)
 
+    @cached_property
+    def edges_leaving(self) -> dict[str, tuple[tuple[str, Transition], ...]]:
+        """Each state's edges with their ids, in document order: indexed once, so following
+        a chain of thousands of states costs each step a look-up, not a scan."""
+        found: dict[str, list[tuple[str, Transition]]] = {}
+        for tid, t in zip(self.transition_ids, self.transitions):
+            found.setdefault(t.origin, []).append((tid, t))
+        return {origin: tuple(edges) for origin, edges in found.items()}
+
     def outgoing(self, name: str) -> list[tuple[str, Transition]]:
         """The edges leaving a state, each with its id, in document order."""
-        return [
-            (tid, t) for tid, t in zip(self.transition_ids, self.transitions) if t.origin == name
-        ]
+        return list(self.edges_leaving.get(name, ()))

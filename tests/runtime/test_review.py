@@ -37,8 +37,8 @@ _PICK, _LIFT = "pick_and_place", "grasp_and_lift"  # grasp_and_lift: the shorter
 RUNS = {
     "melfa_mj": Recorded(_PICK, "melfa", "main", "mujoco", "done", {"tactile_left", "tactile_right"}),
     "melfa_pb": Recorded(_PICK, "melfa", "main", "pybullet", "done", {"tactile_left", "tactile_right"}),
-    "baxter_mj": Recorded(_PICK, "baxter", "right", "mujoco", "done", {"gripper_left", "gripper_right"}),
-    "baxter_pb": Recorded(_PICK, "baxter", "right", "pybullet", "done", {"gripper_left", "gripper_right"}),
+    "baxter_mj": Recorded(_LIFT, "baxter", "right", "mujoco", "success_end", {"gripper_left", "gripper_right"}),
+    "baxter_pb": Recorded(_LIFT, "baxter", "right", "pybullet", "success_end", {"gripper_left", "gripper_right"}),
     "barrett_mj": Recorded(_LIFT, "tombatossals", "right", "mujoco", "success_end",
                            {"tactile_f1", "tactile_f2", "tactile_f3", "tactile_palm"}),
     "sdh2_pb": Recorded(_LIFT, "tombatossals", "left", "pybullet", "success_end",
