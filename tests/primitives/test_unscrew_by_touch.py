@@ -19,6 +19,7 @@ from factories.registry import create
 from translator import translate
 
 TASK = Path(__file__).resolve().parents[2] / "examples" / "unscrew_by_touch.xml"
+PLACE = tuple(load_task(TASK)[0].object.pose.position[:2])  # the believed jar's: the campaign's bottles stand there
 TIPS_UNDER_TOP = 0.018  # m: where the task puts any hand's fingertips under the touched top (around_cap)
 ARRIVED = 0.003  # m: its guarded move ends this near its target (the moves' tolerance)
 TWISTED = 3.0  # s of the unscrew: the pinch presses 10 N within 1 s, a 30-degree twist takes about 1 s more
@@ -30,7 +31,7 @@ def _pinch_down(robot: str, arm: str | None, engine: str, twist: float = 0.0) ->
     The TCP as the unscrew starts, the simulator's cap top and its state at the stop."""
     task, _ = load_task(TASK)
     bottle = get("water_bottle")
-    task = task.model_copy(update={"object": bottle.object_info(0.12, 0.15)})
+    task = task.model_copy(update={"object": bottle.object_info(*PLACE)})
     factory = create(robot, arm)
     estd = translate(task, factory).estd
     scene = belief_scene(estd)
@@ -60,7 +61,7 @@ def test_a_taller_bottles_cap_is_found_by_touch_and_the_pinch_comes_down_to_it_a
     tcp, top, cap = _pinch_down("tombatossals", "left", "mujoco", TWISTED)
     tips = tcp[2, 3] - create("tombatossals", "left").robot.hand_reach("pinch_grasp_preshape")
     assert 0.0 <= tips - (top - TIPS_UNDER_TOP) <= ARRIVED + 0.001, (tips, top)
-    assert np.hypot(*(tcp[:2, 3] - (0.12 + 0.019, 0.15))) < 0.004  # the pinch centre (19 mm off) on the axis
+    assert np.hypot(*(tcp[:2, 3] - (PLACE[0] + 0.019, PLACE[1]))) < 0.004  # the pinch centre (19 mm off) on the axis
     assert cap.turned > 0.4, cap.turned  # most of one 30-degree twist (0.52 rad)
 
 
@@ -73,4 +74,4 @@ def test_a_gripper_finds_the_same_cap_with_its_closed_jaws_and_grips_it_by_its_o
     tcp, top, _ = _pinch_down("melfa", None, "pybullet")
     tips = tcp[2, 3] - create("melfa").robot.hand_reach("open")
     assert abs(tips - (top - 0.018)) < 0.003, (tips, top)
-    assert np.hypot(*(tcp[:2, 3] - (0.12, 0.15))) < 0.004
+    assert np.hypot(*(tcp[:2, 3] - PLACE)) < 0.004
