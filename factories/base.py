@@ -27,6 +27,7 @@ from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamValue, SensorKin
 from atd.model.estd import Condition, ConditionGroup, Controller
 from atd.model.frames import GRAVITY, rotation_rpy, rpy_of
 from atd.model.ranges import FORCE, WEIGHT
+from atd.model.resolved_rate import TURN_MARGIN
 from atd.model.validate import value_kinds
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
 from atd.model.vocabulary import (FIRED_BY, PERCEPTUAL_PRIMITIVES, EventType, HandShape, Movement, PerceptionMethod,
@@ -68,8 +69,6 @@ SWEEPING_TIP = 0.02
 # the hand's heading
 TIE_SHORT = np.radians(1.0)
 TURN_TOLERANCE = np.radians(1.0)  # rad: a turn to the object under a degree changes no grasp; the hand keeps its yaw
-# rad each joint keeps from its limits in a turned grasp: the approach error turns the hand up to 15°
-TURN_MARGIN = np.radians(15.0)
 WRIST_ALIGNED = 0.99  # cos: a last joint within 8 degrees of the approach axis rolls the hand about it (ours)
 
 
@@ -576,25 +575,39 @@ class Factory(ABC):
         last arm joint turns with it (at home, in the robot's own geometry). Refused where
         that joint does not roll the hand (a twist would swing the cap round an axis of its
         own) or cannot turn one twist's TWIST_ANGLE in all its range."""
-        robot, home = self.robot, np.asarray(self.robot.home, float)
-        name = robot.arm_joints[-1]
-        joint = robot.joints[name]
-        along = float(robot.tcp_jacobian(home)[3:, -1] @ robot.tcp_pose(home)[:3, 2])
-        if joint.kind != "revolute" or abs(along) < WRIST_ALIGNED:
+        name = self.robot.arm_joints[-1]
+        joint = self.robot.joints[name]
+        along = -self.wrist_roll()  # about the approach axis, which points down
+        if not along:
             raise Unmappable(f"unscrew state '{state.name}': the last joint of the {self.arm.description}, '{name}', "
                              "does not roll the hand about its approach axis, so no twist turns the cap on its axis",
                              "translate the task for a robot whose wrist rolls the hand")
         try:
             angle = float(state.parameters.get("twist_angle", self.controller("unscrew_arm").params["twist_angle"]))
         except ValueError:  # the translator reports the bad value, located
-            return float(np.sign(along))
+            return along
         span = float(np.degrees(joint.upper - joint.lower))
         if span < angle:
             raise Unmappable(f"unscrew state '{state.name}': the wrist joint '{name}' of the {self.arm.description} "
                              f"turns {span:.0f} degrees in all, less than one twist of {angle:g} degrees (TWIST_ANGLE)",
                              "set a smaller <parameter name=\"twist_angle\">, or translate for a robot whose wrist "
                              "turns further")
-        return float(np.sign(along))
+        return along
+
+    @cached_property
+    def _wrist_along(self) -> float:
+        """How the last arm joint's axis lies along the hand's approach axis at home (the
+        cosine): +-1 for a wrist that rolls the hand, as every arm's does."""
+        robot, home = self.robot, np.asarray(self.robot.home, float)
+        return float(robot.tcp_jacobian(home)[3:, -1] @ robot.tcp_pose(home)[:3, 2])
+
+    def wrist_roll(self) -> float:
+        """How the last arm joint turns per turn of a hand pointing down about the world
+        vertical (its approach axis the other way): -1 or +1; 0 where that joint does not
+        roll the hand. A move to a perceived yaw chooses its way with it (`cartesian_move`)."""
+        joint = self.robot.joints[self.robot.arm_joints[-1]]
+        along = self._wrist_along
+        return 0.0 if joint.kind != "revolute" or abs(along) < WRIST_ALIGNED else -float(np.sign(along))
 
     @cached_property
     def _wrist_to_tcp(self) -> float:
@@ -686,6 +699,8 @@ class Factory(ABC):
             touched = value_kinds(context.task).get(state.target_from, (None,))[0] is ValueKind.POINT
             if any(point := self.acting_point(state, touched)):
                 extra = {**extra, "hand_point": tuple(round(v, 6) for v in point)}
+            if not touched and (roll := self.wrist_roll()):  # a pose's yaw, turned to the way the wrist has room
+                extra = {**extra, "wrist_roll": roll}
         margin = CARRIED_MARGIN.get(state.type)
         carried: dict[str, ParamValue] = {} if margin is None else {"contact_margin": margin}
         turn = self.rolled(target_turn(state))

@@ -164,6 +164,10 @@ _MOVE = {
               limits=ranges.YAW),
     "either_way": _p(FLAG, "with yaw: the opposite way too where that is the smaller turn; off, that yaw itself, "
                            "the way the factory rehearsed for a wrist kept off its stops (ours, issue 33)", True),
+    "wrist_roll": _p(NUM, "with yaw: how the last arm joint turns per turn of the hand about the vertical, +1 or -1 "
+                          "(0: none rolls it); the opposite way is taken where the nearer would leave that joint "
+                          "less than 15 degrees from a limit and the other leaves it more (the robot's own geometry)",
+                     0.0, limits=ranges.DIRECTION),
     "hand_point": _p(VEC, "the point of the hand the target is for, from the TCP in the hand frame at the target: "
                      "a target read from a named value is for where the state's hand shape acts (the SDH2's "
                      "pinch, 19 mm off its TCP; at a point an explore touched, the hand's lowest point under it), "

@@ -13,6 +13,9 @@ from numpy.linalg import _umath_linalg
 _IDENTITY6 = np.eye(6)  # built once: adding it costs far less than indexing the diagonal every tick
 TWIST_DAMPING = 0.02  # m: the damping of the Cartesian velocity solver, in the units of the Jacobian
 LIMIT_BAND = 0.05  # of a joint's range: a joint this near a limit does less of a motion towards it
+# rad each joint keeps from its limits where a turn of the hand is chosen (a grasp's planned turn, a
+# move's turn to a perceived yaw): the approach error turns the hand up to 15°
+TURN_MARGIN = math.radians(15.0)
 
 
 def dls_joint_velocities(jacobian: np.ndarray, twist: np.ndarray, damping: float) -> np.ndarray:

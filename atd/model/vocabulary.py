@@ -93,7 +93,7 @@ class EventType(StrEnum):
     OBJECT_FOUND = "object_found"  # perceive chose an object: its approach is written
     NOTHING_FOUND = "nothing_found"  # perceive found no object where it looked
     CONTACT = "contact"  # explore felt contact: where is written
-    NO_CONTACT = "no_contact"  # explore went its whole distance without contact
+    NO_CONTACT = "no_contact"  # explore ended without contact: its whole distance, or stopped short (it says why)
     OUTCOME = "outcome"  # a sub-task ended in the end state it names
 
 

@@ -11,7 +11,8 @@ from __future__ import annotations
 import numpy as np
 
 from primitives.arm.approach_phases import APPROACH_ACCELERATION
-from primitives.arm.motion import GAIN, TwistShaper, clamp_norm, norm, orientation_twist, unit
+from primitives.arm.motion import (GAIN, STALL_TIME, Stall, TwistShaper, clamp_norm, norm, orientation_twist, unit,
+                                   what_stops)
 from primitives.arm.move import EASE_OFF, arm_output
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import ARM_TWIST
@@ -31,7 +32,8 @@ class Explore(Controller):
     that leads, so that a later target from it is where the hand touched, whatever the
     hand), then DONE once the hand rests EASE_OFF back from it (a
     motion that began at the touch tared the wrist mid-impact and read its ring as a contact).
-    Having gone `max_distance` without one: ERROR, "nothing within D m". The hand keeps the
+    Having gone `max_distance` without one: ERROR, "nothing within D m"; stalled short of it
+    without one (`Stall`: a joint at its limit, a singularity): ERROR, saying what stops it. The hand keeps the
     orientation it started with; it speeds up at the robust grasp's gentle
     APPROACH_ACCELERATION (a faster start reads as a contact on the wrist) and slows down
     over the last centimetres, so a leg that ends without a contact ends at rest."""
@@ -47,7 +49,9 @@ class Explore(Controller):
         self.hand_point = np.asarray(p.get("hand_point", (0.0, 0.0, 0.0)), float)
         self.contact = ContactWrench(float(p["filter_time"]))
         self.shaper = TwistShaper(acceleration_limits=(APPROACH_ACCELERATION,) * 3 + (0.0,) * 3)
+        self.stall = Stall()
         self.found: Contact | None = None
+        self.blocked = False  # stopped short without a contact: it cannot say nothing lies further on
 
     def start(self, readings: Readings) -> None:
         self.contact.start(readings)
@@ -56,6 +60,7 @@ class Explore(Controller):
         self.origin = readings.tcp[:3, 3].copy()
         self.rotation = readings.tcp[:3, :3].copy()
         self.rest = self.origin
+        self.stall.reset(readings.time)
         if self.writes:
             self.ctx.memory.pop(self.writes, None)  # an earlier visit's contact is not this one's
 
@@ -87,6 +92,14 @@ class Explore(Controller):
                 self.shaper.stop()
                 self.rest = position.copy()
                 self.finish(Status.ERROR, f"nothing within {self.max_distance:g} m")
+            elif self.stall.stalled(self.max_distance - travelled, readings.time):
+                self.shaper.stop()
+                self.rest, self.blocked = position.copy(), True
+                info = self.ctx.info
+                self.finish(Status.ERROR, f"no contact, and no progress for {STALL_TIME:g} s "
+                                          f"{(self.max_distance - travelled) * 100:.1f} cm short of "
+                                          f"{self.max_distance:g} m: "
+                                          f"{what_stops(readings.arm_q, info.arm_joints, info.arm_lower, info.arm_upper)}")
             else:
                 along = min(self.speed, GAIN * (self.max_distance - travelled))
                 on_line = self.origin + travelled * self.direction

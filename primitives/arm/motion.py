@@ -9,11 +9,11 @@ velocity and acceleration limits, and the detour around known obstacles.
 from __future__ import annotations
 
 import math
-from typing import Sequence
+from typing import Callable, Sequence
 
 import numpy as np
 
-from atd.model.resolved_rate import joints_at_limits, rotation_error
+from atd.model.resolved_rate import TURN_MARGIN, joints_at_limits, rotation_error
 
 GAIN = 4.0  # 1/s: linear P gain; 3 mm from the target the TCP still moves at 12 mm/s
 ROTATION_GAIN = 3.0  # 1/s
@@ -29,6 +29,8 @@ ANGULAR_ACCELERATION = 4.0  # rad/s^2
 # rad a move given a `yaw` may leave the hand's x from where the first such move found it:
 # a half-turn band and a quarter either side, so no turn need be more than a half turn
 WIND_LIMIT = math.radians(135.0)
+STALL_TIME = 2.0  # s without getting STALL_PROGRESS closer: the arm cannot get there
+STALL_PROGRESS = 0.001  # m
 
 WORLD_DOWN = np.array([0.0, 0.0, -1.0])
 SUPPORT_BAND = 0.01  # m: fingertips this close to the support's top (the world's z = 0) stand on it
@@ -45,22 +47,33 @@ def top_down(rotation: np.ndarray) -> np.ndarray:
     return np.column_stack([x, np.cross(z, x), z])
 
 
-def turn_to_yaw(level: np.ndarray, yaw: float, reference: float, either_way: bool = True) -> np.ndarray:
+def turn_to_yaw(level: np.ndarray, yaw: float, reference: float, either_way: bool = True,
+                room: Callable[[float], float] | None = None) -> np.ndarray:
     """The turn about the world vertical (3x3) that brings the top-down hand `level`'s x to
     `yaw` (rad, from the world x) or the opposite way: the smaller of the two (parallel jaws
     grip alike either way, so the wrist turns at most a quarter turn), unless it takes the
     hand's x more than WIND_LIMIT from `reference` (rad): then the other, so turn after turn
     cannot wind the wrist up (a vision trial that emptied a box on the Melfa, always turning
-    the shorter way, took j6 to its limit at -360 degrees). Not `either_way`: to `yaw` itself,
-    by the shorter way round (a factory that chose the longer turn to keep a wrist off its stop)."""
+    the shorter way, took j6 to its limit at -360 degrees). Given `room` (a turn, rad -> how far
+    the joint that rolls the hand ends from its nearer limit), the other way too where the
+    first would leave that joint less than TURN_MARGIN and the other leaves it more, as a grasp
+    turn the factory plans keeps it (`factories.base`, `coming_down`). Not `either_way`: to `yaw`
+    itself, by the shorter way round (a factory that chose the longer turn to keep a wrist off its stop)."""
     heading = heading_of(level)
     if not either_way:
         turn = (yaw - heading + math.pi) % (2 * math.pi) - math.pi
-        c, s = math.cos(turn), math.sin(turn)
-        return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        return _about_vertical(turn)
     turn = (yaw - heading + math.pi / 2) % math.pi - math.pi / 2
     if abs((heading + turn - reference + math.pi) % (2 * math.pi) - math.pi) > WIND_LIMIT:
         turn -= math.copysign(math.pi, turn)
+    if room is not None and room(turn) < TURN_MARGIN:
+        other = turn - math.copysign(math.pi, turn)
+        if room(other) > room(turn):
+            turn = other
+    return _about_vertical(turn)
+
+
+def _about_vertical(turn: float) -> np.ndarray:
     c, s = math.cos(turn), math.sin(turn)
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
@@ -172,6 +185,27 @@ class ObstacleDetour:
             else:
                 crossed.append(i)
         return crossed
+
+
+class Stall:
+    """Whether a motion has stopped getting nearer where it goes: STALL_TIME without coming
+    STALL_PROGRESS nearer than its best (a joint at its limit, a singularity, something in
+    the way). Every arm controller that goes somewhere ends on it rather than wait for ever."""
+
+    def __init__(self) -> None:
+        self.reset(0.0)
+
+    def reset(self, now: float) -> None:
+        """A new goal: no distance to it seen yet."""
+        self.best = math.inf
+        self.best_time = now
+
+    def stalled(self, distance: float, now: float) -> bool:
+        """`distance` (m) still to go at `now` (s): True once it has not shrunk for STALL_TIME."""
+        if distance < self.best - STALL_PROGRESS:
+            self.best, self.best_time = distance, now
+            return False
+        return now - self.best_time > STALL_TIME
 
 
 def _inside(p: np.ndarray, low: np.ndarray, high: np.ndarray) -> bool:

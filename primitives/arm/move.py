@@ -8,13 +8,17 @@ orientation held all along, inside the velocity and acceleration limits).
 
 from __future__ import annotations
 
+from typing import Callable
+
 import numpy as np
 
 from atd.model.frames import rotation_rpy
 from primitives.arm.motion import (
     GAIN,
     ORIENTATION_TOLERANCE,
+    STALL_TIME,
     ObstacleDetour,
+    Stall,
     TwistShaper,
     clamp_norm,
     norm,
@@ -30,8 +34,6 @@ from primitives.filters import ContactWrench, LowPass
 from primitives.robot import Readings
 
 VIA_TOLERANCE = 0.01  # m: a via point counts as passed this close
-STALL_TIME = 2.0  # s without getting 1 mm closer: the target cannot be reached
-STALL_PROGRESS = 0.001  # m
 # N of contact force on a stalled guarded move: what stopped it is a contact, not the arm.
 # A position-servoed arm blocked near its target presses with little force (a Melfa jaw
 # resting on the object's top: about 2 N), far below any contact threshold.
@@ -104,10 +106,12 @@ class CartesianMove(Controller):
         self.level = bool(p["level"])
         self.yaw = None if p.get("yaw") is None else np.radians(float(p["yaw"]))
         self.either_way = bool(p["either_way"])
+        self.wrist_roll = float(p["wrist_roll"])
         self.margin = float(p["contact_margin"])
         self.contact = ContactWrench(float(p["filter_time"]))
         self.shaper = TwistShaper(p["velocity_limits"], p["acceleration_limits"])
         self.detour = ObstacleDetour(p.get("obstacles", ()), p.get("obstacle_sizes", ()))
+        self.stall = Stall()
         self.rest: np.ndarray | None = None  # where to stay once finished; None = stand still
 
     def start(self, readings: Readings) -> None:
@@ -119,7 +123,7 @@ class CartesianMove(Controller):
         level = top_down(start) if turned is None else turned
         if self.yaw is not None:
             reference = self.ctx.memory.setdefault(YAW_REFERENCE, heading_of(level))
-            turn = turn_to_yaw(level, self.yaw, reference, self.either_way)
+            turn = turn_to_yaw(level, self.yaw, reference, self.either_way, self._roll_room(readings))
             level, start = turn @ level, turn @ start
         self.rotation = self.tilt @ (level if self.level else start)
         self.via[-1] = self.target - self.rotation @ self.hand_point  # the yaw, and so where that point is, known now
@@ -130,11 +134,21 @@ class CartesianMove(Controller):
         self.points = []
         for point in self.via:
             self.points += self.detour.route(self.points[-1] if self.points else self.leg_start, point)
-        self._reset_progress(readings.time)
+        self.stall.reset(readings.time)
 
-    def _reset_progress(self, now: float) -> None:
-        self.best = np.inf
-        self.best_time = now
+    def _roll_room(self, readings: Readings) -> Callable[[float], float] | None:
+        """How far a turn of the hand about the vertical (rad) leaves the last arm joint from its
+        nearer limit, that joint turning `wrist_roll` times the turn; None where the factory
+        gave no roll (the last joint does not roll the hand)."""
+        if not self.wrist_roll:
+            return None
+        info = self.ctx.info
+        now, low, high = float(readings.arm_q[-1]), float(info.arm_lower[-1]), float(info.arm_upper[-1])
+
+        def room(turn: float) -> float:
+            q = now + self.wrist_roll * turn
+            return min(q - low, high - q)
+        return room
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         if self.status is not Status.RUNNING:
@@ -155,7 +169,7 @@ class CartesianMove(Controller):
         distance = norm(goal - position)
         if self.leg < len(self.points) - 1 and distance < VIA_TOLERANCE:
             self.leg_start, self.leg = goal, self.leg + 1
-            self._reset_progress(readings.time)
+            self.stall.reset(readings.time)
             goal = self.points[self.leg]
             distance = norm(goal - position)
 
@@ -165,9 +179,7 @@ class CartesianMove(Controller):
             self.rest = goal
             self.arrived(distance)
             return self._stay(readings)
-        if distance < self.best - STALL_PROGRESS:
-            self.best, self.best_time = distance, readings.time
-        elif readings.time - self.best_time > STALL_TIME:
+        if self.stall.stalled(distance, readings.time):
             self.shaper.stop()
             if self.straight and force >= STALL_CONTACT:
                 self.stopped_by(force, norm(self.via[-1] - position))

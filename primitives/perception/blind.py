@@ -203,7 +203,9 @@ class BlindExploration(Perceiver):
     def _ended(self, readings: Readings) -> None:
         """What the explore move just ended tells: go on, found, or give up."""
         contact, kind = self.explore.found, self.leg.kind
-        if kind is Leg.ABOVE and contact is not None:
+        if self.explore.blocked:
+            self.finish(Status.ERROR, f"a move of the exploration stopped short: {self.explore.reason}")
+        elif kind is Leg.ABOVE and contact is not None:
             self.plan = []  # something higher than the top found: what is known so far will do
         elif kind is Leg.SIDE:
             self.result.reaches[self.leg.side] = contact is not None

@@ -266,3 +266,18 @@ def test_a_yaw_a_half_turn_away_turns_the_jaws_the_shorter_way_unless_that_winds
     wound = turn_to_yaw(level, math.radians(60.0), start) @ level  # 120 degrees on from the start
     assert _heading(wound) == pytest.approx(-120.0)
     assert abs(_heading(turn_to_yaw(wound, 0.0, start) @ wound)) == pytest.approx(180.0)  # 60 on: 180 off
+
+
+def test_a_yaw_that_would_take_the_wrist_roll_onto_its_stop_is_reached_the_other_way() -> None:
+    """A perceived yaw 50 degrees on: the shorter turn would take a Baxter-like wrist roll
+    (-3.06..3.06 rad, at -2.2 and turning -1 per turn of the hand) 0.9 rad further down, past
+    its stop; the jaws grip alike turned a half turn, so the hand turns 130 degrees the other way
+    and the roll ends far from both stops. The same yaw 50 degrees the other way needs no such turn."""
+    level = np.array([[1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, -1.0]])  # hand x along +x, pointing down
+
+    def room(turn: float) -> float:
+        q = -2.2 - turn
+        return min(q + 3.059, 3.059 - q)
+    assert _heading(turn_to_yaw(level, math.radians(50.0), 0.0, room=room) @ level) == pytest.approx(-130.0)
+    assert _heading(turn_to_yaw(level, math.radians(-50.0), 0.0, room=room) @ level) == pytest.approx(-50.0)
+    assert _heading(turn_to_yaw(level, math.radians(50.0), 0.0) @ level) == pytest.approx(50.0)  # no roll told

@@ -1,6 +1,6 @@
 """The explore primitive (thesis Table 3.1): down until the hand feels the object's top or the
-box's floor, and where it felt it; nothing within its distance is an error; a pad's contact
-counts as the wrist's does."""
+box's floor, and where it felt it; nothing within its distance is an error, and so is an arm
+that stops short without a contact; a pad's contact counts as the wrist's does."""
 
 from __future__ import annotations
 
@@ -76,3 +76,27 @@ def test_a_pad_s_force_over_its_start_is_a_contact_and_named() -> None:
     assert explore.status is Status.DONE  # done once off it: the next motion starts from rest
     robot.close()
 
+
+
+def test_an_arm_that_stops_short_without_a_contact_ends_in_error_naming_the_joint() -> None:
+    """An explore up whose arm cannot go on (j5 held at its lower limit, the hand where it
+    started) waits 2 s for progress, then gives up saying which joint stops it: the task goes
+    on to its no_contact edge rather than wait for ever."""
+    robot = melfa()
+    info = robot.info
+    explore = Explore(Context(info=info, params={"direction": (0.0, 0.0, 1.0), "speed": 0.04, "force_threshold": 3.0,
+                                                 "max_distance": 0.15, "filter_time": 0.0}))
+    start = robot.read()
+    q = start.arm_q.copy()
+    q[4] = info.arm_lower[4]
+    stuck = dataclasses.replace(start, arm_q=q)
+    explore.start(stuck)
+    for tick in range(1, 401):  # 2 s
+        explore.update(dataclasses.replace(stuck, time=start.time + tick * 0.005), 0.005)
+    assert explore.status is Status.RUNNING
+    for tick in range(401, 421):
+        explore.update(dataclasses.replace(stuck, time=start.time + tick * 0.005), 0.005)
+    assert explore.status is Status.ERROR and explore.found is None
+    assert explore.reason.startswith("no contact, and no progress for 2 s 15.0 cm short of 0.15 m")
+    assert explore.reason.endswith(f"joint 'j5' at its lower limit ({info.arm_lower[4]:.2f})")
+    robot.close()

@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 from atd.model import load_task
+from atd.model.resolved_rate import TURN_MARGIN
 from atd.model.task import ObjectInfo, Pose, Task
 from atd.model.vocabulary import ObjectClass, StateType
-from factories.base import TURN_MARGIN
 from primitives.arm.motion import turn_to_yaw
 from factories.reach import Reach
 from factories.registry import create

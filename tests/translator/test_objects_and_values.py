@@ -131,13 +131,15 @@ def test_a_named_object_s_weight_is_what_its_transport_checks():
 def test_the_move_to_vision_s_approach_is_for_where_the_pinch_closes_on_each_hand():
     """pick_one's reach goes to the approach in the pinch's preshape: the SDH2 pinches 19 mm off
     its TCP (its description's grasp centre), so its move is told that point; hands that pinch
-    on their TCP are not."""
+    on their TCP are not. Every arm's last joint rolls the hand, turning against a turn of the
+    hand pointing down, and the move is told so, to take the approach's yaw the way it has room."""
     task, found = load_task(EXAMPLES / "empty_the_box_vision.xml")
     assert found == []
     for factory in every_factory():
         reach = translate(task, factory).estd.states_by_name["take_one_out"].machine.states_by_name["reach"]
         centre = factory.robot.hand.grasp_centres.get("pinch_grasp_preshape", (0.0, 0.0, 0.0))
         assert reach.arm.params["hand_point"] == tuple(round(float(c), 6) for c in centre), factory.name
+        assert reach.arm.params["wrist_roll"] == -1.0, factory.name
     sdh2 = translate(task, create("tombatossals", arm="left")).estd.states_by_name["take_one_out"].machine
     assert sdh2.states_by_name["reach"].arm.params["hand_point"] == (0.019, 0.0, 0.0)
 
