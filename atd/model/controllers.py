@@ -467,6 +467,13 @@ _ARM_CONTROLLERS = (
             "wrist_turn": _p(NUM, "how the last arm joint turns with the hand about the approach axis, +1 or -1 "
                              "(0: no joint named): a twist goes no further than that joint can still turn "
                              "(the robot's own geometry)", 0.0, limits=ranges.DIRECTION),
+            "cap_width": _p(NUM, "how wide the cap is, for a gripper's jaws to find room around it: a guarded descent "
+                            "that stopped short of its target had a jaw land on the cap's top, and with the "
+                            "alignment the jaws search across, their room around the cap apart, and descend again "
+                            "(the task's object_size; 0: no such descent, as a multi-finger pinch)", 0.0, unit="m"),
+            "force_threshold": _p(NUM, "contact force on the wrist that is a jaw on the cap's top (as the guarded "
+                                  "descent's it repeats: a jaw brushing the cap's side on its way down presses 2-5 N)",
+                                  15.0, unit="N"),
         },
     ),
 )
