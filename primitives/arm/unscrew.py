@@ -49,7 +49,7 @@ ACROSS_ARRIVED = 0.0005
 # The search's step, of the jaws' room around the cap (the pads'): the Melfa's jaws came down clear of the
 # jam jar's cap 2 mm off its axis, and on its top 3.4 mm off (PyBullet; its pads leave 4 mm a side)
 SEARCH_STEP = 1.0 / 3.0
-SEARCH_POINTS = 14  # moves across, to either side in turn: a cap up to 7.5 steps off (Melfa 20 mm); then pinch
+SEARCH_POINTS = 14  # moves across, to either side in turn: 7 steps each way (Melfa 19 mm), then pinch
 
 
 class UnscrewArm(Controller):
@@ -218,13 +218,13 @@ class UnscrewArm(Controller):
     # -- transitions ----------------------------------------------------------------------
     def _jaws_room(self, readings: Readings) -> bool:
         """Whether the open jaws have room around the cap (a gripper's pads, the cap's width
-        known): where to look for it (`search`, a room apart: how much wider they stand than the
-        cap) along `jaw_line`, the hand-frame line they close along."""
+        known): where to look for it (`search`, SEARCH_STEP of that room apart: how much wider
+        they stand than the cap) along `jaw_line`, the hand-frame line they close along."""
         hand = self.ctx.info.hand
         if self.cap_width <= 0.0 or len(hand.pads) != 2:
             return False
         left, right = hand.pad_surfaces(readings.hand_q)[:2, :3, 3]
-        gap = float(np.linalg.norm(left - right))
+        gap = norm(left - right)
         room, self.jaw_line = gap - self.cap_width, (left - right) / gap
         self.search = search_offsets(SEARCH_STEP * room, SEARCH_POINTS)
         return room > 0.0
@@ -238,12 +238,10 @@ class UnscrewArm(Controller):
     def _jaw_on_top(self, readings: Readings) -> None:
         """The wrist felt the jaws meet something short of their depth: a jaw on the cap's top.
         Off the top and across to the next point of the jaw grasp's search along the jaws'
-        line (`search_offsets`, from where the descent was first going), a room apart: the
-        cap lies more than half a room off to one side, and a room's move towards it puts
-        it between the jaws from up to one and a half rooms off. With the search spent: pinch
-        here. (Where the wrist's torque places the contact is no help here: for a jaw 34 mm
-        off the axis on the cap's rim it said 6 mm, to the same side whichever jaw it was;
-        the Melfa, PyBullet.)"""
+        line (`search_offsets`, around where the descent was first going, to either side in
+        turn: the wrist's torque does not say which jaw stands on the cap, docs/unscrew-campaign.md),
+        steps narrower than the window in which the jaws clear the cap. With the search spent:
+        pinch here."""
         if self.tally.seated >= len(self.search):
             self._pinch_from(readings)
             return
