@@ -563,11 +563,12 @@ class Factory(ABC):
         """Thesis 3.3.6's unscrew on a parallel gripper, as a real one unscrews: the jaws grip
         the cap as this gripper's grasp grips anything (its closing speed, its grip-force
         sensing, its re-centring), the last wrist joint twists it, the arm pulls; the arm
-        side is the one the fingertip pinch uses. The grasp centre is the TCP, between the pads."""
+        side is the one the fingertip pinch uses. The grasp centre is the TCP, between the pads;
+        the cap's width lets the arm find the jaws' room around it (`UnscrewArm`'s seat)."""
         grip = self.controller("close_until_force").params
         hand = self.controller("unscrew_jaws", closing_speed=grip["closing_speed"],
                                force_source=grip["force_source"], max_recentre=grip["max_recentre"])
-        arm = self.controller("unscrew_arm", wrist_turn=self.wrist_turn(state))
+        arm = self.controller("unscrew_arm", wrist_turn=self.wrist_turn(state), cap_width=state.object_size or 0.0)
         return NodeMapping("unscrew", arm, hand, self.shape(state.hand_shape)[1] if state.hand_shape else ())
 
     def wrist_turn(self, state: State) -> float:

@@ -121,6 +121,11 @@ rad/s), kept by the executor. A motion that takes the arm over ramps from it: on
 started from rest stopped a lifting SDH2 within a tick, and its wrist read the 10-15 N of
 that stop as a contact."""
 
-ARM_KEYS = frozenset({EMPTY_HAND, ARM_TWIST, HAND_LEVEL, YAW_REFERENCE})
+SHORT_OF_TARGET = "short_of_target"
+"""In `Context.memory`: (3,) world vector, m, from where the latest guarded move stopped on a
+contact to the target it was going to; absent once a move arrived. A gripper's unscrew reads
+it: its jaws, lowered around a cap, stopped short where one landed on the cap's top."""
+
+ARM_KEYS = frozenset({EMPTY_HAND, ARM_TWIST, HAND_LEVEL, YAW_REFERENCE, SHORT_OF_TARGET})
 """The keys of `Context.memory` that say something of one arm: in a run of two arms each
 keeps its own (atd.runtime.values.ArmMemory); every other key, a named value, is the run's."""

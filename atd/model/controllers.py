@@ -461,7 +461,8 @@ _ARM_CONTROLLERS = (
                                        "CAP_REMOVED_DISTANCE)", 0.04, unit="m"),
             "alignment": _p(FLAG, "the reactive alignment: before each pinch the grasp centre moves onto the cap's "
                             "axis, as the pads' contacts averaged over the last pinch and twist place it "
-                            "(thesis 3.3.6, Fig. 3.12)", True),
+                            "(thesis 3.3.6, Fig. 3.12); on a gripper, a jaw landed on the cap's top is searched off "
+                            "it first (cap_width)", True),
             "max_pinches": _p(INT, "pinches before the unscrew gives up, each followed by a twist unless it closed "
                               "on nothing (ours: a cap of three turns takes 36 twists of 30 degrees)", 40),
             "grasp_centre": _p(VEC, "where the fingers pinch, from the TCP in the hand frame: the twist turns about "
@@ -471,6 +472,14 @@ _ARM_CONTROLLERS = (
             "wrist_turn": _p(NUM, "how the last arm joint turns with the hand about the approach axis, +1 or -1 "
                              "(0: no joint named): a twist goes no further than that joint can still turn "
                              "(the robot's own geometry)", 0.0, limits=ranges.DIRECTION),
+            "cap_width": _p(NUM, "how wide the cap is, for a gripper's jaws to find room around it: a guarded descent "
+                            "that stopped short of its target had a jaw land on the cap's top, and with the "
+                            "alignment the jaws search across, their room around the cap apart, and descend again "
+                            "(the task's object_size; 0: no such descent, as a multi-finger pinch)", 0.0, unit="m",
+                            limits=ranges.SIZE_OR_NONE),
+            "force_threshold": _p(NUM, "contact force on the wrist that is a jaw on the cap's top (as the guarded "
+                                  "descent's it repeats: a jaw brushing the cap's side on its way down presses 2-5 N)",
+                                  15.0, unit="N"),
         },
     ),
 )

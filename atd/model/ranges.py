@@ -84,6 +84,7 @@ COORDINATE = Range(-10.0, 10.0, "m")  # positions, targets, waypoints: a robot's
 # Object and obstacle dimensions (a wall is an obstacle too). A millimetre at least: MuJoCo refuses
 # the model of a smaller object (its inertia falls below mjMINVAL), 1e-9 m crashed `atd run`.
 SIZE = Range(0.001, 10.0, "m")
+SIZE_OR_NONE = Range(0.0, 10.0, "m")  # a size a controller may be given: 0 is none
 OBSTACLE_EXTENT = Range(0.0, 10.0, "m")  # in an ESTD: 0 0 0 is an obstacle of no given size
 WEIGHT = Range(0.001, 50.0, "kg")  # what both engines simulate stably next to a robot hand
 INERTIA = Range(-10.0, 10.0, "kg m^2")

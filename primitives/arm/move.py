@@ -29,7 +29,7 @@ from primitives.arm.motion import (
     what_stops,
 )
 from primitives.base import ArmCommand, Context, ControlData, Controller, Status
-from primitives.blackboard import ARM_TWIST, HAND_LEVEL, YAW_REFERENCE
+from primitives.blackboard import ARM_TWIST, HAND_LEVEL, SHORT_OF_TARGET, YAW_REFERENCE
 from primitives.filters import ContactWrench, LowPass
 from primitives.robot import Readings
 
@@ -117,6 +117,7 @@ class CartesianMove(Controller):
     def start(self, readings: Readings) -> None:
         self.contact.start(readings)
         self.shaper.start(self.ctx.memory.get(ARM_TWIST))
+        self.ctx.memory.pop(SHORT_OF_TARGET, None)
         start = readings.tcp[:3, :3]
         sideways = abs(float(start[2, 0])) > SIDEWAYS or float(start[2, 2]) > -SIDEWAYS
         turned = self.ctx.memory.get(HAND_LEVEL) if sideways else None
@@ -158,7 +159,7 @@ class CartesianMove(Controller):
         if force >= self.threshold:
             self.shaper.stop()
             position = readings.tcp[:3, 3]
-            self.stopped_by(force, norm(self.via[-1] - position))
+            self._stopped(force, position)
             if self.status is Status.DONE:  # ease off what it met, or the arm goes on pressing on it
                 leg = self.points[self.leg] - self.leg_start
                 self.rest = position - EASE_OFF * leg / max(norm(leg), 1e-9)
@@ -182,7 +183,7 @@ class CartesianMove(Controller):
         if self.stall.stalled(distance, readings.time):
             self.shaper.stop()
             if self.straight and force >= STALL_CONTACT:
-                self.stopped_by(force, norm(self.via[-1] - position))
+                self._stopped(force, position)
                 return self._stay(readings)
             info = self.ctx.info
             self.finish(Status.ERROR, f"no progress for {STALL_TIME:g} s, {distance:.3f} m and {np.degrees(angle):.0f} "
@@ -194,6 +195,14 @@ class CartesianMove(Controller):
         if self.keep_orientation and angle > ORIENTATION_TOLERANCE:
             v = v * (ORIENTATION_TOLERANCE / angle)  # turn back first, then move on
         return arm_output(self.shaper(np.concatenate([v, w]), dt))
+
+    def _stopped(self, force: float, position: np.ndarray) -> None:
+        """Stopped on a contact at `position`: `stopped_by` says what it was; a guarded move
+        done there leaves how far short of its target it stopped (`SHORT_OF_TARGET`)."""
+        to_target = self.via[-1] - position
+        self.stopped_by(force, norm(to_target))
+        if self.status is Status.DONE:
+            self.ctx.memory[SHORT_OF_TARGET] = to_target
 
     def stopped_by(self, force: float, short: float) -> None:
         """A contact `short` of the target: what a guarded move looks for, the surface a

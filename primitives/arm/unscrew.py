@@ -5,20 +5,30 @@ or fingers closed on nothing send the arm back to its start pose to pinch again,
 onto the cap's axis by the reactive alignment (Fig. 3.12) unless it is switched off. The
 cap is off when a pull has gone CAP_REMOVED_DISTANCE with the pads still pressing it:
 what the wrist and the pads say, never where the simulator has the cap. Its phases are
-in `primitives.arm.unscrew_phases`; docs/writing-a-primitive.md draws the machine."""
+in `primitives.arm.unscrew_phases`; docs/writing-a-primitive.md draws the machine.
+
+A gripper's jaws have little room around a cap (the Melfa's 4 mm a side around a 60 mm
+cap), so an approach off the cap's axis lands a jaw on its top, and the guarded descent
+around the cap stops short there. With the alignment the unscrew then seats the jaws
+first (SEAT, ACROSS), as the robust jaw grasp looks for an object its jaws missed
+(`primitives.arm.jaw_grasp`): off the top, across to the next point of a search along
+the jaws' line, their room around the cap apart, and down again to where the descent was
+going, until the jaws get there."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from atd.model.frames import axis_rotation
+from primitives.arm.jaw_grasp import STALL_CONTACT, STALL_PROGRESS, STALL_TIME
 from primitives.arm.motion import GAIN, ORIENTATION_TOLERANCE, clamp_norm, norm, orientation_twist, unit
 from primitives.arm.move import arm_output
-from primitives.arm.unscrew_phases import Phase, Pulling, Tally, TcpPose, Twisting
+from primitives.arm.unscrew_phases import Phase, Pulling, Seating, Tally, TcpPose, Twisting
 from primitives.base import Context, ControlData, Controller, Status
-from primitives.blackboard import CapGrip
+from primitives.blackboard import SHORT_OF_TARGET, CapGrip
 from primitives.filters import ContactWrench
 from primitives.robot import Readings
+from primitives.search import search_offsets
 
 TWIST_SPEED = 0.5  # rad/s: a 30 degree twist in about a second, slow beside the pads' force loop
 PULL_SPEED = 0.02  # m/s: the 40 mm pull in 2 s; a threaded cap reaches the 7 N limit within millimetres
@@ -30,6 +40,16 @@ TWIST_TURNS = 3.0  # times a twist's time at TWIST_SPEED: not turned by then, th
 MAX_ALIGN = 0.02  # m: the largest move onto the cap's axis: further, the pads felt more than the cap
 WRIST_MARGIN = np.radians(5.0)  # rad a twist stays short of the wrist joint's limit: the servo overshoots near it
 MIN_TWIST = np.radians(5.0)  # rad: a wrist with less room than this left turns the cap nowhere
+SEAT_SHORT = 0.005  # m: a descent stopped further short met something on the way (pads 5 mm higher still grip a cap)
+SEAT_SPEED = 0.02  # m/s: down onto the cap, slow enough to stop on a jaw on its top before pressing it hard
+SEAT_RISE = 0.005  # m up off the cap's top before moving across: the jaw stopped within a millimetre of it
+# m: the move across ends this near its end, before the jaws go down again (at ARRIVED, 2 mm short
+# of an 8 mm move, a Melfa jaw came down on the cap's rim, PyBullet)
+ACROSS_ARRIVED = 0.0005
+# The search's step, of the jaws' room around the cap (the pads'): the Melfa's jaws came down clear of the
+# jam jar's cap 2 mm off its axis, and on its top 3.4 mm off (PyBullet; its pads leave 4 mm a side)
+SEARCH_STEP = 1.0 / 3.0
+SEARCH_POINTS = 14  # moves across, to either side in turn: 7 steps each way (Melfa 19 mm), then pinch
 
 
 class UnscrewArm(Controller):
@@ -49,15 +69,24 @@ class UnscrewArm(Controller):
         self.grasp_centre = np.asarray(p["grasp_centre"], float)
         self.wrist_turn = float(p["wrist_turn"])
         self.wrench = ContactWrench(float(p["filter_time"]))
+        self.cap_width = float(p["cap_width"])
+        self.threshold = float(p["force_threshold"])
 
     def start(self, readings: Readings) -> None:
         self.wrench.start(readings)
         self.start_pose = TcpPose(readings.tcp[:3, 3].copy(), readings.tcp[:3, :3].copy())
         self.still = TcpPose(self.start_pose.position, self.start_pose.rotation)  # where a still phase holds
         self.tally = Tally(pinches=1)
-        self.pinch_started = readings.time
-        self.phase = Phase.PINCH
-        self.ctx.blackboard.contact = True  # the hand is over the cap: it may close
+        short = self.ctx.memory.pop(SHORT_OF_TARGET, None)
+        down = 0.0 if short is None else float(np.asarray(short) @ (self.start_pose.rotation @ self.direction))
+        if self.alignment and down > SEAT_SHORT and self._jaws_room(readings):
+            along = self.start_pose.rotation @ self.direction
+            goal = self.start_pose.position + down * along
+            self.seating = Seating(goal, goal, [self.start_pose.position - SEAT_RISE * along])
+            self._hold_here(readings, Phase.ACROSS)  # off the top first: the wrist still rings with the stop on it
+            self.ctx.blackboard.contact = False  # the jaws wait open
+        else:
+            self._pinch_from(readings)
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         self.wrench.update(readings, dt)
@@ -69,6 +98,33 @@ class UnscrewArm(Controller):
         return self.ctx.blackboard.cap or CapGrip()
 
     # -- phases: one tick each, returning the TCP twist (world frame) ---------------------
+    def _seat(self, readings: Readings, dt: float) -> np.ndarray:
+        """Down along the approach, the jaws open, to where the guarded descent was going:
+        there, pinch; a contact on the way (felt, or pressing while the arm stalls) is a jaw
+        on the cap's top."""
+        seating = self.seating
+        left = norm(seating.goal - readings.tcp[:3, 3])
+        if left < seating.nearest - STALL_PROGRESS:
+            seating.nearest, seating.progress_at = left, readings.time
+        pressing = self.wrench.force >= STALL_CONTACT * self.threshold
+        stalled = pressing and readings.time - seating.progress_at > STALL_TIME
+        if left < ARRIVED:
+            self._pinch_from(readings)
+        elif self.wrench.force >= self.threshold or stalled:
+            self._jaw_on_top(readings)
+        goal = seating.goal if self.phase is Phase.SEAT else self.still.position
+        return self._toward(readings, TcpPose(goal, self.start_pose.rotation), SEAT_SPEED)
+
+    def _across(self, readings: Readings, dt: float) -> np.ndarray:
+        """Up off the cap's top, then across; then down again."""
+        route = self.seating.route
+        if norm(route[0] - readings.tcp[:3, 3]) < (ACROSS_ARRIVED if len(route) == 1 else ARRIVED):
+            route.pop(0)
+            if not route:
+                self._begin_seat(readings, self.seating)
+                return self._toward(readings, self.still, RETURN_SPEED)
+        return self._toward(readings, TcpPose(route[0], self.start_pose.rotation), RETURN_SPEED)
+
     def _pinch(self, readings: Readings, dt: float) -> np.ndarray:
         """At the start pose until the hand has pinched the cap (twist), or closed on nothing,
         or not reached the grasp force on every pad within PINCH_TIME (again). A gripper
@@ -124,7 +180,8 @@ class UnscrewArm(Controller):
             self._hold_here(readings, Phase.OFF)
             self.ctx.blackboard.cap_off = True
             self.finish(Status.DONE, f"cap off after {self.tally.twists} twists, pulled {pulled * 100:.1f} cm with "
-                                     f"the pads on it ({self.tally.aligned} alignments)", twists=self.tally.twists)
+                                     f"the pads on it ({self.tally.aligned} alignments, {self.tally.seated} moves "
+                                     "off the cap's top)", twists=self.tally.twists)
         elif pulled >= self.cap_removed_distance:
             self._again(readings, "pulled CAP_REMOVED_DISTANCE with no cap between the pads")
         if self.phase is not Phase.PULL:
@@ -159,6 +216,52 @@ class UnscrewArm(Controller):
         return self._toward(readings, self.still, RETURN_SPEED)
 
     # -- transitions ----------------------------------------------------------------------
+    def _jaws_room(self, readings: Readings) -> bool:
+        """Whether the open jaws have room around the cap (a gripper's pads, the cap's width
+        known): where to look for it (`search`, SEARCH_STEP of that room apart: how much wider
+        they stand than the cap) along `jaw_line`, the hand-frame line they close along."""
+        hand = self.ctx.info.hand
+        if self.cap_width <= 0.0 or len(hand.pads) != 2:
+            return False
+        left, right = hand.pad_surfaces(readings.hand_q)[:2, :3, 3]
+        gap = norm(left - right)
+        room, self.jaw_line = gap - self.cap_width, (left - right) / gap
+        self.search = search_offsets(SEARCH_STEP * room, SEARCH_POINTS)
+        return room > 0.0
+
+    def _begin_seat(self, readings: Readings, seating: Seating) -> None:
+        self.wrench.start(readings)  # in free air, over the cap
+        self.seating, seating.nearest, seating.progress_at = seating, np.inf, readings.time
+        self.still = TcpPose(readings.tcp[:3, 3].copy(), self.start_pose.rotation)
+        self.phase = Phase.SEAT
+
+    def _jaw_on_top(self, readings: Readings) -> None:
+        """The wrist felt the jaws meet something short of their depth: a jaw on the cap's top.
+        Off the top and across to the next point of the jaw grasp's search along the jaws'
+        line (`search_offsets`, around where the descent was first going, to either side in
+        turn: the wrist's torque does not say which jaw stands on the cap, docs/unscrew-campaign.md),
+        steps narrower than the window in which the jaws clear the cap. With the search spent:
+        pinch here."""
+        if self.tally.seated >= len(self.search):
+            self._pinch_from(readings)
+            return
+        seating = self.seating
+        rotation = self.start_pose.rotation
+        goal = seating.first + rotation @ (self.search[self.tally.seated] * self.jaw_line)
+        up = readings.tcp[:3, 3] - SEAT_RISE * (rotation @ self.direction)
+        seating.route, seating.goal = [up, up + goal - seating.goal], goal
+        self.tally.seated += 1
+        self._hold_here(readings, Phase.ACROSS)
+
+    def _pinch_from(self, readings: Readings) -> None:
+        """Pinch here: every later pinch starts from this pose."""
+        position = readings.tcp[:3, 3].copy()
+        self.start_pose = TcpPose(position, self.start_pose.rotation)
+        self.still = TcpPose(position.copy(), self.start_pose.rotation)
+        self.pinch_started = readings.time
+        self.phase = Phase.PINCH
+        self.ctx.blackboard.contact = True  # the hand is over the cap: it may close
+
     def _begin_twist(self, readings: Readings) -> None:
         """Turn the other way from a tightening turn about the approach axis: a right-hand
         thread opens counter-clockwise seen from the hand; no further than the wrist joint

@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from enum import Enum
 
 import numpy as np
@@ -12,6 +12,8 @@ import numpy as np
 class Phase(Enum):
     """Where the unscrew's arm is; the value is the method of `UnscrewArm` that runs a tick of it."""
 
+    SEAT = "_seat"  # a gripper's open jaws down to where the guarded descent was going, feeling for a jaw on the cap
+    ACROSS = "_across"  # off the cap's top and across by the jaws' room around the cap, towards the jaw that was on it
     PINCH = "_pinch"  # still at the start pose while the fingers close on the cap
     TWIST = "_twist"  # turning the pinched cap TWIST_ANGLE about the approach axis, through the grasp centre
     PULL = "_pull"  # backing off along the approach: does the cap come, or does its thread hold it?
@@ -28,6 +30,17 @@ class TcpPose:
 
     position: np.ndarray  # world TCP
     rotation: np.ndarray  # world TCP orientation
+
+
+@dataclass
+class Seating:
+    """The jaws' way down around the cap: where they go, and how they got off its top."""
+
+    first: np.ndarray  # world TCP the guarded descent was going to
+    goal: np.ndarray  # where this descent goes: `first`, or moved across it by the search
+    route: list[np.ndarray] = field(default_factory=list)  # world TCP waypoints off the cap's top and across
+    nearest: float = np.inf  # m: the descent's nearest yet to its goal
+    progress_at: float = 0.0  # s: when the descent last came STALL_PROGRESS nearer
 
 
 @dataclass
@@ -54,4 +67,5 @@ class Tally:
     pinches: int = 0  # pinches begun, of MAX_PINCHES
     twists: int = 0  # twist moves begun (thesis Table 3.4 "Moves")
     aligned: int = 0  # times the alignment moved the start pose
+    seated: int = 0  # moves across a gripper's jaws made off the cap's top before the first pinch (search points)
     ended: str = ""  # why the latest twist or pull ended early

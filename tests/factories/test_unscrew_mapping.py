@@ -75,6 +75,7 @@ def test_a_gripper_grips_the_cap_and_twists_it_with_its_last_wrist_joint(atd_fil
     assert (arm_params["twist_angle"], arm_params["torque_limit"], arm_params["pull_force_limit"],
             arm_params["cap_removed_distance"], arm_params["alignment"]) == (30.0, 10.0, 7.0, 0.04, True)
     assert arm_params["wrist_turn"] in (1.0, -1.0)  # its last joint rolls the hand about the approach
+    assert arm_params["cap_width"] == 0.03  # the task's object_size: the jaws' room round the cap is searched for
     assert (hand["grasp_force"], hand["finger_min_distance"], hand["force_source"]) == (5.0, 0.012, source)
 
 
