@@ -51,6 +51,17 @@ def held_wrench(hand: HandInfo, readings: Readings) -> np.ndarray:
     return readings.wrench - own
 
 
+# N of contact a fresh tare may read before it has held STILL_TIME: over the wrist noise as the
+# primitives filter it (a still Melfa: 0.2 N), under every wrist contact threshold (2 N)
+STILL_FORCE = 1.0
+# s a fresh tare's contact stays under STILL_FORCE before it is held: the Melfa's wrist rang
+# 0.04 s after a put-down stopped a cap on the table
+STILL_TIME = 0.05
+# s after the start the tare is held whatever it reads: a hand pressed on, or a reading noisier
+# than STILL_FORCE, is not a ring, and the primitive's contacts go unseen meanwhile
+TARE_LIMIT = 0.5
+
+
 class ContactWrench:
     """The wrench that contacts add since `start`: tared, gravity turned with the hand, filtered.
 
@@ -59,6 +70,12 @@ class ContactWrench:
     hand frame; what is left over is contact. Torques are tared in the hand frame only
     (the load's centre of mass is not known), which is exact as long as the hand keeps
     its orientation, as every primitive here does while it watches for contact.
+
+    A state that begins as the last one's contact still rings (a put-down stopped on the
+    table) would tare on a passing reading and take its settling for a contact; so the tare
+    is taken afresh whenever the contact it reads passes STILL_FORCE before it has stayed
+    under it for STILL_TIME, and held as it is after TARE_LIMIT. A still start keeps the
+    start's reading, as before.
     """
 
     def __init__(self, filter_time: float = 0.0) -> None:
@@ -66,12 +83,24 @@ class ContactWrench:
         self._load_world = np.zeros(3)
         self._torque0 = np.zeros(3)
         self.value = np.zeros(6)
+        self._started = 0.0
+        self._still_since: float | None = None  # since when a fresh tare has read still; None: it is held
 
-    def start(self, readings: Readings) -> None:
+    def start(self, readings: Readings, settle: bool = True) -> None:
+        """Tare on this reading; `settle` False holds it at once, for a primitive whose own
+        motion loads the wrist from the next tick on, which a settling tare would take in
+        (the unscrew's twist turns the cap against its thread, its pull draws on it)."""
+        self._started = readings.time
+        self._tare(readings)
+        if not settle:
+            self._still_since = None
+
+    def _tare(self, readings: Readings) -> None:
         self._load_world = world_load(readings)
         self._torque0 = readings.wrench[3:].copy()
         self._filter.reset(np.zeros(6))
         self.value = np.zeros(6)
+        self._still_since = readings.time
 
     def update(self, readings: Readings, dt: float) -> np.ndarray:
         raw = readings.wrench
@@ -79,6 +108,11 @@ class ContactWrench:
         contact[:3] = raw[:3] - readings.tcp[:3, :3].T.dot(self._load_world)  # .dot: half the cost of @ here
         contact[3:] = raw[3:] - self._torque0
         self.value = self._filter(contact, dt)
+        if self._still_since is not None:
+            if readings.time - self._started >= TARE_LIMIT or readings.time - self._still_since >= STILL_TIME:
+                self._still_since = None
+            elif self.force > STILL_FORCE:
+                self._tare(readings)
         return self.value
 
     @property
