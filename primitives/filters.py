@@ -51,8 +51,9 @@ def held_wrench(hand: HandInfo, readings: Readings) -> np.ndarray:
     return readings.wrench - own
 
 
-# N of contact a fresh tare may read before it has held STILL_TIME: over the wrist noise as the
-# primitives filter it (a still Melfa: 0.2 N), under every wrist contact threshold (2 N)
+# N of contact a fresh tare may read before it has held STILL_TIME: under every wrist contact
+# threshold (2 N), over a still wrist's noise (the Melfa's 0.1 N; Baxter's virtual wrench,
+# low-passed 0.05 s as its primitives read it, passes it in one window in 16: tared again)
 STILL_FORCE = 1.0
 # s a fresh tare's contact stays under STILL_FORCE before it is held: the Melfa's wrist rang
 # 0.04 s after a put-down stopped a cap on the table
