@@ -51,15 +51,15 @@ def held_wrench(hand: HandInfo, readings: Readings) -> np.ndarray:
     return readings.wrench - own
 
 
-# N of contact a fresh tare may read before it has held STILL_TIME: under every wrist contact
-# threshold (2 N), over a still wrist's noise (the Melfa's 0.1 N; Baxter's virtual wrench,
-# low-passed 0.05 s as its primitives read it, passes it in one window in 16: tared again)
-STILL_FORCE = 1.0
-# s a fresh tare's contact stays under STILL_FORCE before it is held: the Melfa's wrist rang
-# 0.04 s after a put-down stopped a cap on the table
+# N/s the wrist's force changes by, from one tick to the next, in a knock that still rings: as
+# the move after the Melfa's put-down of a cap began, 1,800-2,000 N/s; as its own motion starts,
+# 220-270 N/s, and a lift takes the object's weight, 740 N/s (the preset's cylinder, MuJoCo)
+RING_RATE = 1200.0
+# s without such a change before the tare is held: the Melfa's wrist rang 0.04 s after a
+# put-down stopped a cap on the table
 STILL_TIME = 0.05
-# s after the start the tare is held whatever it reads: a hand pressed on, or a reading noisier
-# than STILL_FORCE, is not a ring, and the primitive's contacts go unseen meanwhile
+# s after the start the tare is held whatever it reads: a hand still knocked about then is
+# pressed on, not ringing, and the primitive's contacts go unseen while the tare follows
 TARE_LIMIT = 0.5
 
 
@@ -72,11 +72,11 @@ class ContactWrench:
     (the load's centre of mass is not known), which is exact as long as the hand keeps
     its orientation, as every primitive here does while it watches for contact.
 
-    A state that begins as the last one's contact still rings (a put-down stopped on the
-    table) would tare on a passing reading and take its settling for a contact; so the tare
-    is taken afresh whenever the contact it reads passes STILL_FORCE before it has stayed
-    under it for STILL_TIME, and held as it is after TARE_LIMIT. A still start keeps the
-    start's reading, as before.
+    A state that begins as the last one's knock still rings (a put-down stopped on the
+    table) would tare on a passing reading and take its settling for a contact; so while
+    the force jumps faster than RING_RATE the tare follows the reading, and it is held
+    once the reading has not jumped for STILL_TIME (or TARE_LIMIT after the start). A start
+    whose reading does not jump keeps the start's reading, as before.
     """
 
     def __init__(self, filter_time: float = 0.0) -> None:
@@ -85,7 +85,9 @@ class ContactWrench:
         self._torque0 = np.zeros(3)
         self.value = np.zeros(6)
         self._started = 0.0
-        self._still_since: float | None = None  # since when a fresh tare has read still; None: it is held
+        self._last = np.zeros(3)  # the force read last tick, hand frame
+        self._settling = False  # the tare may still follow a ringing reading
+        self._rang: float | None = None  # when the reading last jumped; None: not since the start
 
     def start(self, readings: Readings, settle: bool = True) -> None:
         """Tare on this reading; `settle` False holds it at once, for a primitive whose own
@@ -93,28 +95,37 @@ class ContactWrench:
         (the unscrew's twist turns the cap against its thread, its pull draws on it)."""
         self._started = readings.time
         self._tare(readings)
-        if not settle:
-            self._still_since = None
+        self._settling, self._rang = settle, None
 
     def _tare(self, readings: Readings) -> None:
         self._load_world = world_load(readings)
         self._torque0 = readings.wrench[3:].copy()
         self._filter.reset(np.zeros(6))
         self.value = np.zeros(6)
-        self._still_since = readings.time
+        self._last = readings.wrench[:3].copy()
 
     def update(self, readings: Readings, dt: float) -> np.ndarray:
         raw = readings.wrench
+        if self._settling:
+            self._settle(readings, dt)
         contact = np.empty(6)
         contact[:3] = raw[:3] - readings.tcp[:3, :3].T.dot(self._load_world)  # .dot: half the cost of @ here
         contact[3:] = raw[3:] - self._torque0
         self.value = self._filter(contact, dt)
-        if self._still_since is not None:
-            if readings.time - self._started >= TARE_LIMIT or readings.time - self._still_since >= STILL_TIME:
-                self._still_since = None
-            elif self.force > STILL_FORCE:
-                self._tare(readings)
         return self.value
+
+    def _settle(self, readings: Readings, dt: float) -> None:
+        """Follow the reading while it rings; hold the tare once it is still."""
+        now, force = readings.time, readings.wrench[:3]
+        step = force - self._last
+        self._last = force.copy()
+        if math.sqrt(float(step.dot(step))) > RING_RATE * dt:
+            self._rang = now
+        quiet = now - (self._started if self._rang is None else self._rang)
+        if quiet >= STILL_TIME or now - self._started >= TARE_LIMIT:
+            self._settling = False
+        elif self._rang is not None:
+            self._tare(readings)
 
     @property
     def force(self) -> float:
