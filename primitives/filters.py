@@ -51,6 +51,18 @@ def held_wrench(hand: HandInfo, readings: Readings) -> np.ndarray:
     return readings.wrench - own
 
 
+# N/s the wrist's force changes by, from one tick to the next, in a knock that still rings: as
+# the move after the Melfa's put-down of a cap began, 1,800-2,000 N/s; as its own motion starts,
+# 220-270 N/s, and a lift takes the object's weight, 740 N/s (the preset's cylinder, MuJoCo)
+RING_RATE = 1200.0
+# s without such a change before the tare is held: the Melfa's wrist rang 0.04 s after a
+# put-down stopped a cap on the table
+STILL_TIME = 0.05
+# s after the start the tare is held whatever it reads: a hand still knocked about then is
+# pressed on, not ringing, and the primitive's contacts go unseen while the tare follows
+TARE_LIMIT = 0.5
+
+
 class ContactWrench:
     """The wrench that contacts add since `start`: tared, gravity turned with the hand, filtered.
 
@@ -59,6 +71,12 @@ class ContactWrench:
     hand frame; what is left over is contact. Torques are tared in the hand frame only
     (the load's centre of mass is not known), which is exact as long as the hand keeps
     its orientation, as every primitive here does while it watches for contact.
+
+    A state that begins as the last one's knock still rings (a put-down stopped on the
+    table) would tare on a passing reading and take its settling for a contact; so while
+    the force jumps faster than RING_RATE the tare follows the reading, and it is held
+    once the reading has not jumped for STILL_TIME (or TARE_LIMIT after the start). A start
+    whose reading does not jump keeps the start's reading, as before.
     """
 
     def __init__(self, filter_time: float = 0.0) -> None:
@@ -66,20 +84,49 @@ class ContactWrench:
         self._load_world = np.zeros(3)
         self._torque0 = np.zeros(3)
         self.value = np.zeros(6)
+        self._started = 0.0
+        self._last = np.zeros(3)  # the force read last tick, hand frame
+        self._settling = False  # the tare may still follow a ringing reading
+        self._rang: float | None = None  # when the reading last jumped; None: not since the start
 
-    def start(self, readings: Readings) -> None:
+    def start(self, readings: Readings, settle: bool = True) -> None:
+        """Tare on this reading; `settle` False holds it at once, for a tare taken in the
+        middle of a primitive's own work, where a jump is its doing, not a ring (the
+        unscrew's twist and pull: the Melfa's wrist jumped 9-11 N in a tick as it worked
+        the jam jar's cap)."""
+        self._started = readings.time
+        self._tare(readings)
+        self._settling, self._rang = settle, None
+
+    def _tare(self, readings: Readings) -> None:
         self._load_world = world_load(readings)
         self._torque0 = readings.wrench[3:].copy()
         self._filter.reset(np.zeros(6))
         self.value = np.zeros(6)
+        self._last = readings.wrench[:3].copy()
 
     def update(self, readings: Readings, dt: float) -> np.ndarray:
         raw = readings.wrench
+        if self._settling:
+            self._settle(readings, dt)
         contact = np.empty(6)
         contact[:3] = raw[:3] - readings.tcp[:3, :3].T.dot(self._load_world)  # .dot: half the cost of @ here
         contact[3:] = raw[3:] - self._torque0
         self.value = self._filter(contact, dt)
         return self.value
+
+    def _settle(self, readings: Readings, dt: float) -> None:
+        """Follow the reading while it rings; hold the tare once it is still."""
+        now, force = readings.time, readings.wrench[:3]
+        step = force - self._last
+        self._last = force.copy()
+        if math.sqrt(float(step.dot(step))) > RING_RATE * dt:
+            self._rang = now
+        quiet = now - (self._started if self._rang is None else self._rang)
+        if quiet >= STILL_TIME or now - self._started >= TARE_LIMIT:
+            self._settling = False
+        elif self._rang is not None:
+            self._tare(readings)
 
     @property
     def force(self) -> float:

@@ -154,7 +154,7 @@ class UnscrewArm(Controller):
         elif readings.time - self.twisting.started > TWIST_TURNS * self.twist_angle / TWIST_SPEED:
             self._again(readings, f"the twist stalled {np.degrees(left):.0f} degrees short")
         elif left < ORIENTATION_TOLERANCE:
-            self.wrench.start(readings)
+            self.wrench.start(readings, settle=False)
             self.pulling = Pulling(position.copy(), rotation.copy())
             self.phase = Phase.PULL
         if self.phase is not Phase.TWIST:
@@ -276,7 +276,7 @@ class UnscrewArm(Controller):
                         twists=self.tally.twists)
             return
         self.tally.twists += 1
-        self.wrench.start(readings)  # the squeeze's own load is no torque of the thread's
+        self.wrench.start(readings, settle=False)  # the squeeze's own load is no torque of the thread's
         goal = axis_rotation(rotation @ self.direction, -angle) @ rotation
         self.twisting = Twisting(goal, position + rotation @ self.grasp_centre, readings.time)
         self.phase = Phase.TWIST
