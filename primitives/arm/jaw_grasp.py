@@ -138,7 +138,7 @@ class JawGraspCorrection(Controller):
         self.last_across = 0.0  # hand y of the last move across
         self.hint: np.ndarray | None = None  # where the last contact says the object is, world frame
         self.hinted = False  # a contact's hint has been followed: one is, once
-        self.brushed = False  # a hint from the pads' brushing the object has been taken: one is, once
+        self.brushed = False  # a hint from the pads' brushing the object, or a rim's push, has been taken: one is, once
         self.ctx.blackboard.contact = False
         self._rise(readings, np.zeros(3), self._above_object())
 
@@ -361,22 +361,23 @@ class JawGraspCorrection(Controller):
         self.risen += rise
         return False
 
-    def _brushed_hint(self, readings: Readings, brushed: float | None) -> np.ndarray | None:
-        """Where to look after jaws that met the object at one side along their width
-        (`brushed`: their pads' edge, or a finger's rim the wrist felt push it) and closed past
-        it: a search step beyond that side. Once: where that leads to nothing, the search goes
-        on as planned."""
-        if brushed is None or self.brushed:
+    def _felt_hint(self, readings: Readings, brushed: float | None) -> np.ndarray | None:
+        """Where to look after jaws that met the object at one side along their width and
+        closed past it: a step beyond the pads' edge that brushed it (`brushed`, from
+        `jaws_brushed`), else (from above) a step beyond where the wrist felt a finger's bare
+        rim push it, no further than the search's furthest point. Once: where that leads to
+        nothing, the search goes on as planned."""
+        if self.brushed:
+            return None
+        lever = self.rim.lever() if self.vertical else None
+        if brushed is not None:
+            offset = float(np.sign(brushed)) * self.step
+        elif lever is not None:
+            offset = float(np.clip(lever + np.sign(lever) * self.step, -2.0 * self.step, 2.0 * self.step))
+        else:
             return None
         self.brushed = True
-        return readings.tcp[:3, 3] + self._searching(readings) * np.sign(brushed) * self.step
-
-    def _felt_side(self, brushed: float | None) -> float | None:
-        """Where along the jaws' width the close met the object: where its pads felt it, else
-        (from above) which side the wrist felt a finger push it."""
-        if brushed is not None or not self.vertical:
-            return brushed
-        return self.rim.side()
+        return readings.tcp[:3, 3] + self._searching(readings) * offset
 
     def _search_on(self, readings: Readings, why: str = "the jaws closed on nothing") -> None:
         """Rise and go where the last contact placed the object (`hint`), else to the next
@@ -398,7 +399,7 @@ class JawGraspCorrection(Controller):
         if board.jaws_empty:
             board.contact = False
             if self.hint is None:
-                self.hint = self._brushed_hint(readings, self._felt_side(board.jaws_brushed))
+                self.hint = self._felt_hint(readings, board.jaws_brushed)
             self._search_on(readings)
             return np.zeros(3)
         nudge = board.arm_nudge

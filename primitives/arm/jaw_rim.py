@@ -5,16 +5,16 @@ either pad feeling it: the jaws close on nothing and the pads say no side to loo
 Melfa's pads are 20 mm of its 30 mm fingers; docs/robust-grasp.md, "The rim"). The push is
 across the jaws (the hand's y), at a point x along their width, so it turns the wrist about
 the approach axis by tau_z = x F_y; a vertical press on the support adds nothing to tau_z.
-The lever x = tau_z / F_y (least squares over the close) says which side the object is.
+The lever x = tau_z / F_y (least squares over the close) says where the object was met.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-# of the descent's contact threshold: a push across the jaws this strong is the object's
-# (the closing jaws move no mass across their line, so the wrist feels only contacts there)
-LEAST_PUSH = 0.25
+# of the descent's contact threshold: a push across the jaws this strong is the object's (the
+# closing jaws move no mass across their line; a 30 g duck spun by the Melfa's rim pushed 0.5 N)
+LEAST_PUSH = 0.1
 # m: a lever nearer the hand's axis than this is a pad's middle or the wrist's noise, no side
 OFF_AXIS = 0.005
 
@@ -38,9 +38,9 @@ class RimLever:
             self.turn += float(wrench[5]) * across
             self.push += across * across
 
-    def side(self) -> float | None:
-        """+1 or -1 along the hand's x where the pushes were, OFF_AXIS or more off it; None without one."""
+    def lever(self) -> float | None:
+        """m along the hand's x where the pushes were, OFF_AXIS or more off it; None without one."""
         if self.push <= 0.0:
             return None
         lever = self.turn / self.push
-        return float(np.sign(lever)) if abs(lever) >= OFF_AXIS else None
+        return lever if abs(lever) >= OFF_AXIS else None
