@@ -14,9 +14,8 @@ object: the jaws straddle its place, so close). The descent stops with the finge
 clear of the support. The jaws closing on nothing (`jaws_empty`) means the object lies
 beyond the jaws' width, where closing does not sweep: the arm rises and goes where the
 palm's contact placed the object, or a step beyond the pads' edge that brushed it on the
-way (`jaws_brushed`) or beyond the side where the wrist felt a finger's bare rim push it
-(`RimLever`: the torque about the approach axis over the push across the jaws), or else to the next point of a bounded search along
-the jaws' width, alternating sides, around where the approach left it and the moves
+way (`jaws_brushed`) or beyond where the wrist felt a finger's bare rim push it (`RimLever`),
+or else to the next point of a bounded search along the jaws' width, alternating sides, around where the approach left it and the moves
 across have since taken it. While the jaws close it follows the hand's `arm_nudge`
 (re-centring on the pads' contact) and ends once `fingers_stopped`. A task that knows no
 object may give it the top a perceive state saw (`object_top`): it stands in for the object's

@@ -2,10 +2,11 @@
 
 A finger's bare rim beyond its pad can push an object lying along the jaws' width without
 either pad feeling it: the jaws close on nothing and the pads say no side to look (the
-Melfa's pads are 20 mm of its 30 mm fingers; docs/robust-grasp.md, "The rim"). The push is
-across the jaws (the hand's y), at a point x along their width, so it turns the wrist about
-the approach axis by tau_z = x F_y; a vertical press on the support adds nothing to tau_z.
-The lever x = tau_z / F_y (least squares over the close) says where the object was met.
+Melfa's pads are 20 mm of its 30 mm fingers; docs/robust-grasp.md, "The rim, and a press
+one pad does not feel"). The push is across the jaws (the hand's y), at a point x along
+their width, so it turns the wrist about the approach axis by tau_z = x F_y; a vertical
+press on the support adds nothing to tau_z. The lever x = tau_z / F_y (least squares over
+the close) says where the object was met.
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 # of the descent's contact threshold: a push across the jaws this strong is the object's (the
-# closing jaws move no mass across their line; a 30 g duck spun by the Melfa's rim pushed 0.5 N)
+# closing jaws move no mass across their line; a rim spinning a light object pushes about 0.5 N)
 LEAST_PUSH = 0.1
 # m: a lever nearer the hand's axis than this is a pad's middle or the wrist's noise, no side
 OFF_AXIS = 0.005
