@@ -114,7 +114,8 @@ class JawGraspCorrection(Controller):
         self.seen_top = None if top is None else float(top)  # m, world z: the top a perceive state saw
         self.walls = KnownWalls.of(ctx)
         self.contact = ContactWrench(float(p["filter_time"]))
-        self.rim = RimLever(self.threshold)  # where a close pushed the object, when its pads did not feel it
+        # where a close pushed the object when its pads did not feel it; near the axis as the centre band, no side
+        self.rim = RimLever(self.threshold, self.centre_band)
         self.shaper = TwistShaper()  # a sudden reversal shakes the wrist like a contact
         # One sample of the Baxter's virtual wrist sensor is off by 0.2 N or more: a 20 g object.
         self.free_loads: deque[np.ndarray] = deque(maxlen=max(1, round(FREE_LOAD_WINDOW / ctx.info.control_period)))

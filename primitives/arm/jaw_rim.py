@@ -16,15 +16,15 @@ import numpy as np
 # of the descent's contact threshold: a push across the jaws this strong is the object's (the
 # closing jaws move no mass across their line; a rim spinning a light object pushes about 0.5 N)
 LEAST_PUSH = 0.1
-# m: a lever nearer the hand's axis than this is a pad's middle or the wrist's noise, no side
-OFF_AXIS = 0.005
 
 
 class RimLever:
     """The lever of the pushes across the jaws felt on the wrist during one close."""
 
-    def __init__(self, threshold: float) -> None:
+    def __init__(self, threshold: float, band: float) -> None:
         self.least = LEAST_PUSH * threshold  # N across the jaws that count as a push
+        # m: a lever nearer the hand's axis says no side: a bare fingertip below the pads, or noise
+        self.band = band
         self.reset()
 
     def reset(self) -> None:
@@ -40,8 +40,8 @@ class RimLever:
             self.push += across * across
 
     def lever(self) -> float | None:
-        """m along the hand's x where the pushes were, OFF_AXIS or more off it; None without one."""
+        """m along the hand's x where the pushes were, `band` or more off it; None without one."""
         if self.push <= 0.0:
             return None
         lever = self.turn / self.push
-        return lever if abs(lever) >= OFF_AXIS else None
+        return lever if abs(lever) >= self.band else None

@@ -54,7 +54,7 @@ def _first_search_way(lever: float | None) -> float:
     return way
 
 
-@pytest.mark.parametrize("lever", (-0.013, 0.013))
+@pytest.mark.parametrize("lever", (-0.02, 0.02))
 def test_jaws_closing_on_nothing_after_a_rim_pushed_the_object_look_on_that_side_first(lever: float) -> None:
     assert np.sign(_first_search_way(lever)) == np.sign(lever)
 
