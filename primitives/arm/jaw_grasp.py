@@ -14,8 +14,8 @@ object: the jaws straddle its place, so close). The descent stops with the finge
 clear of the support. The jaws closing on nothing (`jaws_empty`) means the object lies
 beyond the jaws' width, where closing does not sweep: the arm rises and goes where the
 palm's contact placed the object, or a step beyond the pads' edge that brushed it on the
-way (`jaws_brushed`), or else to the next point of a bounded search along
-the jaws' width, alternating sides, around where the approach left it and the moves
+way (`jaws_brushed`) or beyond where the wrist felt a finger's bare rim push it (`RimLever`),
+or else to the next point of a bounded search along the jaws' width, alternating sides, around where the approach left it and the moves
 across have since taken it. While the jaws close it follows the hand's `arm_nudge`
 (re-centring on the pads' contact) and ends once `fingers_stopped`. A task that knows no
 object may give it the top a perceive state saw (`object_top`): it stands in for the object's
@@ -25,6 +25,7 @@ top, and the jaws do not close before the fingertips are past it.
 from __future__ import annotations
 
 from collections import deque
+from enum import Enum
 
 import numpy as np
 
@@ -39,6 +40,7 @@ from primitives.arm.motion import (
     unit,
     what_stops,
 )
+from primitives.arm.jaw_rim import RimLever
 from primitives.arm.move import arm_output
 from primitives.arm.walls import KnownWalls
 from primitives.base import Context, ControlData, Controller, Status
@@ -68,6 +70,15 @@ MAX_RELIEF = 0.02  # m the arm rises for that in one close, at most
 FREE_LOAD_WINDOW = 0.1  # s: the empty hand's load is the wrist's mean over the end of a move in free air
 # m the fingertips reach past a seen top before the jaws close: a seen top is good to a few mm (docs/empty-the-box.md)
 PAST_SEEN_TOP = 0.005
+
+
+class JawPhase(Enum):
+    """Where the jaw grasp's arm is; each tick runs the one it is in."""
+
+    MOVE = "move"  # rising clear of a contact, then across to where to look next
+    DESCEND = "descend"  # down on the wrist sensor until a contact or the grasp height
+    CLOSE = "close"  # holding still (following the re-centring) while the jaws close
+    HOLD = "hold"  # the jaws hold the object, or the grasp has ended in an error
 
 
 def bisected(across: float, last: float) -> float:
@@ -103,6 +114,8 @@ class JawGraspCorrection(Controller):
         self.seen_top = None if top is None else float(top)  # m, world z: the top a perceive state saw
         self.walls = KnownWalls.of(ctx)
         self.contact = ContactWrench(float(p["filter_time"]))
+        # where a close pushed the object when its pads did not feel it; near the axis as the centre band, no side
+        self.rim = RimLever(self.threshold, self.centre_band)
         self.shaper = TwistShaper()  # a sudden reversal shakes the wrist like a contact
         # One sample of the Baxter's virtual wrist sensor is off by 0.2 N or more: a 20 g object.
         self.free_loads: deque[np.ndarray] = deque(maxlen=max(1, round(FREE_LOAD_WINDOW / ctx.info.control_period)))
@@ -125,7 +138,7 @@ class JawGraspCorrection(Controller):
         self.last_across = 0.0  # hand y of the last move across
         self.hint: np.ndarray | None = None  # where the last contact says the object is, world frame
         self.hinted = False  # a contact's hint has been followed: one is, once
-        self.brushed = False  # a hint from the pads' brushing the object has been taken: one is, once
+        self.brushed = False  # a hint from the pads' brushing the object, or a rim's push, has been taken: one is, once
         self.ctx.blackboard.contact = False
         self._rise(readings, np.zeros(3), self._above_object())
 
@@ -193,7 +206,7 @@ class JawGraspCorrection(Controller):
         # from inside a box, a search point beyond its wall is a move into the wall (it pressed
         # the hand there at 240 N; Melfa, MuJoCo, docs/empty-the-box.md): kept inside it
         self.route = [up, self.walls.inside(self.rotation, up + self._level(across), here)]
-        self.phase = "move"
+        self.phase = JawPhase.MOVE
         self.nearest, self.nearest_at = np.inf, readings.time  # m from the waypoint, and when
         self.towards: np.ndarray | None = None  # the waypoint `nearest` is measured to
         self.free_loads.clear()
@@ -203,21 +216,21 @@ class JawGraspCorrection(Controller):
         position = readings.tcp[:3, 3]
         w, angle = orientation_twist(self.rotation, readings.tcp[:3, :3])
         v = np.zeros(3)
-        if self.phase == "move":
+        if self.phase is JawPhase.MOVE:
             self.free_loads.append(world_load(readings))
             v = self._follow(readings, angle)
-        elif self.phase == "descend":
+        elif self.phase is JawPhase.DESCEND:
             v = self._descend(readings, dt)
-        elif self.phase == "close":
+        elif self.phase is JawPhase.CLOSE:
             v = self._close(readings, dt)
         relieved = True
-        if self.phase == "close":
+        if self.phase is JawPhase.CLOSE:
             relieved = self._relieve(readings, dt)
         board.pressing = not relieved
-        if self.phase in ("close", "hold"):
-            v = GAIN * (self.goal - position) + (v if self.phase == "close" else 0.0)
-        if self.phase == "close" and board.fingers_stopped and relieved:
-            self.phase = "hold"
+        if self.phase in (JawPhase.CLOSE, JawPhase.HOLD):
+            v = GAIN * (self.goal - position) + (v if self.phase is JawPhase.CLOSE else 0.0)
+        if self.phase is JawPhase.CLOSE and board.fingers_stopped and relieved:
+            self.phase = JawPhase.HOLD
             self.finish(Status.DONE, f"the jaws hold the object after {self.shifts} moves across and "
                                      f"{self.searched + self.hinted} search points")
         return arm_output(self.shaper(np.concatenate([v, w]), dt))
@@ -241,7 +254,7 @@ class JawGraspCorrection(Controller):
             self.towards, self.nearest, self.nearest_at = goal, norm(goal - position), readings.time
         elif readings.time - self.nearest_at > MOVE_STALL:
             info = self.ctx.info
-            self.phase, self.goal = "hold", position.copy()
+            self.phase, self.goal = JawPhase.HOLD, position.copy()
             self.finish(Status.ERROR, f"the correction made no progress for {MOVE_STALL:g} s, "
                                       f"{norm(goal - position) * 100:.1f} cm from its waypoint: "
                                       f"{what_stops(readings.arm_q, info.arm_joints, info.arm_lower, info.arm_upper)}")
@@ -255,7 +268,7 @@ class JawGraspCorrection(Controller):
         # top, and a tare pressed 4.3 N up read a lifted cylinder as no load at all.
         free = self.free_loads or [world_load(readings)]
         self.ctx.memory[EMPTY_HAND] = np.mean(np.array(free), axis=0)
-        self.phase = "descend"
+        self.phase = JawPhase.DESCEND
         self.top = self._depth(readings.tcp[:3, 3])
         self.line = readings.tcp[:3, 3].copy()  # the descent keeps to the vertical through here
         self.best, self.best_time = self.top, readings.time
@@ -273,7 +286,7 @@ class JawGraspCorrection(Controller):
             self._met(readings, wrench)
         elif self.top - z >= self.max_depth or z <= self._grasp_height():
             self._close_here(readings, 0.0)
-        if self.phase != "descend":
+        if self.phase is not JawPhase.DESCEND:
             return np.zeros(3)
         # Held on its vertical: the arm makes a twist only roughly where damped least squares
         # trades accuracy for bounded joint speeds (near a wrist singularity the Melfa's jaws
@@ -329,8 +342,9 @@ class JawGraspCorrection(Controller):
 
     def _close_here(self, readings: Readings, back_off: float) -> None:
         self.goal = readings.tcp[:3, 3] + back_off * self.back
-        self.phase = "close"
+        self.phase = JawPhase.CLOSE
         self.risen = 0.0  # m the arm has risen in this close to take the hand off the support
+        self.rim.reset()
         self.ctx.blackboard.contact = True
 
     def _relieve(self, readings: Readings, dt: float) -> bool:
@@ -347,14 +361,23 @@ class JawGraspCorrection(Controller):
         self.risen += rise
         return False
 
-    def _brushed_hint(self, readings: Readings, brushed: float | None) -> np.ndarray | None:
-        """Where to look after jaws whose pads felt the object at their edge (`brushed`, from
-        `jaws_brushed`) closed past it: a search step beyond that edge. Once: where that leads
-        to nothing, the search goes on as planned."""
-        if brushed is None or self.brushed:
+    def _felt_hint(self, readings: Readings, brushed: float | None) -> np.ndarray | None:
+        """Where to look after jaws that met the object at one side along their width and
+        closed past it: a step beyond the pads' edge that brushed it (`brushed`, from
+        `jaws_brushed`), else (from above) a step beyond where the wrist felt a finger's bare
+        rim push it, no further than the search's furthest point. Once: where that leads to
+        nothing, the search goes on as planned."""
+        if self.brushed:
+            return None
+        lever = self.rim.lever() if self.vertical else None
+        if brushed is not None:
+            offset = float(np.sign(brushed)) * self.step
+        elif lever is not None:
+            offset = float(np.clip(lever + np.sign(lever) * self.step, -2.0 * self.step, 2.0 * self.step))
+        else:
             return None
         self.brushed = True
-        return readings.tcp[:3, 3] + self._searching(readings) * np.sign(brushed) * self.step
+        return readings.tcp[:3, 3] + self._searching(readings) * offset
 
     def _search_on(self, readings: Readings, why: str = "the jaws closed on nothing") -> None:
         """Rise and go where the last contact placed the object (`hint`), else to the next
@@ -365,17 +388,18 @@ class JawGraspCorrection(Controller):
             point = self.centre + self._searching(readings) * self.offsets[self.searched]
             self.searched += 1
         else:
-            self.phase = "hold"
+            self.phase = JawPhase.HOLD
             self.finish(Status.ERROR, f"{why} at {self.searched + self.hinted + 1} points")
             return
         self._rise(readings, point - readings.tcp[:3, 3], self._above_object())
 
     def _close(self, readings: Readings, dt: float) -> np.ndarray:
         board = self.ctx.blackboard
+        self.rim.add(self.contact.update(readings, dt))
         if board.jaws_empty:
             board.contact = False
             if self.hint is None:
-                self.hint = self._brushed_hint(readings, board.jaws_brushed)
+                self.hint = self._felt_hint(readings, board.jaws_brushed)
             self._search_on(readings)
             return np.zeros(3)
         nudge = board.arm_nudge

@@ -29,7 +29,7 @@ BLOCKED = 0.003  # m: still jaws this far short of their closing reference are h
 SQUEEZE_GAIN = 5.0  # 1/s: how fast the squeeze corrects the motor force towards the pad force wanted
 SQUEEZE_TRIM = 0.5  # the correction stays within +-50 % of the grasp force
 ALIGNED = 0.3  # of a pad's half width: a contact this near the pad's middle needs no move along the jaws
-# s tactile jaws press feeling nothing on either pad before they count as closed on nothing (a touch reaches both in 0.1 s)
+# s tactile jaws press with a pad feeling nothing before they count as closed on nothing (a touch reaches both in 0.1 s)
 UNFELT_TIME = 0.5
 
 
@@ -60,9 +60,9 @@ class Jaws:
             return bool((readings.pad_force > TOUCH).all())
         return self.force(readings) > MOTOR_TOUCH * grasp_force
 
-    def feel_nothing(self, readings: Readings) -> bool:
-        """Tactile pads, neither touching anything (a motor's force says nothing of where it pushes)."""
-        return self.source == "tactile" and bool((readings.pad_force <= TOUCH).all())
+    def pad_unfelt(self, readings: Readings) -> bool:
+        """Tactile pads, one of them or both touching nothing (a motor's force says nothing of where it pushes)."""
+        return self.source == "tactile" and bool((readings.pad_force <= TOUCH).any())
 
     def empty(self, readings: Readings) -> bool:
         return abs(float(readings.hand_q[0]) - self.closed) < EMPTY
@@ -97,7 +97,8 @@ class CloseUntilForce(Controller):
     face pushed along), and following it would drag the object across the table. A grip is
     done only once that arm no longer rises off the support (`pressing`): until then, jaws
     that close empty say so and the arm looks again. Tactile jaws that press UNFELT_TIME with
-    neither pad feeling anything stand on something beside their pads: closed on nothing too.
+    a pad feeling nothing stand on something beside that pad: closed on nothing too, the
+    other pad, if it touches, saying which side the object is.
     """
 
     def __init__(self, ctx: Context) -> None:
@@ -123,16 +124,17 @@ class CloseUntilForce(Controller):
             return self._reopen(dt)
         if self.status is Status.RUNNING:
             force = self.jaws.force(readings)
-            self.unfelt = self.unfelt + dt if self.pressing and self.jaws.feel_nothing(readings) else 0.0
+            self.unfelt = self.unfelt + dt if self.pressing and self.jaws.pad_unfelt(readings) else 0.0
             # a motor pressing on its end stop feels force too; fingers stopped beside the pads grip nothing
             if self.jaws.empty(readings) or self.unfelt >= UNFELT_TIME:
                 self.pressing = False
+                self.brushed = self._across_pads(readings) or self.brushed  # a pad still touching says the side
                 if self.guided:
                     board.jaws_empty = True
                     board.jaws_brushed = self.brushed
                 else:
                     self.finish(Status.ERROR, "the jaws closed on nothing" if self.jaws.empty(readings)
-                                else "the jaws stopped on something their pads do not feel")
+                                else "the jaws stopped on something a pad does not feel")
             elif (self.pressing and abs(float(readings.hand_dq[0])) < STILL and self._gripped(force)
                   and not board.pressing):
                 board.fingers_stopped = True

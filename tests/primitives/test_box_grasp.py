@@ -11,6 +11,7 @@ from atd.model.estd import Controller
 from atd.model.task import ContainerInfo, Environment, Pose
 from atd.sim import load_description
 from primitives.arm.approach_phases import Phase
+from primitives.arm.jaw_grasp import JawPhase
 from primitives.base import Context
 from primitives.perception.container import approach_pose, clear_of_walls
 from primitives.perception.generators import jaw_yaw, long_side
@@ -193,4 +194,4 @@ def test_a_jaw_grasp_told_the_top_vision_saw_does_not_close_with_the_fingertips_
         lever = np.array([0.0, 0.03, grasp.wrist_to_tcp])  # under one jaw, 3 cm across
         grasp._met(_still_at(at), np.concatenate([force, np.cross(lever, force)]))
         phases.append(grasp.phase)
-    assert phases == ["move", "close", "close"]
+    assert phases == [JawPhase.MOVE, JawPhase.CLOSE, JawPhase.CLOSE]
