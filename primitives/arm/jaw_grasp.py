@@ -33,6 +33,7 @@ from primitives.arm.motion import (
     GAIN,
     ORIENTATION_TOLERANCE,
     SUPPORT_BAND,
+    Stall,
     TwistShaper,
     clamp_norm,
     norm,
@@ -60,8 +61,6 @@ FLAT = np.array([1.0, 1.0, 0.0])
 # within its `level_within`, 30 degrees by default, and the factory checks reach alike)
 FROM_ABOVE = np.radians(30.0)
 STALL_TIME = 0.5  # s without descending 1 mm while pressing: the descent is on a contact
-MOVE_STALL = 2.0  # s without getting 1 mm nearer a waypoint of the correction: the arm cannot get there
-STALL_PROGRESS = 0.001  # m
 STALL_CONTACT = 0.5  # of force_threshold: pressing that much when stalled is a contact
 FLOOR_CLEARANCE = 0.005  # m: the descent stops with the fingertips this far above the support
 PRESSED = 5.0  # N up on the wrist, beyond the empty hand's load, while the jaws close: pressed on the support
@@ -114,6 +113,8 @@ class JawGraspCorrection(Controller):
         self.seen_top = None if top is None else float(top)  # m, world z: the top a perceive state saw
         self.walls = KnownWalls.of(ctx)
         self.contact = ContactWrench(float(p["filter_time"]))
+        self.move_stall = Stall()  # a correction's waypoint the arm cannot get to
+        self.descent_stall = Stall(STALL_TIME)  # a descent on a contact
         # where a close pushed the object when its pads did not feel it; near the axis as the centre band, no side
         self.rim = RimLever(self.threshold, self.centre_band)
         self.shaper = TwistShaper()  # a sudden reversal shakes the wrist like a contact
@@ -207,8 +208,7 @@ class JawGraspCorrection(Controller):
         # the hand there at 240 N; Melfa, MuJoCo, docs/empty-the-box.md): kept inside it
         self.route = [up, self.walls.inside(self.rotation, up + self._level(across), here)]
         self.phase = JawPhase.MOVE
-        self.nearest, self.nearest_at = np.inf, readings.time  # m from the waypoint, and when
-        self.towards: np.ndarray | None = None  # the waypoint `nearest` is measured to
+        self.towards: np.ndarray | None = None  # the waypoint `move_stall` is measured to
         self.free_loads.clear()
 
     def update(self, readings: Readings, dt: float) -> ControlData:
@@ -250,12 +250,13 @@ class JawGraspCorrection(Controller):
                 self._start_descent(readings)
                 return np.zeros(3)
             goal = self.route[0]
-        if goal is not self.towards or norm(goal - position) < self.nearest - STALL_PROGRESS:
-            self.towards, self.nearest, self.nearest_at = goal, norm(goal - position), readings.time
-        elif readings.time - self.nearest_at > MOVE_STALL:
+        if goal is not self.towards:
+            self.towards = goal
+            self.move_stall.reset(readings.time)
+        if self.move_stall.stalled(norm(goal - position), readings.time):
             info = self.ctx.info
             self.phase, self.goal = JawPhase.HOLD, position.copy()
-            self.finish(Status.ERROR, f"the correction made no progress for {MOVE_STALL:g} s, "
+            self.finish(Status.ERROR, f"the correction made no progress for {self.move_stall.patience:g} s, "
                                       f"{norm(goal - position) * 100:.1f} cm from its waypoint: "
                                       f"{what_stops(readings.arm_q, info.arm_joints, info.arm_lower, info.arm_upper)}")
             return np.zeros(3)
@@ -271,14 +272,12 @@ class JawGraspCorrection(Controller):
         self.phase = JawPhase.DESCEND
         self.top = self._depth(readings.tcp[:3, 3])
         self.line = readings.tcp[:3, 3].copy()  # the descent keeps to the vertical through here
-        self.best, self.best_time = self.top, readings.time
+        self.descent_stall.reset(readings.time, self.top)
 
     def _descend(self, readings: Readings, dt: float) -> np.ndarray:
         wrench = self.contact.update(readings, dt)
         z = self._depth(readings.tcp[:3, 3])
-        if z < self.best - STALL_PROGRESS:
-            self.best, self.best_time = z, readings.time
-        stalled = readings.time - self.best_time > STALL_TIME and self.contact.force >= STALL_CONTACT * self.threshold
+        stalled = self.descent_stall.stalled(z, readings.time) and self.contact.force >= STALL_CONTACT * self.threshold
         # From the side the jaws straddle the object's place on their way in, and a push
         # tips a standing object long before the wrist feels it (0.4 N tips a 0.2 kg bottle
         # 4 cm wide pushed 9 cm up; the Melfa's contact is 2 N): only a blocked descent has met it

@@ -188,24 +188,25 @@ class ObstacleDetour:
 
 
 class Stall:
-    """Whether a motion has stopped getting nearer where it goes: STALL_TIME without coming
-    STALL_PROGRESS nearer than its best (a joint at its limit, a singularity, something in
+    """Whether a motion has stopped getting nearer where it goes: `patience` (STALL_TIME unless
+    told) without coming STALL_PROGRESS nearer than its best (a joint at its limit, a singularity, something in
     the way). Every arm controller that goes somewhere ends on it rather than wait for ever."""
 
-    def __init__(self) -> None:
+    def __init__(self, patience: float = STALL_TIME) -> None:
+        self.patience = patience  # s without progress that count as stalled
         self.reset(0.0)
 
-    def reset(self, now: float) -> None:
-        """A new goal: no distance to it seen yet."""
-        self.best = math.inf
+    def reset(self, now: float, distance: float = math.inf) -> None:
+        """A new goal, `distance` (m) away as far as is known at `now` (s)."""
+        self.best = distance
         self.best_time = now
 
     def stalled(self, distance: float, now: float) -> bool:
-        """`distance` (m) still to go at `now` (s): True once it has not shrunk for STALL_TIME."""
+        """`distance` (m) still to go at `now` (s): True once it has not shrunk for `patience`."""
         if distance < self.best - STALL_PROGRESS:
             self.best, self.best_time = distance, now
             return False
-        return now - self.best_time > STALL_TIME
+        return now - self.best_time > self.patience
 
 
 def _inside(p: np.ndarray, low: np.ndarray, high: np.ndarray) -> bool:

@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from atd.model.frames import axis_rotation
-from primitives.arm.jaw_grasp import STALL_CONTACT, STALL_PROGRESS, STALL_TIME
+from primitives.arm.jaw_grasp import STALL_CONTACT
 from primitives.arm.motion import GAIN, ORIENTATION_TOLERANCE, clamp_norm, norm, orientation_twist, unit
 from primitives.arm.move import arm_output
 from primitives.arm.unscrew_phases import Phase, Pulling, Seating, Tally, TcpPose, Twisting
@@ -43,12 +43,8 @@ MIN_TWIST = np.radians(5.0)  # rad: a wrist with less room than this left turns 
 SEAT_SHORT = 0.005  # m: a descent stopped further short met something on the way (pads 5 mm higher still grip a cap)
 SEAT_SPEED = 0.02  # m/s: down onto the cap, slow enough to stop on a jaw on its top before pressing it hard
 SEAT_RISE = 0.005  # m up off the cap's top before moving across: the jaw stopped within a millimetre of it
-# m: the move across ends this near its end, before the jaws go down again (at ARRIVED, 2 mm short
-# of an 8 mm move, a Melfa jaw came down on the cap's rim, PyBullet)
-ACROSS_ARRIVED = 0.0005
-# The search's step, of the jaws' room around the cap (the pads'): the Melfa's jaws came down clear of the
-# jam jar's cap 2 mm off its axis, and on its top 3.4 mm off (PyBullet; its pads leave 4 mm a side)
-SEARCH_STEP = 1.0 / 3.0
+ACROSS_ARRIVED = 0.0005  # m: the move across ends this near its end; at ARRIVED a jaw came down on the cap's rim
+SEARCH_STEP = 1.0 / 3.0  # of the jaws' room around the cap: a step that cannot jump over the band where they fit
 SEARCH_POINTS = 14  # moves across, to either side in turn: 7 steps each way (Melfa 19 mm), then pinch
 
 
@@ -104,10 +100,7 @@ class UnscrewArm(Controller):
         on the cap's top."""
         seating = self.seating
         left = norm(seating.goal - readings.tcp[:3, 3])
-        if left < seating.nearest - STALL_PROGRESS:
-            seating.nearest, seating.progress_at = left, readings.time
-        pressing = self.wrench.force >= STALL_CONTACT * self.threshold
-        stalled = pressing and readings.time - seating.progress_at > STALL_TIME
+        stalled = seating.stall.stalled(left, readings.time) and self.wrench.force >= STALL_CONTACT * self.threshold
         if left < ARRIVED:
             self._pinch_from(readings)
         elif self.wrench.force >= self.threshold or stalled:
@@ -231,7 +224,8 @@ class UnscrewArm(Controller):
 
     def _begin_seat(self, readings: Readings, seating: Seating) -> None:
         self.wrench.start(readings)  # in free air, over the cap
-        self.seating, seating.nearest, seating.progress_at = seating, np.inf, readings.time
+        self.seating = seating
+        seating.stall.reset(readings.time)
         self.still = TcpPose(readings.tcp[:3, 3].copy(), self.start_pose.rotation)
         self.phase = Phase.SEAT
 

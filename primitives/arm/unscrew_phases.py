@@ -8,6 +8,9 @@ from enum import Enum
 
 import numpy as np
 
+from primitives.arm.jaw_grasp import STALL_TIME
+from primitives.arm.motion import Stall
+
 
 class Phase(Enum):
     """Where the unscrew's arm is; the value is the method of `UnscrewArm` that runs a tick of it."""
@@ -39,8 +42,7 @@ class Seating:
     first: np.ndarray  # world TCP the guarded descent was going to
     goal: np.ndarray  # where this descent goes: `first`, or moved across it by the search
     route: list[np.ndarray] = field(default_factory=list)  # world TCP waypoints off the cap's top and across
-    nearest: float = np.inf  # m: the descent's nearest yet to its goal
-    progress_at: float = 0.0  # s: when the descent last came STALL_PROGRESS nearer
+    stall: Stall = field(default_factory=lambda: Stall(STALL_TIME))  # the descent pressing on something
 
 
 @dataclass
