@@ -51,16 +51,9 @@ def held_wrench(hand: HandInfo, readings: Readings) -> np.ndarray:
     return readings.wrench - own
 
 
-# N/s the wrist's force changes by, from one tick to the next, in a knock that still rings: as
-# the move after the Melfa's put-down of a cap began, 1,800-2,000 N/s; as its own motion starts,
-# 220-270 N/s, and a lift takes the object's weight, 740 N/s (the preset's cylinder, MuJoCo)
-RING_RATE = 1200.0
-# s without such a change before the tare is held: the Melfa's wrist rang 0.04 s after a
-# put-down stopped a cap on the table
-STILL_TIME = 0.05
-# s after the start the tare is held whatever it reads: a hand still knocked about then is
-# pressed on, not ringing, and the primitive's contacts go unseen while the tare follows
-TARE_LIMIT = 0.5
+RING_RATE = 1200.0  # N/s between ticks: faster is a knock still ringing, slower the arm's own motion or a lift (docs/unscrew-campaign.md)
+STILL_TIME = 0.05  # s without such a jump before the tare is held: a put-down's ring dies within 0.04 s
+TARE_LIMIT = 0.5  # s: held by then whatever it reads, a hand still knocked about is pressed on, not ringing
 
 
 class ContactWrench:

@@ -13,9 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-# of the descent's contact threshold: a push across the jaws this strong is the object's (the
-# closing jaws move no mass across their line; a rim spinning a light object pushes about 0.5 N)
-LEAST_PUSH = 0.1
+LEAST_PUSH = 0.1  # of the descent's contact threshold: a push across the jaws this strong is the object's, not noise
 
 
 class RimLever:
