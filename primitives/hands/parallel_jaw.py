@@ -108,6 +108,9 @@ class CloseUntilForce(Controller):
         self.max_recentre = float(self.params["max_recentre"])
         self.jaws = Jaws(ctx, str(self.params["force_source"]))
         self.squeeze = Squeeze(ctx)  # presses on until the pads feel the force (a tilted grip loses some)
+        self.squeeze.press_to_limit()
+        # a motor cannot press harder than its effort limit: asked more, the most it gives is the grip
+        self.reachable = min(self.grasp_force, float(ctx.info.hand.effort_limit[0]))
 
     def start(self, readings: Readings) -> None:
         self.reference = self.opened = float(readings.hand_q[0])
@@ -138,7 +141,9 @@ class CloseUntilForce(Controller):
             elif (self.pressing and abs(float(readings.hand_dq[0])) < STILL and self._gripped(force)
                   and not board.pressing):
                 board.fingers_stopped = True
-                limit = ", the squeeze at its limit" if force < CONFIRM * self.grasp_force else ""
+                limit = ", the squeeze at its limit" if force < CONFIRM * self.reachable else ""
+                if self.reachable < self.grasp_force:
+                    limit += f", the gripper gives {self.reachable:g} N"
                 self.finish(Status.DONE, f"grip force {force:.1f} N (asked {self.grasp_force:g} N{limit})")
             elif not self.pressing and (self.jaws.both_touch(readings, self.grasp_force) or self._blocked(readings)):
                 self.pressing = True
@@ -163,11 +168,12 @@ class CloseUntilForce(Controller):
         return position_command(np.array([self.reference]))
 
     def _gripped(self, force: float) -> bool:
-        """The pads feel the grasp force; or, with the squeeze's trim at its limit, most of
-        it: a grip tilted by the approach error loads one pad more than the other, and the
-        Melfa's pads held a tape roll at 17 and 13 N, the motor at 150 %, until the grasp's
-        timeout."""
-        if force >= CONFIRM * self.grasp_force:
+        """The pads feel the grasp force (or all the motor gives); or, with the motor pressing
+        at least 150 % of it, most of it: a grip tilted by the approach error loads one pad
+        more than the other, and the Melfa's pads held a tape roll at 17 and 13 N, the motor
+        at 150 %, until the grasp's timeout. Below that, the squeeze presses on towards the
+        motor's limit (`Squeeze.press_to_limit`)."""
+        if force >= CONFIRM * self.reachable:
             return True
         return self.squeeze.saturated and force >= SATURATED_GRIP * self.grasp_force
 
@@ -235,6 +241,7 @@ class Squeeze(Controller):
         self.grasp_force = float(self.params["grasp_force"])
         self.jaws = Jaws(ctx, str(self.params["force_source"]))
         self.limit = SQUEEZE_TRIM * self.grasp_force  # N the trim may add or take away
+        self.ceiling = self.limit  # N the trim may add while both pads feel the object
         self.trim = 0.0
 
     def start(self, readings: Readings) -> None:
@@ -244,15 +251,23 @@ class Squeeze(Controller):
         """Press with the grasp force alone again (a new press begins)."""
         self.trim = 0.0
 
+    def press_to_limit(self) -> None:
+        """While both pads feel the object, let the trim rise until the motor presses its
+        effort limit: a finger's bare rim beside a pad takes part of the jaw's push (the
+        Melfa's pads held a tape roll at 10.0 and 10.7 N, the motor at 22.5 N, until the
+        grasp's timeout). A pad that feels nothing keeps the trim within +-50 %."""
+        self.ceiling = max(self.limit, float(self.ctx.info.hand.effort_limit[0]) - self.grasp_force)
+
     @property
     def saturated(self) -> bool:
-        """The motor already presses as hard as the trim allows."""
+        """The motor presses at least 150 % of the grasp force."""
         return self.trim >= self.limit
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         if self.jaws.source == "tactile":
             error = self.grasp_force - self.jaws.force(readings)
-            self.trim = min(self.limit, max(-self.limit, self.trim + SQUEEZE_GAIN * error * dt))
+            ceiling = self.ceiling if self.jaws.both_touch(readings, self.grasp_force) else self.limit
+            self.trim = min(ceiling, max(-self.limit, self.trim + SQUEEZE_GAIN * error * dt))
         return self.jaws.command(self.grasp_force + self.trim)
 
 
