@@ -21,7 +21,7 @@ from primitives.robot import HandMode, Readings
 TOUCH = 0.5  # N on a pad: that finger touches the object
 MOTOR_TOUCH = 0.25  # of the grasp force, on the jaw motor: the jaws meet resistance
 CONFIRM = 0.95  # of the grasp force: the grip is there
-SATURATED_GRIP = 0.7  # of the grasp force: as much as pads feel with the squeeze at its limit is a grip
+SATURATED_GRIP = 0.7  # of the grasp force, on the weaker pad with the motor at 150 % or more: a tilted grip is still a grip
 NAIVE_SPEED = 0.5  # of the jaws' speed limit, for the naive grasp
 EMPTY = 0.001  # m from fully closed: the jaws closed on nothing
 STILL = 0.005  # m/s: jaws slower than this stand on the object (a motor's force alone is felt in motion too)
