@@ -21,7 +21,7 @@ from primitives.robot import HandMode, Readings
 TOUCH = 0.5  # N on a pad: that finger touches the object
 MOTOR_TOUCH = 0.25  # of the grasp force, on the jaw motor: the jaws meet resistance
 CONFIRM = 0.95  # of the grasp force: the grip is there
-SATURATED_GRIP = 0.7  # of the grasp force, on the weaker pad with the motor at 150 % or more: a tilted grip is still a grip
+SATURATED_GRIP = 0.7  # of the grasp force: as much as pads feel with the squeeze at its limit is a grip
 NAIVE_SPEED = 0.5  # of the jaws' speed limit, for the naive grasp
 EMPTY = 0.001  # m from fully closed: the jaws closed on nothing
 STILL = 0.005  # m/s: jaws slower than this stand on the object (a motor's force alone is felt in motion too)
@@ -108,8 +108,7 @@ class CloseUntilForce(Controller):
         self.max_recentre = float(self.params["max_recentre"])
         self.jaws = Jaws(ctx, str(self.params["force_source"]))
         self.squeeze = Squeeze(ctx)  # presses on until the pads feel the force (a tilted grip loses some)
-        self.squeeze.press_to_limit()
-        # a motor cannot press harder than its effort limit: asked more, the most it gives is the grip
+        # a motor cannot press harder than its effort limit: asked more, all it gives is the grip
         self.reachable = min(self.grasp_force, float(ctx.info.hand.effort_limit[0]))
 
     def start(self, readings: Readings) -> None:
@@ -168,11 +167,10 @@ class CloseUntilForce(Controller):
         return position_command(np.array([self.reference]))
 
     def _gripped(self, force: float) -> bool:
-        """The pads feel the grasp force (or all the motor gives); or, with the motor pressing
-        at least 150 % of it, most of it: a grip tilted by the approach error loads one pad
-        more than the other, and the Melfa's pads held a tape roll at 17 and 13 N, the motor
-        at 150 %, until the grasp's timeout. Below that, the squeeze presses on towards the
-        motor's limit (`Squeeze.press_to_limit`)."""
+        """The pads feel the grasp force, or all the jaw motor gives (its effort limit); or, with the squeeze's trim at its limit, most of
+        it: a grip tilted by the approach error loads one pad more than the other, and the
+        Melfa's pads held a tape roll at 17 and 13 N, the motor at 150 %, until the grasp's
+        timeout."""
         if force >= CONFIRM * self.reachable:
             return True
         return self.squeeze.saturated and force >= SATURATED_GRIP * self.grasp_force
@@ -241,7 +239,6 @@ class Squeeze(Controller):
         self.grasp_force = float(self.params["grasp_force"])
         self.jaws = Jaws(ctx, str(self.params["force_source"]))
         self.limit = SQUEEZE_TRIM * self.grasp_force  # N the trim may add or take away
-        self.ceiling = self.limit  # N the trim may add while both pads feel the object
         self.trim = 0.0
 
     def start(self, readings: Readings) -> None:
@@ -251,23 +248,15 @@ class Squeeze(Controller):
         """Press with the grasp force alone again (a new press begins)."""
         self.trim = 0.0
 
-    def press_to_limit(self) -> None:
-        """While both pads feel the object, let the trim rise until the motor presses its
-        effort limit: a finger's bare rim beside a pad takes part of the jaw's push (the
-        Melfa's pads held a tape roll at 10.0 and 10.7 N, the motor at 22.5 N, until the
-        grasp's timeout). A pad that feels nothing keeps the trim within +-50 %."""
-        self.ceiling = max(self.limit, float(self.ctx.info.hand.effort_limit[0]) - self.grasp_force)
-
     @property
     def saturated(self) -> bool:
-        """The motor presses at least 150 % of the grasp force."""
+        """The motor already presses as hard as the trim allows."""
         return self.trim >= self.limit
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         if self.jaws.source == "tactile":
             error = self.grasp_force - self.jaws.force(readings)
-            ceiling = self.ceiling if self.jaws.both_touch(readings, self.grasp_force) else self.limit
-            self.trim = min(ceiling, max(-self.limit, self.trim + SQUEEZE_GAIN * error * dt))
+            self.trim = min(self.limit, max(-self.limit, self.trim + SQUEEZE_GAIN * error * dt))
         return self.jaws.command(self.grasp_force + self.trim)
 
 

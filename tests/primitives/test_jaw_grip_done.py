@@ -12,7 +12,7 @@ from atd.model.estd import Controller
 from atd.sim import load_description
 from atd.sim.simrobot import robot_info
 from primitives.base import Context, Status
-from primitives.hands.parallel_jaw import SATURATED_GRIP, UNFELT_TIME
+from primitives.hands.parallel_jaw import UNFELT_TIME
 from primitives.registry import build_controller
 from primitives.robot import Readings
 
@@ -71,21 +71,24 @@ def test_jaws_pressing_on_something_their_pads_do_not_feel_look_again() -> None:
     assert empty_at and UNFELT_TIME <= empty_at[0] <= UNFELT_TIME + 0.15, empty_at
 
 
-def test_jaws_whose_bare_rims_take_half_the_push_press_on_until_the_pads_grip() -> None:
-    """The Melfa's pads held a tape roll at 10.0 and 10.7 N of the 15 N asked, the motor at
-    150 % of it, the rest of the push on the fingers' bare rims, until the grasp's timeout
-    (generalisation.toml, base seed 61379). Each pad here feels 44 % of the jaws' push: the
-    close presses on past 150 % and is done once the pads feel SATURATED_GRIP of the force."""
-    ctx = Context(info=MELFA, params={}, environment=None)
+def test_a_grip_asked_more_than_the_gripper_gives_is_done_at_its_limit() -> None:
+    """Baxter's gripper gives 20 N; a grasp asking 25 N (a heavy object's holding force)
+    had its motor pressing all it gives, the jaws still, until the grasp's timeout."""
+    baxter = robot_info(load_description("baxter"))
+    ctx = Context(info=baxter, params={}, environment=None)
     ctx.blackboard.contact = True
-    hand = build_controller(Controller(name="close_until_force", params={}), "hand", ctx)
-    hand.start(_jaws(0.03, 0.0))
-    period = MELFA.control_period
-    pads = 0.0
-    for _ in range(round(3.0 / period)):  # the jaws still on the object, both pads touching
-        push = hand.update(_jaws(0.015, max(pads, 1.0)), period).hand
-        pads = 0.44 * float(MELFA.hand.closing[0] * push.values[0]) if push.modes[0].name == "FORCE" else 0.0
-        if hand.status is not Status.RUNNING:
-            break
-    assert hand.status is Status.DONE and ctx.blackboard.fingers_stopped
-    assert SATURATED_GRIP * hand.grasp_force <= pads < 0.95 * hand.grasp_force
+    hand = build_controller(Controller(name="close_until_force", params={"grasp_force": 25.0, "force_source": "motor"}),
+                            "hand", ctx)
+    zeros = np.zeros(7)
+    effort = float(baxter.hand.effort_limit[0])
+
+    def jaws(q: float, pressing: float) -> Readings:
+        return Readings(time=0.0, arm_q=zeros, arm_dq=zeros, arm_effort=zeros, hand_q=np.array([q]),
+                        hand_dq=np.zeros(1), hand_effort=np.array([baxter.hand.closing[0] * pressing]), tcp=np.eye(4),
+                        wrench=np.zeros(6), taxels={}, pad_force=np.zeros(2), range=None)
+
+    hand.start(jaws(0.02, 0.0))
+    for _ in range(3):  # the jaws still on the object, the motor pressing all it gives
+        hand.update(jaws(0.01, effort), baxter.control_period)
+    assert hand.status is Status.DONE, hand.status
+    assert f"the gripper gives {effort:g} N" in hand.reason
