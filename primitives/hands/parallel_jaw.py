@@ -167,10 +167,10 @@ class CloseUntilForce(Controller):
         return position_command(np.array([self.reference]))
 
     def _gripped(self, force: float) -> bool:
-        """The pads feel the grasp force, or all the jaw motor gives (its effort limit); or, with the squeeze's trim at its limit, most of
-        it: a grip tilted by the approach error loads one pad more than the other, and the
-        Melfa's pads held a tape roll at 17 and 13 N, the motor at 150 %, until the grasp's
-        timeout."""
+        """The pads feel the grasp force, or all the jaw motor gives (its effort limit); or,
+        with the squeeze's trim at its limit, most of it: a grip tilted by the approach error
+        loads one pad more than the other, and the Melfa's pads held a tape roll at 17 and
+        13 N, the motor at 150 %, until the grasp's timeout."""
         if force >= CONFIRM * self.reachable:
             return True
         return self.squeeze.saturated and force >= SATURATED_GRIP * self.grasp_force
