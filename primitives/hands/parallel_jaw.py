@@ -108,6 +108,8 @@ class CloseUntilForce(Controller):
         self.max_recentre = float(self.params["max_recentre"])
         self.jaws = Jaws(ctx, str(self.params["force_source"]))
         self.squeeze = Squeeze(ctx)  # presses on until the pads feel the force (a tilted grip loses some)
+        # a motor cannot press harder than its effort limit: asked more, all it gives is the grip
+        self.reachable = min(self.grasp_force, float(ctx.info.hand.effort_limit[0]))
 
     def start(self, readings: Readings) -> None:
         self.reference = self.opened = float(readings.hand_q[0])
@@ -138,7 +140,9 @@ class CloseUntilForce(Controller):
             elif (self.pressing and abs(float(readings.hand_dq[0])) < STILL and self._gripped(force)
                   and not board.pressing):
                 board.fingers_stopped = True
-                limit = ", the squeeze at its limit" if force < CONFIRM * self.grasp_force else ""
+                limit = ", the squeeze at its limit" if force < CONFIRM * self.reachable else ""
+                if self.reachable < self.grasp_force:
+                    limit += f", the gripper gives {self.reachable:g} N"
                 self.finish(Status.DONE, f"grip force {force:.1f} N (asked {self.grasp_force:g} N{limit})")
             elif not self.pressing and (self.jaws.both_touch(readings, self.grasp_force) or self._blocked(readings)):
                 self.pressing = True
@@ -163,11 +167,11 @@ class CloseUntilForce(Controller):
         return position_command(np.array([self.reference]))
 
     def _gripped(self, force: float) -> bool:
-        """The pads feel the grasp force; or, with the squeeze's trim at its limit, most of
-        it: a grip tilted by the approach error loads one pad more than the other, and the
-        Melfa's pads held a tape roll at 17 and 13 N, the motor at 150 %, until the grasp's
-        timeout."""
-        if force >= CONFIRM * self.grasp_force:
+        """The pads feel the grasp force, or all the jaw motor gives (its effort limit); or,
+        with the squeeze's trim at its limit, most of it: a grip tilted by the approach error
+        loads one pad more than the other, and the Melfa's pads held a tape roll at 17 and
+        13 N, the motor at 150 %, until the grasp's timeout."""
+        if force >= CONFIRM * self.reachable:
             return True
         return self.squeeze.saturated and force >= SATURATED_GRIP * self.grasp_force
 

@@ -69,3 +69,26 @@ def test_jaws_pressing_on_something_their_pads_do_not_feel_look_again() -> None:
             empty_at.append(tick * period)
     assert hand.status is Status.RUNNING
     assert empty_at and UNFELT_TIME <= empty_at[0] <= UNFELT_TIME + 0.15, empty_at
+
+
+def test_a_grip_asked_more_than_the_gripper_gives_is_done_at_its_limit() -> None:
+    """Baxter's gripper gives 20 N; a grasp asking 25 N (a heavy object's holding force)
+    had its motor pressing all it gives, the jaws still, until the grasp's timeout."""
+    baxter = robot_info(load_description("baxter"))
+    ctx = Context(info=baxter, params={}, environment=None)
+    ctx.blackboard.contact = True
+    hand = build_controller(Controller(name="close_until_force", params={"grasp_force": 25.0, "force_source": "motor"}),
+                            "hand", ctx)
+    zeros = np.zeros(7)
+    effort = float(baxter.hand.effort_limit[0])
+
+    def jaws(q: float, pressing: float) -> Readings:
+        return Readings(time=0.0, arm_q=zeros, arm_dq=zeros, arm_effort=zeros, hand_q=np.array([q]),
+                        hand_dq=np.zeros(1), hand_effort=np.array([baxter.hand.closing[0] * pressing]), tcp=np.eye(4),
+                        wrench=np.zeros(6), taxels={}, pad_force=np.zeros(2), range=None)
+
+    hand.start(jaws(0.02, 0.0))
+    for _ in range(3):  # the jaws still on the object, the motor pressing all it gives
+        hand.update(jaws(0.01, effort), baxter.control_period)
+    assert hand.status is Status.DONE, hand.status
+    assert f"the gripper gives {effort:g} N" in hand.reason
