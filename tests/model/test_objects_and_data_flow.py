@@ -282,7 +282,7 @@ def test_a_target_offset_is_read_written_and_translated_with_its_value(tmp_path)
     original, found = load_task(REPO / "examples" / "unscrew_by_touch.xml")
     assert not found
     assert original.states_by_name["around_cap"].target_from == "cap_top"
-    assert original.states_by_name["around_cap"].target_offset == (0.0, 0.0, -0.018)
+    assert original.states_by_name["around_cap"].target_offset == (0.0, 0.0, -0.012)
     copy = tmp_path / "copy.xml"
     copy.write_bytes(task_to_xml(original))
     assert load_task(copy)[0] == original

@@ -22,7 +22,7 @@ from translator import translate
 
 TASK = Path(__file__).resolve().parents[2] / "examples" / "unscrew_by_touch.xml"
 PLACE = tuple(load_task(TASK)[0].object.pose.position[:2])  # the believed jar's: the campaign's bottles stand there
-TIPS_UNDER_TOP = 0.018  # m: where the task puts any hand's fingertips under the touched top (around_cap)
+TIPS_UNDER_TOP = 0.012  # m: where the task puts any hand's fingertips under the touched top (around_cap)
 ARRIVED = 0.003  # m: its guarded move ends this near its target (the moves' tolerance)
 TWISTED = 3.0  # s of the unscrew: the pinch presses 10 N within 1 s, a 30-degree twist takes about 1 s more
 
@@ -80,12 +80,11 @@ def test_a_taller_bottles_cap_is_found_by_touch_and_the_pinch_comes_down_to_it_a
 def test_a_gripper_finds_the_same_cap_with_its_closed_jaws_and_grips_it_by_its_own_depth() -> None:
     """The same task on the Melfa (PyBullet, whose cap is as stiff as its bottle): the closed
     jaws touch the cap's top, and the open jaws come down around it, centred on its axis,
-    their tips (23.8 mm under the TCP, its description's) 18 mm under the top, where the task
-    puts any hand's fingertips: the whole 17 mm cap between the pads, the tips clear of the
-    bottle's shoulder (the 12 mm neck under the cap)."""
+    their tips (23.8 mm under the TCP, its description's) 12 mm under the top, where the task
+    puts any hand's fingertips: the pads on the 17 mm cap, clear of the neck under it."""
     tcp, top, _ = _pinch_down("melfa", None, "pybullet")
     tips = tcp[2, 3] - create("melfa").robot.hand_reach("open")
-    assert abs(tips - (top - 0.018)) < 0.003, (tips, top)
+    assert abs(tips - (top - TIPS_UNDER_TOP)) < 0.003, (tips, top)
     assert np.hypot(*(tcp[:2, 3] - PLACE)) < 0.004
 
 
@@ -94,7 +93,7 @@ def test_a_gripper_jaw_landing_on_the_caps_top_moves_across_until_the_jaws_grip_
     it, along the jaws' line (world y here; PyBullet). The closed jaws find its 60 mm cap's
     top, but the open ones (68 mm between the pads) come down with a jaw on it and stop 18 mm
     short. The unscrew, with its alignment, searches across for the jaws' room round the cap
-    and goes down again; the jaws grip the cap there, centred on it, their tips 18 mm under its
+    and goes down again; the jaws grip the cap there, centred on it, their tips 12 mm under its
     top, and the first twist begins."""
     jar = get("jam_jar")
     run = _run("melfa", None, "pybullet", "jam_jar", off=0.005)

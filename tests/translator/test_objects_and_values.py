@@ -161,7 +161,7 @@ def test_the_touch_and_the_pinch_under_it_are_each_hands_own_points():
         pinch = states["around_cap"].arm.params["hand_point"]
         centre = robot.hand.grasp_centres.get("pinch_grasp_preshape", (0.0, 0.0, 0.0))
         assert pinch[:2] == tuple(centre[:2]) and pinch[2] == round(robot.hand_reach("pinch_grasp_preshape"), 6)
-        assert states["around_cap"].target_offset == (0.0, 0.0, -0.018)
+        assert states["around_cap"].target_offset == (0.0, 0.0, -0.012)
     sdh2 = translate(task, create("tombatossals", arm="left")).estd.states_by_name
     assert sdh2["find_cap"].arm.params["hand_point"] == (-0.038, 0.0, 0.021)
     melfa = translate(task, create("melfa")).estd.states_by_name
