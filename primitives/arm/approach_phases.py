@@ -4,11 +4,12 @@ the object the same way (`Approaching`)."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from enum import Enum
 
 import numpy as np
 
+from primitives.arm.motion import Stall
 from primitives.robot import Readings
 
 APPROACH_ACCELERATION = 0.3  # m/s^2 an approach speeds up at: a sudden start reads on the wrist as a contact
@@ -34,8 +35,7 @@ class Approaching:
 
     origin: np.ndarray  # world TCP position it started from: MAX_DISTANCE is counted from there
     speed: float = 0.0  # m/s, rising to the approach velocity
-    best: float | None = None  # m: the furthest it has got along the approach
-    best_at: float = 0.0  # s: when it got there
+    stall: Stall = field(default_factory=Stall)  # no further along it for a while: something the arm cannot pass
 
     def travelled(self, readings: Readings, direction: np.ndarray) -> float:
         """m covered along the grasp direction (hand frame) since the approach (re)started."""

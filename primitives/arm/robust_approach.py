@@ -19,8 +19,6 @@ from primitives.robot import Readings
 SHIFT_TOLERANCE = 0.002  # m: a move the hand asked for counts as made this near its goal
 SHIFT_TIME = 2.0  # s: a move not made by then is blocked (by the surface or the object); the grasp goes on from there
 SURFACE_FILTER = 0.05  # s the surface force is averaged over: a fingertip on the table chatters tick to tick
-STALL_TIME = 2.0  # s an approach may go without getting STALL_PROGRESS further before it has stalled (as a move does)
-STALL_PROGRESS = 0.001  # m
 FROM_SIDE = np.cos(np.radians(45.0))  # a grasp direction pointing down less than this approaches from the side
 
 
@@ -135,7 +133,7 @@ class RobustGraspApproach(Controller):
         """Eq. 3.1 (hand frame); on to the sliding grasp once the alignment is over, or
         across a contact on the object's top."""
         if self.contact.force >= self.force_threshold:
-            self.approaching.best = None  # aligning on a contact is progress of its own
+            self.approaching.stall.reset(readings.time)  # aligning on a contact is progress of its own
             if self._over_contact(readings, wrench):
                 return np.zeros(3)
             torque = float(wrench[4])
@@ -150,11 +148,9 @@ class RobustGraspApproach(Controller):
             self._begin_slide(readings)
             return np.zeros(3)
         approaching = self.approaching
-        if approaching.best is None or travelled > approaching.best + STALL_PROGRESS:
-            approaching.best, approaching.best_at = travelled, readings.time
-        elif readings.time - approaching.best_at > STALL_TIME:
+        if approaching.stall.stalled(self.max_distance - travelled, readings.time):
             info = self.ctx.info
-            self.finish(Status.ERROR, f"the approach made no progress for {STALL_TIME:g} s, {travelled * 100:.1f} cm "
+            self.finish(Status.ERROR, f"the approach made no progress for {approaching.stall.patience:g} s, {travelled * 100:.1f} cm "
                                       f"along, without a contact: "
                                       f"{what_stops(readings.arm_q, info.arm_joints, info.arm_lower, info.arm_upper)}")
             self.phase, self.holding = Phase.HOLD, Holding(readings.tcp[:3, 3].copy())
