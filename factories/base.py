@@ -669,9 +669,13 @@ class Factory(ABC):
         if state.target_from is not None:
             return None, ()
         turn = self.rolled(target_turn(state))
+        held = turn if turn is not None or state.type not in KEEPING else \
+            self.rolled(turn_at_start(context.task, state))
         down = self.coming_down(state, context)
         offset = np.asarray(self.shape_offset(state, down), float)
-        dx, dy, dz = offset if turn is None else turn @ offset
+        # the shape's point turns with the hand: a pose's turn, or the side turn a grasp holds the object with
+        turned = held is not None and (turn is not None or not self._from_above(held))
+        dx, dy, dz = held @ offset if turned else offset
         points = [w.position for w in state.path] if state.path else [derived_target(state, context.object)]
         # To the micrometre, so the ESTD's 9-digit numbers read back equal.
         points = [(round(x - dx, 6), round(y - dy, 6), round(z - dz, 6)) for x, y, z in points]
@@ -679,8 +683,6 @@ class Factory(ABC):
             for point in points:
                 self.check_pose(point, down, f"of {state.type.value} state '{state.name}', turned to the object")
             return points[-1], tuple(points[:-1])
-        held = turn if turn is not None or state.type not in KEEPING else \
-            self.rolled(turn_at_start(context.task, state))
         if held is None or (turn is None and self._from_above(held)):
             self.check_reach(*points)
             return points[-1], tuple(points[:-1])
