@@ -392,6 +392,11 @@ class Factory(ABC):
             return self.condition(event_type, "wrist_force_above", wrist)
         raise Unmappable(f"no mapping for event '{event_type.value}'")
 
+    def place(self, state: State, context: MappingContext, target: Vec3 | None) -> Controller:
+        """Thesis Eq. 3.4's `place` to `target`: the hand kept as it holds the object where a
+        side grasp holds it (`held_from_side`), else turned top-down."""
+        return self.controller("place", target=target, level=False if self.held_from_side(state, context) else None)
+
     def release(self, state: State, arm: str = "release_retreat") -> NodeMapping:
         """Thesis Eq. 3.5: open the hand to the state's opening while the arm backs off the
         surface (`release_retreat`), or holds still where the robot has no retreat."""
@@ -501,6 +506,12 @@ class Factory(ABC):
         """A hand turned this way grasps from above: the grasp turns it down first."""
         within = np.radians(float(self.controller("robust_grasp_approach").params["level_within"]))
         return float((turn @ self._hand_down[:, 2]) @ self._hand_down[:, 2]) >= np.cos(within)
+
+    def held_from_side(self, state: State, context: MappingContext) -> bool:
+        """The hand comes into `state` still turned to the side by the task's last `<pose>`
+        (`turn_at_start`: a side grasp it holds): a place puts the object down as it is held."""
+        held = self.rolled(turn_at_start(context.task, state))
+        return held is not None and not self._from_above(held)
 
     def check_hand_room(self, context: MappingContext, posture: str, rotation: np.ndarray, tcp_at: np.ndarray,
                         doing: str) -> None:
@@ -658,9 +669,13 @@ class Factory(ABC):
         if state.target_from is not None:
             return None, ()
         turn = self.rolled(target_turn(state))
+        held = turn if turn is not None or state.type not in KEEPING else \
+            self.rolled(turn_at_start(context.task, state))
         down = self.coming_down(state, context)
         offset = np.asarray(self.shape_offset(state, down), float)
-        dx, dy, dz = offset if turn is None else turn @ offset
+        # the shape's point turns with the hand: a pose's turn, or the side turn a grasp holds the object with
+        turned = held is not None and (turn is not None or not self._from_above(held))
+        dx, dy, dz = held @ offset if turned else offset
         points = [w.position for w in state.path] if state.path else [derived_target(state, context.object)]
         # To the micrometre, so the ESTD's 9-digit numbers read back equal.
         points = [(round(x - dx, 6), round(y - dy, 6), round(z - dz, 6)) for x, y, z in points]
@@ -668,8 +683,6 @@ class Factory(ABC):
             for point in points:
                 self.check_pose(point, down, f"of {state.type.value} state '{state.name}', turned to the object")
             return points[-1], tuple(points[:-1])
-        held = turn if turn is not None or state.type not in KEEPING else \
-            self.rolled(turn_at_start(context.task, state))
         if held is None or (turn is None and self._from_above(held)):
             self.check_reach(*points)
             return points[-1], tuple(points[:-1])
@@ -708,8 +721,8 @@ class Factory(ABC):
         down = self.coming_down(state, context)
         if turn is not None:
             carried["tilt"] = tilt_of(turn)
-        elif state.type is StateType.TRANSPORT:  # the object as the grasp holds it: see cartesian_move's `level`
-            carried["level"] = False
+        elif state.type is StateType.TRANSPORT or (state.type is StateType.PLACE and self.held_from_side(state, context)):
+            carried["level"] = False  # the object as the grasp holds it: see cartesian_move's `level`
         elif down is not self._hand_down:
             carried["yaw"] = round(float(np.degrees(np.arctan2(down[1, 0], down[0, 0]))), 6)
             if float(down[:, 0] @ self._hand_down[:, 0]) < 0.0:  # half a turn further: the wrist's way, not the shorter

@@ -127,7 +127,7 @@ class MultiFingerFactory(Factory):
             return self.unscrew(state)
         target, via = self.motion(state, context)
         if kind is StateType.PLACE:
-            return NodeMapping("place", self.controller("place", target=target), self.controller("hold_position"))
+            return NodeMapping("place", self.place(state, context, target), self.controller("hold_position"))
         if kind is StateType.SLIDE:
             # Thesis 3.3.5: the slide presses with a predefined preshape (a hook on the Barrett),
             # its path for where that preshape presses (`shape_offset`), as the move before it.

@@ -36,14 +36,18 @@ def arriving(task: Task, state: State) -> State | None:
 
 def turn_at_start(task: Task, state: State) -> np.ndarray | None:
     """The hand's turn as `state` begins (None: pointing down), followed back through the
-    states that keep it."""
+    states that keep it; another role's states in between move another arm, which leaves
+    this one's hand as it was (the two-arm task's holder keeps its side turn while the
+    opener works)."""
     seen = {state.name}
+    role = task.role_of(state)
     before = arriving(task, state)
     while before is not None and before.name not in seen:
-        turn = target_turn(before)
-        if turn is not None or before.type not in KEEPING:
-            return turn
         seen.add(before.name)
+        if task.role_of(before) == role:
+            turn = target_turn(before)
+            if turn is not None or before.type not in KEEPING:
+                return turn
         before = arriving(task, before)
     return None
 

@@ -338,6 +338,9 @@ _ARM_CONTROLLERS = (
                                 0.03, unit="m"),
             "max_speed": _p(NUM, "TCP speed limit while bringing the object over the target (ours)", 0.15,
                             unit="m/s"),
+            "level": _p(FLAG, "turn the hand top-down (keeping its yaw) before descending; off, the hand keeps the "
+                              "orientation it starts with: an object grasped from the side goes down as it is held "
+                              "(ours)", True),
             "filter_time": _FILTER,
         },
     ),

@@ -75,7 +75,7 @@ class BaxterFactory(Factory):
             return self.jaw_unscrew(state)
         target, via = self.motion(state, context)
         if kind is StateType.PLACE:
-            return NodeMapping("place", self.controller("place", target=target), self.controller("squeeze"))
+            return NodeMapping("place", self.place(state, context, target), self.controller("squeeze"))
         if kind is StateType.SLIDE:  # press with the closed fingertips
             return NodeMapping("slide", self.controller("slide", target=target),
                                self.controller("hand_shape", shape=HandShape.PINCH_GRASP.value))

@@ -51,15 +51,14 @@ TEMPLATE = """<?xml version="1.0" encoding="UTF-8"?>
     <hand_shape>pinch_grasp</hand_shape>
     <path><position>{ox} {oy} {lz}</position></path>
   </state>
-  <state name="success_end" type="success"/>
+{put_down}  <state name="success_end" type="success"/>
   <state name="fail_end" type="failure"/>
   <transition origin="turn" destination="approach"><success/></transition>
   <transition origin="approach" destination="preshape_hand"><success/></transition>
   <transition origin="preshape_hand" destination="grasp_object"><success/></transition>
   <transition origin="grasp_object" destination="lift_object"><success/><grasp_stable/></transition>
   <transition origin="lift_object" destination="fail_end"><grasp_lost/></transition>
-  <transition origin="lift_object" destination="success_end"><success/><grasp_stable/></transition>
-  <transition origin="turn" destination="fail_end"><timeout>20</timeout></transition>
+{after_lift}  <transition origin="turn" destination="fail_end"><timeout>20</timeout></transition>
   <transition origin="approach" destination="fail_end"><timeout>20</timeout></transition>
   <transition origin="preshape_hand" destination="fail_end"><timeout>20</timeout></transition>
   <transition origin="grasp_object" destination="fail_end"><timeout>20</timeout></transition>
@@ -70,6 +69,33 @@ TEMPLATE = """<?xml version="1.0" encoding="UTF-8"?>
   <transition origin="grasp_object" destination="fail_end"><error/></transition>
   <transition origin="lift_object" destination="fail_end"><error/></transition>
 </statemachine>
+"""
+
+
+LIFTED = """  <transition origin="lift_object" destination="success_end"><success/><grasp_stable/></transition>
+"""
+# Put back where it stood, let go and back off along the approach, the hand turned as it held it.
+PUT_DOWN = """  <state name="put_down" type="place">
+    <movement>guarded</movement>
+    <path><position>{ox} {oy} {height}</position></path>
+  </state>
+  <state name="let_go" type="release">
+    <hand_opening>1.0</hand_opening>
+  </state>
+  <state name="back_off" type="move">
+    <movement>guarded</movement>
+    <path><pose>{start}</pose></path>
+  </state>
+"""
+PUT_DOWN_EDGES = """  <transition origin="lift_object" destination="put_down"><success/><grasp_stable/></transition>
+  <transition origin="put_down" destination="let_go"><success/></transition>
+  <transition origin="let_go" destination="back_off"><success/></transition>
+  <transition origin="back_off" destination="success_end"><success/></transition>
+  <transition origin="put_down" destination="fail_end"><error/></transition>
+  <transition origin="back_off" destination="fail_end"><error/></transition>
+  <transition origin="put_down" destination="fail_end"><timeout>20</timeout></transition>
+  <transition origin="let_go" destination="fail_end"><timeout>20</timeout></transition>
+  <transition origin="back_off" destination="fail_end"><timeout>20</timeout></transition>
 """
 
 
@@ -85,13 +111,16 @@ def _pose(rotation: np.ndarray, at: np.ndarray) -> str:
     return "  ".join(rows + ["0 0 0 1"])
 
 
-def side_grasp(direction: str, height: float = GRASP_HEIGHT, coming: str = "open") -> str:
+def side_grasp(direction: str, height: float = GRASP_HEIGHT, coming: str = "open", put_down: bool = False) -> str:
     """The grasp-and-lift ATD whose hand approaches the cylinder along `direction`, `height`
-    up, in the hand shape `coming` until its preshape."""
+    up, in the hand shape `coming` until its preshape; `put_down`: then it puts the cylinder
+    back down where it stood (a place), lets go and backs off the way it came."""
     rotation = turn(direction)
     centre = np.array([OBJECT[0], OBJECT[1], height])
     along = rotation @ np.array([0.0, 0.0, -1.0])  # the turned hand's approach axis
+    start = _pose(rotation, centre - START * along)
+    after = PUT_DOWN.format(ox=OBJECT[0], oy=OBJECT[1], height=height, start=start) if put_down else ""
     return TEMPLATE.format(coming=coming, ox=OBJECT[0], oy=OBJECT[1], oz=OBJECT[2], lz=round(height + 0.12, 6),
-                           over=_pose(rotation, centre - START * along + (0.0, 0.0, ABOVE)),
-                           start=_pose(rotation, centre - START * along),
-                           near=_pose(rotation, centre - NEAR * along))
+                           over=_pose(rotation, centre - START * along + (0.0, 0.0, ABOVE)), start=start,
+                           near=_pose(rotation, centre - NEAR * along), put_down=after,
+                           after_lift=PUT_DOWN_EDGES if put_down else LIFTED)

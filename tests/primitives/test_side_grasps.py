@@ -75,20 +75,28 @@ def test_check_and_run_agree_on_side_grasps(tmp_path: Path, direction: str) -> N
         assert run.object_position[2] > OBJECT[2] + LIFTED, f"{label} {direction}: the bottle at {run.object_position}"
 
 
-def test_the_barrett_rolls_its_pinch_across_a_bottle_from_the_side_and_lifts_it(tmp_path: Path) -> None:
+def test_the_barrett_grasps_a_bottle_from_the_side_lifts_it_and_puts_it_down_standing(tmp_path: Path) -> None:
     """The Barrett's pinch closes along its x axis, which a side turn stands upright: its
     description rolls it a quarter turn about the approach (`Hand.side_roll`), so its fingers
     close across the bottle, and check accepts the approach it comes in preshaped (open, its
-    flat fingers reach into the table: refused above, naming them)."""
+    flat fingers reach into the table: refused above, naming them). The place after it keeps
+    the hand turned as it holds the bottle: turned top-down first (main at 04c5919), it swung
+    the bottle out of the hand, which lay on its side 25 cm away, and the place ended in
+    "no surface within 0.03 m below the place target"."""
     path = tmp_path / "side.xml"
-    path.write_text(side_grasp("+y", coming="pinch_grasp_preshape"))
+    path.write_text(side_grasp("+y", coming="pinch_grasp_preshape", put_down=True))
     task, _ = load_task(path)
     factory = create("tombatossals")  # the right arm: the Barrett
     result = translate(task, factory)
     assert not [d for d in result.diagnostics if d.severity is Severity.ERROR], result.diagnostics
     run = Run(result.estd, factory, engine="mujoco")
-    outcome = run.execute()
+    highest: list[float] = [0.0]
+    run.observers.append(lambda _: highest.__setitem__(0, max(highest[0], float(run.robot.object_pose()[2, 3]))))
+    ends: list[np.ndarray] = []
+    outcome = run.execute(afterwards=lambda sim: ends.extend((sim.object_pose(), sim.true_tcp())))
     assert outcome.succeeded, outcome.summary
-    assert run.object_position[2] > OBJECT[2] + LIFTED, run.object_position  # truth: lifted
-    tcp = run.robot.true_tcp()
+    assert highest[0] > OBJECT[2] + LIFTED, highest[0]  # truth: lifted
+    bottle, tcp = ends
+    assert abs(float(bottle[2, 3]) - OBJECT[2]) < 0.005 and float(bottle[2, 2]) > 0.98, bottle  # truth: standing
+    assert np.hypot(*(bottle[:2, 3] - OBJECT[:2])) < 0.03, bottle[:3, 3]  # where it stood
     assert abs(tcp[2, 2]) < 0.1 and abs(tcp[2, 0]) < 0.1, tcp[:3, :3]  # approach and closing axes level
