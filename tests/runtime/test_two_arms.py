@@ -1,5 +1,5 @@
-"""A two-arm task on Baxter in MuJoCo: the holder lifts the cylinder and keeps holding it,
-still, while the worker brings its hand beside it; the simulator's truth says it stayed up."""
+"""A two-arm task on Baxter, in each engine: the holder lifts the cylinder and keeps holding
+it, still, while the worker brings its hand beside it; the simulator's truth says it stayed up."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ import pytest
 
 from atd.model import load_task
 from atd.runtime.session import Run, RunError
+from atd.sim import ENGINES
 from factories.registry import create
 from translator import translate
 
@@ -21,9 +22,10 @@ def _estd(robot: str = "baxter"):
     return translate(task, create(robot)).estd
 
 
-def test_the_holder_keeps_the_object_lifted_and_still_while_the_worker_moves() -> None:
+@pytest.mark.parametrize("engine", ENGINES)
+def test_the_holder_keeps_the_object_lifted_and_still_while_the_worker_moves(engine: str) -> None:
     factory = create("baxter")
-    run = Run(_estd(), factory, engine="mujoco", seed=0)
+    run = Run(_estd(), factory, engine=engine, seed=0)
     left = run.others["left"]
     assert left.true_tcp()[1, 3] > 0.29  # the added arm starts parked on its own side, out of the way
     during: list[tuple[np.ndarray, np.ndarray]] = []  # (holder's TCP, object) while the worker moves
@@ -46,8 +48,6 @@ def test_the_holder_keeps_the_object_lifted_and_still_while_the_worker_moves() -
     assert np.linalg.norm(worker_to - (0.10, 0.16, 0.16)) < 0.01 < np.linalg.norm(worker_from - worker_to)
 
 
-def test_a_two_arm_run_on_pybullet_or_on_video_is_refused_with_the_reason(tmp_path: Path) -> None:
-    with pytest.raises(RunError, match="mujoco engine only"):
-        Run(_estd(), create("baxter"), engine="pybullet")
+def test_a_two_arm_run_on_video_is_refused_with_the_reason(tmp_path: Path) -> None:
     with pytest.raises(RunError, match="uses 2 arms"):
         Run(_estd(), create("baxter"), video=tmp_path / "run.gif")
