@@ -5,6 +5,7 @@ iterations. Bullet multiplies the friction of the two bodies in contact, so the 
 the arm use 1 and the object's own coefficient (from the ATD) governs its contacts, as
 geom priority makes it do in MuJoCo; the hand's surfaces use their description's
 `surface_friction` (MuJoCo: explicit contact pairs with the product). Hand joints follow their DOF with mimic targets.
+Several arms of one robot are a body each in one client (`arm`), stepped together.
 """
 
 from __future__ import annotations
