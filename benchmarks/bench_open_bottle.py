@@ -1,5 +1,5 @@
 """The two-arm bottle task (thesis 3.4.2) as the simulator sees it: runs of
-examples/open_bottle.xml in MuJoCo on Tombatossals (holder: the Barrett, opener: the SDH2)
+examples/open_bottle.xml in MuJoCo or PyBullet on Tombatossals (holder: the Barrett, opener: the SDH2)
 or Baxter (holder: the right gripper, opener: the left), one per seed (sensor noise). Per
 run: the task's verdict and end state, the simulated time, where the jar stood when the
 unscrew began (truth: lifted to the vantage pose?), the unscrew's last word, the cap as the
@@ -7,7 +7,7 @@ simulator has it at the end (turned, free, where it rests) and whether the jar s
 upright on the table. A success whose cap is not free on the table, or whose jar does not
 stand, is counted false.
 
-    python benchmarks/bench_open_bottle.py [--robot tombatossals] [--runs 1] [--first-seed 0]
+    python benchmarks/bench_open_bottle.py [--robot tombatossals] [--engine mujoco] [--runs 1] [--first-seed 0]
 """
 
 from __future__ import annotations
@@ -21,6 +21,7 @@ sys.path.insert(0, str(REPO))
 
 from atd.model import load_task  # noqa: E402
 from atd.runtime.session import Run, world_scene  # noqa: E402
+from atd.sim import ENGINES  # noqa: E402
 from factories.registry import create  # noqa: E402
 from translator import translate  # noqa: E402
 
@@ -30,11 +31,11 @@ STANDING = 0.0525  # m: the jar's centre standing on the table (half its 105 mm)
 STANDS = (0.005, 0.98)  # within 5 mm of that height and its axis within 11 degrees of vertical: it stands
 
 
-def trial(robot: str, seed: int) -> dict:
+def trial(robot: str, seed: int, engine: str = "mujoco") -> dict:
     task, _ = load_task(TASK)
     factory = create(robot)
     estd = translate(task, factory).estd
-    run = Run(estd, factory, engine="mujoco", seed=seed, scene=world_scene(estd, WORLD, seed))
+    run = Run(estd, factory, engine=engine, seed=seed, scene=world_scene(estd, WORLD, seed))
     at_unscrew: list = []
 
     def watch(_: float) -> None:
@@ -59,16 +60,17 @@ def trial(robot: str, seed: int) -> dict:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--robot", choices=("tombatossals", "baxter"), default="tombatossals")
+    parser.add_argument("--engine", choices=ENGINES, default="mujoco")
     parser.add_argument("--runs", type=int, default=1)
     parser.add_argument("--first-seed", type=int, default=0)
     args = parser.parse_args()
-    results = [trial(args.robot, seed) for seed in range(args.first_seed, args.first_seed + args.runs)]
+    results = [trial(args.robot, seed, args.engine) for seed in range(args.first_seed, args.first_seed + args.runs)]
     for r in results:
         print(f"seed {r['seed']}: {'success' if r['succeeded'] else 'failure'} in '{r['end']}' after "
               f"{r['time']:.1f} s; jar at the unscrew's start {r['jar_at_unscrew']}; unscrew: {r['unscrew_said']}; "
               f"cap turned {r['turned']:.2f} rad, free {r['free']}, rests on {r['rests']}; jar stands {r['jar_stands']}")
     opened = sum(r["free"] and r["rests"] == "table" for r in results)
-    print(f"{args.robot}: {sum(r['succeeded'] for r in results)}/{len(results)} task successes, {opened}/{len(results)} "
+    print(f"{args.robot}, {args.engine}: {sum(r['succeeded'] for r in results)}/{len(results)} task successes, {opened}/{len(results)} "
           f"caps free on the table, {sum(r['jar_stands'] for r in results)}/{len(results)} jars standing (simulator), "
           f"{sum(r['false_success'] for r in results)} false successes")
 

@@ -191,7 +191,7 @@ class Run:
             if filming:
                 filming.abandon()
             raise InvalidScene(str(exc)) from None
-        except ValueError as exc:  # an engine that cannot build several arms
+        except ValueError as exc:  # an engine this installation lacks
             raise RunError(str(exc)) from None
         self.robot = robots[0]
         self.others = others = dict(zip(arms[1:], robots[1:]))  # the robot's other arms the task uses, by name

@@ -43,28 +43,7 @@ def make_robot(description: RobotDescription, scene: Scene | None = None, engine
     engine; `window` opens the engine's interactive window (it needs a display). `belief` is
     what the robot knows of itself where that differs from `description` (see `SimRobot`).
     A scene that asks to settle has settled when it is returned (`robot.settling`)."""
-    scene = scene if scene is not None else box_scene()
-    if engine == "mujoco":
-        from atd.sim.mujoco_engine import MujocoRobot
-
-        robot: SimRobot = MujocoRobot(description, scene, seed, window, belief)
-    elif engine == "pybullet":
-        if engine not in installed_engines():
-            from atd.sim.optional import pybullet_missing
-
-            raise ValueError(pybullet_missing("the pybullet engine"))
-        from atd.sim.pybullet_engine import PybulletRobot
-
-        robot = PybulletRobot(description, scene, seed, window, belief)
-    else:
-        raise ValueError(f"unknown engine '{engine}'; use one of {', '.join(ENGINES)}")
-    if scene.settle:
-        try:
-            robot.settle()
-        except BaseException:
-            robot.close()
-            raise
-    return robot
+    return make_arms((description,), scene, engine, seed, window, (belief,))[0]
 
 
 def make_arms(descriptions: tuple[RobotDescription, ...], scene: Scene | None = None, engine: str = "mujoco",
@@ -73,25 +52,39 @@ def make_arms(descriptions: tuple[RobotDescription, ...], scene: Scene | None = 
     """Several arms of one robot (a description each, as its factory gives them) in one world,
     each behind its own robot interface; stepping the first steps them all. The first arm
     starts at its home, the others `parked` where their descriptions say; the k-th arm's sensor noise
-    is drawn from `seed + k`. Only MuJoCo builds such a world (ValueError otherwise)."""
-    beliefs = beliefs or (None,) * len(descriptions)
-    if len(descriptions) == 1:
-        return (make_robot(descriptions[0], scene, engine, seed, window, beliefs[0]),)
-    if engine != "mujoco":
-        raise ValueError(f"a task for {len(descriptions)} arms runs on the mujoco engine only; "
-                         f"{engine} simulates one arm of a robot")
-    from atd.sim.mujoco_engine import MujocoRobot
-    from atd.sim.two_arms import parked
-
+    is drawn from `seed + k`."""
+    engine_robot = _engine_robot(engine)
     scene = scene if scene is not None else box_scene()
-    descriptions = (descriptions[0],) + tuple(parked(d) for d in descriptions[1:])
-    beliefs = (beliefs[0],) + tuple(parked(b) if b else None for b in beliefs[1:])
-    first = MujocoRobot(descriptions[0], scene, seed, window, beliefs[0], others=descriptions[1:])
-    arms = (first,) + tuple(first.arm(d, seed + k, b) for k, (d, b) in enumerate(zip(descriptions[1:], beliefs[1:]), 1))
-    if scene.settle:
-        try:
+    beliefs = beliefs or (None,) * len(descriptions)
+    if len(descriptions) > 1:
+        from atd.sim.two_arms import parked
+
+        descriptions = (descriptions[0],) + tuple(parked(d) for d in descriptions[1:])
+        beliefs = (beliefs[0],) + tuple(parked(b) if b else None for b in beliefs[1:])
+    first = engine_robot(descriptions[0], scene, seed, window, beliefs[0], others=descriptions[1:])
+    try:
+        arms = (first,) + tuple(first.arm(d, seed + k, b)
+                                for k, (d, b) in enumerate(zip(descriptions[1:], beliefs[1:]), 1))
+        if scene.settle:
             first.settle()
-        except BaseException:
-            first.close()
-            raise
+    except BaseException:
+        first.close()
+        raise
     return arms
+
+
+def _engine_robot(engine: str) -> type[SimRobot]:
+    """The robot class of the named engine (ValueError for one this installation lacks)."""
+    if engine == "mujoco":
+        from atd.sim.mujoco_engine import MujocoRobot
+
+        return MujocoRobot
+    if engine == "pybullet":
+        if engine not in installed_engines():
+            from atd.sim.optional import pybullet_missing
+
+            raise ValueError(pybullet_missing("the pybullet engine"))
+        from atd.sim.pybullet_engine import PybulletRobot
+
+        return PybulletRobot
+    raise ValueError(f"unknown engine '{engine}'; use one of {', '.join(ENGINES)}")

@@ -16,7 +16,7 @@ from atd.sim.scene import (CAMERA_AZIMUTH, CAMERA_DISTANCE, CAMERA_ELEVATION, CA
                            SceneError)
 from atd.sim.simrobot import SimRobot
 from atd.sim.thread import END_SLACK
-from atd.sim.two_arms import arm_prefix, arms_mjcf
+from atd.sim.mujoco_arms import arm_prefix, arms_mjcf
 from factories.description import DepthCamera, RobotDescription
 
 
@@ -98,7 +98,7 @@ class MujocoRobot(SimRobot):
 
     def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0, window: bool = False,
                  belief: RobotDescription | None = None, others: tuple[RobotDescription, ...] = ()):
-        """`others`: further arms of the robot in the same world (`atd.sim.two_arms`); each is
+        """`others`: further arms of the robot in the same world (`atd.sim.mujoco_arms`); each is
         driven through its own `MujocoRobot`, made with `arm`, and stepped by this one."""
         super().__init__(description, scene, seed, belief)
         d = description
@@ -115,8 +115,8 @@ class MujocoRobot(SimRobot):
         self._apply_arm(self._q_ref, self._dq_cmd)
 
     def arm(self, description: RobotDescription, seed: int, belief: RobotDescription | None = None) -> MujocoRobot:
-        """The robot interface of another arm in this world (one of `others`), which this
-        robot's `step` moves with its own."""
+        """The robot interface of another arm in this world (one of `others`, found by its
+        name's prefix), which this robot's `step` moves with its own."""
         other = MujocoRobot.__new__(MujocoRobot)
         SimRobot.__init__(other, description, self.scene, seed, belief)
         before = sum(len(p.description.arm_joints) + len(p.hand_joints) for p in (self, *self._partners))
@@ -279,12 +279,13 @@ class MujocoRobot(SimRobot):
     def _caps(self) -> list[tuple[float, bool, np.ndarray, bool]]:
         d = self.data
         pairs = d.contact.geom[: d.ncon]
+        robot = frozenset().union(*(arm._robot_geom_set for arm in self.arms))  # every arm's: any may hold it
         found = []
         for turn, weld, cap, _, geom, _ in self._threads:
             pose = np.eye(4)
             pose[:3, :3] = d.xmat[cap].reshape(3, 3)
             pose[:3, 3] = d.xpos[cap]
-            touching = any(g in self._robot_geom_set for a, b in pairs if geom in (a, b) for g in (a, b))
+            touching = any(g in robot for a, b in pairs if geom in (a, b) for g in (a, b))
             found.append((float(self._qpos[turn]), not d.eq_active[weld], pose, touching))
         return found
 

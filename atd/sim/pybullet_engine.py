@@ -5,6 +5,7 @@ iterations. Bullet multiplies the friction of the two bodies in contact, so the 
 the arm use 1 and the object's own coefficient (from the ATD) governs its contacts, as
 geom priority makes it do in MuJoCo; the hand's surfaces use their description's
 `surface_friction` (MuJoCo: explicit contact pairs with the product). Hand joints follow their DOF with mimic targets.
+Several arms of one robot are a body each in one client (`arm`), stepped together.
 """
 
 from __future__ import annotations
@@ -94,14 +95,27 @@ def _matrix(position, xyzw) -> np.ndarray:
     return m
 
 
+def _apart(client: int, bodies: list[int]) -> None:
+    """The arms' bodies pass through one another, as a robot's own links do (and MuJoCo's arms):
+    each carries the robot's trunk in the same place."""
+    for k, a in enumerate(bodies):
+        for b in bodies[k + 1:]:
+            for link_a in range(-1, pb.getNumJoints(a, physicsClientId=client)):
+                for link_b in range(-1, pb.getNumJoints(b, physicsClientId=client)):
+                    pb.setCollisionFilterPair(a, b, link_a, link_b, 0, physicsClientId=client)
+
+
 class PybulletRobot(SimRobot):
     engine = "pybullet"
 
     def __init__(self, description: RobotDescription, scene: Scene, seed: int = 0, window: bool = False,
-                 belief: RobotDescription | None = None):
+                 belief: RobotDescription | None = None, others: tuple[RobotDescription, ...] = ()):
+        """`others`: further arms of the robot in the same world, each its own body loaded
+        here and driven through its own `PybulletRobot`, made with `arm`, and stepped by this one."""
         super().__init__(description, scene, seed, belief)
         d = description
         self.client = c = pb.connect(pb.GUI if window else pb.DIRECT)
+        self._owns_client = True
         if window:  # PyBullet's own window, without its side panels, looking where the videos look
             pb.configureDebugVisualizer(pb.COV_ENABLE_GUI, 0, physicsClientId=c)
             pb.resetDebugVisualizerCamera(CAMERA_DISTANCE, CAMERA_AZIMUTH - 90, CAMERA_ELEVATION, CAMERA_TARGET,
@@ -109,20 +123,44 @@ class PybulletRobot(SimRobot):
         pb.setTimeStep(d.timestep, physicsClientId=c)
         pb.setGravity(0, 0, -GRAVITY, physicsClientId=c)
         pb.setPhysicsEngineParameter(numSolverIterations=SOLVER_ITERATIONS, physicsClientId=c)
+        bodies = [self._load(arm) for arm in (d, *others)]
+        _apart(c, bodies)
+        self._unbound = bodies[1:]  # the bodies of `others`, in order, until `arm` binds them
+        self._bind(bodies[0])
+        self._build_scene(scene)
+        self._apply_arm(self._q_ref, self._dq_cmd)
+        self._hold_hand()
 
-        self.urdf = urdf(d)
+    def arm(self, description: RobotDescription, seed: int, belief: RobotDescription | None = None) -> PybulletRobot:
+        """The robot interface of the next arm of `others` in this world (in their order),
+        which this robot's `step` moves with its own; it shares this world's objects and threads."""
+        other = PybulletRobot.__new__(PybulletRobot)
+        SimRobot.__init__(other, description, self.scene, seed, belief)
+        other.client, other._owns_client = self.client, False
+        other._bind(self._unbound.pop(0))
+        other._objects, other.object, other._threads = self._objects, self.object, self._threads
+        other._apply_arm(other._q_ref, other._dq_cmd)
+        other._hold_hand()
+        self._partners.append(other)
+        return other
+
+    def _load(self, d: RobotDescription) -> int:
+        """An arm's body, loaded from its URDF where its description places it."""
         fd, path = tempfile.mkstemp(suffix=".urdf")
         try:
             with os.fdopen(fd, "w") as f:
-                f.write(self.urdf)
+                f.write(urdf(d))
             base = d.base.matrix()
-            self.body = pb.loadURDF(
-                path, base[:3, 3].tolist(), _xyzw(base), useFixedBase=True,
-                flags=pb.URDF_USE_INERTIA_FROM_FILE, physicsClientId=c,
-            )
+            return pb.loadURDF(path, base[:3, 3].tolist(), _xyzw(base), useFixedBase=True,
+                               flags=pb.URDF_USE_INERTIA_FROM_FILE, physicsClientId=self.client)
         finally:
             os.unlink(path)
 
+    def _bind(self, body: int) -> None:
+        """Find this arm's joints and links in its `body`, give its surfaces their friction,
+        tie its hand's couplings and put it at its home with the hand open."""
+        d, c = self.description, self.client
+        self.body = body
         index = {}
         for i in range(pb.getNumJoints(self.body, physicsClientId=c)):
             info = pb.getJointInfo(self.body, i, physicsClientId=c)
@@ -172,18 +210,19 @@ class PybulletRobot(SimRobot):
         self._servo_ref = np.zeros(0)
         self._arm_gain = [ARM_POSITION_GAIN] * len(self._arm)
 
-        home = dict(zip(d.arm_joints, d.home)) | d.hand_joint_targets(self.info.hand.open)
+        self._home = dict(zip(d.arm_joints, d.home)) | d.hand_joint_targets(self.info.hand.open)
         for name, i in zip(joints, self._joints):
-            pb.resetJointState(self.body, i, home.get(name, 0.0), physicsClientId=c)
+            pb.resetJointState(self.body, i, self._home.get(name, 0.0), physicsClientId=c)
 
         for joint, other, ratio in d.hand.couplings:  # one motor's joints move as one; >0 reverses
             gear = pb.createConstraint(self.body, index[joint], self.body, index[other], pb.JOINT_GEAR, (1, 0, 0),
                                        (0, 0, 0), (0, 0, 0), physicsClientId=c)
             pb.changeConstraint(gear, gearRatio=-ratio, erp=COUPLING_ERP,
                                 maxForce=COUPLING_FORCE * d.joints[joint].effort, physicsClientId=c)
-        self._build_scene(scene)
-        self._apply_arm(self._q_ref, self._dq_cmd)
-        self._apply_hand(np.zeros(len(self._hand), bool), np.array([home[n] for n in self.hand_joints]))
+
+    def _hold_hand(self) -> None:
+        """The hand's servos hold it open, where `_bind` put it."""
+        self._apply_hand(np.zeros(len(self._hand), bool), np.array([self._home[n] for n in self.hand_joints]))
 
     def _set_joints(self, positions: dict[str, float]) -> None:
         self._contact_cache = self._root_cache = None
@@ -211,7 +250,6 @@ class PybulletRobot(SimRobot):
         self._threads = [_Thread(uid, body.thread) for uid, body in zip(self._objects, scene.objects) if body.thread]
         for thread, body in zip(self._threads, [b for b in scene.objects if b.thread]):
             self._hold(thread, body)
-        self._pushed = False  # whether a test pushes a cap (`push_cap`)
 
     def _hold(self, thread: _Thread, body: Body) -> None:
         """Hold a threaded object's cap on its thread: its turn held by a motor with the thread's
@@ -390,17 +428,21 @@ class PybulletRobot(SimRobot):
         )
 
     def _advance(self) -> None:
-        self._contact_cache = self._root_cache = None
-        driven = len(self._driven) > 0
+        arms = self.arms
+        for arm in arms:
+            arm._contact_cache = arm._root_cache = None
+        driven = [arm for arm in arms if len(arm._driven)]
+        pushed = any(thread.push is not None for thread in self._threads)
         for _ in range(self.substeps):
-            self._servo_hand()
-            pb.setJointMotorControlArray(self.body, self._arm, pb.TORQUE_CONTROL, forces=self._gravity.tolist(),
-                                         physicsClientId=self.client)
-            if driven:
-                self._drive_hand()
+            for arm in arms:
+                arm._servo_hand()
+                pb.setJointMotorControlArray(arm.body, arm._arm, pb.TORQUE_CONTROL, forces=arm._gravity.tolist(),
+                                             physicsClientId=self.client)
+            for arm in driven:
+                arm._drive_hand()
             if self._threads:
                 self._follow_threads()
-            if self._pushed:
+            if pushed:
                 self._push_caps()
             pb.stepSimulation(physicsClientId=self.client)
         for thread in self._threads:  # a cap at the thread's end is let go
@@ -450,7 +492,6 @@ class PybulletRobot(SimRobot):
 
     def _push_cap(self, k: int, wrench: np.ndarray) -> None:
         self._threads[k].push = wrench
-        self._pushed = True
 
     def _caps(self) -> list[tuple[float, bool, np.ndarray, bool]]:
         c = self.client
@@ -460,11 +501,12 @@ class PybulletRobot(SimRobot):
             if thread.free is None:
                 link = pb.getLinkState(thread.object, 1, computeForwardKinematics=1, physicsClientId=c)
                 pose = _matrix(link[4], link[5])
-                touching = pb.getContactPoints(thread.object, self.body, linkIndexA=1, physicsClientId=c)
+                touching = any(pb.getContactPoints(thread.object, arm.body, linkIndexA=1, physicsClientId=c)
+                               for arm in self.arms)
             else:
                 pose = _matrix(*pb.getBasePositionAndOrientation(thread.free, physicsClientId=c))
-                touching = pb.getContactPoints(thread.free, self.body, physicsClientId=c)
-            found.append((turn, thread.free is not None, pose, bool(touching)))
+                touching = any(pb.getContactPoints(thread.free, arm.body, physicsClientId=c) for arm in self.arms)
+            found.append((turn, thread.free is not None, pose, touching))
         return found
 
     def jacobian(self) -> np.ndarray:
@@ -565,9 +607,11 @@ class PybulletRobot(SimRobot):
             self._robot_touches(uid, part, on)
 
     def _robot_touches(self, uid: int, part: int, on: bool) -> None:
-        """Whether the robot's links collide with link `part` of body `uid`, whatever their masks say."""
-        for link in range(-1, pb.getNumJoints(self.body, physicsClientId=self.client)):
-            pb.setCollisionFilterPair(self.body, uid, link, part, int(on), physicsClientId=self.client)
+        """Whether the links of every arm in this world collide with link `part` of body `uid`,
+        whatever their masks say."""
+        for arm in self.arms:
+            for link in range(-1, pb.getNumJoints(arm.body, physicsClientId=self.client)):
+                pb.setCollisionFilterPair(arm.body, uid, link, part, int(on), physicsClientId=self.client)
 
     def _camera_matrices(self, camera: DepthCamera, near: float, far: float, aspect: float) -> tuple[list, list]:
         """PyBullet's view and projection matrices of a described camera, from where it truly stands."""
@@ -594,7 +638,8 @@ class PybulletRobot(SimRobot):
             raise LookupError("the scene has no object")
         pb.resetBasePositionAndOrientation(self.object, pose[:3, 3].tolist(), _xyzw(pose), physicsClientId=self.client)
         pb.resetBaseVelocity(self.object, [0, 0, 0], [0, 0, 0], physicsClientId=self.client)
-        self._contact_cache = None
+        for arm in self.arms:
+            arm._contact_cache = None
 
     def render(self, width: int, height: int, camera: str = WORKSPACE_CAMERA) -> np.ndarray:
         """An RGB picture of the scene (software renderer), from the same viewpoints as MuJoCo's."""
@@ -646,5 +691,6 @@ class PybulletRobot(SimRobot):
         """PyBullet's window draws the physics server's state by itself."""
 
     def close(self) -> None:
-        if pb.isConnected(self.client):
+        """Disconnect the world, where this arm made it (another arm's `arm` shares it)."""
+        if self._owns_client and pb.isConnected(self.client):
             pb.disconnect(self.client)

@@ -298,7 +298,8 @@ class SimRobot(Robot):
         self._robot_collides(False)
         try:
             while elapsed < SETTLE_LIMIT - 1e-9 and still < SETTLED_FOR - 1e-9:
-                self._apply_arm(self._q_ref, self._zero)
+                for arm in self.arms:
+                    arm._apply_arm(arm._q_ref, arm._zero)
                 self._advance()
                 elapsed += period
                 linear, angular = self._object_speeds()
@@ -306,7 +307,8 @@ class SimRobot(Robot):
                 still = still + period if at_rest else 0.0
         finally:
             self._robot_collides(True)
-        self._last = None
+        for arm in self.arms:
+            arm._last = None
         moving = () if still >= SETTLED_FOR - 1e-9 else tuple(
             b.name for b, v, w in zip(self.scene.objects, *self._object_speeds())
             if v >= SETTLED_SPEED or w >= SETTLED_SPIN)
@@ -354,6 +356,12 @@ class SimRobot(Robot):
         k = threaded.index(name)
         axis = self._caps()[k][2][:3, 2]
         self._push_cap(k, np.concatenate([np.asarray(force, float), torque * axis]))
+
+    @abstractmethod
+    def arm(self, description: RobotDescription, seed: int, belief: RobotDescription | None = None) -> SimRobot:
+        """The robot interface of the next further arm this world was built with (its
+        `others`, in order), its sensor noise drawn from `seed`; this robot's `step` moves it
+        with its own."""
 
     @abstractmethod
     def _push_cap(self, k: int, wrench: np.ndarray) -> None:

@@ -31,6 +31,7 @@ ANGULAR_ACCELERATION = 4.0  # rad/s^2
 WIND_LIMIT = math.radians(135.0)
 STALL_TIME = 2.0  # s without getting STALL_PROGRESS closer: the arm cannot get there
 STALL_PROGRESS = 0.001  # m
+STALL_TURN = math.radians(0.5)  # a quarter of ORIENTATION_TOLERANCE: a hand still turning is getting there
 
 WORLD_DOWN = np.array([0.0, 0.0, -1.0])
 SUPPORT_BAND = 0.01  # m: fingertips this close to the support's top (the world's z = 0) stand on it
@@ -189,8 +190,9 @@ class ObstacleDetour:
 
 class Stall:
     """Whether a motion has stopped getting nearer where it goes: `patience` (STALL_TIME unless
-    told) without coming STALL_PROGRESS nearer than its best (a joint at its limit, a singularity, something in
-    the way). Every arm controller that goes somewhere ends on it rather than wait for ever."""
+    told) without coming STALL_PROGRESS nearer than its best, nor turning STALL_TURN nearer
+    where it also turns (a joint at its limit, a singularity, something in the way). Every arm
+    controller that goes somewhere ends on it rather than wait for ever."""
 
     def __init__(self, patience: float = STALL_TIME) -> None:
         self.patience = patience  # s without progress that count as stalled
@@ -199,12 +201,21 @@ class Stall:
     def reset(self, now: float, distance: float = math.inf) -> None:
         """A new goal, `distance` (m) away as far as is known at `now` (s)."""
         self.best = distance
+        self.best_angle = math.inf
         self.best_time = now
 
-    def stalled(self, distance: float, now: float) -> bool:
-        """`distance` (m) still to go at `now` (s): True once it has not shrunk for `patience`."""
-        if distance < self.best - STALL_PROGRESS:
-            self.best, self.best_time = distance, now
+    def stalled(self, distance: float, now: float, angle: float | None = None) -> bool:
+        """`distance` (m) and `angle` (rad, for a motion that turns the hand too) still to go at
+        `now` (s): True once neither has shrunk for `patience` (a hand that has arrived but still
+        turns is getting there; docs/open-bottle.md, *PyBullet*)."""
+        closer = distance < self.best - STALL_PROGRESS
+        turned = angle is not None and angle < self.best_angle - STALL_TURN
+        if closer:
+            self.best = distance
+        if turned:
+            self.best_angle = angle
+        if closer or turned:
+            self.best_time = now
             return False
         return now - self.best_time > self.patience
 

@@ -180,7 +180,7 @@ class CartesianMove(Controller):
             self.rest = goal
             self.arrived(distance)
             return self._stay(readings)
-        if self.stall.stalled(distance, readings.time):
+        if self.stall.stalled(distance, readings.time, angle):
             self.shaper.stop()
             if self.straight and force >= STALL_CONTACT:
                 self._stopped(force, position)

@@ -1,5 +1,6 @@
-"""A two-arm task on Baxter in MuJoCo: the holder lifts the cylinder and keeps holding it,
-still, while the worker brings its hand beside it; the simulator's truth says it stayed up."""
+"""Two-arm tasks on Baxter: in MuJoCo the holder lifts the cylinder and keeps holding it,
+still, while the worker brings its hand beside it (the simulator's truth says it stayed up);
+in PyBullet a short task moves each arm in turn, the first holding still while the other moves."""
 
 from __future__ import annotations
 
@@ -46,8 +47,46 @@ def test_the_holder_keeps_the_object_lifted_and_still_while_the_worker_moves() -
     assert np.linalg.norm(worker_to - (0.10, 0.16, 0.16)) < 0.01 < np.linalg.norm(worker_from - worker_to)
 
 
-def test_a_two_arm_run_on_pybullet_or_on_video_is_refused_with_the_reason(tmp_path: Path) -> None:
-    with pytest.raises(RunError, match="mujoco engine only"):
-        Run(_estd(), create("baxter"), engine="pybullet")
+SHORT = """<statemachine>
+  <role name="holder"/>
+  <role name="worker"/>
+  <object><pose>1 0 0 0.10  0 1 0 0.0  0 0 1 0.04  0 0 0 1</pose><weight>0.15</weight><class>cylinder</class>
+    <size>0.02 0.08</size></object>
+  <state name="hand_up" type="move" role="holder"><movement>free</movement><hand_shape>open</hand_shape>
+    <path><position>0.10 -0.05 0.20</position></path></state>
+  <state name="come_beside" type="move" role="worker"><movement>free</movement><hand_shape>open</hand_shape>
+    <path><position>0.10 0.16 0.16</position></path></state>
+  <state name="done" type="success"/>
+  <state name="failed" type="failure"/>
+  <transition origin="hand_up" destination="come_beside"><success/></transition>
+  <transition origin="come_beside" destination="done"><success/></transition>
+  <transition origin="hand_up" destination="failed"><error/></transition>
+  <transition origin="come_beside" destination="failed"><error/></transition>
+</statemachine>
+"""
+
+
+def test_a_two_arm_task_runs_in_pybullet_one_arm_after_the_other(tmp_path: Path) -> None:
+    path = tmp_path / "two.xml"
+    path.write_text(SHORT)
+    task, _ = load_task(path)
+    run = Run(translate(task, create("baxter")).estd, create("baxter"), engine="pybullet", seed=0)
+    left = run.others["left"]
+    assert left.true_tcp()[1, 3] > 0.29  # parked on its own side
+    holder: list[np.ndarray] = []  # the holder's TCP while the worker moves
+
+    def watch(_: float) -> None:
+        if run.executor.machine.innermost().visit.path == "come_beside":
+            holder.append(run.robot.true_tcp()[:3, 3].copy())
+
+    run.observers.append(watch)
+    outcome = run.execute()
+    assert outcome.succeeded, outcome.summary
+    assert len(holder) > 100 and np.ptp(np.array(holder), axis=0).max() < 0.002  # held still (m)
+    assert np.linalg.norm(run.robot.true_tcp()[:3, 3] - (0.10, -0.05, 0.20)) < 0.005
+    assert np.linalg.norm(left.true_tcp()[:3, 3] - (0.10, 0.16, 0.16)) < 0.005
+
+
+def test_a_two_arm_run_on_video_is_refused_with_the_reason(tmp_path: Path) -> None:
     with pytest.raises(RunError, match="uses 2 arms"):
         Run(_estd(), create("baxter"), video=tmp_path / "run.gif")

@@ -1,5 +1,6 @@
-"""Two arms of one robot in one MuJoCo world: each behind its own robot interface, the added
-one parked where its description says, and one step of the first moving both as commanded."""
+"""Two arms of one robot in one world, in each engine: each behind its own robot interface,
+the added one parked where its description says, and one step of the first moving both as
+commanded."""
 
 from __future__ import annotations
 
@@ -8,15 +9,16 @@ import dataclasses
 import numpy as np
 import pytest
 
-from atd.sim import load_description, make_arms
+from atd.sim import ENGINES, load_description, make_arms
 from atd.sim.scene import SceneError
 from atd.sim.two_arms import parked
 
 
+@pytest.mark.parametrize("engine", ENGINES)
 @pytest.mark.parametrize("robot", ["baxter", "tombatossals"])
-def test_both_arms_live_in_one_world_and_move_with_one_step(robot: str) -> None:
+def test_both_arms_live_in_one_world_and_move_with_one_step(robot: str, engine: str) -> None:
     right, left = load_description(robot, "right"), load_description(robot, "left")
-    first, second = make_arms((right, left))
+    first, second = make_arms((right, left), engine=engine)
     try:
         np.testing.assert_allclose(first.true_tcp()[:3, 3], right.tcp_pose(np.array(right.home))[:3, 3], atol=2e-3)
         assert second.true_tcp()[1, 3] > 0.29  # the left hand parked on its own side
