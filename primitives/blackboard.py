@@ -85,8 +85,8 @@ class Blackboard:
     jaws_rim: float | None = None
     """Hand -> arm: with `jaws_empty`, the jaws reopen not from nothing but from a grip pressed
     partly through a finger's bare rim beside the pads: where along the jaws' width (the hand's
-    x, from -1 to 1 of a pad's half width) the weaker pad felt the object off its middle (0
-    where it felt it near the middle, or cannot say). The arm moves along the jaws' width before they close again, not elsewhere."""
+    x, from -1 to 1 of a pad's half width) the weaker pad felt the object at its edge (0 where
+    it felt it further in, or cannot say). The arm moves along the jaws' width before they close again, not elsewhere."""
 
     cap: CapGrip | None = None
     """Hand -> arm: an unscrew's pinch on the cap, rewritten every tick; None before the first close."""

@@ -428,7 +428,7 @@ class JawGraspCorrection(Controller):
 
     def _start_along(self, readings: Readings, felt: float) -> None:
         """The jaws reopen from a grip the pads took only part of: the object lies between them
-        beyond a pad's edge, on the side where the weaker pad felt it off its middle (`felt`),
+        beyond a pad's edge, on the side where the weaker pad felt it at its edge (`felt`),
         or else where the rim's lever says the close pushed it; a pad's half width that way puts
         a contact on the rim (within the jaw's half width) on the pad. With neither, the jaws
         close again where they are."""

@@ -35,6 +35,9 @@ UNFELT_TIME = 0.5
 # finger's bare rim (the trim saturates within 0.3 s of pressing short by 5 N)
 RIM_TIME = 0.5
 RIM_MOVES = 2  # times per grasp the jaws reopen off a rim for the arm to move along their width
+# of a pad's half width: a contact centred this far out lies in the pad's edge column (the Melfa's
+# outer 3.4 mm), the rest of it on the finger's bare rim beyond
+EDGE = 0.6
 
 
 class Jaws:
@@ -104,8 +107,10 @@ class CloseUntilForce(Controller):
     a pad feeling nothing stand on something beside that pad: closed on nothing too, the
     other pad, if it touches, saying which side the object is. Tactile jaws whose grip stays
     under SATURATED_GRIP for RIM_TIME with the squeeze at its limit press partly through a
-    finger's bare rim beside the pads: they reopen too, saying where the weaker pad feels the
-    object (`jaws_rim`), for the arm to move along the jaws' width until the pads take the push.
+    finger's bare rim beside the pads, as do jaws the squeeze counts as gripping only at its
+    limit with the weaker pad's contact at its edge: they reopen too (at most RIM_MOVES times),
+    saying where the weaker pad feels the object (`jaws_rim`), for the arm to move along the
+    jaws' width until the pads take the push.
     """
 
     def __init__(self, ctx: Context, rim_moves: int = RIM_MOVES) -> None:
@@ -138,7 +143,11 @@ class CloseUntilForce(Controller):
             self.unfelt = self.unfelt + dt if self.pressing and self.jaws.pad_unfelt(readings) else 0.0
             self.rimmed = self.rimmed + dt if self._on_rim(readings, force) else 0.0
             # a motor pressing on its end stop feels force too; fingers stopped beside the pads grip nothing
-            if self.jaws.empty(readings) or self.unfelt >= UNFELT_TIME:
+            empty = self.jaws.empty(readings) or self.unfelt >= UNFELT_TIME
+            gripped = (not empty and self.pressing and abs(float(readings.hand_dq[0])) < STILL
+                       and self._gripped(force) and not board.pressing)
+            rim = None if empty else self._rim(readings, force, gripped)
+            if empty:
                 self.pressing = False
                 self.brushed = self._across_pads(readings) or self.brushed  # a pad still touching says the side
                 if self.guided:
@@ -147,13 +156,11 @@ class CloseUntilForce(Controller):
                 else:
                     self.finish(Status.ERROR, "the jaws closed on nothing" if self.jaws.empty(readings)
                                 else "the jaws stopped on something a pad does not feel")
-            elif self.rimmed >= RIM_TIME and self.guided and self.rim_moves_left > 0:
+            elif rim is not None:
                 self.pressing, self.rimmed = False, 0.0
                 self.rim_moves_left -= 1
-                felt = self._pad_across(readings, int(np.argmin(readings.pad_force))) or 0.0
-                board.jaws_empty, board.jaws_rim = True, felt if abs(felt) > ALIGNED else 0.0
-            elif (self.pressing and abs(float(readings.hand_dq[0])) < STILL and self._gripped(force)
-                  and not board.pressing):
+                board.jaws_empty, board.jaws_rim = True, rim
+            elif gripped:
                 board.fingers_stopped = True
                 limit = ", the squeeze at its limit" if force < CONFIRM * self.reachable else ""
                 if self.reachable < self.grasp_force:
@@ -198,6 +205,20 @@ class CloseUntilForce(Controller):
         return (self.pressing and self.jaws.source == "tactile" and self.squeeze.saturated
                 and abs(float(readings.hand_dq[0])) < STILL and not self.jaws.pad_unfelt(readings)
                 and force < SATURATED_GRIP * self.grasp_force)
+
+    def _rim(self, readings: Readings, force: float, gripped: bool) -> float | None:
+        """Pressed partly through a finger's bare rim, with a reopening left for the arm to move
+        along the jaws' width: where the weaker pad feels the object if at its edge (EDGE), else
+        0; None where not. A grip held RIM_TIME under SATURATED_GRIP is on a rim, and so is one
+        the squeeze counts only at its limit with the weaker pad's contact at its edge (the
+        Melfa's grips at 10.5-11.1 N of 15 on a rim fell in the lift; docs/robust-grasp.md)."""
+        if not (self.guided and self.pressing and self.rim_moves_left > 0):
+            return None
+        felt = self._pad_across(readings, int(np.argmin(readings.pad_force)))
+        edge = felt if felt is not None and abs(felt) >= EDGE else 0.0
+        if self.rimmed >= RIM_TIME or (gripped and force < CONFIRM * self.reachable and edge):
+            return edge
+        return None
 
     def _blocked(self, readings: Readings) -> bool:
         """Held short of where they are driven: near their closed stop a position servo has
