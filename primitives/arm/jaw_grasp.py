@@ -429,14 +429,14 @@ class JawGraspCorrection(Controller):
     def _start_along(self, readings: Readings, felt: float) -> None:
         """The jaws reopen from a grip the pads took only part of: the object lies between them
         beyond a pad's edge, on the side where the weaker pad felt it at its edge (`felt`),
-        or else where the rim's lever says the close pushed it; a pad's half width that way puts
+        or else (from above) where the rim's lever says the close pushed it; along the hand's x,
+        the pads' width, also for a grasp from the side. A pad's half width that way puts
         a contact on the rim (within the jaw's half width) on the pad. With neither, the jaws
         close again where they are."""
-        lever = self.rim.lever()
+        lever = self.rim.lever() if self.vertical else None
         side = float(np.sign(felt)) if felt else 0.0 if lever is None else float(np.sign(lever))
         self.alongs += 1
-        self.goal = readings.tcp[:3, 3] + self._searching(readings) * side * self.pad_half_width
-        self.towards = self.goal
+        self.goal = readings.tcp[:3, 3] + readings.tcp[:3, 0] * side * self.pad_half_width
         self.move_stall.reset(readings.time)
         self.phase = JawPhase.ALONG
 
