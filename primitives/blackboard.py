@@ -82,6 +82,12 @@ class Blackboard:
     of a pad's half width) the pads last felt something while they closed on nothing, or
     None: the object lies beyond that edge of the pads (pushed there by it)."""
 
+    jaws_rim: float | None = None
+    """Hand -> arm: with `jaws_empty`, the jaws reopen not from nothing but from a grip pressed
+    partly through a finger's bare rim beside the pads: where along the jaws' width (the hand's
+    x, from -1 to 1 of a pad's half width) the weaker pad felt the object at its edge (0 where
+    it felt it further in, or cannot say). The arm moves along the jaws' width before they close again, not elsewhere."""
+
     cap: CapGrip | None = None
     """Hand -> arm: an unscrew's pinch on the cap, rewritten every tick; None before the first close."""
 

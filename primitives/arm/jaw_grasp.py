@@ -17,7 +17,10 @@ palm's contact placed the object, or a step beyond the pads' edge that brushed i
 way (`jaws_brushed`) or beyond where the wrist felt a finger's bare rim push it (`RimLever`),
 or else to the next point of a bounded search along the jaws' width, alternating sides, around where the approach left it and the moves
 across have since taken it. While the jaws close it follows the hand's `arm_nudge`
-(re-centring on the pads' contact) and ends once `fingers_stopped`. A task that knows no
+(re-centring on the pads' contact) and ends once `fingers_stopped`. Jaws that reopen from a
+grip pressed partly through a finger's bare rim (`jaws_rim`) have the object between them,
+beyond the pads' edge: the arm moves along their width, towards where the weaker pad felt the
+object or else the rim's lever, by a pad's half width, and the jaws close again there. A task that knows no
 object may give it the top a perceive state saw (`object_top`): it stands in for the object's
 top, and the jaws do not close before the fingertips are past it.
 """
@@ -77,6 +80,7 @@ class JawPhase(Enum):
     MOVE = "move"  # rising clear of a contact, then across to where to look next
     DESCEND = "descend"  # down on the wrist sensor until a contact or the grasp height
     CLOSE = "close"  # holding still (following the re-centring) while the jaws close
+    ALONG = "along"  # the jaws reopened off a finger's bare rim: along their width, then close again
     HOLD = "hold"  # the jaws hold the object, or the grasp has ended in an error
 
 
@@ -107,6 +111,8 @@ class JawGraspCorrection(Controller):
         self.max_shift = float(p["max_shift"])
         self.max_shifts = int(p["max_shifts"])
         self.jaw_half_width = float(p["jaw_half_width"])
+        # m: a move along the jaws this long takes a contact on a finger's rim beside a pad onto the pad
+        self.pad_half_width = max((pad.half_size[0] for pad in ctx.info.hand.pads), default=0.0)
         self.step = float(p["search_step"])
         self.offsets = search_offsets(self.step, int(p["search_points"]))
         top = p.get("object_top")
@@ -136,6 +142,7 @@ class JawGraspCorrection(Controller):
         self.shaper.start(self.ctx.memory.get(ARM_TWIST))
         self.searched = 0
         self.shifts = 0
+        self.alongs = 0  # moves along the jaws off a finger's rim
         self.last_across = 0.0  # hand y of the last move across
         self.hint: np.ndarray | None = None  # where the last contact says the object is, world frame
         self.hinted = False  # a contact's hint has been followed: one is, once
@@ -223,6 +230,8 @@ class JawGraspCorrection(Controller):
             v = self._descend(readings, dt)
         elif self.phase is JawPhase.CLOSE:
             v = self._close(readings, dt)
+        elif self.phase is JawPhase.ALONG:
+            v = self._along(readings)
         relieved = True
         if self.phase is JawPhase.CLOSE:
             relieved = self._relieve(readings, dt)
@@ -231,7 +240,8 @@ class JawGraspCorrection(Controller):
             v = GAIN * (self.goal - position) + (v if self.phase is JawPhase.CLOSE else 0.0)
         if self.phase is JawPhase.CLOSE and board.fingers_stopped and relieved:
             self.phase = JawPhase.HOLD
-            self.finish(Status.DONE, f"the jaws hold the object after {self.shifts} moves across and "
+            along = f", {self.alongs} along the jaws off a rim" if self.alongs else ""
+            self.finish(Status.DONE, f"the jaws hold the object after {self.shifts} moves across{along} and "
                                      f"{self.searched + self.hinted} search points")
         return arm_output(self.shaper(np.concatenate([v, w]), dt))
 
@@ -395,6 +405,10 @@ class JawGraspCorrection(Controller):
     def _close(self, readings: Readings, dt: float) -> np.ndarray:
         board = self.ctx.blackboard
         self.rim.add(self.contact.update(readings, dt))
+        if board.jaws_empty and board.jaws_rim is not None:
+            board.contact = False
+            self._start_along(readings, board.jaws_rim)
+            return np.zeros(3)
         if board.jaws_empty:
             board.contact = False
             if self.hint is None:
@@ -411,3 +425,26 @@ class JawGraspCorrection(Controller):
         kept = self.walls.inside(self.rotation, nudged, self.goal)
         self.goal = kept
         return np.asarray(nudge, float) if np.array_equal(kept, nudged) else np.zeros(3)
+
+    def _start_along(self, readings: Readings, felt: float) -> None:
+        """The jaws reopen from a grip the pads took only part of: the object lies between them
+        beyond a pad's edge, on the side where the weaker pad felt it at its edge (`felt`),
+        or else (from above) where the rim's lever says the close pushed it; along the hand's x,
+        the pads' width, also for a grasp from the side. A pad's half width that way puts
+        a contact on the rim (within the jaw's half width) on the pad. With neither, the jaws
+        close again where they are."""
+        lever = self.rim.lever() if self.vertical else None
+        side = float(np.sign(felt)) if felt else 0.0 if lever is None else float(np.sign(lever))
+        self.alongs += 1
+        self.goal = readings.tcp[:3, 3] + readings.tcp[:3, 0] * side * self.pad_half_width
+        self.move_stall.reset(readings.time)
+        self.phase = JawPhase.ALONG
+
+    def _along(self, readings: Readings) -> np.ndarray:
+        """Along the jaws' width to `goal` while they open; there, or blocked, close again."""
+        position = readings.tcp[:3, 3]
+        if self.move_stall.stalled(norm(self.goal - position), readings.time) or (
+                norm(self.goal - position) < ARRIVED and not self.ctx.blackboard.jaws_empty):
+            self._close_here(readings, 0.0)
+            return np.zeros(3)
+        return clamp_norm(GAIN * (self.goal - position), self.speed)

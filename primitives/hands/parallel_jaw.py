@@ -31,6 +31,13 @@ SQUEEZE_TRIM = 0.5  # the correction stays within +-50 % of the grasp force
 ALIGNED = 0.3  # of a pad's half width: a contact this near the pad's middle needs no move along the jaws
 # s tactile jaws press with a pad feeling nothing before they count as closed on nothing (a touch reaches both in 0.1 s)
 UNFELT_TIME = 0.5
+# s a grip stays under SATURATED_GRIP with the squeeze at its limit before it counts as pressed through a
+# finger's bare rim (the trim saturates within 0.3 s of pressing short by 5 N)
+RIM_TIME = 0.5
+RIM_MOVES = 2  # times per grasp the jaws reopen off a rim for the arm to move along their width
+# of a pad's half width: a contact centred this far out lies in the pad's edge column (the Melfa's
+# outer 3.4 mm), the rest of it on the finger's bare rim beyond
+EDGE = 0.6
 
 
 class Jaws:
@@ -98,12 +105,18 @@ class CloseUntilForce(Controller):
     done only once that arm no longer rises off the support (`pressing`): until then, jaws
     that close empty say so and the arm looks again. Tactile jaws that press UNFELT_TIME with
     a pad feeling nothing stand on something beside that pad: closed on nothing too, the
-    other pad, if it touches, saying which side the object is.
+    other pad, if it touches, saying which side the object is. Tactile jaws whose grip stays
+    under SATURATED_GRIP for RIM_TIME with the squeeze at its limit press partly through a
+    finger's bare rim beside the pads, as do jaws the squeeze counts as gripping only at its
+    limit with the weaker pad's contact at its edge: they reopen too (at most RIM_MOVES times),
+    saying where the weaker pad feels the object (`jaws_rim`), for the arm to move along the
+    jaws' width until the pads take the push.
     """
 
-    def __init__(self, ctx: Context) -> None:
+    def __init__(self, ctx: Context, rim_moves: int = RIM_MOVES) -> None:
         super().__init__(ctx)
         self.grasp_force = float(self.params["grasp_force"])
+        self.rim_moves_left = rim_moves  # reopenings off a rim left: 0 where the arm moves nothing along the jaws
         self.speed = float(self.params["closing_speed"])
         self.max_recentre = float(self.params["max_recentre"])
         self.jaws = Jaws(ctx, str(self.params["force_source"]))
@@ -117,6 +130,7 @@ class CloseUntilForce(Controller):
         self.recentred = 0.0  # m the arm has followed a contact along the jaws' width in this close
         self.brushed: float | None = None  # where along the jaws' width the pads last felt something in this close
         self.unfelt = 0.0  # s the jaws have pressed with neither pad feeling anything
+        self.rimmed = 0.0  # s the jaws have pressed still, the squeeze at its limit, short of a grip
         self.ctx.memory[EMPTY_HAND] = world_load(readings)  # a grasp begins empty-handed
         self.guided = self.ctx.blackboard.contact is not None  # the arm says when to close
 
@@ -127,8 +141,13 @@ class CloseUntilForce(Controller):
         if self.status is Status.RUNNING:
             force = self.jaws.force(readings)
             self.unfelt = self.unfelt + dt if self.pressing and self.jaws.pad_unfelt(readings) else 0.0
+            self.rimmed = self.rimmed + dt if self._on_rim(readings, force) else 0.0
             # a motor pressing on its end stop feels force too; fingers stopped beside the pads grip nothing
-            if self.jaws.empty(readings) or self.unfelt >= UNFELT_TIME:
+            empty = self.jaws.empty(readings) or self.unfelt >= UNFELT_TIME
+            gripped = (not empty and self.pressing and abs(float(readings.hand_dq[0])) < STILL
+                       and self._gripped(force) and not board.pressing)
+            rim = None if empty else self._rim(readings, force, gripped)
+            if empty:
                 self.pressing = False
                 self.brushed = self._across_pads(readings) or self.brushed  # a pad still touching says the side
                 if self.guided:
@@ -137,8 +156,11 @@ class CloseUntilForce(Controller):
                 else:
                     self.finish(Status.ERROR, "the jaws closed on nothing" if self.jaws.empty(readings)
                                 else "the jaws stopped on something a pad does not feel")
-            elif (self.pressing and abs(float(readings.hand_dq[0])) < STILL and self._gripped(force)
-                  and not board.pressing):
+            elif rim is not None:
+                self.pressing, self.rimmed = False, 0.0
+                self.rim_moves_left -= 1
+                board.jaws_empty, board.jaws_rim = True, rim
+            elif gripped:
                 board.fingers_stopped = True
                 limit = ", the squeeze at its limit" if force < CONFIRM * self.reachable else ""
                 if self.reachable < self.grasp_force:
@@ -175,6 +197,29 @@ class CloseUntilForce(Controller):
             return True
         return self.squeeze.saturated and force >= SATURATED_GRIP * self.grasp_force
 
+    def _on_rim(self, readings: Readings, force: float) -> bool:
+        """Tactile jaws pressing still on the object, both pads touching, the squeeze at its
+        limit and the weaker pad still short of SATURATED_GRIP: the rest of the push goes
+        through a finger's bare rim beside the pads (the Melfa's jaws stood at 10.0 and 10.7 N
+        of 15 with the motor pressing 22.5 N of its 100 N; docs/robust-grasp.md)."""
+        return (self.pressing and self.jaws.source == "tactile" and self.squeeze.saturated
+                and abs(float(readings.hand_dq[0])) < STILL and not self.jaws.pad_unfelt(readings)
+                and force < SATURATED_GRIP * self.grasp_force)
+
+    def _rim(self, readings: Readings, force: float, gripped: bool) -> float | None:
+        """Pressed partly through a finger's bare rim, with a reopening left for the arm to move
+        along the jaws' width: where the weaker pad feels the object if at its edge (EDGE), else
+        0; None where not. A grip held RIM_TIME under SATURATED_GRIP is on a rim, and so is one
+        the squeeze counts only at its limit with the weaker pad's contact at its edge (the
+        Melfa's grips at 10.5-11.1 N of 15 on a rim fell in the lift; docs/robust-grasp.md)."""
+        if not (self.guided and self.pressing and self.rim_moves_left > 0):
+            return None
+        felt = self._pad_across(readings, int(np.argmin(readings.pad_force)))
+        edge = felt if felt is not None and abs(felt) >= EDGE else 0.0
+        if self.rimmed >= RIM_TIME or (gripped and force < CONFIRM * self.reachable and edge):
+            return edge
+        return None
+
     def _blocked(self, readings: Readings) -> bool:
         """Held short of where they are driven: near their closed stop a position servo has
         too little travel left to push as hard as a touch needs (a Baxter's paddles held a
@@ -193,7 +238,7 @@ class CloseUntilForce(Controller):
                 self.reference = self.opened
                 self.recentred = 0.0
                 self.brushed = None
-                board.jaws_empty = False
+                board.jaws_empty, board.jaws_rim = False, None
         return position_command(np.array([self.reference]))
 
     def _nudge(self, readings: Readings, off_centre: float, closing: bool) -> np.ndarray | None:
@@ -211,19 +256,28 @@ class CloseUntilForce(Controller):
 
     def _across_pads(self, readings: Readings) -> float:
         """Where the touching pads feel the object along the jaws' width (the hand's x), from
-        -1 to 1 of a pad's half width; 0 without a contact or tactile images. The mirrored
-        pads face each other, so the left pad's columns run along the hand's x and the
-        right pad's against it (`factories.parts.parallel_jaw`)."""
+        -1 to 1 of a pad's half width, weighted by their forces; 0 without a contact or
+        tactile images."""
         where, weight = 0.0, 0.0
-        for pad, side, force in zip(self.ctx.info.hand.pads, self.jaws.sides, readings.pad_force):
-            image = readings.taxels.get(pad.name)
-            if image is None or force <= TOUCH:
-                continue
-            columns = image.sum(axis=0)
-            centre = float(columns @ np.arange(len(columns))) / float(columns.sum())
-            where += side * ((centre + 0.5) / len(columns) * 2.0 - 1.0) * force
-            weight += force
+        for index, force in enumerate(readings.pad_force):
+            at = self._pad_across(readings, index)
+            if at is not None:
+                where += at * force
+                weight += force
         return where / weight if weight > 0.0 else 0.0
+
+    def _pad_across(self, readings: Readings, index: int) -> float | None:
+        """Where pad `index` feels the object along the jaws' width (the hand's x), from -1 to 1
+        of its half width; None where it touches nothing or has no tactile image. The mirrored
+        pads face each other, so the left pad's columns run along the hand's x and the right
+        pad's against it (`factories.parts.parallel_jaw`)."""
+        pad, force = self.ctx.info.hand.pads[index], float(readings.pad_force[index])
+        image = readings.taxels.get(pad.name)
+        if image is None or force <= TOUCH:
+            return None
+        columns = image.sum(axis=0)
+        centre = float(columns @ np.arange(len(columns))) / float(columns.sum())
+        return float(self.jaws.sides[index]) * ((centre + 0.5) / len(columns) * 2.0 - 1.0)
 
 
 class Squeeze(Controller):

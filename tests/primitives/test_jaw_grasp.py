@@ -125,18 +125,22 @@ def test_the_melfas_forearm_roll_stays_off_its_limit_at_the_wrist_singularity(ob
     assert record.task_succeeded and record.judged_succeeded, (record.summary, record.judge_reason)
 
 
-@pytest.mark.parametrize(("obj", "index"), [("tape", 5), ("duck", 0)])
-def test_a_tilted_grip_that_loads_one_pad_more_holds_once_the_squeeze_is_at_its_limit(obj: str, index: int) -> None:
+@pytest.mark.parametrize(("obj", "index", "held"), [("tape", 5, "along the jaws off a rim"),
+                                                     ("duck", 0, "the squeeze at its limit")])
+def test_a_tilted_grip_that_loads_one_pad_more_holds_once_the_squeeze_is_at_its_limit(obj: str, index: int,
+                                                                                      held: str) -> None:
     """Preset trials in MuJoCo whose hand, tilted by the approach error, closed on the object
     with one pad pressing more than the other (tape trial 0: 17 and 13 N, 15 N asked):
     the squeeze raised the motor to its +50 % limit and waited there for the weaker pad
     until the grasp's timeout. A still grip with the squeeze at its limit and both pads
-    pressing 70 % of the force is taken as the grasp, and the lift says whether it holds."""
+    pressing 70 % of the force is taken as the grasp, and the lift says whether it holds;
+    unless the weaker pad feels the object at its edge, the rest on a finger's bare rim: then
+    the arm first moves along the jaws (tape trial 5: gripped at 14.7 N after one such move)."""
     [record] = preset_trials((index,), robot="melfa", engine="mujoco", grasp="robust", object=obj,
                              perturbation="approach")
     assert record.task_succeeded and record.judged_succeeded, (record.summary, record.judge_reason)
     grasped = [why for e in record.events if e["transition"] == "grasp_object->lift_object" for why in e["why"]]
-    assert any("the squeeze at its limit" in why for why in grasped), grasped
+    assert any(held in why for why in grasped), grasped
 
 
 @pytest.mark.parametrize(("obj", "index"), [("stapler", 9), ("weight", 9)])
