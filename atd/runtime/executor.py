@@ -217,13 +217,14 @@ class Machine:
             outputs = self.sub.tick(readings, dt)
         else:
             outputs = []
-        edge = self._fired(self._mine(readings), dt)
+        mine = self._mine(readings)
+        edge = self._fired(mine, dt)
         if edge is not None:
             self._take(edge, readings)
             if self.ended:
                 return []
             outputs = self.sub.tick(readings, dt) if self.sub else []
-        mine = self._mine(readings)
+            mine = self._mine(readings)  # the new state's arm
         for controller in (self.arm, self.hand):
             if controller:
                 outputs.append((self.driven, controller.update(mine, dt)))

@@ -256,6 +256,9 @@ class MujocoRobot(SimRobot):
         # MuJoCo reports what the arm exerts on the hand; the interface wants the reverse.
         return -self._sensordata[self._wrench_idx]
 
+    def _pads_pressed(self) -> bool:
+        return bool(np.count_nonzero(self._sensordata[self._slot_force]))
+
     def _pad_contacts(self):
         offset = self._sensordata[self._slot_point] - self._geom_xpos[self._slot_centre]
         # Row vectors times each pad's x and y axes: the points in their pad's frame.

@@ -3,7 +3,7 @@ readings, and the taxel grid that turns contact points on a pad into a pressure 
 
 from __future__ import annotations
 
-from typing import Sequence
+from typing import Iterator, Mapping, Sequence
 
 import numpy as np
 
@@ -52,21 +52,28 @@ class NoisySensors:
         self._state: np.ndarray | None = None
         self._quantised = _positions(resolution_all > 0)
         self._resolution = resolution_all[resolution_all > 0]
+        # Scratch arrays the tick's steps work in, made once (the same operations, no new arrays).
+        self._noise = np.empty(self._n_noisy)
+        self._change = np.empty(len(self._alpha))
+        self._steps = np.empty(len(self._resolution))
 
     def __call__(self, x: np.ndarray) -> None:
         """Work the reported readings out in place; `x` starts with the `size` modelled values."""
         if self._n_noisy:
-            x[self._noisy] += self._std * self._rng.standard_normal(self._n_noisy)
+            noise = self._rng.standard_normal(out=self._noise)
+            x[self._noisy] += np.multiply(self._std, noise, out=noise)
         if len(self._bias):
             x[self._biased] += self._bias
         if len(self._alpha):
             if self._state is None:
                 self._state = x[self._filtered].copy()
             else:
-                self._state += self._alpha * (x[self._filtered] - self._state)
+                change = np.subtract(x[self._filtered], self._state, out=self._change)
+                self._state += np.multiply(self._alpha, change, out=change)
             x[self._filtered] = self._state
         if len(self._resolution):
-            x[self._quantised] = np.rint(x[self._quantised] / self._resolution) * self._resolution
+            steps = np.rint(np.divide(x[self._quantised], self._resolution, out=self._steps), out=self._steps)
+            x[self._quantised] = np.multiply(steps, self._resolution, out=steps)
 
 
 class TaxelImages:
@@ -95,22 +102,55 @@ class TaxelImages:
         # What a hand touching nothing reads, most of a run: made once, read-only, shared by the ticks.
         nothing, self._no_force = np.zeros(self._size), np.zeros(self._n)
         nothing.flags.writeable = self._no_force.flags.writeable = False
-        self._untouched, _ = self._read(nothing, self._no_force)
+        self._untouched = self._read(nothing)
 
-    def __call__(self, pad: np.ndarray, xy: np.ndarray, force: np.ndarray) -> tuple[dict[str, np.ndarray | None], np.ndarray]:
-        """Images by pad name (None for a pad without an array) and the force on each pad."""
+    @property
+    def untouched(self) -> tuple[Mapping[str, np.ndarray | None], np.ndarray]:
+        """What the pads read when nothing presses on them, as `__call__` gives it."""
+        return self._untouched, self._no_force
+
+    def __call__(self, pad: np.ndarray, xy: np.ndarray, force: np.ndarray) -> tuple[Mapping[str, np.ndarray | None], np.ndarray]:
+        """Images by pad name (None for a pad without an array) and the force on each pad.
+        The images are worked out when first looked at (`PadImages`): the pad forces are read
+        every tick, the images by a few controllers on a few ticks."""
         if len(pad) == 0 or not np.count_nonzero(force):
-            return self._untouched, self._no_force
+            return self.untouched
         # MuJoCo reports the same contact slots every tick: their constants are gathered once.
         if pad.tobytes() != self._contacts_of:
             self._contacts_of = pad.tobytes()
             self._per_contact = (*(column[pad] for column in self._pads), np.zeros((len(pad), 2)))
-        scale, centre, last, row_length, first, zero = self._per_contact
+        return PadImages(self, self._per_contact, xy, force), np.bincount(pad, weights=force, minlength=self._n)
+
+    def images(self, per_contact: tuple[np.ndarray, ...], xy: np.ndarray, force: np.ndarray) -> dict[str, np.ndarray | None]:
+        """The images of contacts at `xy` (pad frames) pressing with `force`; `per_contact`:
+        their pads' constants, as `__call__` gathered them."""
+        scale, centre, last, row_length, first, zero = per_contact
         cell = np.minimum(np.maximum(np.floor(xy * scale + centre), zero), last)
         index = (first + cell[:, 1] * row_length + cell[:, 0]).astype(np.intp)
-        return self._read(np.bincount(index, weights=force, minlength=self._size),
-                          np.bincount(pad, weights=force, minlength=self._n))
+        return self._read(np.bincount(index, weights=force, minlength=self._size))
 
-    def _read(self, flat: np.ndarray, total: np.ndarray) -> tuple[dict[str, np.ndarray | None], np.ndarray]:
-        """The images by pad name, cut from all the pads' cells end to end, and the pad forces."""
-        return {name: None if cells is None else flat[cells].reshape(shape) for name, cells, shape in self._images}, total
+    def _read(self, flat: np.ndarray) -> dict[str, np.ndarray | None]:
+        """The images by pad name, cut from all the pads' cells end to end."""
+        return {name: None if cells is None else flat[cells].reshape(shape) for name, cells, shape in self._images}
+
+
+class PadImages(Mapping[str, "np.ndarray | None"]):
+    """One tick's taxel images by pad name, worked out from its contacts when first read."""
+
+    def __init__(self, taxels: TaxelImages, per_contact: tuple[np.ndarray, ...], xy: np.ndarray, force: np.ndarray) -> None:
+        self._taxels, self._contacts = taxels, (per_contact, xy, force)
+        self._images: dict[str, np.ndarray | None] | None = None
+
+    def _worked_out(self) -> dict[str, np.ndarray | None]:
+        if self._images is None:
+            self._images = self._taxels.images(*self._contacts)
+        return self._images
+
+    def __getitem__(self, name: str) -> np.ndarray | None:
+        return self._worked_out()[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._worked_out())
+
+    def __len__(self) -> int:
+        return len(self._worked_out())

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from abc import abstractmethod
 from dataclasses import dataclass, replace
-from typing import Callable, Sequence
+from typing import Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -428,6 +428,11 @@ class SimRobot(Robot):
     def _pad_contacts(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Contacts on pads: pad index (k,), point in that pad's frame (k, 2), normal force (k,)."""
 
+    def _pads_pressed(self) -> bool:
+        """Whether any pad contact carries a force now; an engine that can tell without
+        working out the contact points (`_pad_contacts`) says so, sparing a tick that work."""
+        return True
+
     @abstractmethod
     def _range(self) -> float:
         """True distance along the IR sensor's axis, inf when nothing is in range."""
@@ -489,11 +494,13 @@ class SimRobot(Robot):
             held["range"] = last.range
         return replace(now, **held)
 
-    def _tactile(self, effort: np.ndarray) -> tuple[dict[str, np.ndarray | None], np.ndarray]:
+    def _tactile(self, effort: np.ndarray) -> tuple[Mapping[str, np.ndarray | None], np.ndarray]:
         """True taxel images and pad forces, from joint efforts where the hand has no arrays."""
         if self._squeeze is not None:
             # No tactile array: each finger reports the grip force its DOF measures.
             closing, joint, ratio = self._squeeze
             force = max(0.0, closing * (effort[joint] * ratio))
             return dict.fromkeys(self._pad_names), self._every_pad * force
+        if not self._pads_pressed():  # most ticks of a run: no contact points to work out
+            return self._taxels.untouched
         return self._taxels(*self._pad_contacts())
