@@ -547,10 +547,10 @@ class RobotDescription:
             return None
         return float(np.arctan2(axes[1, 1], axes[0, 1]) % np.pi)
 
-    def pad_opening(self, posture: str | np.ndarray, line: float) -> float:
+    def pad_opening(self, posture: str, line: float) -> float:
         """How far apart the tactile pads' surfaces stand along the line at `line` (rad from
-        the hand's x, about its approach axis) in `posture` (its name, or its DOF values) (m):
-        the widest object a hand closing along that line from that posture can take between its pads."""
+        the hand's x, about its approach axis) in `posture` (m): the widest object a hand
+        closing along that line from that posture can take between its pads."""
         if not self.hand.pads:
             return 0.0
         along = self._pads_across(posture) @ np.array([np.cos(line), np.sin(line)])
@@ -571,7 +571,8 @@ class RobotDescription:
         moving = np.array([dof.closing != 0 for dof in self.hand.dofs]) & ~np.isclose(a, b)
         opened = np.where(moving, [dof.open for dof in self.hand.dofs], a)
         closed = np.where(moving, [dof.closed for dof in self.hand.dofs], a)
-        pads = [k for k, moved in enumerate(~np.isclose(self._pad_poses(a), self._pad_poses(b)).all(axis=(1, 2))) if moved]
+        still = np.isclose(self._pad_poses(a), self._pad_poses(b)).all(axis=(1, 2))
+        pads = [k for k in range(len(self.hand.pads)) if not still[k]]
         way = np.array([np.cos(line), np.sin(line), 0.0, 0.0])
         centres = self._pad_poses(opened)[pads, :, 3] @ way
         side = np.sign(centres - centres.mean())  # kept while the sweep goes on: closed fingers cross
@@ -613,7 +614,7 @@ class RobotDescription:
             link = body.parent
         return tuple(k for k, dof in enumerate(self.hand.dofs) if any(j in joints for j, _ in dof.joints))
 
-    def _pads_across(self, posture: str | np.ndarray) -> np.ndarray:
+    def _pads_across(self, posture: str) -> np.ndarray:
         """Where each tactile pad stands across the approach axis in `posture`: (pads, 2), m,
         x y in the hand's frame (its TCP)."""
         return self._pad_poses(posture)[:, :2, 3]

@@ -40,7 +40,8 @@ def pad_corners(hand: HandInfo, hand_q: np.ndarray, pads: list[int]) -> np.ndarr
     corners = []
     for surface, k in zip(hand.pad_surfaces(hand_q)[pads], pads):
         hx, hy = hand.pads[k].half_size
-        corners.append((np.array([[sx * hx, sy * hy, 0.0, 1.0] for sx in (-1, 1) for sy in (-1, 1)]) @ surface.T)[:, :3])
+        square = np.array([[sx * hx, sy * hy, 0.0, 1.0] for sx in (-1, 1) for sy in (-1, 1)])
+        corners.append((square @ surface.T)[:, :3])
     return np.array(corners)
 
 

@@ -22,7 +22,7 @@ from translator import translate
 
 TASK = Path(__file__).resolve().parents[2] / "examples" / "unscrew_by_touch.xml"
 PLACE = tuple(load_task(TASK)[0].object.pose.position[:2])  # the believed jar's: the campaign's bottles stand there
-PADS_UNDER_TOP = 0.012  # m: where the task puts any hand's pads' lower edge, closed to a 60 mm cap, under the touched top
+PADS_UNDER_TOP = 0.012  # m: where the task puts any hand's pads' lower edge (closed to 60 mm) under the touched top
 ARRIVED = 0.003  # m: its guarded move ends this near its target (the moves' tolerance)
 TWISTED = 3.0  # s of the unscrew: the pinch presses 10 N within 1 s, a 30-degree twist takes about 1 s more
 
