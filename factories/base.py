@@ -38,7 +38,7 @@ from factories.description import RobotDescription
 from factories.reach import Reach
 from factories.robot_info import robot_info
 from factories.grasp_turn import grasp_turn
-from factories.turns import KEEPING, arriving, grasp_ahead, target_turn, turn_at_start
+from factories.turns import KEEPING, arriving, grasp_ahead, leads_into, target_turn, turn_at_start
 from primitives.robot import RobotInfo
 
 ConditionNode = Condition | ConditionGroup
@@ -711,7 +711,8 @@ class Factory(ABC):
             return self.controller("push", target=target, waypoints=via, keep_orientation=flags["keep_orientation"])
         if state.target_from is not None:  # read at run time: the move places the shape's point on it
             touched = value_kinds(context.task).get(state.target_from, (None,))[0] is ValueKind.POINT
-            if any(point := self.acting_point(state, touched)):
+            pinch = leads_into(context.task, state, StateType.UNSCREW) if touched else None
+            if any(point := self.acting_point(state, touched, pinch)):
                 extra = {**extra, "hand_point": tuple(round(v, 6) for v in point)}
             if not touched and (roll := self.wrist_roll()):  # a pose's yaw, turned to the way the wrist has room
                 extra = {**extra, "wrist_roll": roll}
@@ -744,14 +745,18 @@ class Factory(ABC):
         x, y, z = (float(v) for v in down @ np.asarray(self.acting_point(state), float))
         return (x, y, z)
 
-    def acting_point(self, state: State, touching: bool = False) -> Vec3:
+    def acting_point(self, state: State, touching: bool = False, pinch: State | None = None) -> Vec3:
         """Where the state's hand shape acts, from the TCP in the hand frame (`shape_offset`
         says which point that is); the TCP itself when the state names no shape. `touching`:
         the state touches, or goes to a point an explore touched (a `point` value), so its
         hand acts with its lowest point (`hand_reach`) under that: the task says where the
-        fingertips go from a felt surface (a pinch 18 mm down a cap from its top), and each
-        hand's own geometry (the SDH2's thumb 21 mm under its TCP and 57 mm from its pinch,
-        a gripper's jaws 10-24 mm under its TCP) puts its TCP there."""
+        fingertips go from a felt surface, and each hand's own geometry (the SDH2's thumb
+        21 mm under its TCP and 57 mm from its pinch, a gripper's jaws 10-24 mm under its
+        TCP) puts its TCP there. `pinch`: the unscrew the state ends where it pinches, so
+        the point is the lower edge of the pads closed to its `object_size` (`pinch_reach`):
+        the task says how far under a felt cap top the pads pinch, and each hand's pads get
+        there (a Barrett's pad tips meet a 60 mm cap 5 mm over its preshape's lowest point,
+        the SDH2's pads' edge is 3 mm over its fingertips', a gripper's jaws end with their pads)."""
         if state.hand_shape is None:
             return (0.0, 0.0, 0.0)
         made, _ = self.shape(state.hand_shape)
@@ -760,6 +765,10 @@ class Factory(ABC):
         x, y, z = (float(v) for v in robot.hand.grasp_centres.get(posture, (0.0, 0.0, 0.0)))
         if touching or posture != made.value:  # a push posture of its own: its lowest point
             z = robot.hand_reach(posture)
+        if touching and pinch is not None and pinch.object_size is not None:
+            closing = self.shape(pinch.hand_shape or HandShape.PINCH_GRASP)[0].value
+            if (edge := robot.pinch_reach(posture, closing, pinch.object_size)) is not None:
+                z = edge
         return (x, y, z)
 
     def coming_down(self, state: State, context: MappingContext) -> np.ndarray:

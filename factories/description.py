@@ -25,6 +25,10 @@ Vec3 = tuple[float, float, float]
 # that across it (twice as far) close from all round, with no line to turn the hand by (the
 # Barrett's spherical grasp: 1.0; its pinch, the SDH2's and the grippers': no motion across at all)
 CLEAR_LINE = 4.0
+# The closing sweep `pinch_reach` looks along for a width: this many steps, then the one it lies in
+# halved this many times (2.4 rad of a Barrett finger to 0.04 mrad: far under a millimetre of pad)
+PINCH_STEPS = 64
+PINCH_HALVINGS = 12
 
 
 @dataclass(frozen=True)
@@ -232,6 +236,12 @@ class FingerPad:
     """m; the pad is a thin box behind the surface."""
     taxels: tuple[int, int] | None
     """(rows along y, cols along x) of its sensor array, or None where one force is measured."""
+
+    @property
+    def corners(self) -> np.ndarray:
+        """The sensing surface's four corners, (4, 4) homogeneous rows, in the surface's frame."""
+        hx, hy = self.half_size
+        return np.array([[sx * hx, sy * hy, 0.0, 1.0] for sx in (-1.0, 1.0) for sy in (-1.0, 1.0)])
 
 
 @dataclass(frozen=True)
@@ -546,12 +556,74 @@ class RobotDescription:
         along = self._pads_across(posture) @ np.array([np.cos(line), np.sin(line)])
         return float(along.max() - along.min())
 
+    def pinch_reach(self, start: str, end: str, width: float) -> float | None:
+        """How far the lower edge of the pads that close from posture `start` to `end` reaches
+        past the TCP along the approach axis (as `hand_reach`) where their surfaces first come
+        `width` apart along their closing line (corner to corner: a curled finger meets a cap
+        with its pad's tip), the hand sweeping the DOFs that differ between the two from open
+        to closed: a Barrett's pad tips sweep down and curl back up as they close (2 mm under
+        its TCP at 60 mm apart, 12 mm over it at 30 mm), a gripper's jaws keep their height.
+        None where the pads do not close along a line."""
+        line = self.closing_line(start, end)
+        if line is None:
+            return None
+        a, b = (np.asarray(self.hand.postures[p], float) for p in (start, end))
+        moving = np.array([dof.closing != 0 for dof in self.hand.dofs]) & ~np.isclose(a, b)
+        opened = np.where(moving, [dof.open for dof in self.hand.dofs], a)
+        closed = np.where(moving, [dof.closed for dof in self.hand.dofs], a)
+        still = np.isclose(self._pad_poses(a), self._pad_poses(b)).all(axis=(1, 2))
+        pads = [k for k in range(len(self.hand.pads)) if not still[k]]
+        way = np.array([np.cos(line), np.sin(line), 0.0, 0.0])
+        centres = self._pad_poses(opened)[pads, :, 3] @ way
+        side = np.sign(centres - centres.mean())  # kept while the sweep goes on: closed fingers cross
+        # A finger's other closing DOF flexes back by what the grasp closes, its pad keeping the
+        # slant it had in `start`, as the unscrew's hand keeps it (`UnscrewHand._square`).
+        closing = np.array([dof.closing for dof in self.hand.dofs], float)
+        followers = [(i, k) for p in pads for i in self.moving_dofs(self.hand.pads[p].link) if moving[i]
+                     for k in self.moving_dofs(self.hand.pads[p].link) if not moving[k] and closing[k]]
+
+        def corners(t: float) -> list[np.ndarray]:
+            q = opened + t * (closed - opened)
+            for i, k in followers:
+                q[k] = a[k] - closing[k] * closing[i] * (q[i] - a[i])
+            surfaces = self._pad_poses(q)
+            return [self.hand.pads[k].corners @ surfaces[k].T for k in pads]
+
+        def gap(t: float) -> float:
+            inner = [float((c @ way).min() if s > 0 else (c @ way).max()) for c, s in zip(corners(t), side)]
+            return min(i for i, s in zip(inner, side) if s > 0) - max(i for i, s in zip(inner, side) if s < 0)
+
+        steps = np.linspace(0.0, 1.0, PINCH_STEPS + 1)
+        past = next((k for k, t in enumerate(steps) if gap(t) <= width), None)
+        if past is None or past == 0:
+            t = 1.0 if past is None else 0.0
+        else:  # halve the step the width lies in
+            lo, hi = steps[past - 1], steps[past]
+            for _ in range(PINCH_HALVINGS):
+                lo, hi = (lo, (lo + hi) / 2) if gap((lo + hi) / 2) <= width else ((lo + hi) / 2, hi)
+            t = hi
+        return max(float(c[:, 2].max()) for c in corners(t))
+
+    def moving_dofs(self, link: str) -> tuple[int, ...]:
+        """The hand DOFs with a joint between the hand root and `link`."""
+        joints = set()
+        while link and link != self.hand_root:
+            body = self.links_by_name[link]
+            if body.joint is not None:
+                joints.add(body.joint.name)
+            link = body.parent
+        return tuple(k for k, dof in enumerate(self.hand.dofs) if any(j in joints for j, _ in dof.joints))
+
     def _pads_across(self, posture: str) -> np.ndarray:
         """Where each tactile pad stands across the approach axis in `posture`: (pads, 2), m,
         x y in the hand's frame (its TCP)."""
+        return self._pad_poses(posture)[:, :2, 3]
+
+    def _pad_poses(self, posture: str | np.ndarray) -> np.ndarray:
+        """Each tactile pad's sensing surface in `posture`: (pads, 4, 4), in the hand's frame (its TCP)."""
         poses, tcp = self._hand_in(posture)
         to_hand = np.linalg.inv(tcp)
-        return np.array([(to_hand @ poses[p.link] @ p.origin.matrix())[:2, 3] for p in self.hand.pads])
+        return np.array([to_hand @ poses[p.link] @ p.origin.matrix() for p in self.hand.pads])
 
     def hand_in_boxes(self, posture: str, tcp: np.ndarray, boxes: list[tuple[Vec3, Vec3]]) -> dict[int, list[str]]:
         """Which of the world-aligned `boxes` (centre, size) the hand's links would cut into

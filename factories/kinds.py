@@ -176,10 +176,15 @@ class MultiFingerFactory(Factory):
 
     def unscrew(self, state: State) -> NodeMapping:
         """Thesis 3.3.6: the state's grasp (by default a two-finger pinch, GRASPING_FINGERS 2)
-        on the cap, opened to `object_size` (the cap's width) when the state gives it."""
+        on the cap, opened to `object_size` (the cap's width) when the state gives it; the
+        pads' lower edge there (`pinch_reach`) is where the move before put them, and where
+        the hand keeps them on a narrower cap (`pad_reach`)."""
         grasp, preshape_made, notes = self.grasp_shapes(state, state.hand_shape or HandShape.PINCH_GRASP)
+        reach = None if state.object_size is None or preshape_made is None else \
+            self.robot.pinch_reach(preshape_made.value, grasp.value, state.object_size)
         hand = self.controller("unscrew_hand", grasp_shape=grasp.value, pregrasp_size=self.opening(state.object_size),
-                               preshape=preshape_made.value if preshape_made else None)
+                               preshape=preshape_made.value if preshape_made else None,
+                               cap_width=state.object_size, pad_reach=None if reach is None else round(reach, 6))
         centre = self.robot.hand.grasp_centres.get(grasp.value, (0.0, 0.0, 0.0))
         arm = self.controller("unscrew_arm", grasp_centre=tuple(round(float(c), 6) for c in centre),
                               wrist_turn=self.wrist_turn(state))

@@ -15,17 +15,6 @@ from factories.description import RobotDescription
 from primitives.robot import HandInfo, PadInfo, RobotInfo
 
 
-def _moving_dofs(d: RobotDescription, link: str) -> tuple[int, ...]:
-    """The hand DOFs with a joint between the hand root and `link`."""
-    joints = set()
-    while link and link != d.hand_root:
-        body = d.links_by_name[link]
-        if body.joint is not None:
-            joints.add(body.joint.name)
-        link = body.parent
-    return tuple(k for k, dof in enumerate(d.hand.dofs) if any(j in joints for j, _ in dof.joints))
-
-
 def _tcp_pose(d: RobotDescription, poses: dict[str, np.ndarray]) -> np.ndarray:
     """The TCP's pose among link `poses` from the description's forward kinematics."""
     return poses[d.tcp.link] @ d.tcp.origin.matrix()
@@ -89,7 +78,7 @@ def robot_info(d: RobotDescription) -> RobotInfo:
         open=np.array([dof.open for dof in d.hand.dofs]),
         closed=np.array([dof.closed for dof in d.hand.dofs]),
         postures={name: np.array(v) for name, v in d.hand.postures.items()},
-        pads=tuple(PadInfo(p.name, p.taxels, _moving_dofs(d, p.link), _finger_base(d, p.link, open_hand), p.half_size)
+        pads=tuple(PadInfo(p.name, p.taxels, d.moving_dofs(p.link), _finger_base(d, p.link, open_hand), p.half_size)
                    for p in d.hand.pads),
         stiffness=np.array([j.servo.kp for j in hand_limits]) * ratios**2,
         self_locking=np.array([j.friction > 0 for j in hand_limits]),

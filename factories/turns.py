@@ -69,3 +69,13 @@ def grasp_ahead(task: Task, state: State) -> State | None:
             if after.type is StateType.MOVE:
                 frontier.append(after)
     return None
+
+
+def leads_into(task: Task, state: State, kind: StateType) -> State | None:
+    """The first state of type `kind` (document order) an edge from `state` goes straight
+    to: the unscrew a move ends where it pinches; None if none."""
+    for _, transition in task.outgoing(state.name):
+        after = task.states_by_name.get(transition.destination)
+        if after is not None and after.type is kind:
+            return after
+    return None

@@ -31,6 +31,7 @@ class CapGrip:
     empty: bool = False  # the pads closed nearer than FINGER_MIN_DISTANCE: nothing between them
     holding: bool = False  # every grasping pad touches something now
     axis: np.ndarray | None = None  # (3,) world: the pads' contacts' midpoint, averaged since the close
+    drop: float = 0.0  # m under the pinch's start the arm holds the TCP: the pads' rise past the cap's believed width
 
 
 @dataclass(eq=False)

@@ -587,6 +587,11 @@ _HAND_CONTROLLERS = (
             "contact_threshold": _p(NUM, "pad force counted as finger contact (ours)", 0.3, unit="N"),
             "finger_min_distance": _p(NUM, "pads closer than this hold nothing (thesis FINGER_MIN_DISTANCE)", 0.012,
                                       unit="m"),
+            "cap_width": _p(NUM, "the cap's believed width (the task's object_size); unset = not known", unit="m"),
+            "pad_reach": _p(NUM, "how far past the TCP, along the approach, the grasping pads' lower edge reaches "
+                                 "where they come cap_width apart (the arm started the pinch there): pads that rise "
+                                 "as they close nearer, on a narrower cap, are followed down by the arm; unset = no "
+                                 "following", unit="m", limits=ranges.COORDINATE),
         },
     ),
     ControllerSpec(

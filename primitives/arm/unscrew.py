@@ -132,7 +132,10 @@ class UnscrewArm(Controller):
             self._begin_twist(readings)
         elif readings.time - self.pinch_started > PINCH_TIME:
             self._again(readings, f"the pads did not all press the grasp force within {PINCH_TIME:.0f} s")
-        return self._toward(readings, self.still, RETURN_SPEED)
+        if self.phase is not Phase.PINCH:
+            return self._toward(readings, self.still, RETURN_SPEED)
+        down = self.cap.drop * (self.still.rotation @ self.direction)  # the closing pads' rise (the hand's `_follow`)
+        return self._toward(readings, TcpPose(self.still.position + down, self.still.rotation), RETURN_SPEED)
 
     def _twist(self, readings: Readings, dt: float) -> np.ndarray:
         """Turn about the approach axis through the grasp centre (the lever's feed-forward

@@ -35,6 +35,16 @@ class ExtensionCheck:
     turn: float
 
 
+def pad_corners(hand: HandInfo, hand_q: np.ndarray, pads: list[int]) -> np.ndarray:
+    """The four corners of each pad's sensing surface with the hand at `hand_q`: (pads, 4, 3), hand frame."""
+    corners = []
+    for surface, k in zip(hand.pad_surfaces(hand_q)[pads], pads):
+        hx, hy = hand.pads[k].half_size
+        square = np.array([[sx * hx, sy * hy, 0.0, 1.0] for sx in (-1, 1) for sy in (-1, 1)])
+        corners.append((square @ surface.T)[:, :3])
+    return np.array(corners)
+
+
 def contact_points(hand: HandInfo, readings: Readings, pads: list[int]) -> np.ndarray:
     """Where each pad touches, hand frame: its centre of pressure, or its centre without an image."""
     points = []
@@ -81,10 +91,8 @@ class ExtensionGauge:
         if not ((self.side > 0).any() and (self.side < 0).any()):
             return np.inf
         near = []
-        for surface, k, side in zip(self.hand.pad_surfaces(hand_q)[self.pads], self.pads, self.side):
-            hx, hy = self.hand.pads[k].half_size
-            corners = np.array([[sx * hx, sy * hy, 0.0, 1.0] for sx in (-1, 1) for sy in (-1, 1)])
-            along = (corners @ surface.T)[:, :2] @ self.line
+        for corners, side in zip(pad_corners(self.hand, hand_q, self.pads), self.side):
+            along = corners[:, :2] @ self.line
             near.append(along.max() if side > 0 else along.min())
         near = np.array(near)
         return float(near[self.side < 0].min() - near[self.side > 0].max())

@@ -12,7 +12,7 @@ import numpy as np
 
 from primitives.base import Context, ControlData, Status
 from primitives.blackboard import CapGrip
-from primitives.hands.extension import ExtensionGauge, contact_points
+from primitives.hands.extension import ExtensionGauge, contact_points, pad_corners
 from primitives.hands.force_grasp import ForceGrasp
 from primitives.hands.grasp_phases import Phase
 from primitives.hands.multi_finger import CLOSING_SPEED
@@ -27,6 +27,9 @@ class UnscrewHand(ForceGrasp):
     def __init__(self, ctx: Context) -> None:
         super().__init__(ctx)
         self.min_distance = float(self.params["finger_min_distance"])
+        reach, width = self.params.get("pad_reach"), self.params.get("cap_width")
+        # (pad_reach, cap_width): where the pads' lower edge stands at the believed width; None: not followed
+        self.believed = None if reach is None or width is None else (float(reach), float(width))
 
     def start(self, readings: Readings) -> None:
         super().start(readings)
@@ -52,6 +55,7 @@ class UnscrewHand(ForceGrasp):
         """Close until the fingers stop or every grasping pad presses the grasp force; then hold."""
         self._square(self.reference)
         self._feel(readings)
+        self._follow(readings)
         pressed = all(readings.pad_force[k] >= self.grasp_force for k in self.pads)
         if self._closed(readings, dt) or pressed:
             self.ctx.blackboard.fingers_stopped = True
@@ -93,8 +97,31 @@ class UnscrewHand(ForceGrasp):
         square to the pinch line: pads that closed at a slant met the cap with the bare
         fingertips below them (the SDH2 on the jam jar, MuJoCo: 10 N on the link beside the
         neck, 2 N on the pad, never the grasp force)."""
+        self.reference = self._squared(closing, self.reference)
+
+    def _squared(self, closing: np.ndarray, posture: np.ndarray) -> np.ndarray:
+        """`posture` with each follower where squaring puts it for the closing DOFs at `closing`."""
+        posture = posture.copy()
         for i, k, sign in self.squaring:
-            self.reference[k] = self.pre[k] - sign * (closing[i] - self.pre[i])
+            posture[k] = self.pre[k] - sign * (closing[i] - self.pre[i])
+        return posture
+
+    def _follow(self, readings: Readings) -> None:
+        """Once the pads have closed nearer than the cap's believed width, ask the arm down
+        by how far their lower edge has risen over where it stands at that width
+        (`pad_reach`, where the arm put it), so that they pinch as deep as the task asked on
+        a narrower cap too: a Barrett's curling fingers closing from 60 mm to a 30 mm cap
+        lift their pads' tips 14 mm, over its top. Only ever further down. The pads as
+        squaring holds them (a follower's servo lag tilted the SDH2's and read as a rise)."""
+        if self.believed is None or not self.fingers:
+            return
+        reach, width = self.believed
+        if self.gauge.gap(readings.hand_q) > width:
+            return
+        posture = self._squared(readings.hand_q, readings.hand_q)
+        edge = float(pad_corners(self.ctx.info.hand, posture, self.pads)[:, :, 2].max())
+        cap = self.ctx.blackboard.cap
+        cap.drop = max(cap.drop, reach - edge)
 
     # -- what the pads say of the cap -----------------------------------------------------
     def _new_pinch(self) -> None:

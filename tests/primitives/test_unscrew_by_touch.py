@@ -22,7 +22,7 @@ from translator import translate
 
 TASK = Path(__file__).resolve().parents[2] / "examples" / "unscrew_by_touch.xml"
 PLACE = tuple(load_task(TASK)[0].object.pose.position[:2])  # the believed jar's: the campaign's bottles stand there
-TIPS_UNDER_TOP = 0.012  # m: where the task puts any hand's fingertips under the touched top (around_cap)
+PADS_UNDER_TOP = 0.012  # m: where the task puts any hand's pads' lower edge (closed to 60 mm) under the touched top
 ARRIVED = 0.003  # m: its guarded move ends this near its target (the moves' tolerance)
 TWISTED = 3.0  # s of the unscrew: the pinch presses 10 N within 1 s, a 30-degree twist takes about 1 s more
 
@@ -71,8 +71,8 @@ def test_a_taller_bottles_cap_is_found_by_touch_and_the_pinch_comes_down_to_it_a
     """The SDH2 in MuJoCo, whose cap is as stiff as its bottle (docs/objects.md): its first
     twist, TWISTED s into the unscrew, turns the cap (the soft cap, main at 769d23f: 0.00002 rad)."""
     tcp, top, cap = _pinch_down("tombatossals", "left", "mujoco", TWISTED)
-    tips = tcp[2, 3] - create("tombatossals", "left").robot.hand_reach("pinch_grasp_preshape")
-    assert 0.0 <= tips - (top - TIPS_UNDER_TOP) <= ARRIVED + 0.001, (tips, top)
+    edge = tcp[2, 3] - create("tombatossals", "left").robot.pinch_reach("pinch_grasp_preshape", "pinch_grasp", 0.06)
+    assert 0.0 <= edge - (top - PADS_UNDER_TOP) <= ARRIVED + 0.001, (edge, top)
     assert np.hypot(*(tcp[:2, 3] - (PLACE[0] + 0.019, PLACE[1]))) < 0.004  # the pinch centre (19 mm off) on the axis
     assert cap.turned > 0.4, cap.turned  # most of one 30-degree twist (0.52 rad)
 
@@ -84,7 +84,7 @@ def test_a_gripper_finds_the_same_cap_with_its_closed_jaws_and_grips_it_by_its_o
     puts any hand's fingertips: the pads on the 17 mm cap, clear of the neck under it."""
     tcp, top, _ = _pinch_down("melfa", None, "pybullet")
     tips = tcp[2, 3] - create("melfa").robot.hand_reach("open")
-    assert abs(tips - (top - TIPS_UNDER_TOP)) < 0.003, (tips, top)
+    assert abs(tips - (top - PADS_UNDER_TOP)) < 0.003, (tips, top)
     assert np.hypot(*(tcp[:2, 3] - PLACE)) < 0.004
 
 
@@ -111,5 +111,5 @@ def test_a_gripper_jaw_landing_on_the_caps_top_moves_across_until_the_jaws_grip_
     top = cap[2, 3] + jar.thread.cap_height / 2
     tips = seen["tcp"][2, 3] - create("melfa").robot.hand_reach("open")
     assert seen["moves"] >= 1 and seen["pinches"] == 1, seen  # moved off the top; gripped at the first pinch
-    assert abs(tips - (top - TIPS_UNDER_TOP)) < ARRIVED, (tips, top)
+    assert abs(tips - (top - PADS_UNDER_TOP)) < ARRIVED, (tips, top)
     assert abs(seen["tcp"][1, 3] - cap[1, 3]) < 0.003, (seen["tcp"][:3, 3], cap[:3, 3])

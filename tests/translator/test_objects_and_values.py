@@ -6,6 +6,8 @@ from __future__ import annotations
 
 import shutil
 
+import numpy as np
+
 from lxml import etree
 
 from atd.model import Event, EventType, ObjectInfo, Pose, State, StateType, Task, Transition, load_task
@@ -147,8 +149,10 @@ def test_the_move_to_vision_s_approach_is_for_where_the_pinch_closes_on_each_han
 def test_the_touch_and_the_pinch_under_it_are_each_hands_own_points():
     """examples/unscrew_by_touch.xml names no hand's offsets: its explore writes where the
     hand's lowest point touched (the SDH2's thumb, 38 mm off and 21 mm under its TCP; a
-    gripper's closed jaws under its TCP), and a move to that point puts the lowest point of
-    its shape there, under its grasp centre, so each TCP stops where its own hand says."""
+    gripper's closed jaws under its TCP), a move to that point puts the lowest point of its
+    shape there, under its grasp centre, and the move the unscrew pinches from puts there
+    the lower edge of its pads closed to the cap's width, so each TCP stops where its own
+    hand says."""
     task, found = load_task(EXAMPLES / "unscrew_by_touch.xml")
     assert found == []
     for factory in every_factory():
@@ -158,12 +162,65 @@ def test_the_touch_and_the_pinch_under_it_are_each_hands_own_points():
         push = robot.hand.push_posture
         assert thumb == tuple(round(v, 6) for v in (*robot.hand.grasp_centres.get(push, (0.0, 0.0))[:2],
                                                      robot.hand_reach(push))), factory.name
-        pinch = states["around_cap"].arm.params["hand_point"]
+        over = states["open_over_cap"].arm.params["hand_point"]
         centre = robot.hand.grasp_centres.get("pinch_grasp_preshape", (0.0, 0.0, 0.0))
-        assert pinch[:2] == tuple(centre[:2]) and pinch[2] == round(robot.hand_reach("pinch_grasp_preshape"), 6)
+        assert over[:2] == tuple(centre[:2]) and over[2] == round(robot.hand_reach("pinch_grasp_preshape"), 6)
+        pinch = states["around_cap"].arm.params["hand_point"]
+        pads = states["unscrew_cap"].hand.params.get("pad_reach", over[2])  # a gripper's jaws end with their pads
+        assert pinch[:2] == over[:2] and pinch[2] == pads, factory.name
         assert states["around_cap"].target_offset == (0.0, 0.0, -0.012)
     sdh2 = translate(task, create("tombatossals", arm="left")).estd.states_by_name
     assert sdh2["find_cap"].arm.params["hand_point"] == (-0.038, 0.0, 0.021)
     melfa = translate(task, create("melfa")).estd.states_by_name
     assert melfa["around_cap"].arm.params["hand_point"] == (0.0, 0.0, 0.0238)  # the jaws' tips, 23.8 mm down
     # a move to a pose (vision's approach) is still for the grasp centre itself: see the test above
+
+
+def _pads_meet(robot, width: float) -> tuple[float, float]:
+    """Where the pinch's two pads first come `width` apart, corner to corner, as the hand
+    closes from its preshape (a finger's second joint flexing back by what its first
+    closes, as the unscrew's hand keeps its pads' slant), scanned in 1.6 mrad steps: the
+    lowest of their corners along the approach, from the TCP (m), and the gap found."""
+    hand = robot.hand
+    start, grasp = (np.asarray(hand.postures[p], float) for p in ("pinch_grasp_preshape", "pinch_grasp"))
+    closing = np.array([dof.closing for dof in hand.dofs], float)
+    moving = (closing != 0) & ~np.isclose(start, grasp)
+    pads = [k for k, pad in enumerate(hand.pads) if any(moving[i] for i in robot.moving_dofs(pad.link))]
+    line = robot.closing_line("pinch_grasp_preshape", "pinch_grasp")
+    way = np.array([np.cos(line), np.sin(line)])
+    opened = np.where(moving, [dof.open for dof in hand.dofs], start)
+    closed = np.where(moving, [dof.closed for dof in hand.dofs], start)
+    sides = None
+    for t in np.linspace(0.0, 1.0, 1500):
+        q = opened + t * (closed - opened)
+        for k in pads:
+            for follower in robot.moving_dofs(hand.pads[k].link):
+                if not moving[follower] and closing[follower]:
+                    lead = next(i for i in robot.moving_dofs(hand.pads[k].link) if moving[i])
+                    q[follower] = start[follower] - closing[follower] * closing[lead] * (q[lead] - start[lead])
+        poses = robot.link_poses(robot.hand_joint_targets(q))
+        to_hand = np.linalg.inv(poses[robot.tcp.link] @ robot.tcp.origin.matrix())
+        corners = [(hand.pads[k].corners @ (to_hand @ poses[hand.pads[k].link] @ hand.pads[k].origin.matrix()).T)[:, :3]
+                   for k in pads]
+        along = [c[:, :2] @ way for c in corners]
+        sides = sides if sides is not None else [np.sign(a.mean() - np.mean([b.mean() for b in along])) for a in along]
+        gap = min(a.min() for a, s in zip(along, sides) if s > 0) - max(a.max() for a, s in zip(along, sides) if s < 0)
+        if gap <= width:
+            return max(float(c[:, 2].max()) for c in corners), gap
+    raise AssertionError("the pads never came that near")
+
+
+def test_every_hand_pinches_a_cap_with_its_pads_at_the_tasks_depth():
+    """The unscrew's pinch 12 mm under the felt cap top is where the pads' lower edge goes,
+    closed to the cap's 60 mm, not the open preshape's lowest point: a Barrett's curling
+    fingers met the cap with their pads' tips 5 mm higher than that point, over a narrow
+    cap's top (2 of 8 caps, docs/unscrew-campaign.md), the SDH2's pads 3 mm higher; a
+    gripper's jaws end with their pads (unchanged). Each hand's pads, closed from the TCP
+    where the translation leaves it, meet the cap within 0.3 mm of 12 mm under its top."""
+    task, _ = load_task(EXAMPLES / "unscrew_by_touch.xml")
+    for robot, arm in (("tombatossals", "right"), ("tombatossals", "left")):
+        factory = create(robot, arm=arm)
+        states = translate(task, factory).estd.states_by_name
+        tcp_depth = -states["around_cap"].target_offset[2] - states["around_cap"].arm.params["hand_point"][2]
+        edge, gap = _pads_meet(factory.robot, 0.06)
+        assert abs(gap - 0.06) < 0.0005 and abs(tcp_depth + edge - 0.012) < 0.0003, (robot, arm, tcp_depth + edge)
