@@ -10,15 +10,11 @@ from __future__ import annotations
 import numpy as np
 
 from atd.model.estd import Controller
-from atd.sim import load_description
-from atd.sim.simrobot import robot_info
 from primitives.base import Context, Status
 from primitives.hands.parallel_jaw import RIM_TIME
 from primitives.registry import build_controller
 from primitives.robot import Readings
-
-MELFA = robot_info(load_description("melfa"))
-DOWN = np.diag([1.0, -1.0, -1.0])  # the hand pointing down, its x (the jaws' width) along the world's x
+from tests.primitives.melfa_jaws import GRASP_HEIGHT, MELFA, Position, closing_correction, still
 
 
 def _images(column: int) -> dict[str, np.ndarray]:
@@ -29,16 +25,10 @@ def _images(column: int) -> dict[str, np.ndarray]:
     return {"tactile_left": left, "tactile_right": right}
 
 
-def _readings(position: tuple[float, float, float] = (0.4, 0.0, 0.02), q: float = 0.03,
-              pads: tuple[float, float] = (0.0, 0.0), column: int = 5) -> Readings:
-    """The Melfa still: its TCP at `position` pointing down, its jaws at `q`, pads pressing
-    `pads` N in `column` (5: at their +x edge)."""
-    tcp = np.eye(4)
-    tcp[:3, :3], tcp[:3, 3] = DOWN, position
-    zeros = np.zeros(6)
-    return Readings(time=0.0, arm_q=zeros, arm_dq=zeros, arm_effort=zeros, hand_q=np.array([q]),
-                    hand_dq=np.zeros(1), hand_effort=np.zeros(1), tcp=tcp, wrench=zeros,
-                    taxels=_images(column) if any(pads) else {}, pad_force=np.array(pads, float), range=None)
+def _readings(position: Position = GRASP_HEIGHT, q: float = 0.03, pads: tuple[float, float] = (0.0, 0.0),
+              column: int = 5) -> Readings:
+    """The Melfa still, its jaws at `q`, pads pressing `pads` N in `column` (5: at their +x edge)."""
+    return still(position, q=q, pads=pads, taxels=_images(column) if any(pads) else None)
 
 
 def _press(pads: tuple[float, float], column: int) -> tuple[Context, object, float | None]:
@@ -80,15 +70,8 @@ def test_the_same_grip_felt_inside_the_pads_is_a_grip() -> None:
 
 
 def test_the_arm_moves_along_the_jaws_to_that_side_and_closes_again_there() -> None:
-    ctx = Context(info=MELFA, params={}, environment=None)
-    arm = build_controller(Controller(name="jaw_grasp_correction", params={}), "arm", ctx)
+    ctx, arm = closing_correction(_readings)
     period = MELFA.control_period
-    arm.start(_readings((0.4, 0.0, 0.08)))
-    for _ in range(20):  # risen clear: the descent starts
-        arm.update(_readings((0.4, 0.0, 0.10)), period)
-    for _ in range(5):  # down at the grasp height without a contact: the jaws close
-        arm.update(_readings(), period)
-    assert ctx.blackboard.contact
     ctx.blackboard.jaws_empty, ctx.blackboard.jaws_rim = True, 0.8  # reopening off a rim, the object at +x
     twists = [arm.update(_readings(), period).arm.twist[:3] for _ in range(40)]
     assert not ctx.blackboard.contact  # the jaws wait open
