@@ -16,7 +16,7 @@ from typing import Literal
 
 import numpy as np
 
-from atd.model.frames import axis_rotation, rotation_rpy, rpy_of
+from atd.model.frames import axis_rotation, rectangle_corners, rotation_rpy, rpy_of
 from atd.model.meshcheck import mesh_points
 
 Vec3 = tuple[float, float, float]
@@ -240,8 +240,7 @@ class FingerPad:
     @property
     def corners(self) -> np.ndarray:
         """The sensing surface's four corners, (4, 4) homogeneous rows, in the surface's frame."""
-        hx, hy = self.half_size
-        return np.array([[sx * hx, sy * hy, 0.0, 1.0] for sx in (-1.0, 1.0) for sy in (-1.0, 1.0)])
+        return rectangle_corners(self.half_size)
 
 
 @dataclass(frozen=True)

@@ -52,3 +52,10 @@ def _cross_matrix(x: float, y: float, z: float) -> tuple[np.ndarray, np.ndarray]
     kk = k @ k
     k.flags.writeable = kk.flags.writeable = False
     return k, kk
+
+
+def rectangle_corners(half_size: tuple[float, float]) -> np.ndarray:
+    """The four corners of a rectangle of `half_size` (x, y) centred in its own frame's z = 0
+    plane, (4, 4) homogeneous rows: a pad's sensing surface, ready for its pose's transform."""
+    hx, hy = half_size
+    return np.array([[sx * hx, sy * hy, 0.0, 1.0] for sx in (-1.0, 1.0) for sy in (-1.0, 1.0)])

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from atd.model.frames import rectangle_corners
 from primitives.robot import HandInfo, Readings
 
 
@@ -39,9 +40,7 @@ def pad_corners(hand: HandInfo, hand_q: np.ndarray, pads: list[int]) -> np.ndarr
     """The four corners of each pad's sensing surface with the hand at `hand_q`: (pads, 4, 3), hand frame."""
     corners = []
     for surface, k in zip(hand.pad_surfaces(hand_q)[pads], pads):
-        hx, hy = hand.pads[k].half_size
-        square = np.array([[sx * hx, sy * hy, 0.0, 1.0] for sx in (-1, 1) for sy in (-1, 1)])
-        corners.append((square @ surface.T)[:, :3])
+        corners.append((rectangle_corners(hand.pads[k].half_size) @ surface.T)[:, :3])
     return np.array(corners)
 
 
