@@ -105,11 +105,11 @@ class _Video:
     """Keeps a frame every `FRAME_PERIOD` of simulated time, labelled with the state the
     executor is in; written when the run ends."""
 
-    def __init__(self, robot: SimRobot, executor: Executor, recorder: Recorder) -> None:
-        self.robot, self.executor, self.recorder = robot, executor, recorder
+    def __init__(self, robot: SimRobot, others: tuple[SimRobot, ...], executor: Executor, recorder: Recorder) -> None:
+        self.robot, self.others, self.executor, self.recorder = robot, others, executor, recorder
 
     def __call__(self, sim_time: float) -> None:
-        self.recorder(self.robot, self.executor.machine.innermost().visit.path)
+        self.recorder(self.robot, self.executor.machine.innermost().visit.path, self.others)
 
     def write(self) -> str:
         """What became of the video, for the user."""
@@ -167,9 +167,6 @@ class Run:
         An ESTD whose states run on several arms (a task that names roles) gets them all in one
         world; `robot` is then the truth of the ESTD's own arm."""
         arms = (factory.arm.name,) + tuple(a for a in estd.arms if a != factory.arm.name)
-        if len(arms) > 1 and video is not None:
-            raise RunError(f"--video films one arm's run; this task uses {len(arms)} arms ({', '.join(arms)}): "
-                           "run it without --video, or --record it")
         if video is not None:
             try:
                 check_video_path(video)
@@ -180,12 +177,13 @@ class Run:
             scene = belief_scene(estd)
         if viewer:
             _Viewer.check_display()
+        beliefs = tuple(factory.on_arm(a).robot for a in arms)
+        truths = (robot or factory.robot,) + beliefs[1:]  # a campaign perturbs the ESTD's own arm only
         filming = Recorder(video, video_size, camera) if video is not None else None
         if filming:  # it builds its copy of the robot while this process builds the run
-            filming.start(robot or factory.robot, scene, engine)
-        beliefs = tuple(factory.on_arm(a).robot for a in arms)
+            filming.start(truths, scene, engine)
         try:
-            robots = make_arms((robot or factory.robot,) + beliefs[1:], scene, engine, seed, window=viewer,
+            robots = make_arms(truths, scene, engine, seed, window=viewer,
                                beliefs=beliefs)
         except SceneError as exc:
             if filming:
@@ -213,7 +211,7 @@ class Run:
         self.trace_path = trace_path
         self.executor = Executor(estd, self.robot, context, self.trace, budget=budget,
                                  others={name: (r, known[name]) for name, r in others.items()})
-        self.video = _Video(self.robot, self.executor, filming) if filming else None
+        self.video = _Video(self.robot, tuple(others.values()), self.executor, filming) if filming else None
         self.viewer = _Viewer(self.robot) if viewer else None
         self.recorder = Recording(record, self.robot, self.executor, self.trace, tuple(self.robot.recorded_poses()), record_rate,
                                  _run_info(estd, engine, seed), _attachments(estd)) if record is not None else None

@@ -37,8 +37,9 @@ PIPE_SIZE = 1 << 20  # bytes: thousands of frames' states, while the process sta
 
 
 class Recorder:
-    """Called every control tick with the robot and the state it is in; keeps a frame every
-    `FRAME_PERIOD` of simulated time, from `camera`, at `size` (width, height)."""
+    """Called every control tick with the robot (and the robot's other arms a task moves) and
+    the state it is in; keeps a frame every `FRAME_PERIOD` of simulated time, from `camera`,
+    at `size` (width, height)."""
 
     def __init__(self, path: Path, size: tuple[int, int] = DEFAULT_SIZE, camera: str = WORKSPACE_CAMERA) -> None:
         self.path, self.size, self.camera = path, size, camera
@@ -46,14 +47,15 @@ class Recorder:
         self._process: subprocess.Popen | None = None
         self._errors: BinaryIO | None = None  # what the process says on stderr, for when it ends early
 
-    def __call__(self, robot: SimRobot, state: str = "") -> None:
+    def __call__(self, robot: SimRobot, state: str = "", others: tuple[SimRobot, ...] = ()) -> None:
         now = robot.read().time
         if now < self._next:
             return
         self._next = now + FRAME_PERIOD
+        arms = (robot, *others)
         if self._process is None:
-            self.start(robot.description, robot.scene, robot.engine)
-        self._send((now, state, robot.scene_state()))
+            self.start(tuple(a.description for a in arms), robot.scene, robot.engine)
+        self._send((now, state, tuple(a.scene_state() for a in arms)))
 
     def save(self) -> str:
         """Have the video encoded, and write it; what became of it, for the user. OutputError
@@ -82,9 +84,10 @@ class Recorder:
             self._process.kill()
             self._reap()
 
-    def start(self, description: RobotDescription, scene: Scene, engine: str) -> None:
-        """Start the rendering process on this robot and scene now, before the first frame
-        (by default it starts at the first): it builds its copy while the run builds its own."""
+    def start(self, arms: tuple[RobotDescription, ...], scene: Scene, engine: str) -> None:
+        """Start the rendering process on this robot's arms (as `make_arms` takes them) and
+        scene now, before the first frame (by default it starts at the first): it builds its
+        copy while the run builds its own."""
         self._errors = tempfile.TemporaryFile()
         self._process = subprocess.Popen(
             [sys.executable, "-m", "atd.sim.video_recorder"], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
@@ -94,7 +97,7 @@ class Recorder:
             fcntl.fcntl(self._process.stdin.fileno(), fcntl.F_SETPIPE_SZ, PIPE_SIZE)
         except (AttributeError, OSError):
             pass  # not Linux, or a lower limit set for this system: the run may wait for the process to start
-        self._send((description, scene, engine, self.path, self.size, self.camera))
+        self._send((arms, scene, engine, self.path, self.size, self.camera))
 
     def _send(self, item: object) -> None:
         if self._process is None or self._process.stdin.closed:
@@ -127,24 +130,25 @@ def film(feed: BinaryIO, answer: BinaryIO) -> None:
     it, then the answer: ("video", the file's bytes, frames), ("said", why there is no
     video) or ("refused", errno, message: the encoder's temporary file could not be
     written). Nothing when the feed ends without the word "end"."""
-    from atd.sim import make_robot
+    from atd.sim import make_arms
 
     try:
-        description, scene, engine, path, size, camera = pickle.load(feed)
+        descriptions, scene, engine, path, size, camera = pickle.load(feed)
     except EOFError:
         return
     frames = Frames(path, size, camera)
     try:
-        robot = make_robot(description, dataclasses.replace(scene, settle=False), engine)  # posed, never stepped
+        arms = make_arms(descriptions, dataclasses.replace(scene, settle=False), engine)  # posed, never stepped
         failed: str | None = None
     except Exception as exc:  # noqa: BLE001 - said, not raised: the run it films goes on
         failed = f"{type(exc).__name__}: {exc}"
     while (item := _next(feed)) is not _END:
-        sim_time, state, scene_state = item
+        sim_time, state, scene_states = item
         if failed is None:
             try:
-                robot.set_scene_state(scene_state)
-                frames.add(robot.render(*size, camera=camera), sim_time, state)
+                for arm, scene_state in zip(arms, scene_states):
+                    arm.set_scene_state(scene_state)
+                frames.add(arms[0].render(*size, camera=camera), sim_time, state)
             except Exception as exc:  # noqa: BLE001 - no OpenGL context, no display: said, not raised
                 failed = f"{type(exc).__name__}: {exc}"
     if failed or not frames.frames:
