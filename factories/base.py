@@ -567,6 +567,8 @@ class Factory(ABC):
         self.check_object_reach(context, state, *self.grasp_postures(state))
         arm = self.controller("jaw_grasp_correction", wrist_to_tcp=round(self._wrist_to_tcp, 6),
                               fingertip_reach=round(self.robot.hand_reach(HandShape.OPEN.value), 6),
+                              fingertip_extent=tuple(round(e, 6) for e in
+                                                     self.robot.hand_extent(HandShape.OPEN.value, SWEEPING_TIP)),
                               hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)))
         return NodeMapping("grasp", arm, self.controller("close_until_force"), notes)
 

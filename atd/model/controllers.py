@@ -288,6 +288,10 @@ _ARM_CONTROLLERS = (
                                   "axis, to tell the support under them from the object (the robot's own "
                                   "geometry)", 0.02, unit="m"),
             "max_shift": _p(NUM, "largest move across towards a contact under one jaw (ours)", 0.04, unit="m"),
+            "fingertip_extent": _p(VEC, "how far the open fingertips reach sideways from the TCP's axis, along the "
+                                   "hand's x and along its y: a hand kept tilted lowers one fingertip's corner that "
+                                   "much nearer the support (the robot's own geometry; the Melfa's WRT-102)",
+                                   (0.015, 0.044), unit="m", length=2),
             "jaw_half_width": _p(NUM, "half a jaw's width along the jaws' width: a contact under a jaw lies "
                                  "within it, so a move across goes no further that way (the robot's own "
                                  "geometry)", 0.015, unit="m"),

@@ -103,6 +103,7 @@ class JawGraspCorrection(Controller):
         self.above = float(p["above_object"])
         self.wrist_to_tcp = float(p["wrist_to_tcp"])
         self.reach = float(p["fingertip_reach"])
+        self.tip_extent = np.asarray(p["fingertip_extent"], float)  # m, the open fingertips' (x, y) reach sideways
         self.back_off = float(p["back_off"])
         self.speed = float(p["correction_velocity"])
         self.descent = float(p["descent_velocity"])
@@ -133,6 +134,11 @@ class JawGraspCorrection(Controller):
         self.rotation = readings.tcp[:3, :3].copy()
         hand_z = readings.tcp[:3, 2]
         self.vertical = float(-hand_z[2]) >= np.cos(FROM_ABOVE)
+        # m the open fingertips' lowest corner lies below the TCP, the hand turned as it is kept:
+        # tilted 16 degrees, one corner of the Melfa's fingers stood 1.2 cm lower than their middle
+        # and struck the table at the grasp height (docs/robust-grasp.md)
+        down = self.rotation[2]
+        self.tip_depth = float(-down[2] * self.reach + np.abs(down[:2]) @ self.tip_extent)
         # the way the hand backs off: up, or back along the approach of a grasp from the side
         self.back = UP if self.vertical else -hand_z / norm(hand_z)
         # the search's way: the hand's x, or level across a grasp from the side (its x would
@@ -196,7 +202,7 @@ class JawGraspCorrection(Controller):
             centre = (self.seen_top + self._support()) / 2.0
         else:
             centre = -np.inf
-        return max(centre, self._support() + self.reach + FLOOR_CLEARANCE) if self.vertical else centre
+        return max(centre, self._support() + self.tip_depth + FLOOR_CLEARANCE) if self.vertical else centre
 
     def _support(self) -> float:
         """Height of the support under the hand: the floor of a known container it is over
@@ -315,7 +321,7 @@ class JawGraspCorrection(Controller):
             # the object). Only once: a contact that sent the jaws to close on nothing was
             # no object's top, and following each next one like it walked the hand away from
             # the object, 3.7 cm a time (Melfa, MuJoCo, the preset's wood trial 1).
-            on_support = self.vertical and float(readings.tcp[2, 3]) - self.reach - self._support() < SUPPORT_BAND
+            on_support = self.vertical and float(readings.tcp[2, 3]) - self.tip_depth - self._support() < SUPPORT_BAND
             self.hint = None if not off_centre or on_support or self.hinted else \
                 readings.tcp[:3, 3] + readings.tcp[:3, :3] @ clamp_norm(across, self.max_shift)
             if self.seen_top is not None and self.vertical and \
