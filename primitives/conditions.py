@@ -49,17 +49,25 @@ class StatusIs(Condition):
         super().__init__(ctx, sensors)
         self.which, self.status = which, status
         self.debounce = Debounce(float(self.params.get("for_time", 0.0)))
+        self.seen: tuple[StateView, float] | None = None  # the view and the time held at the latest verdict that held
 
     def start(self, readings: Readings) -> None:
         self.debounce.reset()
 
     def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
-        actual = getattr(state, self.which)
-        if not self.debounce(actual is self.status, dt):
+        if not self.debounce(getattr(state, self.which) is self.status, dt):
             return False
-        self.evidence = {self.which: actual.value, "reason": state.reasons.get(self.which, ""),
-                         **state.counts.get(self.which, {}), "held_for": self.debounce.held}
+        self.seen = (state, self.debounce.held)
         return True
+
+    @property
+    def evidence(self) -> dict[str, Any]:
+        """Worked out when asked (the tick an event fires), not on every tick the status holds."""
+        if self.seen is None:
+            return {}
+        state, held = self.seen
+        return {self.which: self.status.value, "reason": state.reasons.get(self.which, ""),
+                **state.counts.get(self.which, {}), "held_for": held}
 
 
 class SubtaskEndedIn(Condition):
