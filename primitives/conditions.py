@@ -49,17 +49,25 @@ class StatusIs(Condition):
         super().__init__(ctx, sensors)
         self.which, self.status = which, status
         self.debounce = Debounce(float(self.params.get("for_time", 0.0)))
+        self.seen: tuple[StateView, float] | None = None  # the view and the time held at the latest verdict that held
 
     def start(self, readings: Readings) -> None:
         self.debounce.reset()
 
     def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
-        actual = getattr(state, self.which)
-        if not self.debounce(actual is self.status, dt):
+        if not self.debounce(getattr(state, self.which) is self.status, dt):
             return False
-        self.evidence = {self.which: actual.value, "reason": state.reasons.get(self.which, ""),
-                         **state.counts.get(self.which, {}), "held_for": self.debounce.held}
+        self.seen = (state, self.debounce.held)
         return True
+
+    @property
+    def evidence(self) -> dict[str, Any]:
+        """Worked out when asked (the tick an event fires), not on every tick the status holds."""
+        if self.seen is None:
+            return {}
+        state, held = self.seen
+        return {self.which: self.status.value, "reason": state.reasons.get(self.which, ""),
+                **state.counts.get(self.which, {}), "held_for": held}
 
 
 class SubtaskEndedIn(Condition):
@@ -135,7 +143,7 @@ class SimulationUnstable(Condition):
 
     def __init__(self, ctx: Context, sensors: tuple[str, ...] = ()) -> None:
         super().__init__(ctx, sensors)
-        self.max_speed = RUNAWAY_SPEED * ctx.info.arm_velocity_limit
+        self.max_speed = (RUNAWAY_SPEED * ctx.info.arm_velocity_limit).tolist()
 
     def start(self, readings: Readings) -> None:
         self.last_q = readings.arm_q
@@ -148,10 +156,12 @@ class SimulationUnstable(Condition):
             self.evidence = {name: p for name, p in zip(names, parts) if not np.isfinite(p).all()}
             self.evidence["non_finite"] = ", ".join(self.evidence)
             return True
-        jump, self.last_q = np.abs(r.arm_q - self.last_q), r.arm_q
-        if float((np.maximum(np.abs(r.arm_dq), jump / dt) - self.max_speed).max()) > 0.0:
-            self.evidence = {"runaway_joint_speed": r.arm_dq, "joint_jump": jump}
-            return True
+        last, self.last_q = self.last_q, r.arm_q
+        # Joint by joint in plain floats (all finite here): cheaper than numpy's calls on a few joints.
+        for q, before, speed, limit in zip(r.arm_q.tolist(), last.tolist(), r.arm_dq.tolist(), self.max_speed):
+            if abs(speed) - limit > 0.0 or abs(q - before) / dt - limit > 0.0:
+                self.evidence = {"runaway_joint_speed": r.arm_dq, "joint_jump": np.abs(r.arm_q - last)}
+                return True
         force, where = r.wrench[:3], r.tcp[:3, 3]
         if float(force.dot(force)) > RUNAWAY_FORCE ** 2 or float(where.dot(where)) > RUNAWAY_DISTANCE ** 2:
             self.evidence = {"runaway_wrench": r.wrench, "tcp": where}

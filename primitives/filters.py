@@ -102,10 +102,8 @@ class ContactWrench:
         raw = readings.wrench
         if self._settling:
             self._settle(readings, dt)
-        contact = np.empty(6)
-        contact[:3] = raw[:3] - readings.tcp[:3, :3].T.dot(self._load_world)  # .dot: half the cost of @ here
-        contact[3:] = raw[3:] - self._torque0
-        self.value = self._filter(contact, dt)
+        force = raw[:3] - readings.tcp[:3, :3].T.dot(self._load_world)  # .dot: half the cost of @ here
+        self.value = self._filter(np.concatenate((force, raw[3:] - self._torque0)), dt)
         return self.value
 
     def _settle(self, readings: Readings, dt: float) -> None:
@@ -124,8 +122,8 @@ class ContactWrench:
     @property
     def force(self) -> float:
         """||F|| of the contact force, N."""
-        f = self.value
-        return math.sqrt(f[0] * f[0] + f[1] * f[1] + f[2] * f[2])
+        x, y, z = self.value[:3].tolist()  # plain floats: numpy's scalars cost more per operation
+        return math.sqrt(x * x + y * y + z * z)
 
 
 def contact_across(wrench: np.ndarray, depth: float) -> np.ndarray | None:

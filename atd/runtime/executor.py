@@ -338,9 +338,12 @@ class Executor:
             command = arbitrate([out for on, out in outputs if on == name], hand_dof)
             if name is None:
                 self.command = command
-            dq = still if command.joint_velocity is None else command.joint_velocity
+            dq = command.joint_velocity
             if command.twist is not None and np.count_nonzero(command.twist):  # a third of .any()'s cost, every tick
-                dq = dq + robot.twist_velocities(command.twist)
+                twisted = robot.twist_velocities(command.twist)
+                dq = twisted if dq is None else dq + twisted
+            elif dq is None:
+                dq = still
             ctx.memory[ARM_TWIST] = command.twist
             robot.command_arm_velocity(dq)
             if command.hand_values is not None:

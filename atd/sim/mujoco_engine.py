@@ -112,7 +112,7 @@ class MujocoRobot(SimRobot):
         mujoco.mj_forward(m, self.data)
         self._bind(m, self.data, "", 0)
         self._window = self._open_window() if window else None
-        self._apply_arm(self._q_ref, self._dq_cmd)
+        self._apply_arm(self._q_ref, self._dq_ref)
 
     def arm(self, description: RobotDescription, seed: int, belief: RobotDescription | None = None) -> MujocoRobot:
         """The robot interface of another arm in this world (one of `others`, found by its
@@ -122,7 +122,7 @@ class MujocoRobot(SimRobot):
         before = sum(len(p.description.arm_joints) + len(p.hand_joints) for p in (self, *self._partners))
         other._bind(self.model, self.data, arm_prefix(description.arm), before)
         other._window = None
-        other._apply_arm(other._q_ref, other._dq_cmd)
+        other._apply_arm(other._q_ref, other._dq_ref)
         self._partners.append(other)
         return other
 

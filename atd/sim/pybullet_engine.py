@@ -128,7 +128,7 @@ class PybulletRobot(SimRobot):
         self._unbound = bodies[1:]  # the bodies of `others`, in order, until `arm` binds them
         self._bind(bodies[0])
         self._build_scene(scene)
-        self._apply_arm(self._q_ref, self._dq_cmd)
+        self._apply_arm(self._q_ref, self._dq_ref)
         self._hold_hand()
 
     def arm(self, description: RobotDescription, seed: int, belief: RobotDescription | None = None) -> PybulletRobot:
@@ -139,7 +139,7 @@ class PybulletRobot(SimRobot):
         other.client, other._owns_client = self.client, False
         other._bind(self._unbound.pop(0))
         other._objects, other.object, other._threads = self._objects, self.object, self._threads
-        other._apply_arm(other._q_ref, other._dq_cmd)
+        other._apply_arm(other._q_ref, other._dq_ref)
         other._hold_hand()
         self._partners.append(other)
         return other

@@ -8,6 +8,7 @@ wrist wrench in the interface's convention, contacts on pads and the IR range.
 
 from __future__ import annotations
 
+import math
 from abc import abstractmethod
 from dataclasses import dataclass, replace
 from typing import Callable, Mapping, Sequence
@@ -36,6 +37,30 @@ SETTLED_SPIN = 0.1  # rad/s: 1.5 mm/s at the rim of a 3 cm object
 SETTLED_FOR = 0.2  # s
 SETTLE_LIMIT = 5.0  # s of simulated time
 _MODE_CODE = {HandMode.POSITION: POSITION, HandMode.VELOCITY: VELOCITY, HandMode.FORCE: FORCE}
+
+
+def servo_reference(q: float, q_ref: float, dq_ref: float, dq_cmd: float, lower: float, upper: float,
+                    limit: float, accel: float, two_accel: float, period: float) -> tuple[float, float]:
+    """One arm joint's reference speed and position for the coming period, from the joint's
+    position `q`, the last reference and its speed, and the commanded speed: the command
+    within the speed `limit`, the acceleration ramp (`accel` per period) and slow enough to
+    stop at a joint limit (`two_accel`: twice the acceleration), the reference within the
+    joint limits and within REFERENCE_LEASH of the joint."""
+    # Comparisons rather than min() and max(), whose calls cost more than this arithmetic; a
+    # NaN command still comes out NaN, as it would from numpy.
+    dq_cmd = -limit if -limit > dq_cmd else dq_cmd
+    dq_cmd = limit if limit < dq_cmd else dq_cmd
+    braking = math.sqrt(two_accel * (q_ref - lower if q_ref > lower else 0.0))
+    slowest = dq_ref - accel if dq_ref - accel > -braking else -braking
+    braking = math.sqrt(two_accel * (upper - q_ref if upper > q_ref else 0.0))
+    fastest = dq_ref + accel if dq_ref + accel < braking else braking
+    dq = slowest if slowest > dq_cmd else dq_cmd
+    dq = fastest if fastest < dq else dq
+    low = lower if lower > q - REFERENCE_LEASH else q - REFERENCE_LEASH
+    high = upper if upper < q + REFERENCE_LEASH else q + REFERENCE_LEASH
+    q_ref = q_ref + dq * period
+    q_ref = low if low > q_ref else q_ref
+    return dq, high if high < q_ref else q_ref
 
 
 @dataclass(frozen=True)
@@ -120,7 +145,7 @@ class SimRobot(Robot):
 
         self._time = 0.0
         self._q_ref = self.info.home.copy()
-        self._dq_cmd = np.zeros(n_arm)
+        self._dq_cmd = [0.0] * n_arm  # as commanded, within the speed limits once `servo_reference` takes it
         self._dq_ref = np.zeros(n_arm)  # the command after acceleration and limit shaping
         self._hand_modes = np.zeros(len(d.hand.dofs), int)
         self._hand_given: HandMode | tuple[HandMode, ...] | None = None  # the modes as last commanded
@@ -132,10 +157,10 @@ class SimRobot(Robot):
         self._hand_target = self.info.hand.open.copy()  # position reference, also for velocity mode
         self._hand_changes = True  # the hand's joint commands need working out on the next step
         limit = self.info.arm_velocity_limit
-        self._lowest_speed = -limit
-        self._accel_step = limit / RAMP_TIME * d.control_period
-        self._two_accel = 2 * limit / RAMP_TIME
-        self._zero, self._period, self._leash = np.zeros(n_arm), np.full(n_arm, d.control_period), np.full(n_arm, REFERENCE_LEASH)
+        self._zero = np.zeros(n_arm)
+        # Per joint, what `servo_reference` takes beside the joint's state, as plain floats.
+        self._ramps = (self.info.arm_lower.tolist(), self.info.arm_upper.tolist(), limit.tolist(),
+                       (limit / RAMP_TIME * d.control_period).tolist(), (2 * limit / RAMP_TIME).tolist())
         self._last: Readings | None = None
         self._partners: list[SimRobot] = []  # other arms in this world, which `step` moves too
 
@@ -146,7 +171,7 @@ class SimRobot(Robot):
         return self._last
 
     def command_arm_velocity(self, dq: np.ndarray) -> None:
-        self._dq_cmd = np.minimum(np.maximum(dq, self._lowest_speed), self.info.arm_velocity_limit)
+        self._dq_cmd = np.asarray(dq, float).tolist()
 
     def command_hand(self, values: Sequence[float] | np.ndarray, modes: HandMode | Sequence[HandMode]) -> None:
         values = np.asarray(values, float)
@@ -195,18 +220,17 @@ class SimRobot(Robot):
 
     def _command(self) -> None:
         """The arm's servo references for the coming period, and the hand's joint commands."""
-        q = self.read().arm_q
-        lower, upper, q_ref, dq_ref = self.info.arm_lower, self.info.arm_upper, self._q_ref, self._dq_ref
-        # This tick's speed: within the acceleration ramp, and slow enough to stop at a limit.
-        # (Arrays, not Python floats, for the constants: numpy takes them faster.)
-        zero, accel, two_accel, leash = self._zero, self._accel_step, self._two_accel, self._leash
-        slowest = np.maximum(dq_ref - accel, -np.sqrt(two_accel * np.maximum(q_ref - lower, zero)))
-        fastest = np.minimum(dq_ref + accel, np.sqrt(two_accel * np.maximum(upper - q_ref, zero)))
-        dq = np.minimum(np.maximum(self._dq_cmd, slowest), fastest)
-        q_ref = np.maximum(q_ref + dq * self._period, np.maximum(lower, q - leash))
-        self._q_ref = np.minimum(q_ref, np.minimum(upper, q + leash))
-        self._dq_ref = dq
-        self._apply_arm(self._q_ref, dq)
+        speeds, references = [], []
+        period = self.info.control_period
+        # Joint by joint in plain floats: a handful of numbers, where each numpy call on them
+        # cost more than all its arithmetic (the same IEEE operations, in the same order).
+        for joint in zip(self.read().arm_q.tolist(), self._q_ref.tolist(), self._dq_ref.tolist(),
+                         self._dq_cmd, *self._ramps):
+            dq, q_ref = servo_reference(*joint, period)
+            speeds.append(dq)
+            references.append(q_ref)
+        self._q_ref, self._dq_ref = np.array(references), np.array(speeds)
+        self._apply_arm(self._q_ref, self._dq_ref)
         if self._hand_changes:
             self._update_hand()
 
@@ -243,7 +267,7 @@ class SimRobot(Robot):
         q = np.asarray(q, float)
         self._set_joints(dict(zip(self.info.arm_joints, q)))
         self._q_ref = q.copy()
-        self._dq_cmd = np.zeros_like(q)
+        self._dq_cmd = [0.0] * len(q)
         self._dq_ref = np.zeros_like(q)
         self._apply_arm(self._q_ref, self._dq_ref)
         self._last = self._sample()

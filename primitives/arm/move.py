@@ -113,6 +113,7 @@ class CartesianMove(Controller):
         self.detour = ObstacleDetour(p.get("obstacles", ()), p.get("obstacle_sizes", ()))
         self.stall = Stall()
         self.rest: np.ndarray | None = None  # where to stay once finished; None = stand still
+        self._leg_line: tuple | None = None  # the current leg's ends and what `_leg` works out from them
 
     def start(self, readings: Readings) -> None:
         self.contact.start(readings)
@@ -174,7 +175,7 @@ class CartesianMove(Controller):
             goal = self.points[self.leg]
             distance = norm(goal - position)
 
-        self.sense(readings, goal - self.leg_start, dt)
+        self.sense(readings, self._leg(goal)[0], dt)
         w, angle = orientation_twist(self.rotation, readings.tcp[:3, :3])
         if self.leg == len(self.points) - 1 and distance < self.tolerance and angle < ORIENTATION_TOLERANCE:
             self.rest = goal
@@ -226,15 +227,23 @@ class CartesianMove(Controller):
 
     def _line(self, position: np.ndarray, goal: np.ndarray) -> np.ndarray:
         """Along the straight line from the leg's start to its goal, pulled back onto it."""
-        leg = goal - self.leg_start
-        length = norm(leg)
-        if length < 1e-6:
+        _, length, u = self._leg(goal)
+        if u is None:
             return clamp_norm(GAIN * (goal - position), self.max_speed)
-        u = leg / length
         s = float((position - self.leg_start).dot(u))
         on_line = self.leg_start + min(max(s, 0.0), length) * u
         along = max(-self.max_speed, min(self.max_speed, GAIN * (length - s)))
         return clamp_norm(u * along + GAIN * (on_line - position), self.max_speed)
+
+    def _leg(self, goal: np.ndarray) -> tuple[np.ndarray, float, np.ndarray | None]:
+        """The leg from its start to `goal`: its vector, its length and its direction (None on a
+        leg of no length), worked out once a leg rather than every tick."""
+        line = self._leg_line
+        if line is None or line[0] is not self.leg_start or line[1] is not goal:
+            leg = goal - self.leg_start
+            length = norm(leg)
+            line = self._leg_line = (self.leg_start, goal, leg, length, leg / length if length >= 1e-6 else None)
+        return line[2:]
 
     def _stay(self, readings: Readings) -> ControlData:
         if self.rest is None:
