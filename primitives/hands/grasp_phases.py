@@ -40,7 +40,8 @@ class Phase(Enum):
 class Closing:
     """What one close of the robust grasp has felt on its way, for judging how it ended."""
 
-    brushed: set[str] = field(default_factory=set)  # fingers whose pads touched something above the table on the way
+    brushed: set[str] = field(default_factory=set)  # fingers whose pads touched something on the way
+    felt_by: set[str] = field(default_factory=set)  # fingers whose pads felt something above the table
     felt_at: float = 0.0  # m across the pinch line where the pads last felt the object
     pinched: float = 0.0  # s every grasping pad has pressed with PINCHED times the grasp force
     looked: float = -np.inf  # s: when the pads' gap was last looked at

@@ -76,11 +76,9 @@ class RobustGraspHand(ForceGrasp):
 
     def _close(self, readings: Readings, dt: float) -> None:
         touching = self._touching(readings)
-        if touching:
-            points, above = self._above_support(readings, touching)
-            self.closing.brushed.update(f for f, up in zip(touching, above) if up)
-            if self.pinch and above.any():
-                self._feel_across(readings, touching, points, above)
+        self.closing.brushed.update(touching)
+        if touching and self.pinch:
+            self._feel_across(readings, touching)
         if self._closed(readings, dt) or self._pinching(readings, dt) or self._passed(readings):
             self.corrections.jammed = self._jammed(readings)
             self.ctx.blackboard.fingers_stopped = True
@@ -202,33 +200,30 @@ class RobustGraspHand(ForceGrasp):
             return False
         return PASSED * self.ctx.object.least_width <= self.gauge.gap(q) <= self.ctx.object.widest + JAM_MARGIN
 
-    def _feel_across(self, readings: Readings, touching: list[str], points: np.ndarray, above: np.ndarray) -> None:
-        """Where the touching pads feel something above the table (`above`, touching at
-        `points`), across the pinch line (m, hand frame, from the line through the fingers):
-        each pad's centre of pressure, weighted by its force."""
-        weights = readings.pad_force[[self.pad_of[f] for f in touching]] * above
+    def _feel_across(self, readings: Readings, touching: list[str]) -> None:
+        """Where the touching pads feel something above the table, across the pinch line
+        (m, hand frame, from the line through the fingers): each pad's centre of pressure,
+        weighted by its force. Fingertips on the table say nothing of the object."""
+        pads = [self.pad_of[f] for f in touching]
+        points = contact_points(self.ctx.info.hand, readings, pads)
+        heights = points @ readings.tcp[2, :3] + readings.tcp[2, 3]  # world z
+        above = heights >= SUPPORT_BAND
+        if not above.any():
+            return
+        self.closing.felt_by.update(f for f, up in zip(touching, above) if up)
+        weights = readings.pad_force[pads] * above
         across = (points[:, :2] - self.base[self.fingers[0]]) @ self.search.normal
         self.closing.felt_at = float(weights @ across) / float(weights.sum())
-
-    def _above_support(self, readings: Readings, touching: list[str]) -> tuple[np.ndarray, np.ndarray]:
-        """Where the touching pads touch (hand frame), and which of them touch above the
-        table's SUPPORT_BAND: a fingertip pressed on the table says nothing of the object."""
-        points = contact_points(self.ctx.info.hand, readings, [self.pad_of[f] for f in touching])
-        heights = points @ readings.tcp[2, :3] + readings.tcp[2, 3]  # world z
-        return points, heights >= SUPPORT_BAND
 
     # -- judging a close ----------------------------------------------------------------
     def _judge(self, readings: Readings) -> None:
         """Every grasping finger on the object: hold it. Otherwise correct, towards the
         fingers that touch it; when none does, towards those that touched something on the
         way and lost it (the object pushed aside by the finger that met it first), as long
-        as some did not: that side is where the object went. A pad that touches only the
-        table (below SUPPORT_BAND) touches neither."""
+        as some did not: that side is where the object went."""
         search = self.search
         heading, search.heading = search.heading, 0.0
         touching = self._touching(readings)
-        if touching:
-            touching = [f for f, up in zip(touching, self._above_support(readings, touching)[1]) if up]
         if not touching and set(self.fingers) - self.closing.brushed:
             touching = [f for f in self.fingers if f in self.closing.brushed]
         lost = [f for f in self.fingers if f not in touching]
@@ -282,7 +277,7 @@ class RobustGraspHand(ForceGrasp):
         """Both pinching fingers felt the object on the way, then closed on nothing, where
         they last felt it off the pinch line: they pushed it out sideways."""
         closing = self.closing
-        return self._corrects_pinch() and set(self.fingers) <= closing.brushed and abs(closing.felt_at) >= FELT_OFF_LINE
+        return self._corrects_pinch() and set(self.fingers) <= closing.felt_by and abs(closing.felt_at) >= FELT_OFF_LINE
 
     def _after_pushed(self) -> np.ndarray:
         """The shift (hand frame) that closes next with the pinch line through the pushed
