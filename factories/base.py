@@ -214,6 +214,7 @@ class Factory(ABC):
     arms: ClassVar[tuple[Arm, ...]]  # the first is the default
     primitives: ClassVar[frozenset[StateType]]
     node_table: ClassVar[tuple[MappingRow, ...]]  # thesis Tables 7.3 / 7.4 columns
+    least_contact: ClassVar[float] = 0.0  # N an explore's contact force is raised to: what the wrist tells from its own jolts
 
     def __init__(self, arm: str | None = None, config: Path | None = None, grasp: str = "robust") -> None:
         if grasp not in GRASPS:
@@ -297,7 +298,8 @@ class Factory(ABC):
         given this robot's own geometry; refused where the robot cannot do what they need."""
         if state.type is StateType.EXPLORE:
             touching = self.acting_point(state, touching=True)
-            arm = self.controller("explore", direction=state.direction, force_threshold=state.contact_force,
+            force = None if state.contact_force is None else max(state.contact_force, self.least_contact)
+            arm = self.controller("explore", direction=state.direction, force_threshold=force,
                                   max_distance=state.max_distance, writes=written(state, ValueKind.POINT),
                                   hand_point=tuple(round(v, 6) for v in touching) if any(touching) else None)
             return NodeMapping("explore", arm, *self.hand_for_motion(state))

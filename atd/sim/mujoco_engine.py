@@ -77,8 +77,10 @@ def _hand_friction(spec: mujoco.MjSpec, d: RobotDescription, prefix: str) -> Non
     """The hand's surfaces grip an object `d.hand.surface_friction` times its own friction,
     as Bullet's product makes them: an explicit contact pair per hand geom and object geom
     (the objects are the world's free bodies) replaces MuJoCo's dynamic contact, whose
-    friction is the object's alone (priority 1). Against the table the hand's own friction
-    is taken (MuJoCo's maximum of the two, as Bullet's product with the table's 1)."""
+    friction is the object's alone (priority 1). The pair keeps the object's solref and solimp,
+    as its priority gives a dynamic contact: a screw cap's stiffness (`atd.sim.models.cap_timeconst`)
+    too. Against the table the hand's own friction is taken (MuJoCo's maximum of the two, as
+    Bullet's product with the table's 1)."""
     factor = d.hand.surface_friction
     if factor == 1.0:
         return
@@ -90,7 +92,7 @@ def _hand_friction(spec: mujoco.MjSpec, d: RobotDescription, prefix: str) -> Non
         for o in objects:
             slide, spin, roll = o.friction
             spec.add_pair(geomname1=g.name, geomname2=o.name, condim=max(g.condim, o.condim),
-                          friction=[factor * slide, factor * slide, spin, roll, roll])
+                          friction=[factor * slide, factor * slide, spin, roll, roll], solref=o.solref, solimp=o.solimp)
 
 
 class MujocoRobot(SimRobot):

@@ -16,6 +16,7 @@ from atd.model import load_task
 from atd.model.estd_xml import read_estd
 from factories.description import RobotDescription
 from factories.registry import create
+from tests.conftest import EXAMPLES
 from translator import translate
 
 UNSCREW = """
@@ -106,3 +107,13 @@ def test_an_unscrew_state_that_names_an_unknown_object_is_a_located_error(atd_fi
                                                          'type="unscrew" object="jar"'))
     result = atd("validate", str(path))
     assert result.returncode == 1 and "error[ATD219]" in result.stdout and "task.xml:" in result.stdout, result.stdout
+
+
+@pytest.mark.parametrize(("robot", "felt"), [("baxter", 8.0), ("melfa", 2.0), ("tombatossals", 2.0)])
+def test_the_cap_is_felt_with_no_less_force_than_the_robots_wrist_tells_from_its_jolts(robot: str, felt: float) -> None:
+    """The Baxter's virtual wrist read 2 N while descending onto nothing, 34-38 mm over the cap:
+    its explore feels for its own 8 N; a robot with a real wrist sensor keeps the task's 2 N."""
+    task, found = load_task(EXAMPLES / "unscrew_by_touch.xml")
+    assert not found
+    [state] = [s for s in translate(task, create(robot)).estd.states if s.name == "find_cap"]
+    assert state.arm.params["force_threshold"] == felt

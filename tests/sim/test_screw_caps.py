@@ -17,11 +17,13 @@ import pytest
 from mcap.reader import make_reader
 
 from atd.campaign.spec import WorldDraw
+from atd.sim import load_description
 from atd.sim.library import get, library
 from atd.sim.scene import Scene
 from atd.sim.simrobot import SimRobot
 from atd.sim.thread import CapState, Thread, resting_place
 from atd.sim.world import load_world
+from factories.baxter.description import GRIPPER
 from primitives.robot import HandMode
 from tests.conftest import EXAMPLES
 
@@ -263,3 +265,29 @@ def test_a_pinch_and_a_wrist_turn_unscrew_the_cap(robot_of, melfa, engine) -> No
     assert 0.6 < cap.turned < 1.05 and not cap.free
     rise = cap.pose[2, 3] - thread.closed_cap(pose, height)[2, 3]
     assert rise == pytest.approx(thread.pitch * cap.turned / (2 * math.pi), abs=2e-4)
+
+
+def test_the_baxters_rubber_jaws_squeezing_a_narrow_cap_stand_at_its_width(robot_of, engine) -> None:
+    """A cap is as stiff against the Baxter's rubber-tipped jaws as against any hand: pressed with
+    10 N they stand at the 30 mm cap's width, short of their 26 mm closed stop (MuJoCo's explicit
+    contact pairs for the rubber once sank them 7 mm a side into a cap, to the stop on every cap
+    under 48 mm, and the unscrew read them as closed on nothing)."""
+    baxter = load_description("baxter")
+    tcp = robot_of(baxter, engine).read().tcp[:3, 3]
+    found = get("water_bottle").in_fixture()
+
+    def cap_height(height: float) -> float:  # the closed cap's centre, the bottle `height` tall
+        pose = np.eye(4)
+        pose[:3, 3] = (tcp[0], tcp[1], height / 2)
+        return float(found.thread.closed_cap(pose, height)[2, 3])
+
+    low, high = 0.1, 0.2  # the cap rises as the bottle grows: its centre between the pads' centres
+    height = low + (tcp[2] - cap_height(low)) * (high - low) / (cap_height(high) - cap_height(low))
+    pose = np.eye(4)
+    pose[:3, 3] = (tcp[0], tcp[1], height / 2)
+    bottle = dataclasses.replace(found.body("bottle", pose), size=(found.size[0], height))
+    robot = robot_of(baxter, engine, Scene(bottle))
+    robot.command_hand(robot.info.hand.closing * 10.0, [HandMode.FORCE])
+    robot.hold_still(1.0)
+    gap = GRIPPER.gap_closed + 2.0 * float(robot.read().hand_q[0])  # both jaws open by the reading
+    assert gap == pytest.approx(2 * found.thread.cap_radius, abs=1.5e-3)
