@@ -164,6 +164,7 @@ class OpenTo(PostureDrive):
         opening = float(self.params["hand_position"])
         asked = hand.closed + opening * (hand.open - hand.closed)
         q = readings.hand_q
+        self.start_q = q.copy()
         self.closing = hand.closing
         self.goal = np.where((self.closing != 0) & (self.closing * (q - asked) > 0), asked, q)
         self.aim = f"the opening {opening:g}"
@@ -177,7 +178,9 @@ class OpenTo(PostureDrive):
         q = readings.hand_q
         self.stopped = why
         self.reached = f"{why}, backed off it"
-        self.goal = np.where(self.closing != 0, q + self.closing * BACK_OFF * (hand.upper - hand.lower), q)
+        # no further back than they opened: what they let go of is behind that
+        opened = np.maximum(self.closing * (self.start_q - q), 0.0)
+        self.goal = np.where(self.closing != 0, q + self.closing * np.minimum(BACK_OFF * (hand.upper - hand.lower), opened), q)
         self.reference = q.copy()
         self.stillness.start(q)
 
