@@ -13,7 +13,6 @@ import numpy as np
 from primitives.arm.motion import (
     GAIN,
     ORIENTATION_TOLERANCE,
-    Stall,
     TwistShaper,
     clamp_norm,
     orientation_twist,
@@ -27,7 +26,6 @@ from primitives.filters import ContactWrench
 from primitives.robot import Readings
 
 ARRIVAL_TOLERANCE = 0.003  # m: over the target, ready to descend
-BLOCKED_TIME = 0.5  # s pressing over the threshold without getting nearer over the target: blocked there
 
 
 class Place(Controller):
@@ -38,10 +36,7 @@ class Place(Controller):
     carrying a box, MuJoCo), and a place that ended on it stood 11 cm above the table.
 
     Descending more than `max_overshoot` below the target without touching anything is a
-    failure: there is no surface where the task said. So is pressing over the threshold for
-    BLOCKED_TIME without getting nearer over the target: the Baxter, bringing a spray can over
-    a pile of what it had put down, pressed it into the pile at 111 N for 100 s, until the
-    task's timeout (docs/empty-the-box.md). The hand is turned top-down (its yaw
+    failure: there is no surface where the task said. The hand is turned top-down (its yaw
     kept) as it is brought over, or, not `level`, kept as the grasp holds the object: a jar
     held from the side, its hand turned top-down, swung over and lay on its side 8 cm away
     (docs/open-bottle.md).
@@ -67,8 +62,6 @@ class Place(Controller):
         held = readings.tcp[:3, :3]
         self.rotation = top_down(held) if self.level else held.copy()
         self.descending = False
-        self.stall = Stall(BLOCKED_TIME)
-        self.stall.reset(readings.time)
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         if self.status is not Status.RUNNING:
@@ -85,11 +78,6 @@ class Place(Controller):
             if np.linalg.norm(to_go) < ARRIVAL_TOLERANCE and angle < ORIENTATION_TOLERANCE:
                 self.descending = True
                 self.contact.start(readings)
-            elif self.stall.stalled(float(np.linalg.norm(to_go)), readings.time) and self.contact.force >= self.threshold:
-                self.shaper.stop()
-                self.finish(Status.ERROR, f"blocked {np.linalg.norm(to_go) * 100:.1f} cm from over the target: "
-                                          f"|F| = {self.contact.force:.1f} N >= {self.threshold:g} N")
-                return arm_output(np.zeros(6))
             return arm_output(self.shaper(np.concatenate([clamp_norm(GAIN * to_go, self.max_speed), w]), dt))
         offset = position - self.target
         height = float(offset @ self.normal)

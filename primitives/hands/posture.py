@@ -16,7 +16,6 @@ REACHED = 0.02  # of a DOF's range: close enough to the goal
 STALL_TIME = 1.0  # s stopped short of the goal: something blocks the fingers
 STILL_SPEED = 0.05  # of a DOF's speed limit: a finger slower than this on average has stopped
 LOADED = 0.05  # of a DOF's effort limit, in the closing direction: the finger presses on something
-BACK_OFF = 0.05  # of a DOF's range: fingers blocked opening close this much, off what blocks them
 
 
 def position_command(values: np.ndarray) -> ControlData:
@@ -55,7 +54,6 @@ class PostureDrive(Controller):
     goal: np.ndarray
     blocked_is_done = False
     aim = "the posture"  # what the goal is, for the error of fingers blocked short of it
-    reached = "reached the hand posture"  # why it is done at the goal
 
     def __init__(self, ctx: Context, speed: float = 1.0) -> None:
         super().__init__(ctx)
@@ -75,15 +73,12 @@ class PostureDrive(Controller):
         if self.status is Status.RUNNING:
             short = self._short(readings.hand_q)
             if not short.any():
-                self.finish(Status.DONE, self.reached)
+                self.finish(Status.DONE, "reached the hand posture")
             elif np.array_equal(self.reference, self.goal) and (still[short] >= STALL_TIME).all():
                 where = ", ".join(f"{n} {q:.4g}" for n, q, s in zip(self.ctx.info.hand.dofs, readings.hand_q, short) if s)
-                self.blocked(readings, f"fingers blocked short of {self.aim} ({where})")
+                status = Status.DONE if self.blocked_is_done else Status.ERROR
+                self.finish(status, f"fingers blocked short of {self.aim} ({where})")
         return position_command(self.reference)
-
-    def blocked(self, readings: Readings, why: str) -> None:
-        """The fingers stopped short of the goal: done or an error (`blocked_is_done`)."""
-        self.finish(Status.DONE if self.blocked_is_done else Status.ERROR, why)
 
     def _short(self, q: np.ndarray) -> np.ndarray:
         """Per DOF: not yet at the goal."""
@@ -147,12 +142,8 @@ class OpenTo(PostureDrive):
     placing a box, its distal joints closed to 0.61 rad onto it (2.6 N on each pad, the
     box lifted 6 mm), its proximal ones were pushed back past their goal, and the release
     waited out its timeout with the box in the fingers. Done once the encoders read every
-    closing DOF at least as open as asked. Fingers stopped short of it press on what blocks
-    them, and an arm rising after the release carries that away: the Baxter's fingers,
-    opened inside an espresso cup they had put down, stopped 3 mm short and the cup hung on
-    the hand for the rest of the run (docs/empty-the-box.md). So blocked fingers close
-    BACK_OFF off it, and the release is done, saying where they stopped, once they stand
-    there free of it.
+    closing DOF at least as open as asked; fingers stopped short of it are an error
+    saying where.
     """
 
     def __init__(self, ctx: Context) -> None:
@@ -164,29 +155,11 @@ class OpenTo(PostureDrive):
         opening = float(self.params["hand_position"])
         asked = hand.closed + opening * (hand.open - hand.closed)
         q = readings.hand_q
-        self.start_q = q.copy()
         self.closing = hand.closing
         self.goal = np.where((self.closing != 0) & (self.closing * (q - asked) > 0), asked, q)
         self.aim = f"the opening {opening:g}"
-        self.stopped = ""  # why the fingers stopped short of the opening, once they have
-
-    def blocked(self, readings: Readings, why: str) -> None:
-        if self.stopped:  # fingers that cannot close back either: held where they are
-            self.finish(Status.ERROR, f"{self.stopped}, and held there")
-            return
-        hand = self.ctx.info.hand
-        q = readings.hand_q
-        self.stopped = why
-        self.reached = f"{why}, backed off it"
-        # no further back than they opened: what they let go of is behind that
-        opened = np.maximum(self.closing * (self.start_q - q), 0.0)
-        self.goal = np.where(self.closing != 0, q + self.closing * np.minimum(BACK_OFF * (hand.upper - hand.lower), opened), q)
-        self.reference = q.copy()
-        self.stillness.start(q)
 
     def _short(self, q: np.ndarray) -> np.ndarray:
-        """A closing DOF pushed open past its goal has reached it; backed off what blocked
-        it, one not yet closed to its goal has not."""
+        """A closing DOF pushed open past its goal has reached it."""
         beyond = self.closing * (q - self.goal)  # > 0: more closed than the goal
-        closing = np.abs(beyond) > self.tolerance if self.stopped else beyond > self.tolerance
-        return np.where(self.closing != 0, closing, np.abs(self.goal - q) > self.tolerance)
+        return np.where(self.closing != 0, beyond > self.tolerance, np.abs(self.goal - q) > self.tolerance)
