@@ -15,7 +15,7 @@ from primitives.blackboard import CapGrip
 from primitives.hands.extension import ExtensionGauge, contact_points, pad_corners
 from primitives.hands.force_grasp import ForceGrasp
 from primitives.hands.grasp_phases import Phase
-from primitives.hands.multi_finger import CLOSING_SPEED
+from primitives.hands.multi_finger import CLOSING_SPEED, REACHED
 from primitives.hands.robust_grasp import GAP_CHECK, HELD, OPENING_SPEED, SETTLE_TIME
 from primitives.robot import Readings
 
@@ -132,20 +132,34 @@ class UnscrewHand(ForceGrasp):
         self.looked = -np.inf  # s: when the pads' gap was last looked at
 
     def _feel(self, readings: Readings) -> None:
-        """Every GAP_CHECK (a look is the hand's forward kinematics): with every grasping pad
-        touching, add their contacts' midpoint (world frame) to the average that places the
-        cap's axis; and are the pads nearer than FINGER_MIN_DISTANCE?"""
+        """Every GAP_CHECK (a look is the hand's forward kinematics): with every grasping
+        finger on the cap (`_on_cap`), add their pads' midpoint (world frame) to the average
+        that places the cap's axis; and are the pads nearer than FINGER_MIN_DISTANCE?"""
         cap = self.ctx.blackboard.cap
         cap.holding = len(self._touching(readings)) == len(self.fingers)
         if readings.time - self.looked < GAP_CHECK:
             return
         self.looked = readings.time
-        if cap.holding:
+        if self._on_cap(readings, cap.holding):
             middle = contact_points(self.ctx.info.hand, readings, self.pads).mean(axis=0)
             self.contacts += readings.tcp[:3, :3] @ middle + readings.tcp[:3, 3]
             self.felt += 1
             cap.axis = self.contacts / self.felt
         cap.empty = cap.empty or self.gauge.gap(readings.hand_q) < self.min_distance
+
+    def _on_cap(self, readings: Readings, holding: bool) -> bool:
+        """Every grasping pad touches (`holding`); or, the close over, some pad presses and
+        each finger whose pad feels nothing stopped short of closed: its link met the cap
+        above its pad, which stands beside it (a Barrett's near finger on a cap off its
+        centre curls until its distal link meets the cap's side, docs/unscrew-campaign.md).
+        Its pad's centre then places that side, and the alignment has a midpoint to centre on."""
+        if holding:
+            return True
+        touching = self._touching(readings)
+        if self.phase is not Phase.HOLD or not touching:
+            return False
+        short = np.abs(readings.hand_q - self.ctx.info.hand.closed) >= REACHED * self.range
+        return all(short[i] for i in np.flatnonzero(self.moving) if self.finger_of_dof[i] not in touching)
 
     def _forces(self, readings: Readings) -> str:
         return ", ".join(f"{f} {readings.pad_force[self.pad_of[f]]:.1f} N" for f in self.fingers)
