@@ -3,8 +3,9 @@ close the grasping fingers, then press each pad with FINGER_GRASPING_FORCE), hel
 the arm's twist and pull, closing on whenever a pad loses the cap. Each tick it tells the
 arm (`Blackboard.cap`) whether the pinch has reached its force, whether the pads have
 closed nearer than FINGER_MIN_DISTANCE (nothing between them), and where the pads'
-contacts, averaged since the close, put the cap's axis (the reactive alignment, Fig.
-3.12); it opens when the arm asks (`release`). Phases: `primitives.hands.grasp_phases`."""
+contacts (a pad whose finger stopped on the cap by its link: where that pad stands),
+averaged since the close, put the cap's axis (the reactive alignment, Fig. 3.12); it
+opens when the arm asks (`release`). Phases: `primitives.hands.grasp_phases`."""
 
 from __future__ import annotations
 
@@ -149,10 +150,11 @@ class UnscrewHand(ForceGrasp):
 
     def _on_cap(self, readings: Readings, holding: bool) -> bool:
         """Every grasping pad touches (`holding`); or, the close over, some pad presses and
-        each finger whose pad feels nothing stopped short of closed: its link met the cap
-        above its pad, which stands beside it (a Barrett's near finger on a cap off its
-        centre curls until its distal link meets the cap's side, docs/unscrew-campaign.md).
-        Its pad's centre then places that side, and the alignment has a midpoint to centre on."""
+        each finger whose pad feels nothing stopped short of closed, on the cap by its bare
+        link (a Barrett's near finger on a cap off its centre curls over the cap's rim, its
+        pad past it, docs/unscrew-campaign.md). That pad's centre stands beyond the cap's
+        side, so the midpoint errs towards its finger, but it lies towards the axis from
+        where the hand pinched: the next pinch, nearer, presses both pads."""
         if holding:
             return True
         touching = self._touching(readings)
