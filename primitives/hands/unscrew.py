@@ -151,10 +151,10 @@ class UnscrewHand(ForceGrasp):
     def _on_cap(self, readings: Readings, holding: bool) -> bool:
         """Every grasping pad touches (`holding`); or, the close over, some pad presses and
         each finger whose pad feels nothing stopped short of closed, on the cap by its bare
-        link (a Barrett's near finger on a cap off its centre curls over the cap's rim, its
-        pad past it, docs/unscrew-campaign.md). That pad's centre stands beyond the cap's
-        side, so the midpoint errs towards its finger, but it lies towards the axis from
-        where the hand pinched: the next pinch, nearer, presses both pads."""
+        link (a Barrett's finger on the side the hand came down off towards curls over the
+        cap's rim, its pad past it, docs/unscrew-campaign.md). That pad's centre stands
+        beyond the cap's side, so the midpoint errs towards its finger, but it lies towards
+        the axis from where the hand pinched: the next pinch, nearer, presses both pads."""
         if holding:
             return True
         touching = self._touching(readings)
