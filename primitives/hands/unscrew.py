@@ -141,24 +141,26 @@ class UnscrewHand(ForceGrasp):
         if readings.time - self.looked < GAP_CHECK:
             return
         self.looked = readings.time
-        if self._on_cap(readings, cap.holding):
+        if self._on_cap(readings, cap):
             middle = contact_points(self.ctx.info.hand, readings, self.pads).mean(axis=0)
             self.contacts += readings.tcp[:3, :3] @ middle + readings.tcp[:3, 3]
             self.felt += 1
             cap.axis = self.contacts / self.felt
         cap.empty = cap.empty or self.gauge.gap(readings.hand_q) < self.min_distance
 
-    def _on_cap(self, readings: Readings, holding: bool) -> bool:
-        """Every grasping pad touches (`holding`); or, the close over, some pad presses and
-        each finger whose pad feels nothing stopped short of closed, on the cap by its bare
-        link (a Barrett's finger on the side the hand came down off towards curls over the
-        cap's rim, its pad past it, docs/unscrew-campaign.md). That pad's centre stands
-        beyond the cap's side, so the midpoint errs towards its finger, but it lies towards
-        the axis from where the hand pinched: the next pinch, nearer, presses both pads."""
-        if holding:
+    def _on_cap(self, readings: Readings, cap: CapGrip) -> bool:
+        """Every grasping pad touches (`holding`); or, the close over and the pinch not yet
+        pressed (a pad that slips later has a finger closing on, not stopped), some pad
+        presses and each finger whose pad feels nothing stopped short of closed, on the cap
+        by its bare link (a Barrett's finger on the side the hand came down off towards
+        curls over the cap's rim, its pad past it, docs/unscrew-campaign.md). That pad's
+        centre stands beyond the cap's side, so the midpoint errs towards its finger, but it
+        lies towards the axis from where the hand pinched: the next pinch, nearer, presses
+        both pads."""
+        if cap.holding:
             return True
         touching = self._touching(readings)
-        if self.phase is not Phase.HOLD or not touching:
+        if self.phase is not Phase.HOLD or cap.pinched or not touching:
             return False
         short = np.abs(readings.hand_q - self.ctx.info.hand.closed) >= REACHED * self.range
         return all(short[i] for i in np.flatnonzero(self.moving) if self.finger_of_dof[i] not in touching)
