@@ -3,8 +3,9 @@ close the grasping fingers, then press each pad with FINGER_GRASPING_FORCE), hel
 the arm's twist and pull, closing on whenever a pad loses the cap. Each tick it tells the
 arm (`Blackboard.cap`) whether the pinch has reached its force, whether the pads have
 closed nearer than FINGER_MIN_DISTANCE (nothing between them), and where the pads'
-contacts, averaged since the close, put the cap's axis (the reactive alignment, Fig.
-3.12); it opens when the arm asks (`release`). Phases: `primitives.hands.grasp_phases`."""
+contacts (a pad whose finger stopped on the cap by its link: where that pad stands),
+averaged since the close, put the cap's axis (the reactive alignment, Fig. 3.12); it
+opens when the arm asks (`release`). Phases: `primitives.hands.grasp_phases`."""
 
 from __future__ import annotations
 
@@ -15,7 +16,7 @@ from primitives.blackboard import CapGrip
 from primitives.hands.extension import ExtensionGauge, contact_points, pad_corners
 from primitives.hands.force_grasp import ForceGrasp
 from primitives.hands.grasp_phases import Phase
-from primitives.hands.multi_finger import CLOSING_SPEED
+from primitives.hands.multi_finger import CLOSING_SPEED, REACHED
 from primitives.hands.robust_grasp import GAP_CHECK, HELD, OPENING_SPEED, SETTLE_TIME
 from primitives.robot import Readings
 
@@ -132,20 +133,37 @@ class UnscrewHand(ForceGrasp):
         self.looked = -np.inf  # s: when the pads' gap was last looked at
 
     def _feel(self, readings: Readings) -> None:
-        """Every GAP_CHECK (a look is the hand's forward kinematics): with every grasping pad
-        touching, add their contacts' midpoint (world frame) to the average that places the
-        cap's axis; and are the pads nearer than FINGER_MIN_DISTANCE?"""
+        """Every GAP_CHECK (a look is the hand's forward kinematics): with every grasping
+        finger on the cap (`_on_cap`), add their pads' midpoint (world frame) to the average
+        that places the cap's axis; and are the pads nearer than FINGER_MIN_DISTANCE?"""
         cap = self.ctx.blackboard.cap
         cap.holding = len(self._touching(readings)) == len(self.fingers)
         if readings.time - self.looked < GAP_CHECK:
             return
         self.looked = readings.time
-        if cap.holding:
+        if self._on_cap(readings, cap):
             middle = contact_points(self.ctx.info.hand, readings, self.pads).mean(axis=0)
             self.contacts += readings.tcp[:3, :3] @ middle + readings.tcp[:3, 3]
             self.felt += 1
             cap.axis = self.contacts / self.felt
         cap.empty = cap.empty or self.gauge.gap(readings.hand_q) < self.min_distance
+
+    def _on_cap(self, readings: Readings, cap: CapGrip) -> bool:
+        """Every grasping pad touches (`holding`); or, the close over and the pinch not yet
+        pressed (a pad that slips later has a finger closing on, not stopped), some pad
+        presses and each finger whose pad feels nothing stopped short of closed, on the cap
+        by its bare link (a Barrett's finger on the side the hand came down off towards
+        curls over the cap's rim, its pad past it, docs/unscrew-campaign.md). That pad's
+        centre stands beyond the cap's side, so the midpoint errs towards its finger, but it
+        lies towards the axis from where the hand pinched: the next pinch, nearer, presses
+        both pads."""
+        if cap.holding:
+            return True
+        touching = self._touching(readings)
+        if self.phase is not Phase.HOLD or cap.pinched or not touching:
+            return False
+        short = np.abs(readings.hand_q - self.ctx.info.hand.closed) >= REACHED * self.range
+        return all(short[i] for i in np.flatnonzero(self.moving) if self.finger_of_dof[i] not in touching)
 
     def _forces(self, readings: Readings) -> str:
         return ", ".join(f"{f} {readings.pad_force[self.pad_of[f]]:.1f} N" for f in self.fingers)

@@ -85,7 +85,7 @@ class ScriptedRobot:
         if self.touching:
             pressed = float(self.effort[1] / HAND.effort_limit[1] * PAD_STIFFNESS)
             force[PADS] = (pressed, pressed * self.cap.weak)
-            taxels = {HAND.pads[k].name: self._image(k, pressed) for k in PADS}
+            taxels = {HAND.pads[k].name: self._image(k, float(f)) for k, f in zip(PADS, force[PADS])}
         wrench = np.zeros(6)
         cap = self.cap
         if self.touching and cap.stuck:
@@ -195,6 +195,18 @@ def test_a_cap_pinched_off_its_axis_moves_the_grasp_centre_onto_it(alignment: bo
         assert arm.tally.aligned >= 1 and off < 0.002, (arm.tally, off)  # a taxel row is 3 mm across
     else:
         assert arm.tally.aligned == 0 and off == pytest.approx(0.006, abs=1e-4), off
+
+
+def test_a_finger_whose_link_stops_on_the_cap_still_centres_the_next_pinch() -> None:
+    """The cap's axis 6 mm off the pinch line and f2 stopped on it by its bare link, its pad
+    feeling nothing (a Barrett's near finger on an off-centre cap): f1's centre of pressure
+    and f2's pad, where the cap stopped it, still place the axis, and the pinches move
+    towards it. Without them the alignment had nothing and every pinch closed where the first did."""
+    robot, arm, _ = _run(Cap(offset=(0.006, 0.0), weak=0.0), max_pinches=3)
+    start = arm.start_pose
+    centre = start.position + start.rotation @ np.array([0.019, 0.0, 0.0])
+    assert arm.status is Status.ERROR and "did not all press" in arm.reason, arm.reason  # f2's pad never presses
+    assert arm.tally.aligned >= 1 and float(np.linalg.norm(centre[:2] - robot.axis)) < 0.004, arm.tally
 
 
 def test_a_pinch_one_pad_of_which_never_feels_the_grasp_force_is_given_up_after_pinch_time() -> None:
