@@ -295,7 +295,8 @@ _ARM_CONTROLLERS = (
             "jaw_half_width": _p(NUM, "half a jaw's width along the jaws' width: a contact under a jaw lies "
                                  "within it, so a move across goes no further that way (the robot's own "
                                  "geometry)", 0.015, unit="m"),
-            "max_shifts": _p(INT, "how many times to move across (ours)", 3),
+            "max_shifts": _p(INT, "how many times to move across (ours: after a first move of `max_shift`, three "
+                             "more bracket the object to within a quarter of it)", 4),
             "hand_extent": _p(VEC, "how far the open hand reaches sideways from the TCP, along the hand's x "
                               "and along its y: its moves stay this far inside the walls of a container the "
                               "task knows (the robot's own geometry; the Melfa's WRT-102)", (0.04, 0.05),

@@ -7,8 +7,8 @@ task believes it), then descends along the world's vertical on the wrist sensor,
 down to the object's centre (where the TCP grasps it). Where the first contact sits
 across the hand says what was met: under one jaw, above the object's top (that jaw is on
 the top: move the hand across by that much, along the jaws' width no further than the
-jaw is wide, and by half the last move when it goes back the way the last one came, so
-that moves across bracket the object instead of swinging over it; rise, descend again),
+jaw is wide, and no further than halfway back to where an earlier contact said the other
+side, so that moves across bracket the object instead of swinging over it; rise, descend again),
 or under the middle or below the top (the support under both jaws, or the palm on the
 object: the jaws straddle its place, so close). The descent stops with the fingertips
 clear of the support. The jaws closing on nothing (`jaws_empty`) means the object lies
@@ -84,12 +84,28 @@ class JawPhase(Enum):
     HOLD = "hold"  # the jaws hold the object, or the grasp has ended in an error
 
 
-def bisected(across: float, last: float) -> float:
-    """A move across the jaws (hand y) after the `last` one: back the other way it goes
-    half as far at most, since the object lay between where the two contacts were."""
-    if last * across < 0.0:
-        return float(np.sign(across)) * min(abs(across), abs(last) / 2.0)
-    return across
+class Bracket:
+    """Moves across the jaws (hand y) that close in on the object: a contact under one jaw says
+    the object lies beyond it on that side, so a move goes no further than halfway to the
+    nearest place where a contact said the other side (halved against the last move only, a
+    third move swung the Melfa's jaws back past the first contact's place: docs/robust-grasp.md)."""
+
+    def __init__(self) -> None:
+        self.at = 0.0  # m: the hand's y since the first contact, the sum of the moves across
+        self.low = -np.inf  # the furthest -y place where a contact said +y
+        self.high = np.inf  # the furthest +y place where a contact said -y
+
+    def move(self, across: float) -> float:
+        """The move for a contact at `across` (hand y) from here; the hand makes it."""
+        if across > 0.0:
+            self.low = max(self.low, self.at)
+            room = self.high - self.at
+        else:
+            self.high = min(self.high, self.at)
+            room = self.at - self.low
+        across = float(np.sign(across)) * min(abs(across), room / 2.0)
+        self.at += across
+        return across
 
 
 class JawGraspCorrection(Controller):
@@ -149,7 +165,7 @@ class JawGraspCorrection(Controller):
         self.searched = 0
         self.shifts = 0
         self.alongs = 0  # moves along the jaws off a finger's rim
-        self.last_across = 0.0  # hand y of the last move across
+        self.bracket = Bracket()  # the moves across so far, and where their contacts placed the object
         self.hint: np.ndarray | None = None  # where the last contact says the object is, world frame
         self.hinted = False  # a contact's hint has been followed: one is, once
         self.brushed = False  # a hint from the pads' brushing the object, or a rim's push, has been taken: one is, once
@@ -341,10 +357,9 @@ class JawGraspCorrection(Controller):
     def _jaw_move(self, across: np.ndarray) -> np.ndarray:
         """The move across (hand frame) for a jaw on the object's top at `across`: the torque's
         lever along the jaws' width is short and noisy, and the contact lies within the jaw's
-        width anyway; across the jaws, bisected against the last move."""
+        width anyway; across the jaws, bracketed by the contacts before."""
         x = float(np.clip(across[0], -self.jaw_half_width, self.jaw_half_width))
-        y = bisected(float(np.clip(across[1], -self.max_shift, self.max_shift)), self.last_across)
-        self.last_across = y
+        y = self.bracket.move(float(np.clip(across[1], -self.max_shift, self.max_shift)))
         return np.array([x, y, 0.0])
 
     def _contact_across(self, readings: Readings, wrench: np.ndarray) -> np.ndarray | None:

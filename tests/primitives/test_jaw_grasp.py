@@ -13,7 +13,7 @@ from atd.campaign.perturbation import approach_taken
 from atd.model import load_task
 from atd.runtime.session import Run, belief_scene
 from factories.registry import create
-from primitives.arm.jaw_grasp import bisected
+from primitives.arm.jaw_grasp import Bracket
 from tests.primitives.conftest import EXAMPLES, preset_trials
 from translator import translate
 
@@ -78,11 +78,22 @@ def test_an_off_centre_object_met_by_one_jaw_first_is_grasped_where_it_stands(en
 
 def test_moves_across_that_turn_back_go_half_as_far_and_bracket_the_object() -> None:
     """A jaw on the top at +34 mm, then the other jaw on it: the object lies between the two."""
-    assert bisected(0.034, 0.0) == 0.034
-    assert bisected(0.03, 0.034) == 0.03
-    assert bisected(-0.034, 0.034) == pytest.approx(-0.017)
-    assert bisected(-0.01, 0.034) == pytest.approx(-0.01)
-    assert bisected(0.034, -0.017) == pytest.approx(0.0085)
+    bracket = Bracket()
+    assert bracket.move(0.034) == 0.034
+    assert bracket.move(-0.034) == pytest.approx(-0.017)
+    assert bracket.move(0.034) == pytest.approx(0.0085)
+    assert bracket.move(-0.01) == pytest.approx(-0.00425)
+
+
+def test_a_move_across_stays_within_every_contact_so_far_not_only_the_last() -> None:
+    """The Melfa's speaker (docs/robust-grasp.md): a jaw on it at -4 cm, the other jaw past it,
+    back 2 cm, then that jaw on it again at +3.8 cm: the object lies between -2 cm and the first
+    contact's place, so the hand goes 1 cm, not back past where it started."""
+    bracket = Bracket()
+    assert bracket.move(-0.04) == -0.04
+    assert bracket.move(0.04) == pytest.approx(0.02)
+    assert bracket.move(0.038) == pytest.approx(0.01)
+    assert bracket.at == pytest.approx(-0.01)
 
 
 @pytest.mark.parametrize("engine", ENGINES)
