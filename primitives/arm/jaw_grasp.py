@@ -150,9 +150,8 @@ class JawGraspCorrection(Controller):
         self.rotation = readings.tcp[:3, :3].copy()
         hand_z = readings.tcp[:3, 2]
         self.vertical = float(-hand_z[2]) >= np.cos(FROM_ABOVE)
-        # m the open fingertips' lowest corner lies below the TCP, the hand turned as it is kept:
-        # tilted 16 degrees, one corner of the Melfa's fingers stood 1.2 cm lower than their middle
-        # and struck the table at the grasp height (docs/robust-grasp.md)
+        # m the open fingertips' lowest corner lies below the TCP, the hand turned as it is kept
+        # (a tilted hand's corner, not its middle, meets the table: docs/robust-grasp.md)
         down = self.rotation[2]
         self.tip_depth = float(-down[2] * self.reach + np.abs(down[:2]) @ self.tip_extent)
         # the way the hand backs off: up, or back along the approach of a grasp from the side
