@@ -214,7 +214,6 @@ class Factory(ABC):
     arms: ClassVar[tuple[Arm, ...]]  # the first is the default
     primitives: ClassVar[frozenset[StateType]]
     node_table: ClassVar[tuple[MappingRow, ...]]  # thesis Tables 7.3 / 7.4 columns
-    least_contact: ClassVar[float] = 0.0  # N an explore's contact force is raised to: what the wrist tells from its own jolts
 
     def __init__(self, arm: str | None = None, config: Path | None = None, grasp: str = "robust") -> None:
         if grasp not in GRASPS:
@@ -298,7 +297,9 @@ class Factory(ABC):
         given this robot's own geometry; refused where the robot cannot do what they need."""
         if state.type is StateType.EXPLORE:
             touching = self.acting_point(state, touching=True)
-            force = None if state.contact_force is None else max(state.contact_force, self.least_contact)
+            # No lighter than this robot's own explore threshold: what its wrist tells from its own jolts.
+            least = float(self.config.controllers.get("explore", {}).get("force_threshold", 0.0))
+            force = None if state.contact_force is None else max(state.contact_force, least)
             arm = self.controller("explore", direction=state.direction, force_threshold=force,
                                   max_distance=state.max_distance, writes=written(state, ValueKind.POINT),
                                   hand_point=tuple(round(v, 6) for v in touching) if any(touching) else None)

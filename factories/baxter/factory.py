@@ -53,7 +53,6 @@ class BaxterFactory(Factory):
     primitives = frozenset({StateType.GRASP, StateType.MOVE, StateType.PUSH, StateType.TRANSPORT,
                             StateType.PLACE, StateType.SLIDE, StateType.RELEASE,
                             StateType.EXPLORE, StateType.PERCEIVE, StateType.UNSCREW})
-    least_contact = 8.0  # N: its virtual wrist read 2 N descending onto nothing (its config's explore threshold)
     node_table = (
         MappingRow("grasp", "grasp", "grasp force", "arm control, gripper force and opening"),
         MappingRow("move", "move", "-", "arm control, filtered virtual F/T"),
