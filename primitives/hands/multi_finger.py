@@ -133,10 +133,14 @@ class FingerGrasp(Controller):
         self.reference[waiting] = q[waiting]
         lead = LEAD * self.range  # how far the reference may run ahead of a blocked finger
         self.reference = np.clip(self.reference, q - lead, q + lead)
-        at_limit = np.abs(q - hand.closed) < REACHED * self.range
+        at_limit = self._at_closed(q)
         self._blocked(readings, dt)
         self.stillness.seconds[waiting] = 0.0
         return bool((at_limit | (self.stillness.seconds > STALL_TIME))[self.moving].all())
+
+    def _at_closed(self, q: np.ndarray) -> np.ndarray:
+        """Per DOF: within REACHED of its range from closed (a finger short of it stopped on something)."""
+        return np.abs(q - self.ctx.info.hand.closed) < REACHED * self.range
 
     def _on_object(self, readings: Readings) -> np.ndarray:
         """Per DOF: the pad of the finger it moves touches something."""

@@ -20,7 +20,7 @@ from primitives.filters import LowPass, held_wrench, world_load
 from primitives.hands.extension import ExtensionGauge, contact_points
 from primitives.hands.grasp_phases import Closing, Corrections, Holding, Phase, Weighing
 from primitives.hands.force_grasp import ForceGrasp
-from primitives.hands.multi_finger import CLOSING_SPEED, REACHED
+from primitives.hands.multi_finger import CLOSING_SPEED
 from primitives.hands.pinch_search import PinchSearch
 from primitives.robot import Readings
 
@@ -194,8 +194,8 @@ class RobustGraspHand(ForceGrasp):
         """The fingers stopped short of their limits as far apart as the object is wide, and
         no pad feels anything: they stand on it beside their pads (a flat finger touches a
         cylinder at the foot of its axis, on the bare face beside its pad)."""
-        hand, q = self.ctx.info.hand, readings.hand_q
-        short = np.abs(q - hand.closed) >= REACHED * self.range
+        q = readings.hand_q
+        short = ~self._at_closed(q)
         if self._touching(readings) or self.ctx.object is None or not short[self.moving].all():
             return False
         return PASSED * self.ctx.object.least_width <= self.gauge.gap(q) <= self.ctx.object.widest + JAM_MARGIN

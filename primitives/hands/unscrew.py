@@ -16,7 +16,7 @@ from primitives.blackboard import CapGrip
 from primitives.hands.extension import ExtensionGauge, contact_points, pad_corners
 from primitives.hands.force_grasp import ForceGrasp
 from primitives.hands.grasp_phases import Phase
-from primitives.hands.multi_finger import CLOSING_SPEED, REACHED
+from primitives.hands.multi_finger import CLOSING_SPEED
 from primitives.hands.robust_grasp import GAP_CHECK, HELD, OPENING_SPEED, SETTLE_TIME
 from primitives.robot import Readings
 
@@ -162,7 +162,7 @@ class UnscrewHand(ForceGrasp):
         touching = self._touching(readings)
         if self.phase is not Phase.HOLD or cap.pinched or not touching:
             return False
-        short = np.abs(readings.hand_q - self.ctx.info.hand.closed) >= REACHED * self.range
+        short = ~self._at_closed(readings.hand_q)
         return all(short[i] for i in np.flatnonzero(self.moving) if self.finger_of_dof[i] not in touching)
 
     def _forces(self, readings: Readings) -> str:
