@@ -33,7 +33,7 @@ def test_the_barrett_puts_a_box_it_holds_off_centre_down_on_the_target() -> None
                      "mujoco")
     outcome, executor = execute(translation.estd, sim, task=task)
     assert outcome.succeeded, outcome.summary
+    assert np.linalg.norm(sim.object_pose()[:2, 3] - TARGET) < 0.005, sim.object_pose()[:3, 3]
     placed = [c.get("reason") for r in events(executor) if r["transition"].startswith("put_down->")
               for c in r["conditions"] if c.get("reason")]
     assert any("weighed" in reason for reason in placed), placed
-    assert np.linalg.norm(sim.object_pose()[:2, 3] - TARGET) < 0.005, sim.object_pose()[:3, 3]
