@@ -39,7 +39,7 @@ class Place(Controller):
 
     The target is for the TCP with the object held at `hand_point`, where the grasp's hand
     shape holds it; a grasp that found the object elsewhere holds it off that point (a box
-    2.5 cm along the Melfa's jaws, docs/pick-and-place.md). So, over the target, the arm holds
+    15 mm beyond the SDH2's pinch, docs/pick-and-place.md). So, over the target, the arm holds
     still for `weigh_time` and the wrist weighs the object: the line its weight hangs on,
     from the wrist's torque, is where the object is, and the arm moves that line over the
     target before it descends. A wrist that cannot tell (`weigh_time` 0), or that feels less
