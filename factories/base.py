@@ -397,8 +397,11 @@ class Factory(ABC):
 
     def place(self, state: State, context: MappingContext, target: Vec3 | None) -> Controller:
         """Thesis Eq. 3.4's `place` to `target`: the hand kept as it holds the object where a
-        side grasp holds it (`held_from_side`), else turned top-down."""
-        return self.controller("place", target=target, level=False if self.held_from_side(state, context) else None)
+        side grasp holds it (`held_from_side`), else turned top-down; the target is for the
+        TCP with the object where the state's hand shape holds it (`acting_point`)."""
+        point = self.acting_point(state)
+        return self.controller("place", target=target, level=False if self.held_from_side(state, context) else None,
+                               hand_point=tuple(round(v, 6) for v in point) if any(point) else None)
 
     def release(self, state: State, arm: str = "release_retreat") -> NodeMapping:
         """Thesis Eq. 3.5: open the hand to the state's opening while the arm backs off the

@@ -24,7 +24,7 @@ from atd.campaign.record import TASK_OBJECT, TrialRecord
 from atd.campaign.unscrew import unscrew_measures
 from atd.model import has_errors, load_task
 from atd.model.diagnostics import render_all
-from atd.model.estd import Estd
+from atd.model.estd import Estd, EstdState
 from atd.model.files import OutputError
 from atd.model.task import Location
 from atd.model.vocabulary import StateType
@@ -33,7 +33,7 @@ from atd.runtime.session import Run, belief_scene
 from atd.sim.library import get as get_library
 from atd.sim.scene import Scene
 from atd.sim.world import Drop, World, WorldError
-from factories.base import Factory
+from factories.base import Factory, derived_target
 from factories.registry import create
 from translator import translate
 
@@ -162,8 +162,18 @@ def _judge(plan: TrialPlan, belief: Estd, run: Run) -> LiftJudge | PlaceJudge | 
     if kind == "place":
         if not places:
             raise TrialError(f"{plan.task_file}: the place judge needs a place state with a target")
-        return PlaceJudge(run.robot, tuple(places[-1].arm.params["target"]))
+        return PlaceJudge(run.robot, _place_target(plan, places[-1]))
     return LiftJudge(run.robot)
+
+
+def _place_target(plan: TrialPlan, place: EstdState) -> tuple[float, float, float]:
+    """Where the task puts the object down: its place state's own target (the object's centre,
+    the grasp's), not the ESTD's, which is for the TCP (the SDH2 pinches 19 mm off it)."""
+    task, _ = load_task(Path(plan.task_file))
+    state = task.states_by_name.get(place.atd) if task is not None else None
+    if state is None:
+        return tuple(place.arm.params["target"])
+    return state.target.position if state.target is not None else derived_target(state, task.object)
 
 
 def _box_judge(plan: TrialPlan, belief: Estd, run: Run) -> BoxJudge:

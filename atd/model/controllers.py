@@ -346,6 +346,12 @@ _ARM_CONTROLLERS = (
             "level": _p(FLAG, "turn the hand top-down (keeping its yaw) before descending; off, the hand keeps the "
                               "orientation it starts with: an object grasped from the side goes down as it is held "
                               "(ours)", True),
+            "hand_point": _p(VEC, "where the grasp's hand shape holds the object, from the TCP in the hand frame: the "
+                                  "target is for the TCP with the object there (ours)", (0.0, 0.0, 0.0), unit="m",
+                             length=3),
+            "weigh_time": _p(NUM, "how long the arm holds still over the target while the wrist weighs where the "
+                                  "object hangs, which then comes down on the target; 0: a wrist that cannot tell, "
+                                  "the object taken to be at hand_point (ours)", 0.3, unit="s"),
             "filter_time": _FILTER,
         },
     ),

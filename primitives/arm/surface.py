@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from atd.model.frames import GRAVITY
 from primitives.arm.motion import (
     GAIN,
     ORIENTATION_TOLERANCE,
@@ -22,10 +23,11 @@ from primitives.arm.motion import (
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import ARM_TWIST
-from primitives.filters import ContactWrench
+from primitives.filters import ContactWrench, held_wrench
 from primitives.robot import Readings
 
 ARRIVAL_TOLERANCE = 0.003  # m: over the target, ready to descend
+WEIGHED = 0.5  # of the object's believed weight the wrist must feel to say where it hangs: less, the table or nothing has it
 
 
 class Place(Controller):
@@ -34,6 +36,15 @@ class Place(Controller):
     primitive ends when the arm stops. Only a contact in that descent is the surface: while
     the object is brought over, the wrist also reads the hand speeding up (5 N for the SDH2
     carrying a box, MuJoCo), and a place that ended on it stood 11 cm above the table.
+
+    The target is for the TCP with the object held at `hand_point`, where the grasp's hand
+    shape holds it; a grasp that found the object elsewhere holds it off that point (a box
+    15 mm beyond the SDH2's pinch, docs/pick-and-place.md). So, over the target, the arm holds
+    still for `weigh_time` and the wrist weighs the object: the line its weight hangs on,
+    from the wrist's torque, is where the object is, and the arm moves that line over the
+    target before it descends. A wrist that cannot tell (`weigh_time` 0), or that feels less
+    than WEIGHED of the object's believed weight, leaves the object where the hand shape says,
+    and the place says so.
 
     Descending more than `max_overshoot` below the target without touching anything is a
     failure: there is no surface where the task said. The hand is turned top-down (its yaw
@@ -53,6 +64,8 @@ class Place(Controller):
         self.overshoot = float(p["max_overshoot"])
         self.max_speed = float(p["max_speed"])
         self.level = bool(p["level"])
+        self.hand_point = np.asarray(p["hand_point"], float)
+        self.weigh_time = float(p["weigh_time"])
         self.contact = ContactWrench(float(p["filter_time"]))
         self.shaper = TwistShaper()
 
@@ -62,6 +75,8 @@ class Place(Controller):
         held = readings.tcp[:3, :3]
         self.rotation = top_down(held) if self.level else held.copy()
         self.descending = False
+        self.weights: list[np.ndarray] | None = [] if self.weigh_time > 0.0 else None
+        self.held_at = "taken to be where the hand shape holds it: this wrist cannot weigh it"
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         if self.status is not Status.RUNNING:
@@ -69,13 +84,16 @@ class Place(Controller):
         self.contact.update(readings, dt)
         if self.descending and self.contact.force >= self.threshold:
             self.shaper.stop()
-            self.finish(Status.DONE, f"placed: |F| = {self.contact.force:.1f} N >= {self.threshold:g} N")
+            self.finish(Status.DONE, f"placed: |F| = {self.contact.force:.1f} N >= {self.threshold:g} N, "
+                                     f"the object {self.held_at}")
             return arm_output(np.zeros(6))
         position = readings.tcp[:3, 3]
         w, angle = orientation_twist(self.rotation, readings.tcp[:3, :3])
         if not self.descending:
             to_go = self.above - position
             if np.linalg.norm(to_go) < ARRIVAL_TOLERANCE and angle < ORIENTATION_TOLERANCE:
+                if self._weighing(readings):
+                    return arm_output(self.shaper(np.zeros(6), dt))
                 self.descending = True
                 self.contact.start(readings)
             return arm_output(self.shaper(np.concatenate([clamp_norm(GAIN * to_go, self.max_speed), w]), dt))
@@ -88,6 +106,42 @@ class Place(Controller):
         sideways = offset - height * self.normal
         v = -self.velocity * self.normal - GAIN * sideways
         return arm_output(self.shaper(np.concatenate([v, w]), dt))
+
+    def _weighing(self, readings: Readings) -> bool:
+        """Over the target: true while the arm holds still weighing the object; once weighed,
+        the target moves so that its weight's line comes down on it (the arm goes there first)."""
+        if self.weights is None:
+            return False
+        self.weights.append(held_wrench(self.ctx.info.hand, readings))
+        if len(self.weights) * self.ctx.info.control_period < self.weigh_time:
+            return True
+        load, self.weights = np.mean(self.weights, axis=0), None
+        rotation = readings.tcp[:3, :3]
+        hangs = self._weight_line(load, rotation)
+        if isinstance(hangs, str):
+            self.held_at = f"taken to be where the hand shape holds it: {hangs}"
+            return True
+        believed = rotation @ self.hand_point
+        shift = hangs - believed
+        shift -= float(shift @ self.normal) * self.normal
+        self.target = self.target - shift
+        self.above = self.above - shift
+        self.held_at = f"weighed {np.linalg.norm(shift) * 100:.1f} cm from where the hand shape holds it"
+        return True
+
+    def _weight_line(self, load: np.ndarray, rotation: np.ndarray) -> np.ndarray | str:
+        """Where the held load's weight hangs from the TCP (world frame, a point on its line,
+        from the wrist's torque about its sensor), or why the wrist cannot say: the task
+        gives no weight, or it feels less than WEIGHED of it."""
+        force, torque = load[:3], load[3:]
+        weight = float(force @ (rotation.T @ np.array([0.0, 0.0, -1.0]))) / GRAVITY  # kg
+        known = self.ctx.object.weight if self.ctx.object is not None else None
+        if not known:
+            return "the task gives no weight to weigh it by"
+        if weight < WEIGHED * known:
+            return f"the wrist feels {weight * 1000:.0f} g of its {known * 1000:.0f} g"
+        point = np.cross(force, torque) / float(force @ force) + self.ctx.info.hand.wrist
+        return rotation @ point
 
 
 class ReleaseRetreat(Controller):
