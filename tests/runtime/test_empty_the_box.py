@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 from mcap.reader import make_reader
 
+from atd.api import run
 from atd.model.estd import Controller, EstdState
 from atd.model.vocabulary import StateType
 from atd.review.load import load
@@ -21,6 +22,7 @@ from tests.conftest import EXAMPLES, REPO
 from tests.runtime.test_run_cli import atd
 
 TWO_OBJECTS = REPO / "tests" / "data" / "empty_the_box" / "two_objects.toml"
+BOX_DATA = REPO / "tests" / "data" / "empty_the_box"
 
 
 def test_vision_empties_a_box_of_two_objects_on_the_melfa_and_says_what_it_took_out(tmp_path):
@@ -35,10 +37,21 @@ def test_vision_empties_a_box_of_two_objects_on_the_melfa_and_says_what_it_took_
     records = [json.loads(line) for line in trace.read_text().splitlines()]
     # Each round's outcome reached the parent, which branched on it by name.
     outcomes = [r["atd"] for r in records if r["type"] == "event" and r["event"] == "outcome"]
-    assert outcomes == ["take_one_out->aside#1/outcome"] * 2
+    assert outcomes == ["take_one_out->aside/outcome"] * 2  # placed, both times
     # The round's first move went where perceive found the object: its input, read at run time.
     found = [r["conditions"][0]["point"] for r in records if r["type"] == "event" and r["event"] == "object_found"]
     assert len(found) == 2 and all(-0.05 < p[0] < 0.25 and -0.2 < p[1] < 0.04 for p in found)
+
+
+def test_a_ball_in_a_corner_that_no_jaw_fits_beside_is_rolled_off_both_walls():
+    """Vision's approach over the ball, then free_one.xml: pressed from above and dragged towards
+    the box's middle, the ball (5 cm) ends clear of both walls by more than the open hand's
+    half width (4 cm), where a grasp from above fits; it lay 0 and 8 mm from them."""
+    result = run(BOX_DATA / "free_one_round.xml", robot="melfa", world=BOX_DATA / "ball_in_a_corner.toml")
+    assert result.end_state == "done" and "free_it/drag" in result.path, result.summary
+    x, y, _ = result.object_positions["ball"]
+    inside_x, inside_y = 0.24, 0.035  # the box's +x and +y inner walls (examples/empty_the_box_vision.xml)
+    assert inside_x - x > 0.065 and inside_y - y > 0.065
 
 
 @pytest.fixture(scope="module")
