@@ -13,6 +13,8 @@ from __future__ import annotations
 import numpy as np
 
 from atd.model.frames import GRAVITY
+from atd.model.task import ObjectInfo
+from atd.model.vocabulary import ObjectClass
 from primitives.arm.motion import SUPPORT_BAND
 from primitives.base import Context, Status
 from primitives.blackboard import EMPTY_HAND, Shift
@@ -41,6 +43,7 @@ WEIGH_TIME = 0.2  # s it feels it there: the swing of the lift's stop dies down 
 OFF_CENTRE = 0.015  # m the weight may hang off the pinch line: further, it turned out of the hand
 RIM_CONTACT = 0.0015  # m over which a pad's contact on a curved face carries friction against the turn
 GAP_CHECK = 0.05  # s between looks at the pads' gap: a look (forward kinematics) costs 0.3-0.5 ms
+FOOT_MARGIN = 0.005  # m beyond the believed footprint a pad on its foot touches: its centre of pressure, off the face
 
 
 class RobustGraspHand(ForceGrasp):
@@ -76,9 +79,12 @@ class RobustGraspHand(ForceGrasp):
 
     def _close(self, readings: Readings, dt: float) -> None:
         touching = self._touching(readings)
-        self.closing.brushed.update(touching)
-        if touching and self.pinch:
-            self._feel_across(readings, touching)
+        if touching:
+            points, world = self._contacts(readings, touching)
+            table = self._on_table(touching, world)
+            self.closing.brushed.update(f for f in touching if f not in table)
+            if self.pinch:
+                self._feel_across(readings, touching, points, world)
         if self._closed(readings, dt) or self._pinching(readings, dt) or self._passed(readings):
             self.corrections.jammed = self._jammed(readings)
             self.ctx.blackboard.fingers_stopped = True
@@ -200,30 +206,47 @@ class RobustGraspHand(ForceGrasp):
             return False
         return PASSED * self.ctx.object.least_width <= self.gauge.gap(q) <= self.ctx.object.widest + JAM_MARGIN
 
-    def _feel_across(self, readings: Readings, touching: list[str]) -> None:
-        """Where the touching pads feel something above the table, across the pinch line
-        (m, hand frame, from the line through the fingers): each pad's centre of pressure,
-        weighted by its force. Fingertips on the table say nothing of the object."""
-        pads = [self.pad_of[f] for f in touching]
-        points = contact_points(self.ctx.info.hand, readings, pads)
-        heights = points @ readings.tcp[2, :3] + readings.tcp[2, 3]  # world z
-        above = heights >= SUPPORT_BAND
+    def _feel_across(self, readings: Readings, touching: list[str], points: np.ndarray, world: np.ndarray) -> None:
+        """Where the touching pads (touching at `points`, hand frame; `world`) feel something
+        above the table, across the pinch line (m, hand frame, from the line through the
+        fingers): each pad's centre of pressure, weighted by its force. Fingertips on the
+        table say nothing of the object."""
+        above = world[:, 2] >= SUPPORT_BAND
         if not above.any():
             return
         self.closing.felt_by.update(f for f, up in zip(touching, above) if up)
-        weights = readings.pad_force[pads] * above
+        weights = readings.pad_force[[self.pad_of[f] for f in touching]] * above
         across = (points[:, :2] - self.base[self.fingers[0]]) @ self.search.normal
         self.closing.felt_at = float(weights @ across) / float(weights.sum())
+
+    def _contacts(self, readings: Readings, touching: list[str]) -> tuple[np.ndarray, np.ndarray]:
+        """Where the touching pads touch: in the hand frame, and in the world."""
+        points = contact_points(self.ctx.info.hand, readings, [self.pad_of[f] for f in touching])
+        return points, points @ readings.tcp[:3, :3].T + readings.tcp[:3, 3]
+
+    def _on_table(self, touching: list[str], world: np.ndarray) -> set[str]:
+        """The touching fingers (touching at `world`) whose pads press the table: within
+        SUPPORT_BAND of it and beside the object's believed footprint (the task's
+        description), for a pad on the foot of a box stands as low. With no object
+        described, none: a low touch may be its foot."""
+        obj = self.ctx.object
+        if obj is None:
+            return set()
+        return {f for f, p in zip(touching, world) if p[2] < SUPPORT_BAND and not under_footprint(obj, p, FOOT_MARGIN)}
 
     # -- judging a close ----------------------------------------------------------------
     def _judge(self, readings: Readings) -> None:
         """Every grasping finger on the object: hold it. Otherwise correct, towards the
         fingers that touch it; when none does, towards those that touched something on the
         way and lost it (the object pushed aside by the finger that met it first), as long
-        as some did not: that side is where the object went."""
+        as some did not: that side is where the object went. A pad pressing the table beside
+        the object (`_on_table`) touches neither."""
         search = self.search
         heading, search.heading = search.heading, 0.0
         touching = self._touching(readings)
+        if touching:
+            table = self._on_table(touching, self._contacts(readings, touching)[1])
+            touching = [f for f in touching if f not in table]
         if not touching and set(self.fingers) - self.closing.brushed:
             touching = [f for f in self.fingers if f in self.closing.brushed]
         lost = [f for f in self.fingers if f not in touching]
@@ -359,3 +382,18 @@ class RobustGraspHand(ForceGrasp):
     def _forces(self, pads: np.ndarray) -> str:
         """The grasping pads' forces, for a reason a user reads."""
         return ", ".join(f"{f} {pads[self.pad_of[f]]:.1f} N" for f in self.fingers)
+
+
+def under_footprint(obj: ObjectInfo, point: np.ndarray, margin: float) -> bool:
+    """Whether `point` (world) stands over the object's footprint where the task believes it
+    stands, widened by `margin`: a box's resting face, turned as its pose turns it; a round
+    object's disc. With no pose believed, anywhere may be its foot."""
+    if obj.pose is None:
+        return True
+    pose = obj.pose.as_array()
+    offset = point[:2] - pose[:2, 3]
+    size = obj.effective_size
+    if (obj.object_class or ObjectClass.BOX) is not ObjectClass.BOX:
+        return float(np.linalg.norm(offset)) <= size[0] + margin
+    along = np.abs(pose[:2, :2].T @ offset)
+    return bool((along <= np.array(size[:2]) / 2.0 + margin).all())
