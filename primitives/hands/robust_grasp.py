@@ -13,12 +13,11 @@ from __future__ import annotations
 import numpy as np
 
 from atd.model.frames import GRAVITY
-from atd.model.task import ObjectInfo
-from atd.model.vocabulary import ObjectClass
 from primitives.arm.motion import SUPPORT_BAND
 from primitives.base import Context, Status
 from primitives.blackboard import EMPTY_HAND, Shift
 from primitives.filters import LowPass, held_wrench, world_load
+from primitives.footprint import over_footprint
 from primitives.hands.extension import ExtensionGauge, contact_points
 from primitives.hands.grasp_phases import Closing, Corrections, Holding, Phase, Weighing
 from primitives.hands.force_grasp import ForceGrasp
@@ -79,12 +78,9 @@ class RobustGraspHand(ForceGrasp):
 
     def _close(self, readings: Readings, dt: float) -> None:
         touching = self._touching(readings)
-        if touching:
-            points, world = self._contacts(readings, touching)
-            table = self._on_table(touching, world)
-            self.closing.brushed.update(f for f in touching if f not in table)
-            if self.pinch:
-                self._feel_across(readings, touching, points, world)
+        self.closing.brushed.update(touching)
+        if touching and self.pinch:
+            self._feel_across(readings, touching)
         if self._closed(readings, dt) or self._pinching(readings, dt) or self._passed(readings):
             self.corrections.jammed = self._jammed(readings)
             self.ctx.blackboard.fingers_stopped = True
@@ -206,11 +202,11 @@ class RobustGraspHand(ForceGrasp):
             return False
         return PASSED * self.ctx.object.least_width <= self.gauge.gap(q) <= self.ctx.object.widest + JAM_MARGIN
 
-    def _feel_across(self, readings: Readings, touching: list[str], points: np.ndarray, world: np.ndarray) -> None:
-        """Where the touching pads (touching at `points`, hand frame; `world`) feel something
-        above the table, across the pinch line (m, hand frame, from the line through the
-        fingers): each pad's centre of pressure, weighted by its force. Fingertips on the
-        table say nothing of the object."""
+    def _feel_across(self, readings: Readings, touching: list[str]) -> None:
+        """Where the touching pads feel something above the table, across the pinch line
+        (m, hand frame, from the line through the fingers): each pad's centre of pressure,
+        weighted by its force. Fingertips on the table say nothing of the object."""
+        points, world = self._contacts(readings, touching)
         above = world[:, 2] >= SUPPORT_BAND
         if not above.any():
             return
@@ -229,18 +225,16 @@ class RobustGraspHand(ForceGrasp):
         SUPPORT_BAND of it and beside the object's believed footprint (the task's
         description), for a pad on the foot of a box stands as low. With no object
         described, none: a low touch may be its foot."""
-        obj = self.ctx.object
-        if obj is None:
-            return set()
-        return {f for f, p in zip(touching, world) if p[2] < SUPPORT_BAND and not under_footprint(obj, p, FOOT_MARGIN)}
+        table = (world[:, 2] < SUPPORT_BAND) & ~over_footprint(self.ctx.object, world, FOOT_MARGIN)
+        return {f for f, on in zip(touching, table) if on}
 
     # -- judging a close ----------------------------------------------------------------
     def _judge(self, readings: Readings) -> None:
         """Every grasping finger on the object: hold it. Otherwise correct, towards the
         fingers that touch it; when none does, towards those that touched something on the
         way and lost it (the object pushed aside by the finger that met it first), as long
-        as some did not: that side is where the object went. A pad pressing the table beside
-        the object (`_on_table`) touches neither."""
+        as some did not: that side is where the object went. A pad that ends the close
+        pressing the table beside the object (`_on_table`) does not touch it."""
         search = self.search
         heading, search.heading = search.heading, 0.0
         touching = self._touching(readings)
@@ -382,18 +376,3 @@ class RobustGraspHand(ForceGrasp):
     def _forces(self, pads: np.ndarray) -> str:
         """The grasping pads' forces, for a reason a user reads."""
         return ", ".join(f"{f} {pads[self.pad_of[f]]:.1f} N" for f in self.fingers)
-
-
-def under_footprint(obj: ObjectInfo, point: np.ndarray, margin: float) -> bool:
-    """Whether `point` (world) stands over the object's footprint where the task believes it
-    stands, widened by `margin`: a box's resting face, turned as its pose turns it; a round
-    object's disc. With no pose believed, anywhere may be its foot."""
-    if obj.pose is None:
-        return True
-    pose = obj.pose.as_array()
-    offset = point[:2] - pose[:2, 3]
-    size = obj.effective_size
-    if (obj.object_class or ObjectClass.BOX) is not ObjectClass.BOX:
-        return float(np.linalg.norm(offset)) <= size[0] + margin
-    along = np.abs(pose[:2, :2].T @ offset)
-    return bool((along <= np.array(size[:2]) / 2.0 + margin).all())
