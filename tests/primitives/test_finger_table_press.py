@@ -1,10 +1,11 @@
 """A fingertip pressed on the table beside the object is not a finger on it. The Barrett's
 pinch preshape reaches 12 cm out and down to the table; closing beside an object off the
 pinch line (generalisation.toml, base seed 44021, the (0.02, 0.14) place: the ball, the mug,
-the duck), F2's pad pressed the table at 20 N for seconds while F1 closed on nothing, and the
-grasp read "finger F1 missed the object" and shifted the hand along the pinch line towards
-F2, a move the object had no part in. A pad on a box's foot stands as low (9 mm), so where
-the pad touches against the object's believed footprint tells the two apart, not its height."""
+the duck), F1's pad met the object, then F2's pressed the table at 20 N for seconds while F1
+closed past the object, and the grasp read "finger F1 missed the object" and shifted the hand
+along the pinch line towards F2, away from the object. A pad on a box's foot stands as low
+(9 mm), so where the pad touches against the object's believed footprint tells the two
+apart, not its height."""
 
 from __future__ import annotations
 
@@ -26,32 +27,33 @@ CLOSED_ON = np.array([np.pi / 2, 0.88, 0.81, 0.0])  # where the fingers stood st
 SPEAKER = (0.065, 0.05, 0.05)  # m: the library's speaker, a box
 
 
-def _readings(q: np.ndarray, f2: float, height: float) -> Readings:
-    """The Barrett still at `q`, F2's pad pressing `f2` N at `height` (m, world z) at its centre."""
+def _readings(q: np.ndarray, pressing: dict[str, float], height: float) -> Readings:
+    """The Barrett still at `q`, each pad in `pressing` pressing that many N at its centre,
+    F2's at `height` (m, world z)."""
     hand = BARRETT.hand
     tcp = np.eye(4)
-    tcp[:3, :3], tcp[:3, 3] = DOWN, (0.4, 0.0, height + _f2_centre()[2])  # world z of the centre: height
+    tcp[:3, :3], tcp[:3, 3] = DOWN, (0.4, 0.0, height + _f2_centre()[2])  # world z of F2's centre: height
+    names = [p.name for p in hand.pads]
     pads = np.zeros(len(hand.pads))
-    pads[_f2_pad()] = f2
+    for pad, force in pressing.items():
+        pads[names.index(pad)] = force
     zeros = np.zeros(BARRETT.arm_dof)
     return Readings(time=0.0, arm_q=zeros, arm_dq=zeros, arm_effort=zeros, hand_q=q.copy(),
                     hand_dq=np.zeros(len(q)), hand_effort=np.zeros(len(q)), tcp=tcp, wrench=np.zeros(6),
                     taxels={}, pad_force=pads, range=None)
 
 
-def _f2_pad() -> int:
-    return [p.name for p in BARRETT.hand.pads].index("tactile_f2")
-
-
 def _f2_centre() -> np.ndarray:
     """F2's pad centre in the hand frame, the fingers where they stood still."""
-    return BARRETT.hand.pad_surfaces(CLOSED_ON)[_f2_pad()][:3, 3]
+    f2 = [p.name for p in BARRETT.hand.pads].index("tactile_f2")
+    return BARRETT.hand.pad_surfaces(CLOSED_ON)[f2][:3, 3]
 
 
 def _correction(height: float, speaker_from_pad: tuple[float, float]) -> np.ndarray:
-    """The move the robust pinch asks for (hand frame, m) after a close whose fingers stood
-    still with F2's pad pressing 20 N at `height` and F1's feeling nothing, the task
-    believing the speaker stands `speaker_from_pad` (m, world x, y) from F2's pad centre."""
+    """The move the robust pinch asks for (hand frame, m) after a close on which F1's pad met
+    the object, and whose fingers then stood still with F2's pad pressing 20 N at `height`
+    and F1's feeling nothing, the task believing the speaker stands `speaker_from_pad` (m,
+    world x, y) from F2's pad centre."""
     centre = DOWN @ _f2_centre() + (0.4, 0.0, 0.0)
     where = Pose.from_position((centre[0] + speaker_from_pad[0], centre[1] + speaker_from_pad[1], SPEAKER[2] / 2))
     speaker = ObjectInfo(pose=where, weight=0.15, object_class=ObjectClass.BOX, size=SPEAKER)
@@ -60,15 +62,17 @@ def _correction(height: float, speaker_from_pad: tuple[float, float]) -> np.ndar
     hand = build_controller(Controller(name="robust_grasp_hand", params=pinch), "hand", ctx)
     pre = np.asarray(BARRETT.hand.postures["pinch_grasp_preshape"], float)
     period = BARRETT.control_period
-    hand.start(_readings(pre, 0.0, 0.05))
+    hand.start(_readings(pre, {}, 0.05))
     for _ in range(5):
-        hand.update(_readings(pre, 0.0, 0.05), period)
+        hand.update(_readings(pre, {}, 0.05), period)
     assert ctx.blackboard.preshaped
-    ctx.blackboard.contact = True  # the arm has come down: close
+    ctx.blackboard.contact = True  # the arm has come down on the object, F1's pad on it: close
+    for _ in range(5):
+        hand.update(_readings(pre, {"tactile_f1": 10.0}, 0.02), period)
     for _ in range(round(1.0 / period)):  # the fingers stand still, F2's pad pressing
-        hand.update(_readings(CLOSED_ON, 20.0, height), period)
+        hand.update(_readings(CLOSED_ON, {"tactile_f2": 20.0}, height), period)
     for _ in range(round(1.0 / period)):  # reopened into the preshape: the hand asks the arm to move
-        hand.update(_readings(pre, 0.0, 0.05), period)
+        hand.update(_readings(pre, {}, 0.05), period)
         if ctx.blackboard.shift is not None:
             return ctx.blackboard.shift.offset
     raise AssertionError("the hand asked for no correction")
