@@ -23,12 +23,12 @@ from enum import Enum
 
 import numpy as np
 
+from atd.model.vocabulary import ObjectClass
 from primitives.arm.motion import GAIN, clamp_norm, norm, orientation_twist, unit
 from primitives.arm.move import arm_output
 from primitives.arm.slide_edges import INSET, Sweep, moved, shift, sweeps
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.filters import ContactWrench, LowPass
-from primitives.footprint import over_footprint
 from primitives.robot import Readings
 
 # m the hand rises before taring: more than a pad's compression, so whatever the state
@@ -170,8 +170,20 @@ class Slide(Controller):
         hook's fingers hanging behind the object's trailing face are not pressing on it."""
         pads = self.ctx.info.hand.pad_surfaces(readings.hand_q)[:, :3, 3]
         world = readings.tcp[:3, 3] + pads @ readings.tcp[:3, :3].T
-        over = world[over_footprint(self.ctx.object, world - self.shift)]
+        over = world[self._over_object(world)]
         return float(np.min((over if len(over) else world) @ self.normal))
+
+    def _over_object(self, points: np.ndarray) -> np.ndarray:
+        """Which of `points` lie over the object's footprint as the task believes it."""
+        obj = self.ctx.object
+        if obj is None or obj.pose is None:
+            return np.ones(len(points), bool)
+        pose = obj.pose.as_array()
+        local = (points - pose[:3, 3] - self.shift) @ pose[:3, :3]
+        size = obj.effective_size
+        if (obj.object_class or ObjectClass.BOX) is ObjectClass.BOX:
+            return np.all(np.abs(local[:, :2]) <= np.array(size[:2]) / 2, axis=1)
+        return np.hypot(local[:, 0], local[:, 1]) <= size[0]
 
     def _tangential(self, offset: np.ndarray) -> np.ndarray:
         return offset - float(offset @ self.normal) * self.normal

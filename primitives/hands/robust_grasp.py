@@ -17,7 +17,6 @@ from primitives.arm.motion import SUPPORT_BAND
 from primitives.base import Context, Status
 from primitives.blackboard import EMPTY_HAND, Shift
 from primitives.filters import LowPass, held_wrench, world_load
-from primitives.footprint import over_footprint
 from primitives.hands.extension import ExtensionGauge, contact_points
 from primitives.hands.grasp_phases import Closing, Corrections, Holding, Phase, Weighing
 from primitives.hands.force_grasp import ForceGrasp
@@ -42,7 +41,6 @@ WEIGH_TIME = 0.2  # s it feels it there: the swing of the lift's stop dies down 
 OFF_CENTRE = 0.015  # m the weight may hang off the pinch line: further, it turned out of the hand
 RIM_CONTACT = 0.0015  # m over which a pad's contact on a curved face carries friction against the turn
 GAP_CHECK = 0.05  # s between looks at the pads' gap: a look (forward kinematics) costs 0.3-0.5 ms
-FOOT_MARGIN = 0.005  # m beyond the believed footprint a pad on its foot touches: its centre of pressure, off the face
 
 
 class RobustGraspHand(ForceGrasp):
@@ -206,41 +204,26 @@ class RobustGraspHand(ForceGrasp):
         """Where the touching pads feel something above the table, across the pinch line
         (m, hand frame, from the line through the fingers): each pad's centre of pressure,
         weighted by its force. Fingertips on the table say nothing of the object."""
-        points, world = self._contacts(readings, touching)
-        above = world[:, 2] >= SUPPORT_BAND
+        pads = [self.pad_of[f] for f in touching]
+        points = contact_points(self.ctx.info.hand, readings, pads)
+        heights = points @ readings.tcp[2, :3] + readings.tcp[2, 3]  # world z
+        above = heights >= SUPPORT_BAND
         if not above.any():
             return
         self.closing.felt_by.update(f for f, up in zip(touching, above) if up)
-        weights = readings.pad_force[[self.pad_of[f] for f in touching]] * above
+        weights = readings.pad_force[pads] * above
         across = (points[:, :2] - self.base[self.fingers[0]]) @ self.search.normal
         self.closing.felt_at = float(weights @ across) / float(weights.sum())
-
-    def _contacts(self, readings: Readings, touching: list[str]) -> tuple[np.ndarray, np.ndarray]:
-        """Where the touching pads touch: in the hand frame, and in the world."""
-        points = contact_points(self.ctx.info.hand, readings, [self.pad_of[f] for f in touching])
-        return points, points @ readings.tcp[:3, :3].T + readings.tcp[:3, 3]
-
-    def _on_table(self, touching: list[str], world: np.ndarray) -> set[str]:
-        """The touching fingers (touching at `world`) whose pads press the table: within
-        SUPPORT_BAND of it and beside the object's believed footprint (the task's
-        description), for a pad on the foot of a box stands as low. With no object
-        described, none: a low touch may be its foot."""
-        table = (world[:, 2] < SUPPORT_BAND) & ~over_footprint(self.ctx.object, world, FOOT_MARGIN)
-        return {f for f, on in zip(touching, table) if on}
 
     # -- judging a close ----------------------------------------------------------------
     def _judge(self, readings: Readings) -> None:
         """Every grasping finger on the object: hold it. Otherwise correct, towards the
         fingers that touch it; when none does, towards those that touched something on the
         way and lost it (the object pushed aside by the finger that met it first), as long
-        as some did not: that side is where the object went. A pad that ends the close
-        pressing the table beside the object (`_on_table`) does not touch it."""
+        as some did not: that side is where the object went."""
         search = self.search
         heading, search.heading = search.heading, 0.0
         touching = self._touching(readings)
-        if touching:
-            table = self._on_table(touching, self._contacts(readings, touching)[1])
-            touching = [f for f in touching if f not in table]
         if not touching and set(self.fingers) - self.closing.brushed:
             touching = [f for f in self.fingers if f in self.closing.brushed]
         lost = [f for f in self.fingers if f not in touching]
