@@ -81,13 +81,14 @@ def _hand_friction(spec: mujoco.MjSpec, d: RobotDescription, prefix: str) -> Non
     as its priority gives a dynamic contact: a screw cap's stiffness (`atd.sim.models.cap_timeconst`)
     too. Against the table the hand's own friction is taken (MuJoCo's maximum of the two, as
     Bullet's product with the table's 1)."""
-    factor = d.hand.surface_friction
-    if factor == 1.0:
-        return
-    hand = [g for link in d.hand_links for g in spec.body(prefix + link).geoms if g.contype or g.conaffinity]
+    pads = {prefix + p.name: p.name for p in d.hand.pads}
+    hand = [(g, d.hand.grip(pads.get(g.name, link))) for link in d.hand_links
+            for g in spec.body(prefix + link).geoms if g.contype or g.conaffinity]
     objects = [g for body in spec.bodies if any(j.type == mujoco.mjtJoint.mjJNT_FREE for j in body.joints)
                for g in body.geoms]
-    for g in hand:
+    for g, factor in hand:
+        if factor == 1.0:
+            continue
         g.friction[0] = factor * g.friction[0]
         for o in objects:
             slide, spin, roll = o.friction
