@@ -9,8 +9,7 @@ after a grasp), release opens the jaws with the arm still, and there is no slide
 
 `MultiFingerFactory`: one arm with a wrist force-torque sensor and a hand with tactile pads
 on its fingers, mapped as Tombatossals is in thesis Table 7.3: the robust grasp (preshape
-opened to the object, close, adapt the force), place and slide felt on the wrist sensor (a
-slide only with a range sensor along the approach axis that finds the object's edges),
+opened to the object, close, adapt the force), place and slide felt on the wrist sensor,
 release backing off the surface, and the hand kept as it is while the arm carries.
 """
 
@@ -109,7 +108,7 @@ class MultiFingerFactory(Factory):
         MappingRow("push", "transport", "-", "arm control, force-torque sensor (feels the object)"),
         MappingRow("transport", "transport", "obstacles, constraints", "arm control"),
         MappingRow("place", "place", "contact threshold", "arm control, force-torque sensor"),
-        MappingRow("slide", "slide", "slide force threshold", "arm control, force-torque sensor, range sensor"),
+        MappingRow("slide", "slide", "slide force threshold", "arm control, force-torque sensor"),
         MappingRow("release", "release", "hand position", "arm control"),
         *PERCEPTION_ROWS,
         MappingRow("unscrew", "unscrew", "grasp force, twist angle, torque and pull limits",
@@ -130,11 +129,6 @@ class MultiFingerFactory(Factory):
         if kind is StateType.PLACE:
             return NodeMapping("place", self.place(state, context, target), self.controller("hold_position"))
         if kind is StateType.SLIDE:
-            if not self.arm.sensors_of(SensorKind.RANGE):
-                raise Unmappable(f"the {self.name} has no range sensor along its approach axis to find where the object "
-                                 "stands: its slide would carry an object standing off the task's pose as far off its "
-                                 "target and say it reached it (docs/slide.md)",
-                                 "push the object instead (type=\"push\"), or translate for baxter")
             # Thesis 3.3.5: the slide presses with a predefined preshape (a hook on the Barrett),
             # its path for where that preshape presses (`shape_offset`), as the move before it.
             shape, notes = self.shape(HandShape.HOOK_GRASP_PRESHAPE)

@@ -57,7 +57,7 @@ def test_a_hand_without_a_range_sensor_to_find_the_tray_is_refused_the_slide(arm
     result = translate(task, create("tombatossals", arm))
     assert result.estd is None
     refused = [d for d in result.diagnostics if d.code == "TRN001"]
-    assert len(refused) == 1 and "no range sensor" in refused[0].message, result.diagnostics
+    assert len(refused) == 1 and "finds where the object to slide stands" in refused[0].message, result.diagnostics
     assert "baxter" in (refused[0].hint or "")
 
 
