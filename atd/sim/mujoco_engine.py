@@ -74,8 +74,8 @@ def compile_mjcf(xml: str, description: RobotDescription, others: tuple[RobotDes
 
 
 def _hand_friction(spec: mujoco.MjSpec, d: RobotDescription, prefix: str) -> None:
-    """The hand's surfaces grip an object `d.hand.surface_friction` times its own friction,
-    as Bullet's product makes them: an explicit contact pair per hand geom and object geom
+    """The hand's rubber surfaces grip an object `d.hand.surface_friction` times its own friction,
+    as Bullet's product makes them: an explicit contact pair per rubber geom and object geom
     (the objects are the world's free bodies) replaces MuJoCo's dynamic contact, whose
     friction is the object's alone (priority 1). The pair keeps the object's solref and solimp,
     as its priority gives a dynamic contact: a screw cap's stiffness (`atd.sim.models.cap_timeconst`)

@@ -15,7 +15,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from factories.description import RUBBER, FingerPad, Hand, HandDof, Joint, Link, Origin, RobotDescription, SensorModel, Servo, Site
+from factories.description import (RUBBER, FingerPad, Hand, HandDof, Joint, Link, Origin, RobotDescription, SensorModel,
+                                   Servo, Site)
 from factories.parts import DARK, METAL, box, capsule, cylinder
 
 D = np.pi / 180
