@@ -291,20 +291,13 @@ class Hand:
     """The posture a closed hand takes to move and push (not a D5 shape): a hand whose fist
     meets an object with sloping links names one that leads with a vertical face."""
     surface_friction: float = 1.0
-    """How much better the hand's rubber surfaces grip than the object's own friction says:
-    a contact's friction is the object's times this, in both engines (MuJoCo by explicit
-    contact pairs, Bullet by its product); 1 = the object's friction alone."""
-    rubber: frozenset[str] = frozenset()
-    """The links and pads, by name, that are rubber, at least the fingertips a slide presses
-    with (rubber elsewhere can hold what a grasp must let slide); empty: every one."""
+    """How much better the hand's surfaces (pads, fingers, palm) grip than the object's own
+    friction says: a contact's friction is the object's times this, in both engines (MuJoCo
+    by explicit contact pairs, Bullet by its product); 1 = the object's friction alone."""
     side_roll: float = 0.0
     """Radians the hand turns about its approach axis, beyond the task's turn, wherever the
     task turns it to grasp from the side: a hand whose pinch closes along its x axis (which
     such a turn stands upright) rolls so that its fingers close across a standing object."""
-
-    def grip(self, surface: str) -> float:
-        """`surface_friction` on the hand's link or pad named `surface`, 1 where it is bare."""
-        return self.surface_friction if not self.rubber or surface in self.rubber else 1.0
 
     @property
     def couplings(self) -> tuple[tuple[str, str, float], ...]:

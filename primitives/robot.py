@@ -80,7 +80,7 @@ class HandInfo:
     mass: float  # kg the sensor carries when the hand is empty
     centre_of_mass: Callable[[np.ndarray], np.ndarray]  # hand DOF values -> (3,) its centre, TCP frame
     wrist: np.ndarray  # (3,) the sensor's origin in the TCP frame, about which `wrench` reads torques
-    # how much better the hand's rubber surfaces, its fingertips at least, grip than an object's own friction says
+    # how much better the hand's surfaces grip than an object's own friction says (rubber pads)
     surface_friction: float = 1.0
 
 

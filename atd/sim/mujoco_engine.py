@@ -74,21 +74,20 @@ def compile_mjcf(xml: str, description: RobotDescription, others: tuple[RobotDes
 
 
 def _hand_friction(spec: mujoco.MjSpec, d: RobotDescription, prefix: str) -> None:
-    """The hand's rubber surfaces grip an object `d.hand.surface_friction` times its own friction,
-    as Bullet's product makes them: an explicit contact pair per rubber geom and object geom
+    """The hand's surfaces grip an object `d.hand.surface_friction` times its own friction,
+    as Bullet's product makes them: an explicit contact pair per hand geom and object geom
     (the objects are the world's free bodies) replaces MuJoCo's dynamic contact, whose
     friction is the object's alone (priority 1). The pair keeps the object's solref and solimp,
     as its priority gives a dynamic contact: a screw cap's stiffness (`atd.sim.models.cap_timeconst`)
     too. Against the table the hand's own friction is taken (MuJoCo's maximum of the two, as
     Bullet's product with the table's 1)."""
-    pads = {prefix + p.name: p.name for p in d.hand.pads}
-    hand = [(g, d.hand.grip(pads.get(g.name, link))) for link in d.hand_links
-            for g in spec.body(prefix + link).geoms if g.contype or g.conaffinity]
+    factor = d.hand.surface_friction
+    if factor == 1.0:
+        return
+    hand = [g for link in d.hand_links for g in spec.body(prefix + link).geoms if g.contype or g.conaffinity]
     objects = [g for body in spec.bodies if any(j.type == mujoco.mjtJoint.mjJNT_FREE for j in body.joints)
                for g in body.geoms]
-    for g, factor in hand:
-        if factor == 1.0:
-            continue
+    for g in hand:
         g.friction[0] = factor * g.friction[0]
         for o in objects:
             slide, spin, roll = o.friction

@@ -180,8 +180,8 @@ class PybulletRobot(SimRobot):
         self._pad_links = [index["link:" + p.name] for p in d.hand.pads]
         self._hand_links = [index["link:" + n] for n in d.hand_links if n != d.hand_root] + self._pad_links
         self._hand_set = {self._hand_link, *self._hand_links}
-        for name in (*d.hand_links, *(p.name for p in d.hand.pads)):  # the hand's surfaces grip as its description says
-            pb.changeDynamics(self.body, index["link:" + name], lateralFriction=d.hand.grip(name), physicsClientId=c)
+        for link in self._hand_set:  # the hand's surfaces grip d.hand.surface_friction times the object's friction
+            pb.changeDynamics(self.body, link, lateralFriction=d.hand.surface_friction, physicsClientId=c)
         self._pad_of_link = {link: k for k, link in enumerate(self._pad_links)}
         self._untouched = (np.zeros(0, int), np.zeros((0, 2)), np.zeros(0))
         self._hand_weights = np.array(  # z of each hand link's weight, root first

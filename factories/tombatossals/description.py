@@ -15,8 +15,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from factories.description import (RUBBER, FingerPad, Hand, HandDof, Joint, Link, Origin, RobotDescription, SensorModel,
-                                   Servo, Site)
+from factories.description import FingerPad, Hand, HandDof, Joint, Link, Origin, RobotDescription, SensorModel, Servo, Site
 from factories.parts import DARK, METAL, box, capsule, cylinder
 
 D = np.pi / 180
@@ -162,10 +161,7 @@ def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
     # bottom, and F3, flat in the pinch, stands up off the table instead of 7 cm into it.
     hand = Hand("barrett_bh8_280", dofs, tuple(pads), postures, test_grasp="pinch_grasp",
                 grasp_centres={"push": pointing}, push_posture="push", rising_grasps=frozenset({"pinch_grasp"}),
-                side_roll=-np.pi / 2, surface_friction=RUBBER,
-                # rubber fingertips: the pads, which end them; rubber on the links kept the
-                # finger-lost correction from moving a 5 kg box (PyBullet; docs/slide.md)
-                rubber=frozenset(f"tactile_{f}" for f in ("f1", "f2", "f3")))
+                side_roll=-np.pi / 2)  # the object's friction: rubber pads kept its finger-lost correction from moving a 5 kg box (PyBullet; docs/slide.md)
     return tuple(links), hand, 0.155
 
 
@@ -258,10 +254,7 @@ def _sdh2() -> tuple[tuple[Link, ...], Hand, float]:
     centres = {"pinch_grasp_preshape": pinch, "pinch_grasp": pinch, "push": (SDH_THUMB_X, 0.0, 0.0)}
     # Three fingers 120 degrees apart balance each other on a small box.
     hand = Hand("schunk_sdh2", dofs, tuple(pads), postures, test_grasp="spherical_grasp", grasp_centres=centres,
-                push_posture="push", surface_friction=RUBBER,
-                # rubber fingertips: the distal links, not the pads mid-finger; rubber on the
-                # pads held the jam jar's neck against the unscrew's pull (docs/slide.md)
-                rubber=frozenset(f"sdh_{f}_distal" for f in ("f1", "f2", "thumb")))
+                push_posture="push")  # the object's friction: rubber pads held the jam jar's neck against the unscrew's pull (docs/slide.md)
     return tuple(links), hand, 0.225
 
 
