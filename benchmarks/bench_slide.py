@@ -60,6 +60,9 @@ def main() -> None:
     task, _ = load_task(TRAY)
     for robot, arm in (a.split(":") for a in args.arms.split(",")):
         estd = translate(task, create(robot, arm)).estd
+        if estd is None:  # a robot that cannot find where the object stands refuses to slide it
+            print(f"{robot}/{arm}: refused", flush=True)
+            continue
         said = carried = false = 0
         ends: Counter[str] = Counter()
         misses = []  # (run, cm from the target, cm the tray travelled) of every run not carried

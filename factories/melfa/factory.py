@@ -36,5 +36,5 @@ class MelfaFactory(ParallelJawFactory):
     def map_node(self, state: State, context: MappingContext) -> NodeMapping:
         if state.type is StateType.SLIDE:
             raise Unmappable("the Melfa has no slide primitive (thesis Table 7.4)",
-                             "push the object instead (type=\"push\"), or translate for tombatossals or baxter")
+                             "push the object instead (type=\"push\"), or translate for baxter")
         return super().map_node(state, context)

@@ -46,6 +46,21 @@ def test_a_slide_whose_object_is_missing_does_not_succeed(engine: str) -> None:
     assert any(r.startswith("found no edge") for r in last_reasons(executor)), last_reasons(executor)
 
 
+@pytest.mark.parametrize("arm", ["left", "right"])
+def test_a_hand_without_a_range_sensor_to_find_the_tray_is_refused_the_slide(arm: str) -> None:
+    """Tombatossals' hands (the SDH2, left; the Barrett, right) have no range sensor to find
+    where the tray stands. With rubber fingertips they carry it, but a tray standing 1.9 cm off
+    the task's pose ended 2.0 cm from its target and the slide said it had reached it
+    (docs/slide.md; main translated it, and the slide moved nothing): the translation refuses
+    the slide, saying why, and nothing runs that could say success."""
+    task, _ = load_task(TRAY)
+    result = translate(task, create("tombatossals", arm))
+    assert result.estd is None
+    refused = [d for d in result.diagnostics if d.code == "TRN001"]
+    assert len(refused) == 1 and "finds where the object to slide stands" in refused[0].message, result.diagnostics
+    assert "baxter" in (refused[0].hint or "")
+
+
 @pytest.mark.parametrize("engine", ["mujoco", "pybullet"])
 def test_a_slide_carries_a_tray_standing_off_its_believed_pose_to_its_target(engine: str) -> None:
     """The tray stands 1.9 cm from where the task says (1.5 cm across, 1.1 cm behind, turned

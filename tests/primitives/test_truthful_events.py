@@ -63,14 +63,6 @@ def test_a_lift_the_grip_cannot_carry_is_not_a_stable_grasp() -> None:
     assert [r["event"] for r in executor.trace.records if r["type"] == "event"][-1] == "timeout"
 
 
-def test_an_sdh2_slide_that_presses_beside_the_box_is_an_error() -> None:
-    """The fingers straddle the box, so the hand's lowest pads are below its top, on the
-    table: that is not pressing on the object, and the slide ends in an error instead of in success."""
-    outcome, executor, robot = run_example(DATA / "slide_box.xml", robot="tombatossals", arm="left")
-    assert not outcome.succeeded, f"{outcome.summary}; the box at {robot.object_pose()[:3, 3]}"
-    assert last_reasons(executor)[0].startswith("nothing to press on"), last_reasons(executor)
-
-
 def test_a_lift_whose_object_drops_out_once_the_arm_stops_is_not_a_success() -> None:
     """The Barrett's pinch on the preset's mug (PyBullet, the approach error, trial 11): the
     lift reached its target with the pads at 2.1 N and said success; the pads eased to 1.2 N
