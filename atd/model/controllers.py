@@ -339,6 +339,10 @@ _ARM_CONTROLLERS = (
             "force_threshold": _p(NUM, "surface contact force (thesis FORCE_THRESHOLD)", 5.0, unit="N"),
             "approach_height": _p(NUM, "height above the target where the slow descent starts (ours)", 0.02,
                                   unit="m"),
+            "carry_threshold": _p(NUM, "contact force along surface_normal that ends the place while it brings "
+                                  "the object over the target: what is under it stands higher than the target "
+                                  "(ours: a guarded move's 15 N, over the 5 N the wrist reads as the hand speeds "
+                                  "up)", 15.0, unit="N"),
             "max_overshoot": _p(NUM, "how far below the target to keep descending before giving up (ours)",
                                 0.03, unit="m"),
             "max_speed": _p(NUM, "TCP speed limit while bringing the object over the target (ours)", 0.15,

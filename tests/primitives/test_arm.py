@@ -159,6 +159,29 @@ def test_place_descends_until_the_object_touches_the_surface() -> None:
     assert place.left - place.entered > 2.0
 
 
+def test_a_place_onto_what_stands_higher_than_its_target_puts_the_object_down_on_it() -> None:
+    """The target on the table, a 4 cm block standing there (what was put down before): the
+    held box meets the block while it is brought over, and is put down on it, the wrist
+    pressing no harder than a guarded move's contact (it pressed until the state's timeout)."""
+    block = np.eye(4)
+    block[:3, 3] = (0.125, 0.1, 0.02)
+    robot = melfa(Scene(box_scene().object, (Body("obstacle0", "box", (0.06, 0.06, 0.04), block, 1.0,
+                                                  DEFAULT_FRICTION),)))
+    pressed: list[float] = []
+    estd = machine(*_grasp_box(),
+                   Stage(use("cartesian_move", target=(0.125, 0.1, 0.1)), use("squeeze", grasp_force=15.0),
+                         both_done()),
+                   Stage(use("place", target=(0.125, 0.1, 0.025)), use("squeeze", grasp_force=15.0), both_done()),
+                   Stage(use("release_retreat"), use("open_to"), both_done()))
+    outcome, executor = execute(estd, robot, lambda robot, state, time: state == "s4" and pressed.append(
+        float(np.linalg.norm(robot.read().wrench[:3]))))
+    assert outcome.succeeded, outcome.summary
+    assert any(r.startswith("placed on something") for r in _reasons_leaving(executor, "s4"))
+    box = robot.object_pose()[:3, 3]
+    assert abs(box[2] - 0.065) < 0.004, f"the box rests at {box[2]:.3f} m, not on the block"
+    assert max(pressed) - pressed[0] < 30.0, f"the wrist read {max(pressed) - pressed[0]:.0f} N over its start"
+
+
 def _reasons_leaving(executor, state: str) -> list[str]:
     fired = [r for r in executor.trace.records if r["type"] == "event" and r["state"] == state]
     return [c.get("reason", "") for r in fired for c in r["conditions"]]
