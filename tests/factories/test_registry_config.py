@@ -20,7 +20,7 @@ def test_shipped_configs_load_and_user_config_wins(tmp_path):
     user = tmp_path / "c.toml"
     user.write_text("[baxter.controllers.place]\nforce_threshold = 12\n[melfa.controllers.place]\nvelocity = 0.01\n")
     factory = create("baxter", config=user)
-    assert factory.config.controllers["place"] == {"force_threshold": 12.0, "carry_threshold": 30.0, "filter_time": 0.05}
+    assert factory.config.controllers["place"] == {"force_threshold": 12.0, "carry_threshold": 30.0, "weigh_time": 0.0, "filter_time": 0.05}
 
 
 @pytest.mark.parametrize("text, message", [
