@@ -754,7 +754,7 @@ class Factory(ABC):
         """Where the state's hand shape acts, from the TCP in the hand frame (`shape_offset`
         says which point that is); the TCP itself when the state names no shape. `touching`:
         the state touches, or goes to a point an explore touched (a `point` value), so its
-        hand acts with its lowest point (`hand_reach`) under that: the task says where the
+        hand acts with its lowest point, pads counted (`touch_reach`), under that: the task says where the
         fingertips go from a felt surface, and each hand's own geometry (the SDH2's thumb
         21 mm under its TCP and 57 mm from its pinch, a gripper's jaws 10-24 mm under its
         TCP) puts its TCP there. `pinch`: the unscrew the state ends where it pinches, so
@@ -769,7 +769,7 @@ class Factory(ABC):
         robot = self.robot
         x, y, z = (float(v) for v in robot.hand.grasp_centres.get(posture, (0.0, 0.0, 0.0)))
         if touching or posture != made.value:  # a push posture of its own: its lowest point
-            z = robot.hand_reach(posture)
+            z = robot.touch_reach(posture) if touching else robot.hand_reach(posture)
         if touching and pinch is not None and pinch.object_size is not None:
             closing = self.shape(pinch.hand_shape or HandShape.PINCH_GRASP)[0].value
             if (edge := robot.pinch_reach(posture, closing, pinch.object_size)) is not None:

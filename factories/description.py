@@ -499,6 +499,14 @@ class RobotDescription:
                        for name in self.hand_links for shape in self.links_by_name[name].shapes)
         return farthest - float(tcp[:3, 3] @ approach)
 
+    def touch_reach(self, posture: str | np.ndarray) -> float:
+        """`hand_reach` with the tactile pads' sensing surfaces counted: how far past the TCP
+        what a touch leads with reaches, where a pad stands past its link's end (the
+        Barrett's pads own the last 4 mm of its fingertips: left out, its pointing finger
+        found a cap's top 4 mm high, docs/unscrew-campaign.md)."""
+        pads = [float((pad.corners @ surface.T)[:, 2].max()) for pad, surface in zip(self.hand.pads, self._pad_poses(posture))]
+        return max([self.hand_reach(posture), *pads])
+
     def hand_extent(self, posture: str | np.ndarray, within: float | None = None) -> tuple[float, float]:
         """How far the hand's links reach sideways from the TCP's axis in a posture (its name,
         or its DOF values), along the hand's x and along its y, each the further of its two
