@@ -148,8 +148,8 @@ def test_the_move_to_vision_s_approach_is_for_where_the_pinch_closes_on_each_han
 
 def test_the_touch_and_the_pinch_under_it_are_each_hands_own_points():
     """examples/unscrew_by_touch.xml names no hand's offsets: its explore writes where the
-    hand's lowest point touched (the SDH2's thumb, 38 mm off and 21 mm under its TCP; a
-    gripper's closed jaws under its TCP), a move to that point puts the lowest point of its
+    hand's lowest point touched, pads counted (the SDH2's thumb, 38 mm off and 21 mm under
+    its TCP; the Barrett's pointing finger's pad tip; a gripper's closed jaws under its TCP), a move to that point puts the lowest point of its
     shape there, under its grasp centre, and the move the unscrew pinches from puts there
     the lower edge of its pads closed to the cap's width, so each TCP stops where its own
     hand says."""
@@ -161,10 +161,10 @@ def test_the_touch_and_the_pinch_under_it_are_each_hands_own_points():
         thumb = states["find_cap"].arm.params["hand_point"]
         push = robot.hand.push_posture
         assert thumb == tuple(round(v, 6) for v in (*robot.hand.grasp_centres.get(push, (0.0, 0.0))[:2],
-                                                     robot.hand_reach(push))), factory.name
+                                                     robot.touch_reach(push))), factory.name
         over = states["open_over_cap"].arm.params["hand_point"]
         centre = robot.hand.grasp_centres.get("pinch_grasp_preshape", (0.0, 0.0, 0.0))
-        assert over[:2] == tuple(centre[:2]) and over[2] == round(robot.hand_reach("pinch_grasp_preshape"), 6)
+        assert over[:2] == tuple(centre[:2]) and over[2] == round(robot.touch_reach("pinch_grasp_preshape"), 6)
         pinch = states["around_cap"].arm.params["hand_point"]
         pads = states["unscrew_cap"].hand.params.get("pad_reach", over[2])  # a gripper's jaws end with their pads
         assert pinch[:2] == over[:2] and pinch[2] == pads, factory.name
@@ -173,6 +173,8 @@ def test_the_touch_and_the_pinch_under_it_are_each_hands_own_points():
     assert sdh2["find_cap"].arm.params["hand_point"] == (-0.038, 0.0, 0.021)
     melfa = translate(task, create("melfa")).estd.states_by_name
     assert melfa["around_cap"].arm.params["hand_point"] == (0.0, 0.0, 0.0238)  # the jaws' tips, 23.8 mm down
+    barrett = translate(task, create("tombatossals", arm="right")).estd.states_by_name
+    assert barrett["find_cap"].arm.params["hand_point"][2] == 0.011855  # its pad's tip, 4 mm past the link's end
     # a move to a pose (vision's approach) is still for the grasp centre itself: see the test above
 
 
