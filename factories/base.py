@@ -761,7 +761,8 @@ class Factory(ABC):
         the point is the lower edge of the pads closed to its `object_size` (`pinch_reach`):
         the task says how far under a felt cap top the pads pinch, and each hand's pads get
         there (a Barrett's pad tips meet a 60 mm cap 5 mm over its preshape's lowest point,
-        the SDH2's pads' edge is 3 mm over its fingertips', a gripper's jaws end with their pads)."""
+        the SDH2's pads' edge is 3 mm over its fingertips', a gripper's jaws end with their pads),
+        but for the hand's own `pinch_clearance` over it."""
         if state.hand_shape is None:
             return (0.0, 0.0, 0.0)
         made, _ = self.shape(state.hand_shape)
@@ -773,7 +774,7 @@ class Factory(ABC):
         if touching and pinch is not None and pinch.object_size is not None:
             closing = self.shape(pinch.hand_shape or HandShape.PINCH_GRASP)[0].value
             if (edge := robot.pinch_reach(posture, closing, pinch.object_size)) is not None:
-                z = edge
+                z = edge + robot.hand.pinch_clearance
         return (x, y, z)
 
     def coming_down(self, state: State, context: MappingContext) -> np.ndarray:

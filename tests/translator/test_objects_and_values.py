@@ -167,7 +167,7 @@ def test_the_touch_and_the_pinch_under_it_are_each_hands_own_points():
         assert over[:2] == tuple(centre[:2]) and over[2] == round(robot.touch_reach("pinch_grasp_preshape"), 6)
         pinch = states["around_cap"].arm.params["hand_point"]
         pads = states["unscrew_cap"].hand.params.get("pad_reach", over[2])  # a gripper's jaws end with their pads
-        assert pinch[:2] == over[:2] and pinch[2] == pads, factory.name
+        assert pinch[:2] == over[:2] and pinch[2] == round(pads + robot.hand.pinch_clearance, 6), factory.name
         assert states["around_cap"].target_offset == (0.0, 0.0, -0.012)
     sdh2 = translate(task, create("tombatossals", arm="left")).estd.states_by_name
     assert sdh2["find_cap"].arm.params["hand_point"] == (-0.038, 0.0, 0.021)
@@ -218,11 +218,13 @@ def test_every_hand_pinches_a_cap_with_its_pads_at_the_tasks_depth():
     fingers met the cap with their pads' tips 5 mm higher than that point, over a narrow
     cap's top (2 of 8 caps, docs/unscrew-campaign.md), the SDH2's pads 3 mm higher; a
     gripper's jaws end with their pads (unchanged). Each hand's pads, closed from the TCP
-    where the translation leaves it, meet the cap within 0.3 mm of 12 mm under its top."""
+    where the translation leaves it, meet the cap within 0.3 mm of 12 mm under its top, but
+    the Barrett's, 10 mm: its pads meet the cap tip first, faces turned up, and 12 mm down
+    they lifted the jam jar's cap out of the pinch as it rose up its thread (fails on main: 12)."""
     task, _ = load_task(EXAMPLES / "unscrew_by_touch.xml")
-    for robot, arm in (("tombatossals", "right"), ("tombatossals", "left")):
+    for robot, arm, depth in (("tombatossals", "right", 0.010), ("tombatossals", "left", 0.012)):
         factory = create(robot, arm=arm)
         states = translate(task, factory).estd.states_by_name
         tcp_depth = -states["around_cap"].target_offset[2] - states["around_cap"].arm.params["hand_point"][2]
         edge, gap = _pads_meet(factory.robot, 0.06)
-        assert abs(gap - 0.06) < 0.0005 and abs(tcp_depth + edge - 0.012) < 0.0003, (robot, arm, tcp_depth + edge)
+        assert abs(gap - 0.06) < 0.0005 and abs(tcp_depth + edge - depth) < 0.0003, (robot, arm, tcp_depth + edge)
