@@ -294,14 +294,14 @@ class Hand:
     """How much better the hand's surfaces (pads, fingers, palm) grip than the object's own
     friction says: a contact's friction is the object's times this, in both engines (MuJoCo
     by explicit contact pairs, Bullet by its product); 1 = the object's friction alone."""
-    pinch_clearance: float = 0.0
-    """How far over a task's pinch depth the pads' lower edge stands (m): a hand whose pads
-    meet a cap tip first, their faces turned up, lifts the cap out of its pinch by the cap's
-    lower edge once that edge rises past the tips (a thread's rise does it between pinches)."""
     side_roll: float = 0.0
     """Radians the hand turns about its approach axis, beyond the task's turn, wherever the
     task turns it to grasp from the side: a hand whose pinch closes along its x axis (which
     such a turn stands upright) rolls so that its fingers close across a standing object."""
+    pinch_clearance: float = 0.0
+    """How far over a task's pinch depth the pads' lower edge stands (m): a hand whose pads
+    meet a cap tip first, their faces turned up, loses the cap out of its pinch once the cap's
+    lower edge has risen past the tips (a thread's rise between pinches, the arm back at its height)."""
 
     @property
     def couplings(self) -> tuple[tuple[str, str, float], ...]:
