@@ -757,14 +757,15 @@ class Factory(ABC):
         """Where the state's hand shape acts, from the TCP in the hand frame (`shape_offset`
         says which point that is); the TCP itself when the state names no shape. `touching`:
         the state touches, or goes to a point an explore touched (a `point` value), so its
-        hand acts with its lowest point (`hand_reach`) under that: the task says where the
+        hand acts with its lowest point, pads counted (`touch_reach`), under that: the task says where the
         fingertips go from a felt surface, and each hand's own geometry (the SDH2's thumb
         21 mm under its TCP and 57 mm from its pinch, a gripper's jaws 10-24 mm under its
         TCP) puts its TCP there. `pinch`: the unscrew the state ends where it pinches, so
         the point is the lower edge of the pads closed to its `object_size` (`pinch_reach`):
         the task says how far under a felt cap top the pads pinch, and each hand's pads get
         there (a Barrett's pad tips meet a 60 mm cap 5 mm over its preshape's lowest point,
-        the SDH2's pads' edge is 3 mm over its fingertips', a gripper's jaws end with their pads)."""
+        the SDH2's pads' edge is 3 mm over its fingertips', a gripper's jaws end with their pads),
+        but for the hand's own `pinch_clearance` over it."""
         if state.hand_shape is None:
             return (0.0, 0.0, 0.0)
         made, _ = self.shape(state.hand_shape)
@@ -772,11 +773,11 @@ class Factory(ABC):
         robot = self.robot
         x, y, z = (float(v) for v in robot.hand.grasp_centres.get(posture, (0.0, 0.0, 0.0)))
         if touching or posture != made.value:  # a push posture of its own: its lowest point
-            z = robot.hand_reach(posture)
+            z = robot.touch_reach(posture) if touching else robot.hand_reach(posture)
         if touching and pinch is not None and pinch.object_size is not None:
             closing = self.shape(pinch.hand_shape or HandShape.PINCH_GRASP)[0].value
             if (edge := robot.pinch_reach(posture, closing, pinch.object_size)) is not None:
-                z = edge
+                z = edge + robot.hand.pinch_clearance
         return (x, y, z)
 
     def coming_down(self, state: State, context: MappingContext) -> np.ndarray:

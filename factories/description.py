@@ -298,6 +298,10 @@ class Hand:
     """Radians the hand turns about its approach axis, beyond the task's turn, wherever the
     task turns it to grasp from the side: a hand whose pinch closes along its x axis (which
     such a turn stands upright) rolls so that its fingers close across a standing object."""
+    pinch_clearance: float = 0.0
+    """How far over a task's pinch depth the pads' lower edge stands (m): a hand whose pads
+    meet a cap tip first, their faces turned up, loses the cap out of its pinch once the cap's
+    lower edge has risen past the tips (a thread's rise between pinches, the arm back at its height)."""
 
     @property
     def couplings(self) -> tuple[tuple[str, str, float], ...]:
@@ -498,6 +502,14 @@ class RobotDescription:
         farthest = max(shape.support(poses[name], approach)
                        for name in self.hand_links for shape in self.links_by_name[name].shapes)
         return farthest - float(tcp[:3, 3] @ approach)
+
+    def touch_reach(self, posture: str | np.ndarray) -> float:
+        """`hand_reach` with the tactile pads' sensing surfaces counted: how far past the TCP
+        what a touch leads with reaches, where a pad stands past its link's end (the
+        Barrett's pads own the last 4 mm of its fingertips: left out, its pointing finger
+        found a cap's top 4 mm high, docs/unscrew-campaign.md)."""
+        pads = [float((pad.corners @ surface.T)[:, 2].max()) for pad, surface in zip(self.hand.pads, self._pad_poses(posture))]
+        return max([self.hand_reach(posture), *pads])
 
     def hand_extent(self, posture: str | np.ndarray, within: float | None = None) -> tuple[float, float]:
         """How far the hand's links reach sideways from the TCP's axis in a posture (its name,

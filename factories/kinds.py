@@ -177,8 +177,8 @@ class MultiFingerFactory(Factory):
     def unscrew(self, state: State) -> NodeMapping:
         """Thesis 3.3.6: the state's grasp (by default a two-finger pinch, GRASPING_FINGERS 2)
         on the cap, opened to `object_size` (the cap's width) when the state gives it; the
-        pads' lower edge there (`pinch_reach`) is where the move before put them, and where
-        the hand keeps them on a narrower cap (`pad_reach`)."""
+        pads' lower edge there (`pinch_reach`) is where the move before put them (but for the
+        hand's `pinch_clearance`), and where the hand keeps them on a narrower cap (`pad_reach`)."""
         grasp, preshape_made, notes = self.grasp_shapes(state, state.hand_shape or HandShape.PINCH_GRASP)
         reach = None if state.object_size is None or preshape_made is None else \
             self.robot.pinch_reach(preshape_made.value, grasp.value, state.object_size)

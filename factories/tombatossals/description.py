@@ -159,7 +159,9 @@ def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
     # From the side, a quarter turn about the approach axis: the pinch's F1 and F2, facing
     # each other along hand x, close across a standing bottle instead of on its top and
     # bottom, and F3, flat in the pinch, stands up off the table instead of 7 cm into it.
-    hand = Hand("barrett_bh8_280", dofs, tuple(pads), postures, test_grasp="pinch_grasp",
+    # Its pinch's pads meet a cap tip first, their faces turned 68 degrees up off its side: 2 mm
+    # over the task's depth, a lug cap rising 2.5 mm up its thread stays on the tips (docs/unscrew-campaign.md).
+    hand = Hand("barrett_bh8_280", dofs, tuple(pads), postures, test_grasp="pinch_grasp", pinch_clearance=0.002,
                 grasp_centres={"push": pointing}, push_posture="push", rising_grasps=frozenset({"pinch_grasp"}),
                 side_roll=-np.pi / 2)  # the object's friction: rubber pads kept its finger-lost correction from moving a 5 kg box (PyBullet; docs/slide.md)
     return tuple(links), hand, 0.155
