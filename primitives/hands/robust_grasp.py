@@ -130,7 +130,8 @@ class RobustGraspHand(ForceGrasp):
 
     def _weigh(self, readings: Readings, dt: float) -> None:
         """Lifted WEIGH_LIFT by the arm, the wrist feels the held weight for WEIGH_TIME. More
-        than OFF_CENTRE off the pinch line, and turning the object harder than friction
+        than OFF_CENTRE off the pinch line (or any distance, for a hold short of the grasp
+        force: OFF_CENTRE was measured at it), and turning the object harder than friction
         over RIM_CONTACT carries, the arm sets it down (SET_DOWN) to grasp it again that
         far across; otherwise it is held, lifted."""
         if self._squeeze(readings, dt) is None or self.ctx.blackboard.weigh is not None:
@@ -141,7 +142,8 @@ class RobustGraspHand(ForceGrasp):
             return
         offset, torque = self._weight_off_line(readings, np.mean(weighing.weights, axis=0))
         squeeze = float(sum(readings.pad_force[self.pad_of[f]] for f in self.fingers))
-        if abs(offset) <= OFF_CENTRE or abs(torque) <= (self.ctx.object.friction or 0.0) * squeeze * RIM_CONTACT:
+        near = abs(offset) <= OFF_CENTRE and not self.held.short
+        if near or abs(torque) <= (self.ctx.object.friction or 0.0) * squeeze * RIM_CONTACT:
             self.phase = Phase.HOLD
             self.finish(Status.DONE, f"object held after {self.corrections.retries} corrections, its weight "
                                      f"{abs(offset) * 100:.1f} cm off the pinch line: {self._forces(readings.pad_force)}"
