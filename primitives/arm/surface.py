@@ -35,22 +35,19 @@ class Place(Controller):
     ||F|| >= FORCE_THRESHOLD (Eq. 3.4), the wrench tared as the descent starts; the
     primitive ends when the arm stops. Only a contact in that descent is the surface at
     FORCE_THRESHOLD: while the object is brought over, the wrist also reads the hand speeding
-    up (5 N for the SDH2 carrying a box, MuJoCo), and a place that ended on it stood 11 cm
-    above the table. The bring-over still feels what holds the object up, at
-    `carry_threshold` along n: the object hangs below the TCP by as much as it sticks out
-    of the hand, which the robot does not know, so the table, or what was put down there
-    before, can stand higher than the target's approach height; the object is put down
-    there (the Baxter pressed a cup 220 N into the table, a spray can 111 N into a pile for
-    104 s, docs/empty-the-box.md). A push from the side is not a surface to put it on.
+    up. The bring-over still feels what holds the object up, at `carry_threshold` along n:
+    the object hangs below the TCP by an amount the robot does not know, so the table, or
+    what was put down there before, can stand higher than the target's approach height, and
+    the object is put down there (docs/empty-the-box.md). A push from the side is not a
+    surface to put it on.
 
     The target is for the TCP with the object held at `hand_point`, where the grasp's hand
-    shape holds it; a grasp that found the object elsewhere holds it off that point (a box
-    15 mm beyond the SDH2's pinch, docs/pick-and-place.md). So, over the target, the arm holds
-    still for `weigh_time` and the wrist weighs the object: the line its weight hangs on,
-    from the wrist's torque, is where the object is, and the arm moves that line over the
-    target before it descends. A wrist that cannot tell (`weigh_time` 0), or that feels less
-    than WEIGHED of the object's believed weight, leaves the object where the hand shape says,
-    and the place says so.
+    shape holds it; a grasp that found the object elsewhere holds it off that point
+    (docs/pick-and-place.md). So, over the target, the arm holds still for `weigh_time` and
+    the wrist weighs the object: the line its weight hangs on, from the wrist's torque, is
+    where the object is, and the arm moves that line over the target before it descends. A
+    wrist that cannot tell (`weigh_time` 0), or that feels less than WEIGHED of the object's
+    believed weight, leaves the object where the hand shape says, and the place says so.
 
     Descending more than `max_overshoot` below the target without touching anything is a
     failure: there is no surface where the task said. The hand is turned top-down (its yaw
