@@ -214,6 +214,8 @@ class Factory(ABC):
     arms: ClassVar[tuple[Arm, ...]]  # the first is the default
     primitives: ClassVar[frozenset[StateType]]
     node_table: ClassVar[tuple[MappingRow, ...]]  # thesis Tables 7.3 / 7.4 columns
+    # Primitives its kind would map that this robot leaves out: why ("{name}": the robot's), and what instead.
+    lacks: ClassVar[dict[StateType, tuple[str, str]]] = {}
 
     def __init__(self, arm: str | None = None, config: Path | None = None, grasp: str = "robust") -> None:
         if grasp not in GRASPS:
@@ -260,7 +262,10 @@ class Factory(ABC):
         3.4.1 (and every unscrew to one without its reactive alignment), the baseline the robust grasp is measured by (same hand shape, opening and
         checks, the wrist's contact felt the same, and on a gripper the same grip force: with
         10% of the Baxter's 20 N it never reached the 8 N its grasp_stable asks, and never
-        lifted)."""
+        lifted). A primitive the robot `lacks` is refused with its own reason."""
+        if state.type in self.lacks:
+            why, instead = self.lacks[state.type]
+            raise Unmappable(why.format(name=self.name), instead)
         if state.type in PERCEPTUAL_PRIMITIVES - self.primitives:
             raise Unmappable(f"the {self.name} has no {state.type.value} primitive: no controller of its runs "
                              f"'{state.type.value}' yet", "translate the task for a robot that lists it "

@@ -60,14 +60,13 @@ class ParallelJawFactory(Factory):
         *PERCEPTION_ROWS,
         JAW_UNSCREW_ROW,
     )
+    lacks = {StateType.SLIDE: ("the {name} has no slide primitive (a parallel jaw maps as thesis Table 7.4)",
+                               "push the object instead (type=\"push\"), or translate for a robot that slides")}
 
     def map_node(self, state: State, context: MappingContext) -> NodeMapping:
         kind = state.type
         if kind is StateType.UNSCREW:
             return self.jaw_unscrew(state)
-        if kind is StateType.SLIDE:
-            raise Unmappable(f"the {self.name} has no slide primitive (a parallel jaw maps as thesis Table 7.4)",
-                             "push the object instead (type=\"push\"), or translate for a robot that slides")
         if kind is StateType.GRASP:
             return self.jaw_grasp(state, context)
         if kind is StateType.RELEASE:  # Table 7.4: a hand position only, the arm stays

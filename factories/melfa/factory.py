@@ -12,10 +12,8 @@ grasp, so a place that ended on that (as it once did) could succeed without movi
 from __future__ import annotations
 
 from atd.model.controllers import SensorKind
-from atd.model.task import State
 from atd.model.vocabulary import StateType
-from factories.base import (Arm, Hand, MappingContext, NodeMapping, Sensor, Unmappable,
-                            PARALLEL_JAW_SHAPES, parallel_jaw_closest)
+from factories.base import Arm, Hand, Sensor, PARALLEL_JAW_SHAPES, parallel_jaw_closest
 from factories.kinds import ParallelJawFactory
 
 _PADS = ("tactile_left", "tactile_right")
@@ -32,9 +30,5 @@ class MelfaFactory(ParallelJawFactory):
             (Sensor("wrist_ft", SensorKind.FORCE_TORQUE, "JR3 6-axis force-torque sensor between arm and gripper"),
              *(Sensor(p, SensorKind.TACTILE, f"Weiss tactile pad on the {p.split('_')[1]} finger") for p in _PADS))),
     )
-
-    def map_node(self, state: State, context: MappingContext) -> NodeMapping:
-        if state.type is StateType.SLIDE:
-            raise Unmappable("the Melfa has no slide primitive (thesis Table 7.4)",
-                             "push the object instead (type=\"push\"), or translate for baxter")
-        return super().map_node(state, context)
+    lacks = {StateType.SLIDE: ("the Melfa has no slide primitive (thesis Table 7.4)",
+                               "push the object instead (type=\"push\"), or translate for baxter")}

@@ -10,9 +10,8 @@ cannot make a hook grasp (A.1.2): a grasp asking for one is refused.
 from __future__ import annotations
 
 from atd.model.controllers import SensorKind
-from atd.model.task import State
 from atd.model.vocabulary import HandShape, StateType
-from factories.base import Arm, Hand, MappingContext, MappingRow, NodeMapping, Sensor, Unmappable
+from factories.base import Arm, Hand, MappingRow, Sensor
 from factories.kinds import MultiFingerFactory
 
 _WRIST_FT = Sensor("wrist_ft", SensorKind.FORCE_TORQUE, "JR3 6-axis force-torque sensor between arm and hand")
@@ -62,11 +61,7 @@ class TombatossalsFactory(MultiFingerFactory):
     primitives = MultiFingerFactory.primitives - {StateType.SLIDE}
     node_table = tuple(MappingRow("slide", "-", "-", "-") if row.abstract == "slide" else row
                        for row in MultiFingerFactory.node_table)
-
-    def map_node(self, state: State, context: MappingContext) -> NodeMapping:
-        if state.type is StateType.SLIDE:
-            raise Unmappable("Tombatossals has no sensor that finds where the object to slide stands (no range sensor "
-                             "along its approach axis): its slide would carry an object standing off the task's pose "
-                             "as far off its target and say it reached it (docs/slide.md)",
-                             "push the object instead (type=\"push\"), or translate for baxter")
-        return super().map_node(state, context)
+    lacks = {StateType.SLIDE: ("Tombatossals has no sensor that finds where the object to slide stands (no range "
+                               "sensor along its approach axis): its slide would carry an object standing off the "
+                               "task's pose as far off its target and say it reached it (docs/slide.md)",
+                               "push the object instead (type=\"push\"), or translate for baxter")}

@@ -26,8 +26,9 @@ def _state(kind: StateType, **fields) -> State:
 
 
 def _map(robot: str, state: State, arm: str | None = None, environment=None):
+    """What the translator gets for the state (`map_state`: a primitive the robot lacks refused first)."""
     task = one_state_task(state).model_copy(update={"environment": environment})
-    return create(robot, arm).map_node(state, MappingContext(task))
+    return create(robot, arm).map_state(state, MappingContext(task))
 
 
 # Table 7.3: abstract -> Tombatossals primitive, its controllers, and the extra parameter it carries
