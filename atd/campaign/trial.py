@@ -26,7 +26,7 @@ from atd.model import has_errors, load_task
 from atd.model.diagnostics import render_all
 from atd.model.estd import Estd, EstdState
 from atd.model.files import OutputError
-from atd.model.task import Location
+from atd.model.task import Location, Task
 from atd.model.vocabulary import StateType
 from atd.runtime.report import grasp_attempts
 from atd.runtime.session import Run, belief_scene
@@ -43,8 +43,8 @@ class TrialError(Exception):
 
 
 @lru_cache(maxsize=64)
-def believed(task_file: str, robot: str, arm: str, grasp: str, obj: str) -> tuple[Estd, Factory]:
-    """The ESTD the robot runs, from the ATD with the cell's object in it, and its factory."""
+def believed_task(task_file: str, obj: str) -> Task:
+    """The ATD the robot is given: the task file with the cell's object in it."""
     task, found = load_task(Path(task_file))
     if task is None or has_errors(found):
         raise TrialError(f"{task_file} does not validate:\n{render_all(found)}")
@@ -55,6 +55,13 @@ def believed(task_file: str, robot: str, arm: str, grasp: str, obj: str) -> tupl
         x, y = pose[:2, 3] if pose is not None else (0.10, 0.0)
         yaw = math.atan2(pose[1, 0], pose[0, 0]) if pose is not None else 0.0  # the task's object turned: so is the cell's
         task = task.model_copy(update={"object": get(obj).object_info(float(x), float(y), float(yaw))})
+    return task
+
+
+@lru_cache(maxsize=64)
+def believed(task_file: str, robot: str, arm: str, grasp: str, obj: str) -> tuple[Estd, Factory]:
+    """The ESTD the robot runs, from the ATD with the cell's object in it, and its factory."""
+    task = believed_task(task_file, obj)
     factory = create(robot, arm, grasp=grasp)
     result = translate(task, factory)
     if result.estd is None:
@@ -169,9 +176,9 @@ def _judge(plan: TrialPlan, belief: Estd, run: Run) -> LiftJudge | PlaceJudge | 
 def _place_target(plan: TrialPlan, place: EstdState) -> tuple[float, float, float]:
     """Where the task puts the object down: its place state's own target (the object's centre,
     the grasp's), not the ESTD's, which is for the TCP (the SDH2 pinches 19 mm off it)."""
-    task, _ = load_task(Path(plan.task_file))
-    state = task.states_by_name.get(place.atd) if task is not None else None
-    if state is None:
+    task = believed_task(plan.task_file, plan.cell.object)
+    state = task.states_by_name.get(place.atd)
+    if state is None:  # a place inside a sub-task: the ESTD's target is all there is
         return tuple(place.arm.params["target"])
     return state.target.position if state.target is not None else derived_target(state, task.object)
 
