@@ -24,7 +24,7 @@ from typing import ClassVar, Mapping
 import numpy as np
 
 from atd.model.controllers import CONDITIONS, CONTROLLERS, ParamValue, SensorKind, defaults
-from atd.model.estd import Condition, ConditionGroup, Controller, leaves
+from atd.model.estd import Condition, ConditionGroup, Controller
 from atd.model.frames import GRAVITY, rotation_rpy, rpy_of
 from atd.model.ranges import FORCE, WEIGHT
 from atd.model.resolved_rate import TURN_MARGIN
@@ -581,17 +581,7 @@ class Factory(ABC):
                               fingertip_extent=tuple(round(e, 6) for e in
                                                      self.robot.hand_extent(HandShape.OPEN.value, SWEEPING_TIP)),
                               hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)))
-        return NodeMapping("grasp", arm, self.controller("close_until_force", least_grip=self.least_grip(state)), notes)
-
-    def least_grip(self, state: State) -> float | None:
-        """The jaws' opening this robot's grasp_stable asks before it takes a grip for the object,
-        where it reads the opening (Baxter's: its gripper has no pads to feel the object)."""
-        try:
-            stable = self.sensed_event(EventType.GRASP_STABLE, state)
-        except Unmappable:  # a robot that cannot sense the event has no opening for it
-            return None
-        widths = [float(leaf.params["width"]) for leaf in leaves(stable) if leaf.kind == "gripper_opening_above"]
-        return max(widths, default=None)
+        return NodeMapping("grasp", arm, self.controller("close_until_force"), notes)
 
     def jaw_unscrew(self, state: State) -> NodeMapping:
         """Thesis 3.3.6's unscrew on a parallel gripper, as a real one unscrews: the jaws grip

@@ -573,9 +573,6 @@ _HAND_CONTROLLERS = (
                                "width before the jaws close anyway: a contact on the pad lies within this of "
                                "its middle, so one that stays off-centre moves with the pad (ours: about a "
                                "pad's half width)", 0.01, unit="m"),
-            "least_grip": _p(NUM, "the jaws' opening beyond closed under which they hold nothing the robot's "
-                             "grasp_stable would accept, read as closed on nothing (the factory's, where its "
-                             "grasp_stable reads the opening; else 1 mm a jaw)", unit="m"),
         },
     ),
     ControllerSpec(

@@ -43,14 +43,13 @@ EDGE = 0.6
 class Jaws:
     """Reads a parallel gripper: grip force by pads or motor, which pad touches."""
 
-    def __init__(self, ctx: Context, source: str, least_grip: float = 0.0) -> None:
+    def __init__(self, ctx: Context, source: str) -> None:
         hand = ctx.info.hand
         if len(hand.dofs) != 1:
             raise ValueError(f"a parallel-jaw controller needs a one-DOF gripper; this hand has {len(hand.dofs)} DOFs")
         self.source = source
         self.closing = float(hand.closing[0])
         self.closed = float(hand.closed[0])
-        self.emptied = max(EMPTY, least_grip / 2.0)  # m a jaw from closed: nothing between them, both jaws moving
         sides = [1.0 if "left" in pad.name else -1.0 if "right" in pad.name else 0.0 for pad in hand.pads]
         if source == "tactile" and (len(sides) != 2 or sorted(sides) != [-1.0, 1.0]):
             raise ValueError("tactile grip force needs a 'left' and a 'right' finger pad; this hand has: "
@@ -73,7 +72,7 @@ class Jaws:
         return self.source == "tactile" and bool((readings.pad_force <= TOUCH).any())
 
     def empty(self, readings: Readings) -> bool:
-        return abs(float(readings.hand_q[0]) - self.closed) < self.emptied
+        return abs(float(readings.hand_q[0]) - self.closed) < EMPTY
 
     def held(self, readings: Readings, reference: float) -> bool:
         """The jaws stand still short of the closing `reference`: something holds them."""
@@ -104,10 +103,7 @@ class CloseUntilForce(Controller):
     after `max_recentre`: a contact still off-centre by then moves with the pad (a slanted
     face pushed along), and following it would drag the object across the table. A grip is
     done only once that arm no longer rises off the support (`pressing`): until then, jaws
-    that close empty say so and the arm looks again; so do jaws that stop narrower than
-    `least_grip`, on something the robot's grasp_stable would never take for the object
-    (Baxter's jaws stopped 3.2 mm open on a spray can's flank beyond their pads, both sides
-    done, and waited out the grasp's timeout). Tactile jaws that press UNFELT_TIME with
+    that close empty say so and the arm looks again. Tactile jaws that press UNFELT_TIME with
     a pad feeling nothing stand on something beside that pad: closed on nothing too, the
     other pad, if it touches, saying which side the object is. Tactile jaws whose grip stays
     under SATURATED_GRIP for RIM_TIME with the squeeze at its limit press partly through a
@@ -123,7 +119,7 @@ class CloseUntilForce(Controller):
         self.rim_moves_left = rim_moves  # reopenings off a rim left: 0 where the arm moves nothing along the jaws
         self.speed = float(self.params["closing_speed"])
         self.max_recentre = float(self.params["max_recentre"])
-        self.jaws = Jaws(ctx, str(self.params["force_source"]), float(self.params.get("least_grip") or 0.0))
+        self.jaws = Jaws(ctx, str(self.params["force_source"]))
         self.squeeze = Squeeze(ctx)  # presses on until the pads feel the force (a tilted grip loses some)
         # a motor cannot press harder than its effort limit: asked more, all it gives is the grip
         self.reachable = min(self.grasp_force, float(ctx.info.hand.effort_limit[0]))

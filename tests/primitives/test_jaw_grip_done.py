@@ -6,21 +6,15 @@ pressing on something their pads do not feel look again."""
 
 from __future__ import annotations
 
-from functools import partial
-
 import numpy as np
 
-from atd.model import load_task
 from atd.model.estd import Controller
 from atd.sim import load_description
 from atd.sim.simrobot import robot_info
-from factories.registry import create
 from primitives.base import Context, Status
 from primitives.hands.parallel_jaw import UNFELT_TIME
 from primitives.registry import build_controller
-from primitives.robot import Readings, RobotInfo
-from tests.primitives.conftest import EXAMPLES
-from translator import translate
+from primitives.robot import Readings
 
 MELFA = robot_info(load_description("melfa"))
 
@@ -31,14 +25,6 @@ def _jaws(q: float, pads: float) -> Readings:
     return Readings(time=0.0, arm_q=zeros, arm_dq=zeros, arm_effort=zeros, hand_q=np.array([q]),
                     hand_dq=np.zeros(1), hand_effort=np.zeros(1), tcp=np.eye(4), wrench=zeros, taxels={},
                     pad_force=np.full(2, pads), range=None)
-
-
-def _motor_jaws(info: RobotInfo, q: float, pressing: float) -> Readings:
-    """A motor-sensed gripper's jaws still at `q`, its motor pressing `pressing` N (Baxter's)."""
-    zeros = np.zeros(len(info.arm_joints))
-    return Readings(time=0.0, arm_q=zeros, arm_dq=zeros, arm_effort=zeros, hand_q=np.array([q]),
-                    hand_dq=np.zeros(1), hand_effort=np.array([info.hand.closing[0] * pressing]), tcp=np.eye(4),
-                    wrench=np.zeros(6), taxels={}, pad_force=np.zeros(2), range=None)
 
 
 def _gripping(arm_rising: bool) -> tuple[Context, object]:
@@ -93,37 +79,16 @@ def test_a_grip_asked_more_than_the_gripper_gives_is_done_at_its_limit() -> None
     ctx.blackboard.contact = True
     hand = build_controller(Controller(name="close_until_force", params={"grasp_force": 25.0, "force_source": "motor"}),
                             "hand", ctx)
+    zeros = np.zeros(7)
     effort = float(baxter.hand.effort_limit[0])
-    hand.start(_motor_jaws(baxter, 0.02, 0.0))
+
+    def jaws(q: float, pressing: float) -> Readings:
+        return Readings(time=0.0, arm_q=zeros, arm_dq=zeros, arm_effort=zeros, hand_q=np.array([q]),
+                        hand_dq=np.zeros(1), hand_effort=np.array([baxter.hand.closing[0] * pressing]), tcp=np.eye(4),
+                        wrench=np.zeros(6), taxels={}, pad_force=np.zeros(2), range=None)
+
+    hand.start(jaws(0.02, 0.0))
     for _ in range(3):  # the jaws still on the object, the motor pressing all it gives
-        hand.update(_motor_jaws(baxter, 0.01, effort), baxter.control_period)
+        hand.update(jaws(0.01, effort), baxter.control_period)
     assert hand.status is Status.DONE, hand.status
     assert f"the gripper gives {effort:g} N" in hand.reason
-
-
-def test_baxters_jaws_stopped_narrower_than_its_grasp_stable_reads_look_again() -> None:
-    """Baxter's grasp_stable takes a grip for the object only with the jaws 4 mm open; its jaws
-    stopped 3.2 mm open on a spray can's flank beyond their pads, the grip said done, the event
-    never held, and the grasp waited out the task's 20 s (generalisation.toml, base seed 27191,
-    the (0.22, 0.06) place, Baxter's left arm). The grasp it is translated to reads that grip as
-    closed on nothing and the arm looks again; 5 mm open is a grip."""
-    baxter = robot_info(load_description("baxter", "left"))
-    task, _ = load_task(EXAMPLES / "grasp_and_lift.xml")
-    [grip] = [s.hand for s in translate(task, create("baxter", "left")).estd.states
-              if s.hand is not None and s.hand.name == "close_until_force"]
-    effort = float(baxter.hand.effort_limit[0])
-    jaws = partial(_motor_jaws, baxter)
-
-    for opening, gripped in ((0.0032, False), (0.005, True)):
-        ctx = Context(info=baxter, params={}, environment=None)
-        ctx.blackboard.contact = True  # the correcting arm has found the object: close
-        hand = build_controller(grip, "hand", ctx)
-        hand.start(jaws(0.0208, 0.0))
-        for _ in range(50):  # 1 cm of closing, the motor meeting nothing yet
-            hand.update(jaws(0.0208, 0.0), baxter.control_period)
-        empty = False
-        for _ in range(3):  # the jaws still, the motor pressing all it gives
-            hand.update(jaws(baxter.hand.closed[0] + opening / 2.0, effort), baxter.control_period)
-            empty = empty or ctx.blackboard.jaws_empty
-        assert (hand.status is Status.DONE) is gripped, (opening, hand.status, hand.reason)
-        assert empty is not gripped, opening
