@@ -22,7 +22,9 @@ grip pressed partly through a finger's bare rim (`jaws_rim`) have the object bet
 beyond the pads' edge: the arm moves along their width, towards where the weaker pad felt the
 object or else the rim's lever, by a pad's half width, and the jaws close again there. A task that knows no
 object may give it the top a perceive state saw (`object_top`): it stands in for the object's
-top, and the jaws do not close before the fingertips are past it.
+top, and the jaws do not close before the fingertips are past it. A hand pressed far beyond
+any grasp's need (`WEDGED`: between a wall and the pile) does not close there: it eases off the
+way the press pushes it, rises, and the grasp fails, saying so.
 """
 
 from __future__ import annotations
@@ -72,6 +74,11 @@ MAX_RELIEF = 0.02  # m the arm rises for that in one close, at most
 FREE_LOAD_WINDOW = 0.1  # s: the empty hand's load is the wrist's mean over the end of a move in free air
 # m the fingertips reach past a seen top before the jaws close: a seen top is good to a few mm (docs/empty-the-box.md)
 PAST_SEEN_TOP = 0.005
+# N on the wrist beyond the empty hand's load: no grasp needs a tenth of it (a contact 2 N, a grip 15 N, a
+# close on the table 96 N before its relief); a hand pressed so hard is wedged (docs/empty-the-box.md)
+WEDGED = 150.0
+WEDGE_TIME = 0.1  # s the press lasts: a knock is over sooner (PyBullet's wrist read 158 N in a tick on a top)
+WEDGE_BACK_OFF = 0.01  # m a wedged hand moves the way the press pushes it, and so eases it, before it rises
 
 
 class JawPhase(Enum):
@@ -168,6 +175,9 @@ class JawGraspCorrection(Controller):
         self.hint: np.ndarray | None = None  # where the last contact says the object is, world frame
         self.hinted = False  # a contact's hint has been followed: one is, once
         self.brushed = False  # a hint from the pads' brushing the object, or a rim's push, has been taken: one is, once
+        self.wedged: str | None = None  # why the grasp fails once the wedged hand has backed off and risen
+        self.pressed_since: float | None = None  # when the press past WEDGED began
+        self.tared = False  # this grasp has read its empty hand (EMPTY_HAND): the approach may have left it pressing
         self.ctx.blackboard.contact = False
         self._rise(readings, np.zeros(3), self._above_object())
 
@@ -244,6 +254,8 @@ class JawGraspCorrection(Controller):
         position = readings.tcp[:3, 3]
         w, angle = orientation_twist(self.rotation, readings.tcp[:3, :3])
         v = np.zeros(3)
+        if self.phase is not JawPhase.HOLD and self.tared and self.wedged is None:
+            self._check_wedged(readings)
         if self.phase is JawPhase.MOVE:
             self.free_loads.append(world_load(readings))
             v = self._follow(readings, angle)
@@ -275,6 +287,10 @@ class JawGraspCorrection(Controller):
         if norm(goal - position) < ARRIVED and angle < ORIENTATION_TOLERANCE:
             self.route.pop(0)
             if not self.route:
+                if self.wedged is not None:
+                    self.phase, self.goal = JawPhase.HOLD, position.copy()
+                    self.finish(Status.ERROR, self.wedged)
+                    return np.zeros(3)
                 if self.ctx.blackboard.jaws_empty:  # the jaws are still opening
                     self.route = [goal]
                     return np.zeros(3)
@@ -293,6 +309,25 @@ class JawGraspCorrection(Controller):
             return np.zeros(3)
         return clamp_norm(GAIN * (goal - position), self.speed)
 
+    def _check_wedged(self, readings: Readings) -> None:
+        """A hand pressed WEDGED beyond the empty hand's load (between a wall and the pile) for
+        WEDGE_TIME does not close there: it moves the way the press pushes it, which eases it,
+        rises clear, and the grasp fails, saying so."""
+        press = world_load(readings) - self.ctx.memory[EMPTY_HAND]
+        if norm(press) < WEDGED:
+            self.pressed_since = None
+            return
+        if self.pressed_since is None:
+            self.pressed_since = readings.time
+        if readings.time - self.pressed_since < WEDGE_TIME:
+            return
+        here = readings.tcp[:3, 3]
+        eased = self.walls.inside(self.rotation, here + WEDGE_BACK_OFF * unit(press), here)
+        self.route = [eased, self._at_depth(eased, self._depth(eased) + self.clearance)]
+        self.phase, self.towards = JawPhase.MOVE, None
+        self.ctx.blackboard.contact = False
+        self.wedged = f"the wrist pressed {norm(press):.0f} N: wedged, it backed off and rose rather than close there"
+
     def _start_descent(self, readings: Readings) -> None:
         self.contact.start(readings)
         # Risen clear of every contact, the hand weighs only itself. The grasp's start is no
@@ -300,6 +335,7 @@ class JawGraspCorrection(Controller):
         # top, and a tare pressed 4.3 N up read a lifted cylinder as no load at all.
         free = self.free_loads or [world_load(readings)]
         self.ctx.memory[EMPTY_HAND] = np.mean(np.array(free), axis=0)
+        self.tared = True
         self.phase = JawPhase.DESCEND
         self.top = self._depth(readings.tcp[:3, 3])
         self.line = readings.tcp[:3, 3].copy()  # the descent keeps to the vertical through here
@@ -456,7 +492,14 @@ class JawGraspCorrection(Controller):
         lever = self.rim.lever() if self.vertical else None
         side = float(np.sign(felt)) if felt else 0.0 if lever is None else float(np.sign(lever))
         self.alongs += 1
-        self.goal = readings.tcp[:3, 3] + readings.tcp[:3, 0] * side * self.pad_half_width
+        here = readings.tcp[:3, 3]
+        # inside the known walls like every other move: along into one it pressed the hand there at
+        # 500 N (Melfa, MuJoCo, docs/empty-the-box.md)
+        self.goal = self.walls.inside(self.rotation, here + readings.tcp[:3, 0] * side * self.pad_half_width, here)
+        if side and norm(self.goal - here) < ARRIVED:
+            self.goal = here.copy()  # a wall leaves no room along: the jaws would close as they did
+            self._search_on(readings, "the jaws met the object beyond a pad's edge, a wall leaving no room along them")
+            return
         self.move_stall.reset(readings.time)
         self.phase = JawPhase.ALONG
 

@@ -4,6 +4,8 @@ turns the jaws across an object's narrow side, or along a wall that leaves no ro
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -12,13 +14,14 @@ from atd.model.task import ContainerInfo, Environment, Pose
 from atd.sim import load_description
 from primitives.arm.approach_phases import Phase
 from primitives.arm.jaw_grasp import JawPhase
-from primitives.base import Context
+from primitives.base import Context, Status
 from primitives.perception.container import approach_pose, clear_of_walls
 from primitives.perception.generators import jaw_yaw, long_side
 from primitives.registry import build_controller
 from atd.sim.simrobot import robot_info
 from primitives.robot import Readings
 from tests.primitives.box_worlds import BELIEF, BOX, BOX_POSE, WALL
+from tests.primitives.melfa_jaws import GRASP_HEIGHT, MELFA, closing_correction, still
 
 MELFA_OPEN = (0.04, 0.05)  # the WRT-102 open: along the hand's x, and along y where its jaws close
 LOW_X, LOW_Y = 0.07, 0.06  # the inside of the box spans x 0.07-0.29, y 0.06-0.24 (tests.primitives.box_worlds)
@@ -195,3 +198,43 @@ def test_a_jaw_grasp_told_the_top_vision_saw_does_not_close_with_the_fingertips_
         grasp._met(_still_at(at), np.concatenate([force, np.cross(lever, force)]))
         phases.append(grasp.phase)
     assert phases == [JawPhase.MOVE, JawPhase.CLOSE, JawPhase.CLOSE]
+
+
+def test_a_jaw_grasp_pressed_hundreds_of_newtons_backs_off_rises_and_fails_rather_than_close_there() -> None:
+    """Blind exploration, the preset's seed, trial 0: a grasp's move pressed the hand into a wall
+    at 440-500 N and the jaws closed there; the lift, the rise and the move aside all met what
+    held it, and the box ended `stuck`. Pressed WEDGED beyond the empty hand's load the jaws are
+    not told to close: the hand moves the way the press pushes it, rises, and the grasp fails,
+    saying why (the round then opens and rises: `missed`)."""
+    ctx, arm = closing_correction()
+    period = MELFA.control_period
+    pressed = still(GRASP_HEIGHT, (0.0, 300.0, 0.0, 0.0, 0.0, 0.0))  # a wall pushes the hand to -y
+    arm.update(replace(pressed, time=0.01), period)
+    assert ctx.blackboard.contact  # a knock: still closing
+    arm.update(replace(pressed, time=0.2), period)  # pressed on
+    assert not ctx.blackboard.contact and arm.status is Status.RUNNING
+    eased, risen = arm.route
+    np.testing.assert_allclose(eased, np.add(GRASP_HEIGHT, (0.0, -0.01, 0.0)), atol=1e-9)
+    assert risen[2] == pytest.approx(GRASP_HEIGHT[2] + 0.02)
+    for point in (eased, risen):
+        arm.update(still(tuple(point)), period)
+    assert arm.status is Status.ERROR and "pressed 300 N: wedged" in arm.reason
+
+
+def test_a_move_along_the_jaws_stays_inside_the_walls_and_with_no_room_searches_on() -> None:
+    """Jaws that reopen off a finger's rim move along their width towards the object; that move
+    pressed the hand into the box's wall (the recording above). It keeps inside the walls like
+    every other move, and where a wall leaves no room the jaws do not close there again."""
+    box, _ = _melfa_contexts()
+    ends = []
+    for felt in (1.0, -1.0):  # the object beyond a pad's edge towards the +x wall, then away from it
+        grasp = build_controller(Controller(name="jaw_grasp_correction", params={"hand_extent": MELFA_OPEN}), "arm",
+                                 box)
+        readings = _still_at(_tcp(0.29 - 0.04, 0.15))  # the open hand's reach from the +x wall
+        grasp.start(readings)
+        grasp._close_here(readings, 0.0)
+        grasp._start_along(readings, felt)
+        ends.append((grasp.phase, grasp.route[-1] if grasp.phase is JawPhase.MOVE else grasp.goal))
+    (towards, searched), (away, along) = ends
+    assert towards is JawPhase.MOVE and searched[0] <= 0.25 + 1e-9
+    assert away is JawPhase.ALONG and along[0] == pytest.approx(0.25 - grasp.pad_half_width)
