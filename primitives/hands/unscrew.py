@@ -13,11 +13,12 @@ import numpy as np
 
 from primitives.base import Context, ControlData, Status
 from primitives.blackboard import CapGrip
+from primitives.filters import LowPass
 from primitives.hands.extension import ExtensionGauge, contact_points, pad_corners
 from primitives.hands.force_grasp import ForceGrasp
 from primitives.hands.grasp_phases import Phase
 from primitives.hands.multi_finger import CLOSING_SPEED
-from primitives.hands.robust_grasp import GAP_CHECK, HELD, OPENING_SPEED, SETTLE_TIME
+from primitives.hands.robust_grasp import FELT_TIME, GAP_CHECK, HELD, OPENING_SPEED, SETTLE_TIME
 from primitives.robot import Readings
 
 
@@ -64,9 +65,12 @@ class UnscrewHand(ForceGrasp):
             self.phase = Phase.HOLD
 
     def _hold(self, readings: Readings, dt: float) -> None:
-        """Force adaptation; pinched once every grasping pad has felt the grasp force (within
-        1 - HELD) for SETTLE_TIME."""
-        felt = self._adapt(readings, dt)
+        """Force adaptation; pinched once every grasping pad, its force averaged over
+        FELT_TIME as the robust grasp judges its hold, has felt the grasp force (within
+        1 - HELD) for SETTLE_TIME: a squeeze at the grasp force reads in ticks under it
+        where the pads' contacts chatter (a Barrett's pinch in PyBullet, each pad 8.7-12 N
+        tick to tick about 10 N, docs/unscrew-campaign.md)."""
+        felt = self.squeeze(self._adapt(readings, dt), dt)
         self._square(readings.hand_q)
         self._feel(readings)
         self.pressed_for = self.pressed_for + dt if bool((felt >= HELD * self.grasp_force).all()) else 0.0
@@ -128,6 +132,7 @@ class UnscrewHand(ForceGrasp):
     def _new_pinch(self) -> None:
         self.ctx.blackboard.cap = CapGrip()
         self.pressed_for = 0.0
+        self.squeeze = LowPass(FELT_TIME)  # the grasping pads' forces through the hold, from its first tick
         self.contacts = np.zeros(3)  # sum of the world contact midpoints felt since the close
         self.felt = 0  # how many
         self.looked = -np.inf  # s: when the pads' gap was last looked at
