@@ -40,7 +40,7 @@ WEIGH_LIFT = 0.015  # m the pinch lifts what it holds to feel where its weight h
 WEIGH_TIME = 0.2  # s it feels it there: the swing of the lift's stop dies down first
 OFF_CENTRE = 0.015  # m the weight may hang off the pinch line: further, it turned out of the hand
 RIM_CONTACT = 0.0015  # m over which a pad's contact on a curved face carries friction against the turn
-FRICTION_MARGIN = 2.0  # times the weight's turn friction must carry: soft contacts creep under it, 0.65 of it fell
+FRICTION_MARGIN = 2.0  # times over friction must carry the turn: soft contacts creep, a duck at 0.65 of it fell
 GAP_CHECK = 0.05  # s between looks at the pads' gap: a look (forward kinematics) costs 0.3-0.5 ms
 
 
