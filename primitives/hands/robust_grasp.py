@@ -40,7 +40,7 @@ WEIGH_LIFT = 0.015  # m the pinch lifts what it holds to feel where its weight h
 WEIGH_TIME = 0.2  # s it feels it there: the swing of the lift's stop dies down first
 OFF_CENTRE = 0.015  # m the weight may hang off the pinch line: further, it turned out of the hand
 RIM_CONTACT = 0.0015  # m over which a pad's contact on a curved face carries friction against the turn
-FAR_OFF = 0.03  # m beyond which friction is not trusted: the furthest holds seen to last hung 2.7-2.8 cm off
+FAR_OFF = 0.03  # m beyond which friction is not trusted: holds lasted to 2.9 cm off, one at 3.4 cm fell
 GAP_CHECK = 0.05  # s between looks at the pads' gap: a look (forward kinematics) costs 0.3-0.5 ms
 
 

@@ -1,7 +1,7 @@
-"""A pinch whose weight hangs off its line says held only when friction carries the turn
-with margin: the SDH2 held a mug 0.7 cm off its pinch line at its strongest squeeze (pads
-2.5 and 2.2 N), the weight turning it harder than friction carries, and a duck 3.4 cm off
-at the grasp force, the turn 0.65 of what friction carries; each lift said success and the
+"""A pinch whose weight hangs off its line says held only where friction has been seen to
+hold it: the SDH2 held a mug 0.7 cm off its pinch line at its strongest squeeze (pads 2.5
+and 2.2 N), the weight turning it harder than friction carries, and a duck 3.4 cm off at
+the grasp force, further off than any hold seen to last; each lift said success and the
 object turned out of the fingers in the judge's hold (generalisation.toml at base seed
 71389, left_near, trial 0: false successes at a7a8317, the duck's still at 01264cb).
 OFF_CENTRE, the distance a weight may hang off the line, was measured at the grasp force."""
