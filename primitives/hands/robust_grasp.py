@@ -40,6 +40,7 @@ WEIGH_LIFT = 0.015  # m the pinch lifts what it holds to feel where its weight h
 WEIGH_TIME = 0.2  # s it feels it there: the swing of the lift's stop dies down first
 OFF_CENTRE = 0.015  # m the weight may hang off the pinch line: further, it turned out of the hand
 RIM_CONTACT = 0.0015  # m over which a pad's contact on a curved face carries friction against the turn
+FAR_OFF = 0.03  # m beyond which friction is not trusted: holds lasted to 2.9 cm off, one at 3.4 cm fell
 GAP_CHECK = 0.05  # s between looks at the pads' gap: a look (forward kinematics) costs 0.3-0.5 ms
 
 
@@ -132,8 +133,8 @@ class RobustGraspHand(ForceGrasp):
         """Lifted WEIGH_LIFT by the arm, the wrist feels the held weight for WEIGH_TIME. More
         than OFF_CENTRE off the pinch line (or any distance, for a hold short of the grasp
         force: OFF_CENTRE was measured at it), and turning the object harder than friction
-        over RIM_CONTACT carries, the arm sets it down (SET_DOWN) to grasp it again that
-        far across; otherwise it is held, lifted."""
+        over RIM_CONTACT carries or hanging beyond FAR_OFF, the arm sets it down (SET_DOWN)
+        to grasp it again that far across; otherwise it is held, lifted."""
         if self._squeeze(readings, dt) is None or self.ctx.blackboard.weigh is not None:
             return  # dropped, or the arm is still raising the hand
         weighing = self.weighing
@@ -143,7 +144,8 @@ class RobustGraspHand(ForceGrasp):
         offset, torque = self._weight_off_line(readings, np.mean(weighing.weights, axis=0))
         squeeze = float(sum(readings.pad_force[self.pad_of[f]] for f in self.fingers))
         near = abs(offset) <= OFF_CENTRE and not self.held.short
-        if near or abs(torque) <= (self.ctx.object.friction or 0.0) * squeeze * RIM_CONTACT:
+        carried = abs(offset) <= FAR_OFF and abs(torque) <= (self.ctx.object.friction or 0.0) * squeeze * RIM_CONTACT
+        if near or carried:
             self.phase = Phase.HOLD
             self.finish(Status.DONE, f"object held after {self.corrections.retries} corrections, its weight "
                                      f"{abs(offset) * 100:.1f} cm off the pinch line: {self._forces(readings.pad_force)}"

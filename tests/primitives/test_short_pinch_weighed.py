@@ -1,13 +1,16 @@
-"""A pinch held at the hand's strongest squeeze, short of the grasp force, is judged by
-friction when it weighs what it holds: the SDH2 held a mug 0.7 cm off its pinch line with
-its pads at 2.5 and 2.2 N, the weight turning it harder than friction carries; the lift
-said success and the mug turned out of the fingers in the judge's hold
-(generalisation.toml at base seed 71389, left_near, trial 0: a false success at a7a8317).
+"""A pinch whose weight hangs off its line says held only where friction has been seen to
+hold it: the SDH2 held a mug 0.7 cm off its pinch line at its strongest squeeze (pads 2.5
+and 2.2 N), the weight turning it harder than friction carries, and a duck 3.4 cm off at
+the grasp force, further off than any hold seen to last; each lift said success and the
+object turned out of the fingers in the judge's hold (generalisation.toml at base seed
+71389, left_near, trial 0: false successes at a7a8317, the duck's still at 01264cb).
 OFF_CENTRE, the distance a weight may hang off the line, was measured at the grasp force."""
 
 from __future__ import annotations
 
 from pathlib import Path
+
+import pytest
 
 from atd.campaign.cells import parse_only, plans
 from atd.campaign.spec import load_spec
@@ -17,13 +20,14 @@ from tests.primitives.conftest import EXAMPLES
 CAMPAIGNS = EXAMPLES / "campaigns"
 
 
-def test_the_sdh2s_short_pinch_on_a_mug_off_its_line_is_no_false_success(tmp_path: Path) -> None:
+@pytest.mark.parametrize("obj", ["mug", "duck"])
+def test_the_sdh2s_pinch_with_its_weight_off_its_line_is_no_false_success(tmp_path: Path, obj: str) -> None:
     spec = (CAMPAIGNS / "generalisation.toml").read_text()
     spec = spec.replace("base_seed = 8117", "base_seed = 71389").replace('"places/', f'"{CAMPAIGNS}/places/')
     (tmp_path / "g.toml").write_text(spec)
     loaded, diagnostics = load_spec(tmp_path / "g.toml")
     assert loaded is not None, diagnostics
-    only = parse_only(("task=left_near", "robot=tombatossals", "arm=left", "engine=mujoco", "object=mug",
+    only = parse_only(("task=left_near", "robot=tombatossals", "arm=left", "engine=mujoco", f"object={obj}",
                        "perturbation=approach"))
     [record] = [run_trial(plan) for plan in plans(loaded, only, 1)]
     assert record.judged_succeeded or not record.task_succeeded, (record.judge_reason, record.summary)
