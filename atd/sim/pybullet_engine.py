@@ -583,9 +583,10 @@ class PybulletRobot(SimRobot):
         """The couple (world frame) that torsional and rolling friction put on the hand through
         the free bodies only it touches. Bullet applies both at each contact but lists them
         neither with the contact points nor in its joint sensors: the Melfa squeezing a 0.1 kg
-        box with 15 N read 0.019 N m off about the squeeze. Such a body, taken at rest as the
-        hand is here, balances what acts on it, so the moment its listed contact forces leave
-        about its centre of mass is what the hand's unlisted couple on it makes up."""
+        box with 15 N read 0.019 N m off about the squeeze. About such a body's centre of mass
+        its weight has no moment and its turning inertia is left out (as the hand's is here),
+        so the moment its listed contact forces leave is what the hand's unlisted couple on it
+        makes up."""
         couple = np.zeros(3)
         points = pb.getContactPoints(physicsClientId=self.client)
         threaded = {thread.object for thread in self._threads}
