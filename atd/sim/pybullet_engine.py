@@ -575,8 +575,36 @@ class PybulletRobot(SimRobot):
             r = c[:, 0:3] - origin
             force += f.sum(axis=0)
             torque += (r[:, [1, 2, 0]] * f[:, [2, 0, 1]] - r[:, [2, 0, 1]] * f[:, [1, 2, 0]]).sum(axis=0)
+            torque += self._unlisted_couple({p[2] for p in hits})
         rot = root[:3, :3]
         return np.concatenate([force @ rot, torque @ rot])
+
+    def _unlisted_couple(self, touched: set[int]) -> np.ndarray:
+        """The couple (world frame) that torsional and rolling friction put on the hand through
+        the free bodies only it touches. Bullet applies both at each contact but lists them
+        neither with the contact points nor in its joint sensors: the Melfa squeezing a 0.1 kg
+        box with 15 N read 0.019 N m off about the squeeze. About such a body's centre of mass
+        its weight has no moment and its turning inertia is left out (as the hand's is here),
+        so the moment its listed contact forces leave is what the hand's unlisted couple on it
+        makes up."""
+        couple = np.zeros(3)
+        points = pb.getContactPoints(physicsClientId=self.client)
+        threaded = {thread.object for thread in self._threads}
+        for uid in touched.intersection(self._movable_bodies()) - threaded:
+            centre = np.asarray(pb.getBasePositionAndOrientation(uid, physicsClientId=self.client)[0])
+            moment = np.zeros(3)
+            for p in points:
+                if uid not in (p[1], p[2]):
+                    continue
+                other, link = (p[2], p[4]) if p[1] == uid else (p[1], p[3])
+                if other != self.body or link not in self._hand_set:
+                    break  # something else holds it too: its share is not the hand's to know
+                on_a = np.multiply(p[7], p[9]) + np.multiply(p[11], p[10]) + np.multiply(p[13], p[12])
+                force, at = (on_a, p[5]) if p[1] == uid else (-on_a, p[6])
+                moment += np.cross(np.asarray(at) - centre, force)
+            else:
+                couple += moment
+        return couple
 
     def _pad_contacts(self):
         hits = [(self._pad_of_link[p[3]], p) for p in self._contacts() if p[3] in self._pad_of_link]

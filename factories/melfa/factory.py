@@ -3,10 +3,9 @@
 A 6-DOF industrial arm with a JR3 wrist force-torque sensor and a PG70-based parallel
 gripper with a tactile pad on each finger. Its primitives are simpler than Tombatossals'
 (thesis 7.3): grasp closes until the tactile grasp force is reached, transport keeps
-squeezing so the object does not loosen, place is a transport that descends straight onto
-the surface, and there is no slide. A place ends in success only where the object meets the
-surface the task puts it on: the pads' load changes as soon as the grip settles after a
-grasp, so a place that ended on that (as it once did) could succeed without moving.
+squeezing so the object does not loosen, and there is no slide. Place is the place primitive,
+not the thesis's transport descending onto the surface: it weighs where the jaws hold the
+object on the JR3 and puts the object, not the TCP, on the target (`ParallelJawFactory`).
 """
 
 from __future__ import annotations

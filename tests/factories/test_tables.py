@@ -83,7 +83,7 @@ TABLE_7_4 = [
     (StateType.MOVE, "move", "cartesian_move", "hold_position"),
     (StateType.PUSH, "move", "push", "hold_position"),
     (StateType.TRANSPORT, "transport", "cartesian_move", "squeeze"),
-    (StateType.PLACE, "transport", "cartesian_move", "squeeze"),
+    (StateType.PLACE, "place", "place", "squeeze"),
     (StateType.RELEASE, "release", "hold", "open_to"),
 ]
 
@@ -103,11 +103,11 @@ def test_table_7_4_transport_keeps_squeezing_with_the_grasp_force():
     assert _map("melfa", _state(StateType.TRANSPORT)).hand.params["grasp_force"] == 15.0
 
 
-def test_table_7_4_place_is_a_transport_that_ends_on_the_surface_it_goes_to():
+def test_a_melfa_place_weighs_what_its_jaws_hold_and_squeezes_it_down():
+    """Not Table 7.4's transport: the place primitive, which puts the object, not the TCP, on the target."""
     task = one_state_task(_state(StateType.PLACE))
     estd = translate(task, create("melfa")).estd
-    assert estd.states[0].arm.params["straight_line"] is True
-    assert estd.states[0].arm.params["contact_margin"] == 0.01  # a contact higher up stopped it short
+    assert estd.states[0].arm.params["weigh_time"] > 0.0 and estd.states[0].hand.params["grasp_force"] == 15.0
     assert describe(estd.transitions[0].events[0].condition) == "all(arm_done, hand_done)"
 
 

@@ -121,7 +121,7 @@ def test_estd_graph_names_primitives_and_controllers(no_graphviz):
     graph = from_estd(melfa_estd(), "pick_and_place.melfa.estd.xml")
     boxes = {n.id: n.lines for n in graph.nodes}
     assert boxes["grasp"][1:] == ("grasp", "arm: jaw_grasp_correction", "hand: close_until_force", "  grasp_force=15")
-    assert "place as transport" in boxes["put_down"] and "hand: squeeze" in boxes["put_down"]
+    assert "arm: place" in boxes["put_down"] and "hand: squeeze" in boxes["put_down"]
     assert "arm: cartesian_move" in boxes["approach"] and "  target=0.1 -0.05 0.15" in boxes["approach"]
     assert [e.lines for e in graph.edges if e.id == "approach->failed#2"] == [("timeout(20s)",)]
     svg = etree.fromstring(render(graph, "svg")[0])
