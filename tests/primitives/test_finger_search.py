@@ -40,7 +40,6 @@ def test_finger_lost_corrections_that_flip_flop_look_across_the_pinch_line(index
 @pytest.mark.parametrize(("arm", "engine", "obj", "index"), [
     ("right", "mujoco", "cylinder", 1),  # the Barrett: a finger met the cylinder 2.8 cm off
     ("left", "mujoco", "weight", 4),  # the SDH2, on the plan's second point
-    ("left", "pybullet", "mug", 7),  # twice in a row: each close met the mug's edge
 ])
 def test_a_search_step_that_meets_the_objects_edge_goes_on_that_way(
         arm: str, engine: str, obj: str, index: int) -> None:
