@@ -493,8 +493,7 @@ class JawGraspCorrection(Controller):
         side = float(np.sign(felt)) if felt else 0.0 if lever is None else float(np.sign(lever))
         self.alongs += 1
         here = readings.tcp[:3, 3]
-        # inside the known walls like every other move: along into one it pressed the hand there at
-        # 500 N (Melfa, MuJoCo, docs/empty-the-box.md)
+        # inside the known walls like every other move: one along into a wall wedged the hand (docs/empty-the-box.md)
         self.goal = self.walls.inside(self.rotation, here + readings.tcp[:3, 0] * side * self.pad_half_width, here)
         if side and norm(self.goal - here) < ARRIVED:
             self.goal = here.copy()  # a wall leaves no room along: the jaws would close as they did
