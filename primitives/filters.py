@@ -41,6 +41,9 @@ def world_load(readings: Readings) -> np.ndarray:
     return readings.tcp[:3, :3] @ readings.wrench[:3]
 
 
+WEIGHED = 0.5  # of a held object's believed weight the wrist must feel to say where it hangs: less, the table has it
+
+
 def held_wrench(hand: HandInfo, readings: Readings) -> np.ndarray:
     """The wrist reading less the empty hand's own weight at its present posture (from the
     hand's model): what it holds or touches, in the hand frame about the sensor. Unlike

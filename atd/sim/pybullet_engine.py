@@ -187,7 +187,7 @@ class PybulletRobot(SimRobot):
         self._hand_weights = np.array(  # z of each hand link's weight, root first
             [-GRAVITY * pb.getDynamicsInfo(self.body, i, physicsClientId=c)[0] for i in [self._hand_link, *self._hand_links]]
         )
-        self._contact_cache: tuple | None = None
+        self._contact_cache: tuple[tuple, tuple] | None = None
         self._root_cache: np.ndarray | None = None
         hand_root = d.links_by_name[d.hand_root]
         self._tcp_offset = d.tcp.origin.matrix()
@@ -535,15 +535,20 @@ class PybulletRobot(SimRobot):
         read upward on the wrist whenever the object was made after the robot (a mesh object
         is). The unswapped list, turned here, gives every force as it acts on the robot.
         """
+        return self._contact_lists()[1]
+
+    def _contact_lists(self) -> tuple[tuple, tuple]:
+        """This tick's contact points: Bullet's whole list, and the robot's (`_contacts`)."""
         if self._contact_cache is None:
+            points = pb.getContactPoints(physicsClientId=self.client)
             found = []
-            for p in pb.getContactPoints(physicsClientId=self.client):
+            for p in points:
                 if p[1] == self.body:
                     found.append(p)
                 elif p[2] == self.body:
                     found.append((p[0], p[2], p[1], p[4], p[3], p[6], p[5], tuple(-v for v in p[7]), p[8], p[9],
                                   p[10], tuple(-v for v in p[11]), p[12], tuple(-v for v in p[13])))
-            self._contact_cache = tuple(found)
+            self._contact_cache = (points, tuple(found))
         return self._contact_cache
 
     def _hand_root(self) -> np.ndarray:
@@ -588,7 +593,7 @@ class PybulletRobot(SimRobot):
         so the moment its listed contact forces leave is what the hand's unlisted couple on it
         makes up."""
         couple = np.zeros(3)
-        points = pb.getContactPoints(physicsClientId=self.client)
+        points = self._contact_lists()[0]
         threaded = {thread.object for thread in self._threads}
         for uid in touched.intersection(self._movable_bodies()) - threaded:
             centre = np.asarray(pb.getBasePositionAndOrientation(uid, physicsClientId=self.client)[0])

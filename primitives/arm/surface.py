@@ -23,11 +23,10 @@ from primitives.arm.motion import (
 from primitives.arm.move import arm_output
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import ARM_TWIST
-from primitives.filters import ContactWrench, held_wrench
+from primitives.filters import WEIGHED, ContactWrench, held_wrench
 from primitives.robot import Readings
 
 ARRIVAL_TOLERANCE = 0.003  # m: over the target, ready to descend
-WEIGHED = 0.5  # of the object's believed weight the wrist must feel to say where it hangs: less, the table or nothing has it
 
 
 class Place(Controller):

@@ -16,7 +16,7 @@ from atd.model.frames import GRAVITY
 from primitives.arm.motion import SUPPORT_BAND
 from primitives.base import Context, Status
 from primitives.blackboard import EMPTY_HAND, Shift
-from primitives.filters import LowPass, held_wrench, world_load
+from primitives.filters import WEIGHED, LowPass, held_wrench, world_load
 from primitives.hands.extension import ExtensionGauge, contact_points
 from primitives.hands.grasp_phases import Closing, Corrections, Holding, Phase, Weighing
 from primitives.hands.force_grasp import ForceGrasp
@@ -343,14 +343,14 @@ class RobustGraspHand(ForceGrasp):
     def _weight_off_line(self, readings: Readings, load: np.ndarray) -> tuple[float, float]:
         """How far across the pinch line (m, along `_normal`) the held load's weight acts,
         and its torque (N m) about the line through the two pads' contacts. 0, 0 when the
-        wrist feels less than half the object's weight (the table still carries it)."""
+        wrist feels less than WEIGHED of the object's weight (the table still carries it)."""
         hand = self.ctx.info.hand
         ends = contact_points(hand, readings, [self.pad_of[f] for f in self.fingers])
         line = ends[1] - ends[0]
         line /= max(float(np.linalg.norm(line)), 1e-9)
         down = readings.tcp[2, :3] * -1.0  # the world's down, in the hand frame
         weight = float(load[:3] @ down)
-        if weight <= 0.5 * GRAVITY * (self.ctx.object.weight or 0.0):
+        if weight <= WEIGHED * GRAVITY * (self.ctx.object.weight or 0.0):
             return 0.0, 0.0
         torque = float(line @ (load[3:] + np.cross(hand.wrist - ends[0], load[:3])))
         across = np.cross(down, line)  # a weight this way of the line turns it positively
