@@ -275,7 +275,7 @@ class JawGraspCorrection(Controller):
         elif self.phase is JawPhase.ALONG:
             v = self._along(readings)
         elif self.phase is JawPhase.SPAN:
-            v = self._span(readings)
+            v = self._span(readings, dt)
         relieved = True
         if self.phase is JawPhase.CLOSE:
             relieved = self._relieve(readings, dt)
@@ -443,44 +443,64 @@ class JawGraspCorrection(Controller):
         rested, they met over the box's top)."""
         self.spannable = False
         here = readings.tcp[:3, 3]
-        close = here + back_off * self.back
-        # where the jaws close: here, or, for a hand that rested on the object's edge, as deep as
-        # the grasp goes, where the sweep has left the jaws either side of the object
-        self.span_close = self._at_depth(close, self._grasp_height()) if touching else close
+        self.span_fallback = here + back_off * self.back  # where the jaws were to close
+        # where they close once the sweep has seen the object: there, or, for a hand that rested
+        # on its edge, as deep as the grasp goes, the sweep having left the jaws either side of it
+        self.span_close = self._at_depth(self.span_fallback, self._grasp_height()) if touching else self.span_fallback
         clear = self._object_top() + self.tip_depth + FLOOR_CLEARANCE if touching else -np.inf
-        self.span_origin = self._at_depth(close, max(self._depth(close), clear))
+        self.span_origin = self._at_depth(self.span_fallback, max(self._depth(self.span_fallback), clear))
         self.span_axis = unit(self._level(readings.tcp[:3, 0]))
         reach = self.jaw_half_width + self.ctx.object.widest
         self.span_route = [self.span_origin] + [
             self.walls.inside(self.rotation, self.span_origin + side * reach * self.span_axis, here)
-            for side in (1.0, -1.0)] + [self.span_origin, self.span_close]
+            for side in (1.0, -1.0)] + [self.span_origin, self.span_fallback]
         self.span = BeamSpan(self.ctx.object.half_height)
+        self.span_risen = False  # at the sweep's height: from here on a contact is something in the way
+        self.span_met = False  # the sweep met something: it looks no more
         self.move_stall.reset(readings.time)
         self.phase = JawPhase.SPAN
 
-    def _span(self, readings: Readings) -> np.ndarray:
+    def _span(self, readings: Readings, dt: float) -> np.ndarray:
         """The sweep's next tick (the beam's range changes little as the hand rises or comes
         down, and jumps only at an edge): once the top's middle is seen, over it and down to
         the close's depth; with the sweep over (or stalled) and no middle seen, back where it
-        began; there, the jaws close."""
+        began; there, the jaws close. A sweep that meets something (the wrist, tared as the
+        descent began, in free air) pushes it: it goes back and the jaws close where they were
+        to, the object not located; coming down, a contact is where the jaws close."""
         position = readings.tcp[:3, 3]
-        if readings.range is not None and self.span.middle is None:
+        self.contact.update(readings, dt)
+        goal = self.span_route[0]
+        down = self._depth(goal) < self._depth(self.span_origin) - ARRIVED
+        if self.span_risen and self.contact.force >= self.threshold:
+            if down:
+                self._close_span(readings, self.back_off)
+                return np.zeros(3)
+            if not self.span_met:
+                self.span_met = True
+                self.span_route = [self.span_origin, self.span_fallback]
+                goal = self.span_route[0]
+        if self.span_risen and not self.span_met and readings.range is not None and self.span.middle is None:
             self.span.add(float((position - self.span_origin) @ self.span_axis), float(readings.range))
             if self.span.middle is not None:
                 along = self.span.middle * self.span_axis
                 self.span_route = [self.span_origin + along, self.span_close + along]
+                goal = self.span_route[0]
                 self.move_stall.reset(readings.time)
-        goal = self.span_route[0]
         if norm(goal - position) < ARRIVED or self.move_stall.stalled(norm(goal - position), readings.time):
+            self.span_risen = True
             if len(self.span_route) > 1:
                 self.span_route.pop(0)
                 self.move_stall.reset(readings.time)
                 return np.zeros(3)
-            if self.span.middle is not None:
-                self.ctx.memory[LOCATED_ALONG] = True
-            self._close_here(readings, 0.0)
+            self._close_span(readings, 0.0)
             return np.zeros(3)
         return clamp_norm(GAIN * (goal - position), SPAN_SPEED)
+
+    def _close_span(self, readings: Readings, back_off: float) -> None:
+        """The sweep is over: the jaws close, and the place is told whether over the object's middle."""
+        if self.span.middle is not None and not self.span_met:
+            self.ctx.memory[LOCATED_ALONG] = True
+        self._close_here(readings, back_off)
 
     def _relieve(self, readings: Readings, dt: float) -> bool:
         """Rise while the wrist is pushed up beyond the empty hand's load: jaws squeezing a duck
