@@ -5,49 +5,34 @@ paddles is no longer set down that far from the target with the task saying it s
 
 from __future__ import annotations
 
-import math
-from dataclasses import replace
+from pathlib import Path
 
-import numpy as np
-
-from atd.model import load_task
-from atd.model.frames import rotation_rpy
+from atd.campaign.cells import parse_only, plans
+from atd.campaign.spec import load_spec
+from atd.campaign.trial import run_trial
 from atd.model.vocabulary import EventType
-from atd.sim import load_description, make_robot
-from atd.sim.scene import box_scene, scene_from_task
-from factories.registry import create
+from atd.sim.scene import box_scene
 from primitives.blackboard import LOCATED_ALONG
-from tests.primitives.conftest import (EXAMPLES, Stage, both_done, events, execute, last_reasons, leaf, machine,
-                                       simulated, use)
-from translator import translate
+from tests.primitives.conftest import EXAMPLES, Stage, both_done, execute, last_reasons, leaf, machine, simulated, use
 
-TASK = EXAMPLES / "pick_and_place.xml"
-TARGET = np.array([0.10, 0.10])  # where the task puts the box down
-# the box as the pick-and-place campaign drew it at seed 47129, left arm, trial 2: the paddles
-# closed 3.2 cm along them from its middle and the run said it succeeded with the box 3.5 cm off
-OFF = (0.0198, 0.0189)  # m along x and y from where the task believes it
-TURN = -13.5  # degrees about z
+SPEC = EXAMPLES / "campaigns" / "pick_and_place_displaced.toml"
+# the trial of that campaign at seed 47129 (left arm, trial 2, MuJoCo) where the paddles closed
+# 3.2 cm along them from the box's middle and the run said it succeeded, the box 3.5 cm off
+SEED, TRIAL = 47129, 2
 
 
-def test_a_baxter_puts_a_box_standing_off_along_its_paddles_on_the_target() -> None:
-    task, diagnostics = load_task(TASK)
-    assert task is not None, diagnostics
-    translation = translate(task, create("baxter", "left"))
-    assert translation.ok, translation.diagnostics
-    scene = scene_from_task(task, TASK)
-    pose = np.eye(4)
-    pose[:3, :3] = rotation_rpy((0.0, 0.0, math.radians(TURN)))
-    pose = pose @ scene.object.pose
-    pose[:2, 3] = scene.object.pose[:2, 3] + OFF
-    sim = make_robot(load_description("baxter", "left"), replace(scene, object=replace(scene.object, pose=pose)),
-                     "mujoco")
-    outcome, executor = execute(translation.estd, sim, task=task)
-    off = float(np.linalg.norm(sim.object_pose()[:2, 3] - TARGET))
-    assert outcome.succeeded and off < 0.01, (outcome.summary, off)
-    placed = [c.get("reason") for r in events(executor) if r["transition"].startswith("put_down->")
-              for c in r["conditions"] if c.get("reason")]
-    assert any("range sensor" in reason for reason in placed), placed
-
+def test_a_baxter_puts_a_box_standing_off_along_its_paddles_on_the_target(tmp_path: Path) -> None:
+    spec = tmp_path / "displaced.toml"
+    spec.write_text(SPEC.read_text().replace("base_seed = 35", f"base_seed = {SEED}")
+                    .replace('"../pick_and_place.xml"', f'"{(EXAMPLES / "pick_and_place.xml").as_posix()}"'))
+    loaded, diagnostics = load_spec(spec)
+    assert loaded is not None, diagnostics
+    only = parse_only(("robot=baxter", "arm=left", "engine=mujoco"))
+    [record] = [run_trial(plan) for plan in plans(loaded, only, TRIAL + 1) if plan.index == TRIAL]
+    assert record.task_succeeded and record.judged_succeeded, (record.summary, record.judge_reason)
+    assert record.measurements["distance"] < 0.01, record.judge_reason
+    placed = [why for event in record.events if event["transition"].startswith("put_down->") for why in event["why"]]
+    assert any("range sensor" in why for why in placed), placed
 
 def test_a_place_that_cannot_weigh_after_a_grasp_that_did_not_see_the_object_fails() -> None:
     """Neither the wrist nor the grasp says where the object is in the hand: the place says
