@@ -585,10 +585,12 @@ class Factory(ABC):
         return NodeMapping("grasp", arm, self.controller("close_until_force"), notes)
 
     def places_unweighed(self, context: MappingContext) -> bool:
-        """Whether the task places what is grasped with a place that cannot weigh where the hand
-        holds it (`weigh_time` 0): the grasp must then see where it closes on the object."""
+        """Whether the task places the object it knows (the grasp's to look for) with a place
+        that cannot weigh where the hand holds it (`weigh_time` 0): the grasp must then see
+        where it closes on the object."""
+        known = context.object is not None and context.object.pose is not None
         places = any(s.type is StateType.PLACE for s in context.task.states)
-        return places and float(self.controller("place").params["weigh_time"]) <= 0.0
+        return known and places and float(self.controller("place").params["weigh_time"]) <= 0.0
 
     def jaw_unscrew(self, state: State) -> NodeMapping:
         """Thesis 3.3.6's unscrew on a parallel gripper, as a real one unscrews: the jaws grip

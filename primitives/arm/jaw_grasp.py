@@ -354,7 +354,7 @@ class JawGraspCorrection(Controller):
         obj = self.ctx.object
         self.spannable = self.locate and self.ctx.info.has_range and self.vertical and obj is not None \
             and obj.pose is not None
-        if self.locate:
+        if self.spannable:
             self.ctx.memory[LOCATED_ALONG] = False
 
     def _descend(self, readings: Readings, dt: float) -> np.ndarray:
