@@ -144,6 +144,7 @@ class JawGraspCorrection(Controller):
         self.jaw_half_width = float(p["jaw_half_width"])
         # m: a move along the jaws this long takes a contact on a finger's rim beside a pad onto the pad
         self.pad_half_width = max((pad.half_size[0] for pad in ctx.info.hand.pads), default=0.0)
+        self.pad_half_height = max((pad.half_size[1] for pad in ctx.info.hand.pads), default=0.0)
         self.step = float(p["search_step"])
         self.offsets = search_offsets(self.step, int(p["search_points"]))
         self.locate = bool(p["locate_along"])
@@ -466,14 +467,17 @@ class JawGraspCorrection(Controller):
         the close's depth; with the sweep over (or stalled) and no middle seen, back where it
         began; there, the jaws close. A sweep that meets something (the wrist, tared as the
         descent began, in free air) pushes it: it goes back and the jaws close where they were
-        to, the object not located; coming down, a contact is where the jaws close."""
+        to, the object not located; coming down, a contact is where the jaws close, the object
+        located only if they are within a pad's half height of the grasp's height (held by its
+        top, a box hung 5 cm under the hand and tipped over as it was put down: PyBullet)."""
         position = readings.tcp[:3, 3]
         self.contact.update(readings, dt)
         goal = self.span_route[0]
         down = self._depth(goal) < self._depth(self.span_origin) - ARRIVED
         if self.span_risen and self.contact.force >= self.threshold:
-            if down:
-                self._close_span(readings, self.back_off)
+            if down:  # on the object's edge: a grip this far above the grasp's height holds it by its top
+                high = self._depth(position) - self._depth(self.span_close) > self.pad_half_height
+                self._close_span(readings, self.back_off, located=not high)
                 return np.zeros(3)
             if not self.span_met:
                 self.span_met = True
@@ -496,9 +500,9 @@ class JawGraspCorrection(Controller):
             return np.zeros(3)
         return clamp_norm(GAIN * (goal - position), SPAN_SPEED)
 
-    def _close_span(self, readings: Readings, back_off: float) -> None:
+    def _close_span(self, readings: Readings, back_off: float, located: bool = True) -> None:
         """The sweep is over: the jaws close, and the place is told whether over the object's middle."""
-        if self.span.middle is not None and not self.span_met:
+        if located and self.span.middle is not None and not self.span_met:
             self.ctx.memory[LOCATED_ALONG] = True
         self._close_here(readings, back_off)
 
