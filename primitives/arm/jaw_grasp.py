@@ -586,6 +586,8 @@ class JawGraspCorrection(Controller):
         lever = self.rim.lever() if self.vertical else None
         side = float(np.sign(felt)) if felt else 0.0 if lever is None else float(np.sign(lever))
         self.alongs += 1
+        if LOCATED_ALONG in self.ctx.memory:  # the jaws leave the middle the sweep saw
+            self.ctx.memory[LOCATED_ALONG] = False
         here = readings.tcp[:3, 3]
         # inside the known walls like every other move: one along into a wall wedged the hand (docs/empty-the-box.md)
         self.goal = self.walls.inside(self.rotation, here + readings.tcp[:3, 0] * side * self.pad_half_width, here)
