@@ -580,8 +580,17 @@ class Factory(ABC):
                               fingertip_reach=round(self.robot.hand_reach(HandShape.OPEN.value), 6),
                               fingertip_extent=tuple(round(e, 6) for e in
                                                      self.robot.hand_extent(HandShape.OPEN.value, SWEEPING_TIP)),
-                              hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)))
+                              hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)),
+                              locate_along=self.places_unweighed(context) or None)
         return NodeMapping("grasp", arm, self.controller("close_until_force"), notes)
+
+    def places_unweighed(self, context: MappingContext) -> bool:
+        """Whether the task places the object it knows (the grasp's to look for) with a place
+        that cannot weigh where the hand holds it (`weigh_time` 0): the grasp must then see
+        where it closes on the object."""
+        known = context.object is not None and context.object.pose is not None
+        places = any(s.type is StateType.PLACE for s in context.task.states)
+        return known and places and float(self.controller("place").params["weigh_time"]) <= 0.0
 
     def jaw_unscrew(self, state: State) -> NodeMapping:
         """Thesis 3.3.6's unscrew on a parallel gripper, as a real one unscrews: the jaws grip

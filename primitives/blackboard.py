@@ -128,6 +128,12 @@ rad/s), kept by the executor. A motion that takes the arm over ramps from it: on
 started from rest stopped a lifting SDH2 within a tick, and its wrist read the 10-15 N of
 that stop as a contact."""
 
+LOCATED_ALONG = "located_along"
+"""In `Context.memory`: whether the latest jaw grasp of a robot with a range sensor saw where
+along its jaws' width the object's top spans, and closed on its middle (True), or closed not
+knowing (False); absent where no such grasp ran. A place that cannot weigh where the object
+hangs holds it where the hand shape says only if it was."""
+
 SHORT_OF_TARGET = "short_of_target"
 """In `Context.memory`: (3,) world vector, m, from where the latest guarded move stopped on a
 contact to the target it was going to; absent once a move arrived. A gripper's unscrew reads

@@ -304,6 +304,9 @@ _ARM_CONTROLLERS = (
             "search_step": _p(NUM, "spacing of the search along the jaws' width (ours: under a finger's "
                               "width plus the object's)", 0.03, unit="m"),
             "search_points": _p(INT, "points searched after the jaws close on nothing (ours)", 4),
+            "locate_along": _p(FLAG, "before closing, sweep along the jaws' width to see where the object's top "
+                               "spans with a range sensor along the approach axis, and close on its middle: for a "
+                               "place that cannot weigh where the jaws hold it (set by the factory)", False),
             "object_top": _p(NUM, "height (world z) of the object's top as a perceive state saw it, for a task "
                              "that knows no object: set at run time from the value the ATD's <object_top from> "
                              "names; unset = the task's object, or none", unit="m", limits=ranges.COORDINATE),

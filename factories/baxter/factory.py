@@ -6,7 +6,9 @@ but good enough for contact detection (A.4). So contact thresholds are raised an
 wrench is low-pass filtered (values in `config.toml`), and a grasp is judged from the
 gripper itself (motor force, and jaws stopped before closing fully). The IR range sensor
 in the hand judges no grasp: its beam passes through a hollow object (into a cup, through
-a roll of tape's core) and reads the table beyond the fingertips while the jaws hold it.
+a roll of tape's core) and reads the table beyond the fingertips while the jaws hold it. It
+finds where along the paddles a known object lies before a grasp whose object the task puts
+down (`locate_along`): its wrist cannot weigh where the paddles hold it.
 """
 
 from __future__ import annotations

@@ -24,7 +24,11 @@ object or else the rim's lever, by a pad's half width, and the jaws close again 
 object may give it the top a perceive state saw (`object_top`): it stands in for the object's
 top, and the jaws do not close before the fingertips are past it. A hand pressed far beyond
 any grasp's need (`WEDGED`: between a wall and the pile) does not close there: it eases off the
-way the press pushes it, rises, and the grasp fails, saying so.
+way the press pushes it, rises, and the grasp fails, saying so. Asked to (`locate_along`: its
+place cannot weigh where the jaws hold the object), a hand with a range sensor along its
+approach axis sweeps the open jaws along their width before its first close of a descent,
+sees where the object's top spans (`primitives.arm.jaw_span`) and closes on its middle; it
+tells the place whether it did (`LOCATED_ALONG`).
 """
 
 from __future__ import annotations
@@ -47,10 +51,11 @@ from primitives.arm.motion import (
     what_stops,
 )
 from primitives.arm.jaw_rim import RimLever
+from primitives.arm.jaw_span import BeamSpan
 from primitives.arm.move import arm_output
 from primitives.arm.walls import KnownWalls
 from primitives.base import Context, ControlData, Controller, Status
-from primitives.blackboard import ARM_TWIST, EMPTY_HAND
+from primitives.blackboard import ARM_TWIST, EMPTY_HAND, LOCATED_ALONG
 from primitives.filters import ContactWrench, contact_across, world_load
 from primitives.robot import Readings
 from primitives.search import search_offsets
@@ -78,6 +83,7 @@ PAST_SEEN_TOP = 0.005
 # close on the table 96 N before its relief); a hand pressed so hard is wedged (docs/empty-the-box.md)
 WEDGED = 150.0
 WEDGE_TIME = 0.1  # s the press lasts: a knock is over sooner (PyBullet's wrist read 158 N in a tick on a top)
+SPAN_SPEED = 0.1  # m/s the open jaws move along their width while the range sensor looks (its edges to 0.5 mm a tick)
 WEDGE_BACK_OFF = 0.01  # m a wedged hand moves the way the press pushes it, and so eases it, before it rises
 
 
@@ -86,6 +92,7 @@ class JawPhase(Enum):
 
     MOVE = "move"  # rising clear of a contact, then across to where to look next
     DESCEND = "descend"  # down on the wrist sensor until a contact or the grasp height
+    SPAN = "span"  # open, along the jaws' width while the range sensor finds the top's edges, then over its middle
     CLOSE = "close"  # holding still (following the re-centring) while the jaws close
     ALONG = "along"  # the jaws reopened off a finger's bare rim: along their width, then close again
     HOLD = "hold"  # the jaws hold the object, or the grasp has ended in an error
@@ -137,8 +144,10 @@ class JawGraspCorrection(Controller):
         self.jaw_half_width = float(p["jaw_half_width"])
         # m: a move along the jaws this long takes a contact on a finger's rim beside a pad onto the pad
         self.pad_half_width = max((pad.half_size[0] for pad in ctx.info.hand.pads), default=0.0)
+        self.pad_half_height = max((pad.half_size[1] for pad in ctx.info.hand.pads), default=0.0)
         self.step = float(p["search_step"])
         self.offsets = search_offsets(self.step, int(p["search_points"]))
+        self.locate = bool(p["locate_along"])
         top = p.get("object_top")
         self.seen_top = None if top is None else float(top)  # m, world z: the top a perceive state saw
         self.walls = KnownWalls.of(ctx)
@@ -179,6 +188,7 @@ class JawGraspCorrection(Controller):
         self.pressed_since: float | None = None  # when the press past WEDGED began
         self.tared = False  # this grasp has read its empty hand (EMPTY_HAND): the approach may have left it pressing
         self.ctx.blackboard.contact = False
+        self.spannable = False  # the next close first finds the object's middle along the jaws
         self._rise(readings, np.zeros(3), self._above_object())
 
     def _depth(self, point: np.ndarray) -> float:
@@ -265,6 +275,8 @@ class JawGraspCorrection(Controller):
             v = self._close(readings, dt)
         elif self.phase is JawPhase.ALONG:
             v = self._along(readings)
+        elif self.phase is JawPhase.SPAN:
+            v = self._span(readings, dt)
         relieved = True
         if self.phase is JawPhase.CLOSE:
             relieved = self._relieve(readings, dt)
@@ -340,6 +352,11 @@ class JawGraspCorrection(Controller):
         self.top = self._depth(readings.tcp[:3, 3])
         self.line = readings.tcp[:3, 3].copy()  # the descent keeps to the vertical through here
         self.descent_stall.reset(readings.time, self.top)
+        obj = self.ctx.object
+        self.spannable = self.locate and self.ctx.info.has_range and self.vertical and obj is not None \
+            and obj.pose is not None
+        if self.spannable:
+            self.ctx.memory[LOCATED_ALONG] = False
 
     def _descend(self, readings: Readings, dt: float) -> np.ndarray:
         wrench = self.contact.update(readings, dt)
@@ -382,7 +399,7 @@ class JawGraspCorrection(Controller):
                 self.goal = readings.tcp[:3, 3].copy()
                 self._search_on(readings, "a jaw met something with the fingertips at the seen top")
                 return
-            self._close_here(readings, self.back_off)
+            self._close_here(readings, self.back_off, touching=True)
             return
         shift = readings.tcp[:3, :3] @ self._jaw_move(across)
         self.shifts += 1
@@ -405,12 +422,89 @@ class JawGraspCorrection(Controller):
         depth = self.wrist_to_tcp + (self._depth(readings.tcp[:3, 3]) - top if np.isfinite(top) else 0.0)
         return contact_across(wrench, depth)
 
-    def _close_here(self, readings: Readings, back_off: float) -> None:
+    def _close_here(self, readings: Readings, back_off: float, touching: bool = False) -> None:
+        """Close with the TCP `back_off` back from here; `touching`: the hand rests on something."""
+        if self.spannable:
+            self._start_span(readings, back_off, touching)
+            return
         self.goal = readings.tcp[:3, 3] + back_off * self.back
         self.phase = JawPhase.CLOSE
         self.risen = 0.0  # m the arm has risen in this close to take the hand off the support
         self.rim.reset()
         self.ctx.blackboard.contact = True
+
+    def _start_span(self, readings: Readings, back_off: float, touching: bool) -> None:
+        """Before the first close of a descent, asked to locate the object with a range sensor
+        along the approach axis: along the jaws' width, as far as the object could be held
+        from their middle (a jaw's half width and the object's widest), first one way, then
+        the other, until the beam has seen both edges of its top (`primitives.arm.jaw_span`);
+        the jaws then close there. A hand resting on something sweeps with its fingertips
+        risen clear of the object's top (a jaw on a turned box's corner dragged it along and
+        turned it) and comes down to the grasp's height to close (closing where the jaw had
+        rested, they met over the box's top)."""
+        self.spannable = False
+        here = readings.tcp[:3, 3]
+        self.span_fallback = here + back_off * self.back  # where the jaws were to close
+        # where they close once the sweep has seen the object: there, or, for a hand that rested
+        # on its edge, as deep as the grasp goes, the sweep having left the jaws either side of it
+        self.span_close = self._at_depth(self.span_fallback, self._grasp_height()) if touching else self.span_fallback
+        clear = self._object_top() + self.tip_depth + FLOOR_CLEARANCE if touching else -np.inf
+        self.span_origin = self._at_depth(self.span_fallback, max(self._depth(self.span_fallback), clear))
+        self.span_axis = unit(self._level(readings.tcp[:3, 0]))
+        reach = self.jaw_half_width + self.ctx.object.widest
+        self.span_route = [self.span_origin] + [
+            self.walls.inside(self.rotation, self.span_origin + side * reach * self.span_axis, here)
+            for side in (1.0, -1.0)] + [self.span_origin, self.span_fallback]
+        self.span = BeamSpan(self.ctx.object.half_height)
+        self.span_risen = False  # at the sweep's height: from here on a contact is something in the way
+        self.span_met = False  # the sweep met something: it looks no more
+        self.move_stall.reset(readings.time)
+        self.phase = JawPhase.SPAN
+
+    def _span(self, readings: Readings, dt: float) -> np.ndarray:
+        """The sweep's next tick (the beam's range changes little as the hand rises or comes
+        down, and jumps only at an edge): once the top's middle is seen, over it and down to
+        the close's depth; with the sweep over (or stalled) and no middle seen, back where it
+        began; there, the jaws close. A sweep that meets something (the wrist, tared as the
+        descent began, in free air) pushes it: it goes back and the jaws close where they were
+        to, the object not located; coming down, a contact is where the jaws close, the object
+        located only if they are within a pad's half height of the grasp's height (held by its
+        top, a box hung 5 cm under the hand and tipped over as it was put down: PyBullet)."""
+        position = readings.tcp[:3, 3]
+        self.contact.update(readings, dt)
+        goal = self.span_route[0]
+        down = self._depth(goal) < self._depth(self.span_origin) - ARRIVED
+        if self.span_risen and self.contact.force >= self.threshold:
+            if down:  # on the object's edge: a grip this far above the grasp's height holds it by its top
+                high = self._depth(position) - self._depth(self.span_close) > self.pad_half_height
+                self._close_span(readings, self.back_off, located=not high)
+                return np.zeros(3)
+            if not self.span_met:
+                self.span_met = True
+                self.span_route = [self.span_origin, self.span_fallback]
+                goal = self.span_route[0]
+        if self.span_risen and not self.span_met and readings.range is not None and self.span.middle is None:
+            self.span.add(float((position - self.span_origin) @ self.span_axis), float(readings.range))
+            if self.span.middle is not None:
+                along = self.span.middle * self.span_axis
+                self.span_route = [self.span_origin + along, self.span_close + along]
+                goal = self.span_route[0]
+                self.move_stall.reset(readings.time)
+        if norm(goal - position) < ARRIVED or self.move_stall.stalled(norm(goal - position), readings.time):
+            self.span_risen = True
+            if len(self.span_route) > 1:
+                self.span_route.pop(0)
+                self.move_stall.reset(readings.time)
+                return np.zeros(3)
+            self._close_span(readings, 0.0)
+            return np.zeros(3)
+        return clamp_norm(GAIN * (goal - position), SPAN_SPEED)
+
+    def _close_span(self, readings: Readings, back_off: float, located: bool = True) -> None:
+        """The sweep is over: the jaws close, and the place is told whether over the object's middle."""
+        if located and self.span.middle is not None and not self.span_met:
+            self.ctx.memory[LOCATED_ALONG] = True
+        self._close_here(readings, back_off)
 
     def _relieve(self, readings: Readings, dt: float) -> bool:
         """Rise while the wrist is pushed up beyond the empty hand's load: jaws squeezing a duck
@@ -492,6 +586,8 @@ class JawGraspCorrection(Controller):
         lever = self.rim.lever() if self.vertical else None
         side = float(np.sign(felt)) if felt else 0.0 if lever is None else float(np.sign(lever))
         self.alongs += 1
+        if LOCATED_ALONG in self.ctx.memory:  # the jaws leave the middle the sweep saw
+            self.ctx.memory[LOCATED_ALONG] = False
         here = readings.tcp[:3, 3]
         # inside the known walls like every other move: one along into a wall wedged the hand (docs/empty-the-box.md)
         self.goal = self.walls.inside(self.rotation, here + readings.tcp[:3, 0] * side * self.pad_half_width, here)

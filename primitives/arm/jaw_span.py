@@ -1,0 +1,45 @@
+"""Where the object's top spans along the open jaws' width, seen by a range sensor looking
+along the approach axis (Baxter's IR) while the hand moves along that width at grasp height.
+
+A jaw grasp that finds the object across its jaws does not find it along them: the jaws
+close wherever they straddle it, and a Baxter's paddles held a box 3.2-4.0 cm off their
+middle, which its place, unable to weigh it, set down that far from the target
+(docs/pick-and-place.md). The beam drops onto the top, or off it, by the object's height;
+where it does, along the sweep, is an edge of the top, and the top's middle lies halfway
+between its two edges.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+class BeamSpan:
+    """The top's edges along one line, from successive (position along it, range) samples: a
+    range that falls by more than `step` from one sample to the next is the beam coming onto
+    the top, one that rises by more the beam leaving it; which edge that is follows from the
+    way the beam moved."""
+
+    def __init__(self, step: float) -> None:
+        self.step = step  # m: half the object's believed height
+        self.low: float | None = None  # m along the line: the top's edge on the line's negative side
+        self.high: float | None = None  # the edge on its positive side
+        self.last: tuple[float, float] | None = None
+
+    def add(self, at: float, seen: float) -> None:
+        """A sample: the beam at `at` (m along the line) read `seen` (m; inf for nothing)."""
+        if self.last is not None and at != self.last[0]:
+            was_at, was = self.last
+            rising = at > was_at
+            if seen < was - self.step:  # onto the top: the edge is behind the beam
+                self.low, self.high = (at, self.high) if rising else (self.low, at)
+            elif seen > was + self.step:  # off the top: the edge was where the beam last read it
+                self.low, self.high = (self.low, was_at) if rising else (was_at, self.high)
+        self.last = (at, seen)
+
+    @property
+    def middle(self) -> float | None:
+        """m along the line of the top's middle, once both its edges are seen around it."""
+        if self.low is None or self.high is None or self.low >= self.high:
+            return None
+        return (self.low + self.high) / 2.0
