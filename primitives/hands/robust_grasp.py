@@ -101,8 +101,7 @@ class RobustGraspHand(ForceGrasp):
         """Force adaptation until the squeeze settles at the grasp force (within 1 - HELD,
         averaged over FELT_TIME, and not only passing through the band) for SETTLE_TIME, or
         below it with every finger at its effort limit (`_strongest`); then a pinch weighs
-        what it holds (closed again across first where it pinches off the object's widest,
-        `_off_widest`), other grasps are done. Unsettled after SETTLE_LIMIT: an error naming
+        what it holds, other grasps are done. Unsettled after SETTLE_LIMIT: an error naming
         the pads."""
         averaged = self._squeeze(readings, dt)
         if averaged is None:
@@ -119,12 +118,7 @@ class RobustGraspHand(ForceGrasp):
         held.holding += dt
         if self.status is not Status.RUNNING:
             return
-        weighs = held.settled >= SETTLE_TIME and self._corrects_pinch()
-        off_widest = self._off_widest(readings) if weighs else None
-        if off_widest is not None:
-            self._try_again(self.search.look(self.search.across + off_widest),
-                            "the pads pinch the object off its widest, steeper than friction holds")
-        elif weighs:
+        if held.settled >= SETTLE_TIME and self._corrects_pinch():
             self.phase, self.weighing = Phase.WEIGH, Weighing()  # lift it, to feel where its weight hangs
             self.ctx.blackboard.weigh = WEIGH_LIFT
         elif held.settled >= SETTLE_TIME:
@@ -134,26 +128,6 @@ class RobustGraspHand(ForceGrasp):
             what = (f"pads never settled at {self.grasp_force:.1f} N within {SETTLE_LIMIT:.0f} s "
                     f"({self._forces(readings.pad_force)})")
             self._fail(what)
-
-    def _off_widest(self, readings: Readings) -> float | None:
-        """The pads stand closer than the object's least width by more than friction allows:
-        on a round body a pinch narrower than its width W, at a gap g, meets it on faces
-        turned from the squeeze line by acos(g / W), and beyond the friction angle
-        (g < W / hypot(1, mu)) the squeeze pushes it out sideways, slowly, until it slips
-        out of the fingertips (the Barrett's mug at generalisation seed 27191,
-        docs/robust-grasp.md). The shift across the pinch line (m, along `_normal`) that
-        brings the line through the body's middle, towards where the pads feel it; None
-        for a pinch wide enough."""
-        thing = self.ctx.object
-        width = thing.least_width
-        gap = self.gauge.gap(readings.hand_q)
-        if gap >= width / np.hypot(1.0, thing.friction or 0.0):
-            return None
-        hand = self.ctx.info.hand
-        pads = [self.pad_of[f] for f in self.fingers]
-        felt = contact_points(hand, readings, pads)[:, :2] - hand.pad_surfaces(readings.hand_q)[pads][:, :2, 3]
-        side = float(np.sign(np.mean(felt @ self.search.normal))) or 1.0
-        return side * float(np.sqrt(width ** 2 - gap ** 2)) / 2.0
 
     def _weigh(self, readings: Readings, dt: float) -> None:
         """Lifted WEIGH_LIFT by the arm, the wrist feels the held weight for WEIGH_TIME. More
