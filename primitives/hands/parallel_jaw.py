@@ -110,7 +110,8 @@ class CloseUntilForce(Controller):
     finger's bare rim beside the pads, as do jaws the squeeze counts as gripping only at its
     limit with the weaker pad's contact at its edge: they reopen too (at most RIM_MOVES times),
     saying where the weaker pad feels the object (`jaws_rim`), for the arm to move along the
-    jaws' width until the pads take the push.
+    jaws' width until the pads take the push; so do jaws whose pads both first meet the object
+    in their edge column, before they press it out along the jaws' width.
     """
 
     def __init__(self, ctx: Context, rim_moves: int = RIM_MOVES) -> None:
