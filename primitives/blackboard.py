@@ -80,9 +80,8 @@ class Blackboard:
 
     jaws_brushed: float | None = None
     """Hand -> arm: with `jaws_empty`, where along the jaws' width (the hand's x, from -1 to 1
-    of a pad's half width) the pads last felt something while they closed on nothing (or, in a
-    close after a reopening off a rim, before it), or None: the object lies beyond that edge of
-    the pads (pushed there by it)."""
+    of a pad's half width) the pads last felt something while they closed on nothing, or
+    None: the object lies beyond that edge of the pads (pushed there by it)."""
 
     jaws_rim: float | None = None
     """Hand -> arm: with `jaws_empty`, the jaws reopen not from nothing but from a grip pressed

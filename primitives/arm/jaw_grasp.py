@@ -492,7 +492,6 @@ class JawGraspCorrection(Controller):
         lever = self.rim.lever() if self.vertical else None
         side = float(np.sign(felt)) if felt else 0.0 if lever is None else float(np.sign(lever))
         self.alongs += 1
-        self.hint = None  # the pads felt the object here: where a descent's contact placed it is stale
         here = readings.tcp[:3, 3]
         # inside the known walls like every other move: one along into a wall wedged the hand (docs/empty-the-box.md)
         self.goal = self.walls.inside(self.rotation, here + readings.tcp[:3, 0] * side * self.pad_half_width, here)

@@ -110,8 +110,7 @@ class CloseUntilForce(Controller):
     finger's bare rim beside the pads, as do jaws the squeeze counts as gripping only at its
     limit with the weaker pad's contact at its edge: they reopen too (at most RIM_MOVES times),
     saying where the weaker pad feels the object (`jaws_rim`), for the arm to move along the
-    jaws' width until the pads take the push; so do jaws whose pads both first meet the object
-    in their edge column, before they press it out along the jaws' width.
+    jaws' width until the pads take the push.
     """
 
     def __init__(self, ctx: Context, rim_moves: int = RIM_MOVES) -> None:
@@ -158,7 +157,9 @@ class CloseUntilForce(Controller):
                     self.finish(Status.ERROR, "the jaws closed on nothing" if self.jaws.empty(readings)
                                 else "the jaws stopped on something a pad does not feel")
             elif rim is not None:
-                self._off_rim(rim)
+                self.pressing, self.rimmed = False, 0.0
+                self.rim_moves_left -= 1
+                board.jaws_empty, board.jaws_rim = True, rim
             elif gripped:
                 board.fingers_stopped = True
                 limit = ", the squeeze at its limit" if force < CONFIRM * self.reachable else ""
@@ -166,12 +167,8 @@ class CloseUntilForce(Controller):
                     limit += f", the gripper gives {self.reachable:g} N"
                 self.finish(Status.DONE, f"grip force {force:.1f} N (asked {self.grasp_force:g} N{limit})")
             elif not self.pressing and (self.jaws.both_touch(readings, self.grasp_force) or self._blocked(readings)):
-                beyond = self._beyond_edge(readings)
-                if beyond:
-                    self._off_rim(beyond)
-                else:
-                    self.pressing = True
-                    self.squeeze.reset()  # each press starts from the grasp force
+                self.pressing = True
+                self.squeeze.reset()  # each press starts from the grasp force
         if board.jaws_empty:
             return self._reopen(dt)
         if self.pressing:
@@ -223,30 +220,6 @@ class CloseUntilForce(Controller):
             return edge
         return None
 
-    def _off_rim(self, side: float) -> None:
-        """Reopen for the arm to move along the jaws' width towards `side` (0: it cannot say) and
-        close again. Should that close find nothing, the object went on beyond that edge
-        (`jaws_brushed`): the Melfa's ball, felt at a pad's +x edge, rolled on 3 cm while the
-        arm moved 0.9 cm, and the wrist's lever sent the search the other way."""
-        self.pressing, self.rimmed = False, 0.0
-        self.rim_moves_left -= 1
-        self.brushed = side or self.brushed
-        self.ctx.blackboard.jaws_empty, self.ctx.blackboard.jaws_rim = True, side
-
-    def _beyond_edge(self, readings: Readings) -> float:
-        """Where along the jaws' width both pads first meet the object, when both meet it in
-        their edge column on the same side and a reopening is left for the arm to move that way;
-        0 otherwise. Such an object lies beyond the pads' edge, and a round one met there is
-        squeezed out along the jaws' width by the press (the Melfa's ball, 1.9 cm beyond the
-        edge, left the jaws and rolled 3 cm on their reopening: docs/robust-grasp.md)."""
-        if not (self.guided and self.rim_moves_left > 0):
-            return 0.0
-        felt = [self._pad_across(readings, index) for index in range(len(readings.pad_force))]
-        where = [at for at in felt if at is not None and abs(at) >= EDGE]
-        if not where or len(where) != len(felt) or abs(float(np.sign(where).sum())) != len(where):
-            return 0.0
-        return float(np.mean(where))
-
     def _blocked(self, readings: Readings) -> bool:
         """Held short of where they are driven: near their closed stop a position servo has
         too little travel left to push as hard as a touch needs (a Baxter's paddles held a
@@ -264,8 +237,7 @@ class CloseUntilForce(Controller):
             if self.jaws.closing * (self.reference - self.opened) <= 0.0:
                 self.reference = self.opened
                 self.recentred = 0.0
-                if board.jaws_rim is None:  # off a rim, the side the pads felt stays for the next close
-                    self.brushed = None
+                self.brushed = None
                 board.jaws_empty, board.jaws_rim = False, None
         return position_command(np.array([self.reference]))
 

@@ -10,10 +10,10 @@ from __future__ import annotations
 import numpy as np
 
 from atd.model.estd import Controller
-from primitives.base import Context, ControlData, Status
+from primitives.base import Context, Status
 from primitives.hands.parallel_jaw import RIM_TIME
 from primitives.registry import build_controller
-from primitives.robot import HandMode, Readings
+from primitives.robot import Readings
 from tests.primitives.melfa_jaws import GRASP_HEIGHT, MELFA, Position, closing_correction, still
 
 
@@ -32,8 +32,7 @@ def _readings(position: Position = GRASP_HEIGHT, q: float = 0.03, pads: tuple[fl
 
 
 def _press(pads: tuple[float, float], column: int) -> tuple[Context, object, float | None]:
-    """A guided close met in the pads' middle, then pressed still with `pads` N felt in `column`
-    (the object slid along the pads as they pressed): the blackboard, the hand,
+    """A guided close pressed still with `pads` N felt in `column`: the blackboard, the hand,
     and when (s) the jaws began to reopen (None: they did not in 1.5 s)."""
     ctx = Context(info=MELFA, params={}, environment=None)
     ctx.blackboard.contact = True  # the correcting arm has found the object: close
@@ -42,7 +41,6 @@ def _press(pads: tuple[float, float], column: int) -> tuple[Context, object, flo
     period = MELFA.control_period
     for _ in range(50):  # 1 cm of closing on nothing yet
         hand.update(_readings(q=0.02), period)
-    hand.update(_readings(q=0.015, pads=(1.0, 1.0), column=3), period)  # both pads meet it in their middle
     for tick in range(round(1.5 / period)):  # pressed still: the squeeze rises to its limit
         hand.update(_readings(q=0.015, pads=pads, column=column), period)
         if ctx.blackboard.jaws_empty or hand.status is not Status.RUNNING:
@@ -82,30 +80,3 @@ def test_the_arm_moves_along_the_jaws_to_that_side_and_closes_again_there() -> N
     half = MELFA.hand.pads[0].half_size[0]
     arm.update(_readings((0.4 + half, 0.0, 0.02)), period)  # a pad's half width along: there
     assert ctx.blackboard.contact and arm.status is Status.RUNNING  # close again, here
-
-
-def _first_touch(column: int) -> tuple[Context, object, ControlData]:
-    """A guided close whose pads first meet the object, 1 N each, in `column`: the blackboard,
-    the hand, and what it commands the jaws then."""
-    ctx = Context(info=MELFA, params={}, environment=None)
-    ctx.blackboard.contact = True  # the correcting arm has found the object: close
-    hand = build_controller(Controller(name="close_until_force", params={}), "hand", ctx)
-    hand.start(_readings())
-    for _ in range(50):  # 1 cm of closing on nothing yet
-        hand.update(_readings(q=0.02), MELFA.control_period)
-    return ctx, hand, hand.update(_readings(q=0.015, pads=(1.0, 1.0), column=column), MELFA.control_period)
-
-
-def test_jaws_that_first_meet_the_object_at_both_pads_edge_reopen_before_pressing() -> None:
-    """A ball 1.9 cm beyond the pads' edge, met by both pads' edge columns (the Melfa's ball at
-    generalisation seed 27191): pressed there it was squeezed out along the jaws and rolled away.
-    The jaws reopen at once, saying the side, for the arm to move along them (fails on main: they press)."""
-    ctx, hand, command = _first_touch(column=5)
-    assert command.hand.modes != (HandMode.FORCE,)  # no press
-    assert ctx.blackboard.jaws_empty and ctx.blackboard.jaws_rim is not None and ctx.blackboard.jaws_rim > 0.5
-    assert hand.status is Status.RUNNING
-
-
-def test_jaws_that_first_meet_the_object_in_the_pads_middle_press() -> None:
-    ctx, hand, command = _first_touch(column=3)
-    assert command.hand.modes == (HandMode.FORCE,) and not ctx.blackboard.jaws_empty
