@@ -11,7 +11,9 @@ the height of the hand's tip, so the hand then feels for its top: it backs off, 
 comes over the object's near part and goes down onto it (landing on the floor, the approach
 keeps the sweep's estimate, its top unknown). On a top, found either way, the hand comes down
 beside it along the container's axes to feel how far it reaches, and the approach is moved
-towards where it goes on and turned so the jaws close across a top long along the box's y.
+towards where it goes on and turned so the jaws close across a top long along the box's y;
+the approach says the top's height (`Approach.top`), so the grasp knows a jaw landing there
+for a jaw on the object rather than close above it.
 A look after another starts where that one's approach lay: landing on an object there, the
 grasp took nothing out, and the jaws are turned another way this time (`TURNS`).
 """
@@ -96,13 +98,14 @@ class Swept:
 
 @dataclass
 class Finding:
-    """What the hand has felt of an object: a point on it (world: on its top, or at the sweep's
-    height where the sweep alone placed it), how it was felt, and whether its top reaches
-    SIDE_STEP out each way the hand came down beside it: (the container's axis, +1 or -1) ->
-    reaches."""
+    """What the hand has felt of an object: a point on it (world: on its top where `on_top`, or
+    at the sweep's height where the sweep alone placed it), how it was felt, and whether its
+    top reaches SIDE_STEP out each way the hand came down beside it: (the container's axis, +1
+    or -1) -> reaches."""
 
     point: np.ndarray  # (3,)
     how: str
+    on_top: bool
     reaches: dict[tuple[int, int], bool] = field(default_factory=dict)
 
 
@@ -255,7 +258,7 @@ class BlindExploration(Perceiver):
     def _approach(self, readings: Readings, point: np.ndarray, how: str, top: bool) -> None:
         """An object is felt at `point`: lift the hand off it, and where its `top` is known feel
         how far the top reaches each way (`_sides`) before saying where to grasp (`_conclude`)."""
-        self.result = Finding(point, how)
+        self.result = Finding(point, how, top)
         self.plan = [Waypoint(self.explore.rest + np.array([0.0, 0.0, LIFT_OFF]), Leg.LIFT)]
         if top:
             self.plan += self._sides(readings, point)
@@ -310,7 +313,7 @@ class BlindExploration(Perceiver):
         if times:
             how += (f"; landed where the last approach lay ({times} in a row): the jaws turned "
                     f"{math.degrees(turn):g} deg")
-        self.found(Approach(pose, point, self.method), "", how)
+        self.found(Approach(pose, point, self.method, top=float(point[2]) if finding.on_top else None), "", how)
 
     def _ahead(self, readings: Readings, contact: Contact) -> np.ndarray:
         """Where, at the sweep's height, the hand comes down to feel what the sweep met: its
