@@ -224,9 +224,11 @@ class RobustGraspHand(ForceGrasp):
         """Every grasping finger on the object: hold it. Otherwise correct, towards the
         fingers that touch it; when none does, towards those that touched something on the
         way and lost it (the object pushed aside by the finger that met it first), as long
-        as some did not: that side is where the object went."""
+        as some did not: that side is where the object went. A step towards where the object
+        was felt that closes on nothing pushed it on: one step further that way."""
         search = self.search
         heading, search.heading = search.heading, 0.0
+        felt, search.felt = search.felt, False
         touching = self._touching(readings)
         if not touching and set(self.fingers) - self.closing.brushed:
             touching = [f for f in self.fingers if f in self.closing.brushed]
@@ -254,6 +256,8 @@ class RobustGraspHand(ForceGrasp):
             self._try_again(shift, what)
         elif self._pushed_aside():
             self._try_again(self._after_pushed(), "the fingers pushed the object off their line")
+        elif heading and felt and self.pinch:  # towards where it was felt, and gone: pushed on that way
+            self._try_again(search.onward(heading), what)
         else:
             self._try_again(search.next(), what)
 
