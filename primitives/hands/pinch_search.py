@@ -23,7 +23,7 @@ class PinchSearch:
         self.plan = search_offsets(step, SEARCH_POINTS)  # search points not yet visited
         self.across = 0.0
         self.heading = 0.0  # the side (+1, -1) of a search step whose close is being judged, else 0
-        self.felt = False  # that step went towards where the object was felt (an edge, its weight)
+        self.felt = False  # that step went to where the object was just weighed: it stood there
         self.nudged = 0  # nudges made after a jam: 0, then 1 (one side), -1 (both)
 
     def next(self, beyond: float = 0.0) -> np.ndarray:
@@ -35,19 +35,17 @@ class PinchSearch:
             return np.array([0.0, 0.0, self.lost_step])
         point = self.across + beyond * self.step if beyond else self.plan[0]
         self.plan = [p for p in self.plan if not np.isclose(p, point)]
-        return self.look(point, felt=bool(beyond))
+        return self.look(point)
 
     def onward(self, heading: float) -> np.ndarray:
-        """The close after a step towards where the object was felt met nothing: the bare
-        fingertips pushed it on, the way the step went (docs/robust-grasp.md, "The regrasp
-        that pushed the mug away"): one step further that way, once."""
-        shift = self.next(beyond=heading)
-        self.felt = False
-        return shift
+        """The close after a regrasp across to the object's weighed weight met nothing: the
+        bare fingertips pushed it on, the way the regrasp went (docs/robust-grasp.md, "The
+        regrasp that pushed the mug away"): one step further that way, once."""
+        return self.next(beyond=heading)
 
-    def look(self, point: float, felt: bool = True) -> np.ndarray:
+    def look(self, point: float, felt: bool = False) -> np.ndarray:
         """The shift to a new place to look, `point` across the pinch line: its close is
-        judged heading the way the step went (`felt`: towards where the object was felt),
+        judged heading the way the step went (`felt`: to where the object was just weighed),
         and no nudge has been made there yet."""
         self.nudged = 0
         self.heading = float(np.sign(point - self.across))
