@@ -152,7 +152,7 @@ class RobustGraspHand(ForceGrasp):
                                      f"{self._short_of()}")
             return
         weighing.off_line = f"its weight hung {abs(offset) * 100:.1f} cm off the pinch line"
-        weighing.regrasp = self.search.look(self.search.across + offset, felt=True)
+        weighing.regrasp = self.search.look(self.search.across + offset, weighed=True)
         self.phase = Phase.SET_DOWN
         self.ctx.blackboard.weigh = -WEIGH_LIFT
 
@@ -228,7 +228,7 @@ class RobustGraspHand(ForceGrasp):
         weight that closes on nothing pushed it on: one step further that way."""
         search = self.search
         heading, search.heading = search.heading, 0.0
-        felt, search.felt = search.felt, False
+        weighed, search.weighed = search.weighed, False
         touching = self._touching(readings)
         if not touching and set(self.fingers) - self.closing.brushed:
             touching = [f for f in self.fingers if f in self.closing.brushed]
@@ -256,7 +256,7 @@ class RobustGraspHand(ForceGrasp):
             self._try_again(shift, what)
         elif self._pushed_aside():
             self._try_again(self._after_pushed(), "the fingers pushed the object off their line")
-        elif heading and felt and self.pinch:  # set down there a moment ago, and gone: pushed on that way
+        elif heading and weighed and self.pinch:  # set down there a moment ago, and gone: pushed on that way
             self._try_again(search.onward(heading), what)
         else:
             self._try_again(search.next(), what)
