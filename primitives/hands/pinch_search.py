@@ -23,6 +23,7 @@ class PinchSearch:
         self.plan = search_offsets(step, SEARCH_POINTS)  # search points not yet visited
         self.across = 0.0
         self.heading = 0.0  # the side (+1, -1) of a search step whose close is being judged, else 0
+        self.weighed = False  # that step went to where the object was just weighed: it stood there
         self.nudged = 0  # nudges made after a jam: 0, then 1 (one side), -1 (both)
 
     def next(self, beyond: float = 0.0) -> np.ndarray:
@@ -36,11 +37,19 @@ class PinchSearch:
         self.plan = [p for p in self.plan if not np.isclose(p, point)]
         return self.look(point)
 
-    def look(self, point: float) -> np.ndarray:
+    def onward(self, heading: float) -> np.ndarray:
+        """The close after a regrasp across to the object's weighed weight met nothing: the
+        bare fingertips pushed it on, the way the regrasp went (docs/robust-grasp.md, "The
+        regrasp that pushed the mug away"): one step further that way, once."""
+        return self.next(beyond=heading)
+
+    def look(self, point: float, weighed: bool = False) -> np.ndarray:
         """The shift to a new place to look, `point` across the pinch line: its close is
-        judged heading the way the step went, and no nudge has been made there yet."""
+        judged heading the way the step went (`weighed`: to where the object was just weighed),
+        and no nudge has been made there yet."""
         self.nudged = 0
         self.heading = float(np.sign(point - self.across))
+        self.weighed = weighed
         return self._move(point)
 
     def nudge_pending(self, jammed: bool) -> bool:
@@ -52,7 +61,7 @@ class PinchSearch:
         widths across the line, then as far the other side of where they jammed."""
         step = NUDGE * self.pad_width * (1.0 if self.nudged == 0 else -2.0)
         self.nudged = 1 if self.nudged == 0 else -1
-        self.heading = 0.0
+        self.heading, self.weighed = 0.0, False
         return self._move(self.across + step)
 
     def _move(self, point: float) -> np.ndarray:

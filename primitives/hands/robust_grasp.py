@@ -152,7 +152,7 @@ class RobustGraspHand(ForceGrasp):
                                      f"{self._short_of()}")
             return
         weighing.off_line = f"its weight hung {abs(offset) * 100:.1f} cm off the pinch line"
-        weighing.regrasp = self.search.look(self.search.across + offset)
+        weighing.regrasp = self.search.look(self.search.across + offset, weighed=True)
         self.phase = Phase.SET_DOWN
         self.ctx.blackboard.weigh = -WEIGH_LIFT
 
@@ -224,9 +224,11 @@ class RobustGraspHand(ForceGrasp):
         """Every grasping finger on the object: hold it. Otherwise correct, towards the
         fingers that touch it; when none does, towards those that touched something on the
         way and lost it (the object pushed aside by the finger that met it first), as long
-        as some did not: that side is where the object went."""
+        as some did not: that side is where the object went. A regrasp to the object's weighed
+        weight that closes on nothing pushed it on: one step further that way."""
         search = self.search
         heading, search.heading = search.heading, 0.0
+        weighed, search.weighed = search.weighed, False
         touching = self._touching(readings)
         if not touching and set(self.fingers) - self.closing.brushed:
             touching = [f for f in self.fingers if f in self.closing.brushed]
@@ -254,6 +256,8 @@ class RobustGraspHand(ForceGrasp):
             self._try_again(shift, what)
         elif self._pushed_aside():
             self._try_again(self._after_pushed(), "the fingers pushed the object off their line")
+        elif heading and weighed and self.pinch:  # set down there a moment ago, and gone: pushed on that way
+            self._try_again(search.onward(heading), what)
         else:
             self._try_again(search.next(), what)
 

@@ -69,3 +69,14 @@ def test_fingers_jammed_on_the_object_beside_their_pads_look_either_side(index: 
     the weight is wide, the fingers look 1.35 cm to one side, then the other."""
     [record] = preset_trials((index,), **APPROACH_ERROR, arm="left", engine="pybullet", object="weight")
     assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
+
+
+def test_a_regrasp_whose_fingertips_push_the_object_on_looks_further_that_way() -> None:
+    """The SDH2 on the preset's mug in PyBullet, trial 7: the pinch held the mug by its
+    handle, its weight weighed 1.7 cm off the pinch line; set down and grasped again 1.7 cm
+    across, the fingertips met the round body beside their pads and pushed it 8 mm on, out
+    from between them, and the search went back to where the hand first closed, 6.7 cm
+    away, found the handle again and ran out of corrections (at bc6cce7). One step further
+    the way the regrasp went pinches the mug's body."""
+    [record] = preset_trials((7,), **APPROACH_ERROR, arm="left", engine="pybullet", object="mug")
+    assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
