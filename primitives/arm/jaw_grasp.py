@@ -51,7 +51,7 @@ from primitives.arm.motion import (
     what_stops,
 )
 from primitives.arm.jaw_rim import RimLever
-from primitives.arm.jaw_span import BeamSpan
+from primitives.arm.jaw_span import BeamSpan, Sweep
 from primitives.arm.move import arm_output
 from primitives.arm.walls import KnownWalls
 from primitives.base import Context, ControlData, Controller, Status
@@ -189,6 +189,7 @@ class JawGraspCorrection(Controller):
         self.tared = False  # this grasp has read its empty hand (EMPTY_HAND): the approach may have left it pressing
         self.ctx.blackboard.contact = False
         self.spannable = False  # the next close first finds the object's middle along the jaws
+        self.sweep: Sweep | None = None  # that sweep, once begun
         self._rise(readings, np.zeros(3), self._above_object())
 
     def _depth(self, point: np.ndarray) -> float:
@@ -444,20 +445,17 @@ class JawGraspCorrection(Controller):
         rested, they met over the box's top)."""
         self.spannable = False
         here = readings.tcp[:3, 3]
-        self.span_fallback = here + back_off * self.back  # where the jaws were to close
+        fallback = here + back_off * self.back  # where the jaws were to close
         # where they close once the sweep has seen the object: there, or, for a hand that rested
         # on its edge, as deep as the grasp goes, the sweep having left the jaws either side of it
-        self.span_close = self._at_depth(self.span_fallback, self._grasp_height()) if touching else self.span_fallback
+        close = self._at_depth(fallback, self._grasp_height()) if touching else fallback
         clear = self._object_top() + self.tip_depth + FLOOR_CLEARANCE if touching else -np.inf
-        self.span_origin = self._at_depth(self.span_fallback, max(self._depth(self.span_fallback), clear))
-        self.span_axis = unit(self._level(readings.tcp[:3, 0]))
+        origin = self._at_depth(fallback, max(self._depth(fallback), clear))
+        axis = unit(self._level(readings.tcp[:3, 0]))
         reach = self.jaw_half_width + self.ctx.object.widest
-        self.span_route = [self.span_origin] + [
-            self.walls.inside(self.rotation, self.span_origin + side * reach * self.span_axis, here)
-            for side in (1.0, -1.0)] + [self.span_origin, self.span_fallback]
-        self.span = BeamSpan(self.ctx.object.half_height)
-        self.span_risen = False  # at the sweep's height: from here on a contact is something in the way
-        self.span_met = False  # the sweep met something: it looks no more
+        route = [origin] + [self.walls.inside(self.rotation, origin + side * reach * axis, here)
+                            for side in (1.0, -1.0)] + [origin, fallback]
+        self.sweep = Sweep(origin, close, fallback, axis, route, BeamSpan(self.ctx.object.half_height))
         self.move_stall.reset(readings.time)
         self.phase = JawPhase.SPAN
 
@@ -471,29 +469,30 @@ class JawGraspCorrection(Controller):
         located only if they are within a pad's half height of the grasp's height (held by its
         top, a box hung 5 cm under the hand and tipped over as it was put down: PyBullet)."""
         position = readings.tcp[:3, 3]
+        sweep = self.sweep
         self.contact.update(readings, dt)
-        goal = self.span_route[0]
-        down = self._depth(goal) < self._depth(self.span_origin) - ARRIVED
-        if self.span_risen and self.contact.force >= self.threshold:
+        goal = sweep.route[0]
+        down = self._depth(goal) < self._depth(sweep.origin) - ARRIVED
+        if sweep.risen and self.contact.force >= self.threshold:
             if down:  # on the object's edge: a grip this far above the grasp's height holds it by its top
-                high = self._depth(position) - self._depth(self.span_close) > self.pad_half_height
+                high = self._depth(position) - self._depth(sweep.close) > self.pad_half_height
                 self._close_span(readings, self.back_off, located=not high)
                 return np.zeros(3)
-            if not self.span_met:
-                self.span_met = True
-                self.span_route = [self.span_origin, self.span_fallback]
-                goal = self.span_route[0]
-        if self.span_risen and not self.span_met and readings.range is not None and self.span.middle is None:
-            self.span.add(float((position - self.span_origin) @ self.span_axis), float(readings.range))
-            if self.span.middle is not None:
-                along = self.span.middle * self.span_axis
-                self.span_route = [self.span_origin + along, self.span_close + along]
-                goal = self.span_route[0]
+            if not sweep.met:
+                sweep.met = True
+                sweep.route = [sweep.origin, sweep.fallback]
+                goal = sweep.route[0]
+        if sweep.risen and not sweep.met and readings.range is not None and sweep.beam.middle is None:
+            sweep.beam.add(float((position - sweep.origin) @ sweep.axis), float(readings.range))
+            if sweep.beam.middle is not None:
+                along = sweep.beam.middle * sweep.axis
+                sweep.route = [sweep.origin + along, sweep.close + along]
+                goal = sweep.route[0]
                 self.move_stall.reset(readings.time)
         if norm(goal - position) < ARRIVED or self.move_stall.stalled(norm(goal - position), readings.time):
-            self.span_risen = True
-            if len(self.span_route) > 1:
-                self.span_route.pop(0)
+            sweep.risen = True
+            if len(sweep.route) > 1:
+                sweep.route.pop(0)
                 self.move_stall.reset(readings.time)
                 return np.zeros(3)
             self._close_span(readings, 0.0)
@@ -502,7 +501,7 @@ class JawGraspCorrection(Controller):
 
     def _close_span(self, readings: Readings, back_off: float, located: bool = True) -> None:
         """The sweep is over: the jaws close, and the place is told whether over the object's middle."""
-        if located and self.span.middle is not None and not self.span_met:
+        if located and self.sweep.beam.middle is not None and not self.sweep.met:
             self.ctx.memory[LOCATED_ALONG] = True
         self._close_here(readings, back_off)
 

@@ -11,6 +11,8 @@ between its two edges.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
 
@@ -43,3 +45,19 @@ class BeamSpan:
         if self.low is None or self.high is None or self.low >= self.high:
             return None
         return (self.low + self.high) / 2.0
+
+
+@dataclass
+class Sweep:
+    """One sweep of the open jaws along their width: the points still to go to (`route`), the
+    line the beam is read along (from `origin`, along `axis`), where the jaws close once the
+    top's middle is seen (`close`, moved along to it) and where they were to close (`fallback`)."""
+
+    origin: np.ndarray  # (3,) world: where the sweep looks from, risen clear of the top if it must
+    close: np.ndarray  # (3,) world: where the jaws close, before the move along to the middle
+    fallback: np.ndarray  # (3,) world: where the jaws were to close, the object not located
+    axis: np.ndarray  # (3,) world unit vector: the jaws' width, level
+    route: list[np.ndarray]
+    beam: BeamSpan
+    risen: bool = False  # at the sweep's height: from here on a contact is something in the way
+    met: bool = False  # the sweep met something: it looks no more
