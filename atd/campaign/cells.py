@@ -19,6 +19,10 @@ from atd.campaign.spec import LoadedSpec, TaskEntry, WorldDraw
 from atd.model.files import output_problem
 from factories.registry import factory_class
 
+#: Wall-clock seconds per simulated second of budget before a trial's run is ended: far
+#: slower than any engine runs here (PyBullet's slowest run is about 3x real time).
+WALL_FACTOR = 4.0
+WALL_FLOOR = 120.0  # s
 
 @dataclass(frozen=True)
 class TrialPlan:
@@ -34,6 +38,12 @@ class TrialPlan:
     recording: str | None = None  # where to record the trial (MCAP) if the judge fails it
     world: WorldDraw | None = None  # the world drawn for the trial, if the spec draws one
     fixture: bool = False  # a screw-capped object stands in a clamp on the table
+
+    @property
+    def wall_limit(self) -> float:
+        """Wall-clock seconds the trial's run may take before its watchdog ends it as an
+        error trial: its result would then say how fast this machine is, not what happened."""
+        return max(WALL_FLOOR, WALL_FACTOR * self.budget)
 
 
 def recording_name(campaign: str, cell: Cell, index: int) -> str:

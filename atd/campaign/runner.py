@@ -26,10 +26,9 @@ from atd.campaign.trial import run_trial
 from atd.runtime.isolated import signal_name
 
 Sink = Callable[[TrialRecord], None]  # takes each finished trial (the store, the progress display)
-#: Wall-clock seconds per simulated second of budget before a trial counts as hung: far
-#: slower than any engine runs here (PyBullet's slowest run is about 3x real time).
-HANG_FACTOR = 4.0
-HANG_FLOOR = 120.0  # s
+#: Wall-clock seconds past a trial's own watchdog (`TrialPlan.wall_limit`) before its worker
+#: counts as hung (inside an engine's C code, where the watchdog cannot reach).
+HANG_GRACE = 120.0
 #: Ray tasks submitted ahead of those finished: enough to fill a cluster, few enough that a
 #: campaign of millions of trials is not all submitted (and held in memory) at once.
 RAY_AHEAD = 10_000
@@ -116,10 +115,6 @@ def run_ray(plans: Iterable[TrialPlan], sink: Sink) -> None:
 
 class WorkerError(RuntimeError):
     """The pool cannot run: its worker processes die before they take a trial."""
-
-
-def hang_limit(plan: TrialPlan) -> float:
-    return max(HANG_FLOOR, HANG_FACTOR * plan.budget)
 
 
 def _crashed(plan: TrialPlan, why: str) -> TrialRecord:
@@ -254,7 +249,7 @@ class _Pool:
     def _reap_hung(self) -> None:
         """A trial past its wall-clock limit (a hang inside an engine) ends its worker."""
         for pid, (plan, since) in list(self.running.items()):
-            limit = hang_limit(plan)
+            limit = plan.wall_limit + HANG_GRACE
             if time.monotonic() - since > limit:
                 self.workers[pid].kill()
                 self._ended(pid, f"the trial hung: no result after {limit:g} s of wall-clock time")

@@ -105,7 +105,7 @@ def trial_run(plan: TrialPlan, record: TrialRecord, recording: Path | None = Non
         scene = replace(scene, object=(found.in_fixture() if plan.fixture else found).realize(scene.object))
     truth = plan.perturbation.apply(Truth(belief, scene, factory.robot), values)
     run = Run(truth.estd, factory, engine=cell.engine, seed=plan.seed, budget=plan.budget, scene=truth.scene,
-              robot=truth.robot, record=recording)
+              robot=truth.robot, record=recording, wall_budget=plan.wall_limit)
     return run, belief
 
 
@@ -114,6 +114,9 @@ def _run(plan: TrialPlan, record: TrialRecord, started: float, recording: Path |
     judge = _judge(plan, belief, run)
     record.setup_time = time.perf_counter() - started
     outcome = run.execute(afterwards=judge)
+    if outcome.wall_clock_stopped:  # what the judge would read depends on this machine's speed
+        raise TrialError(f"{outcome.summary} ({outcome.sim_time:.1f} s simulated): the machine ran it too slowly "
+                         "for a result that holds on any other; not judged")
     if isinstance(judge, CapJudge):
         verdict = judge.verdict(outcome.succeeded)
         verdict.measurements.update(unscrew_measures(belief, run.trace.records, outcome.sim_time))

@@ -248,7 +248,8 @@ class Machine:
 
 @dataclass
 class Outcome:
-    """How a run ended, in the ATD's terms."""
+    """How a run ended, in the ATD's terms; `wall_clock_stopped`: the watchdog's wall-clock
+    limit ended it (how fast the machine ran it, not what the robot did)."""
 
     succeeded: bool
     summary: str
@@ -257,6 +258,7 @@ class Outcome:
     sim_time: float
     wall_time: float
     ticks: int
+    wall_clock_stopped: bool = False
 
     @property
     def real_time_factor(self) -> float:
@@ -297,11 +299,14 @@ def build_problems(estd: Estd, base: Context, others: Mapping[str, Context] | No
     return problems
 
 
+WALL_BUDGET = 600.0  # s of wall-clock time before the watchdog stops a run (a hang, or a machine far too slow)
+
+
 class Executor:
     """Runs one ESTD on one robot until an end state, or the watchdog, stops it."""
 
     def __init__(self, estd: Estd, robot: Robot, base: Context, trace: Trace | None = None,
-                 budget: float = 300.0, wall_budget: float = 600.0,
+                 budget: float = 300.0, wall_budget: float = WALL_BUDGET,
                  others: Mapping[str, tuple[Robot, RobotInfo]] | None = None) -> None:
         """`others`: the robot's other arms by name, for a task that names roles, each with what
         its controllers know of it (its factory's description); they share `robot`'s world, and
@@ -358,6 +363,7 @@ class Executor:
         ticks = 0
         shown = ""
         verdict: str | None = None
+        wall_clock_stopped = False
         others = [other for other, _ in list(self._arms.values())[1:]]
         while not self.machine.ended:
             readings = self.robot.read()
@@ -366,6 +372,7 @@ class Executor:
             wall = wallclock.perf_counter() - started
             if readings.time >= self.budget or wall >= self.wall_budget:
                 verdict = self._watchdog(readings, wall)
+                wall_clock_stopped = readings.time < self.budget
                 break
             if self.stopped:
                 verdict = f"stopped in '{self.machine.innermost().visit.path}': {self.stopped}"
@@ -393,6 +400,7 @@ class Executor:
             sim_time=readings.time,
             wall_time=wall,
             ticks=ticks,
+            wall_clock_stopped=wall_clock_stopped,
         )
 
     def _watchdog(self, readings: Readings, wall: float) -> str:

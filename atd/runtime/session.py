@@ -18,7 +18,7 @@ from atd.model.diagnostics import Diagnostic, render_all
 from atd.model.estd_xml import estd_to_xml
 from atd.model.files import InputError, read_capped
 from atd.model.xmlsafe import MAX_BYTES
-from atd.runtime.executor import Executor, Observer, Outcome, Progress, build_problems
+from atd.runtime.executor import WALL_BUDGET, Executor, Observer, Outcome, Progress, build_problems
 from atd.runtime.recording import DEFAULT_RATE, RECORDING_FORMAT, Recording
 from atd.runtime.trace import Trace
 from atd.sim import ENGINES, make_arms
@@ -153,6 +153,7 @@ class _Pacer:
 class Run:
     def __init__(self, estd: Estd, factory: Factory, engine: str = "mujoco", seed: int = 0,
                  trace_path: Path | None = None, realtime: bool = False, budget: float = 300.0,
+                 wall_budget: float = WALL_BUDGET,
                  video: Path | None = None, viewer: bool = False, scene: Scene | None = None,
                  robot: RobotDescription | None = None, record: Path | None = None,
                  record_rate: float | None = DEFAULT_RATE, video_size: tuple[int, int] = DEFAULT_SIZE,
@@ -209,7 +210,7 @@ class Run:
             raise Unrunnable(problems)
         self.trace = Trace()
         self.trace_path = trace_path
-        self.executor = Executor(estd, self.robot, context, self.trace, budget=budget,
+        self.executor = Executor(estd, self.robot, context, self.trace, budget=budget, wall_budget=wall_budget,
                                  others={name: (r, known[name]) for name, r in others.items()})
         self.video = _Video(self.robot, tuple(others.values()), self.executor, filming) if filming else None
         self.viewer = _Viewer(self.robot) if viewer else None

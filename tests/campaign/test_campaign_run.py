@@ -16,11 +16,12 @@ from pathlib import Path
 
 import pytest
 
-from atd.campaign.cells import plans
+from atd.campaign.cells import TrialPlan, plans
 from atd.campaign.record import TrialRecord
 from atd.campaign.runner import _Pool, run_local
 from atd.campaign.spec import load_spec
 from atd.campaign.store import Store
+from atd.campaign.trial import run_trial
 from tests.campaign.conftest import outcomes
 from tests.conftest import REPO
 
@@ -124,6 +125,17 @@ def test_one_worker_two_workers_and_ray_give_identical_records(tmp_path: Path, s
         assert outcomes(s.records()) == straight
     assert len({tuple(sorted(v["sampled"].items())) for v in straight.values()}) == 4, \
         "each trial samples its own approach error"
+
+
+def test_a_trial_the_machine_ran_too_slowly_is_an_error_trial_never_a_judged_failure(monkeypatch) -> None:
+    """The run's wall-clock watchdog ends a trial on a machine too slow (or too loaded) for it:
+    what the judge would then read says how fast the machine was, so the trial is counted as an
+    error, not as the robot's failure."""
+    plan = next(iter(plans(_spec("small.toml"))))
+    monkeypatch.setattr(TrialPlan, "wall_limit", property(lambda _: 0.0))  # every tick is too late
+    record = run_trial(plan)
+    assert record.status == "error" and not record.judged_succeeded, record
+    assert "wall-clock" in record.error and "not judged" in record.error, record.error
 
 
 def test_a_worker_that_dies_mid_trial_is_an_error_trial_and_the_campaign_goes_on() -> None:
