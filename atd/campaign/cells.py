@@ -24,6 +24,7 @@ from factories.registry import factory_class
 WALL_FACTOR = 4.0
 WALL_FLOOR = 120.0  # s
 
+
 @dataclass(frozen=True)
 class TrialPlan:
     """Everything a worker needs to run one trial, and nothing it must look up elsewhere."""
