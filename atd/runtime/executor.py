@@ -371,8 +371,8 @@ class Executor:
                 other.read()  # every arm's sensors sampled each tick, as the ESTD's own
             wall = wallclock.perf_counter() - started
             if readings.time >= self.budget or wall >= self.wall_budget:
-                verdict = self._watchdog(readings, wall)
                 wall_clock_stopped = readings.time < self.budget
+                verdict = self._watchdog(readings, wall_clock_stopped)
                 break
             if self.stopped:
                 verdict = f"stopped in '{self.machine.innermost().visit.path}': {self.stopped}"
@@ -403,10 +403,9 @@ class Executor:
             wall_clock_stopped=wall_clock_stopped,
         )
 
-    def _watchdog(self, readings: Readings, wall: float) -> str:
+    def _watchdog(self, readings: Readings, wall_clock: bool) -> str:
         where = self.machine.innermost().visit
-        limit = (f"{self.budget:g} s of simulated time" if readings.time >= self.budget
-                 else f"{self.wall_budget:g} s of wall-clock time")
+        limit = f"{self.wall_budget:g} s of wall-clock time" if wall_clock else f"{self.budget:g} s of simulated time"
         self.trace.write("watchdog", readings.time, state=where.path, atd=where.atd, limit=limit)
         return f"failed: the watchdog stopped the run in '{where.path}' after {limit}"
 

@@ -479,16 +479,11 @@ class JawGraspCorrection(Controller):
                 self._close_span(readings, self.back_off, located=not high)
                 return np.zeros(3)
             if not sweep.met:
-                sweep.met = True
-                sweep.route = [sweep.origin, sweep.fallback]
+                sweep.blocked()
                 goal = sweep.route[0]
-        if sweep.risen and not sweep.met and readings.range is not None and sweep.beam.middle is None:
-            sweep.beam.add(float((position - sweep.origin) @ sweep.axis), float(readings.range))
-            if sweep.beam.middle is not None:
-                along = sweep.beam.middle * sweep.axis
-                sweep.route = [sweep.origin + along, sweep.close + along]
-                goal = sweep.route[0]
-                self.move_stall.reset(readings.time)
+        if sweep.looking and readings.range is not None and sweep.look(position, float(readings.range)):
+            goal = sweep.route[0]
+            self.move_stall.reset(readings.time)
         if norm(goal - position) < ARRIVED or self.move_stall.stalled(norm(goal - position), readings.time):
             sweep.risen = True
             if len(sweep.route) > 1:
@@ -501,7 +496,7 @@ class JawGraspCorrection(Controller):
 
     def _close_span(self, readings: Readings, back_off: float, located: bool = True) -> None:
         """The sweep is over: the jaws close, and the place is told whether over the object's middle."""
-        if located and self.sweep.beam.middle is not None and not self.sweep.met:
+        if located and self.sweep.located:
             self.ctx.memory[LOCATED_ALONG] = True
         self._close_here(readings, back_off)
 

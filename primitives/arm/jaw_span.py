@@ -61,3 +61,29 @@ class Sweep:
     beam: BeamSpan
     risen: bool = False  # at the sweep's height: from here on a contact is something in the way
     met: bool = False  # the sweep met something: it looks no more
+
+    @property
+    def looking(self) -> bool:
+        """The beam still looks for the top's edges: the sweep is under way, clear of anything."""
+        return self.risen and not self.met and self.beam.middle is None
+
+    @property
+    def located(self) -> bool:
+        """The beam saw the top's middle, and nothing pushed in the sweep's way."""
+        return self.beam.middle is not None and not self.met
+
+    def blocked(self) -> None:
+        """The sweep met something, which it would push along: back where it began, and on to
+        where the jaws were to close."""
+        self.met = True
+        self.route = [self.origin, self.fallback]
+
+    def look(self, position: np.ndarray, seen: float) -> bool:
+        """The beam's range `seen` (m) with the TCP at `position` (world); True once the top's
+        middle is seen, the route then over it and down to where the jaws close."""
+        self.beam.add(float((position - self.origin) @ self.axis), seen)
+        if self.beam.middle is None:
+            return False
+        along = self.beam.middle * self.axis
+        self.route = [self.origin + along, self.close + along]
+        return True
