@@ -83,8 +83,8 @@ PAST_SEEN_TOP = 0.005
 # close on the table 96 N before its relief); a hand pressed so hard is wedged (docs/empty-the-box.md)
 WEDGED = 150.0
 WEDGE_TIME = 0.1  # s the press lasts: a knock is over sooner (PyBullet's wrist read 158 N in a tick on a top)
-SPAN_SPEED = 0.1  # m/s the open jaws move along their width while the range sensor looks (its edges to 0.5 mm a tick)
 WEDGE_BACK_OFF = 0.01  # m a wedged hand moves the way the press pushes it, and so eases it, before it rises
+SPAN_SPEED = 0.1  # m/s the open jaws move along their width while the range sensor looks (its edges to 0.5 mm a tick)
 
 
 class JawPhase(Enum):
