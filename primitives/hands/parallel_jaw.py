@@ -41,7 +41,7 @@ RIM_MOVES = 2  # times per grasp the jaws reopen off a rim for the arm to move a
 EDGE = 0.6
 # of `closing_speed`, for an object that rolls (a ball): a jaw's edge meeting its flank at 4 cm/s kicked it
 # 3-10 cm on along the table, out of the search's reach (docs/robust-grasp.md)
-ROLLING_SPEED = 0.25
+ROLLING_SPEED = 0.5
 
 
 class Jaws:
@@ -130,10 +130,12 @@ class CloseUntilForce(Controller):
         self.grasp_force = float(self.params["grasp_force"])
         self.rim_moves_left = rim_moves  # reopenings off a rim left: 0 where the arm moves nothing along the jaws
         self.speed = float(self.params["closing_speed"])
-        # m: the believed width of an object that rolls on its support (a ball), 0 for any other: a jaw's
-        # touch gives a ball the jaw's speed and it rolls on with it; one that slides stops within a fraction of a mm
+        # m: the believed width of an object that rolls on its support (a ball), for jaws without tactile pads,
+        # else 0: their first touch, unfelt, gives a ball the jaw's speed and it rolls on with it (pads feel it
+        # and the arm follows the touching pad); an object that slides stops within a fraction of a mm
         obj = ctx.object
-        self.rolling = obj.widest if obj is not None and obj.object_class is ObjectClass.SPHERE else 0.0
+        rolls = obj is not None and obj.object_class is ObjectClass.SPHERE and self.params["force_source"] != "tactile"
+        self.rolling = obj.widest if rolls else 0.0
         self.closing_speed = self.speed * (ROLLING_SPEED if self.rolling else 1.0)
         self.max_recentre = float(self.params["max_recentre"])
         self.jaws = Jaws(ctx, str(self.params["force_source"]))
