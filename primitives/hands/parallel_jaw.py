@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from atd.model.vocabulary import ObjectClass
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
 from primitives.blackboard import EMPTY_HAND
 from primitives.filters import world_load
@@ -39,9 +38,6 @@ RIM_MOVES = 2  # times per grasp the jaws reopen off a rim for the arm to move a
 # of a pad's half width: a contact centred this far out lies in the pad's edge column (the Melfa's
 # outer 3.4 mm), the rest of it on the finger's bare rim beyond
 EDGE = 0.6
-# of `closing_speed`, for an object that rolls (a ball): a jaw's edge meeting its flank at 4 cm/s kicked it
-# 3-10 cm on along the table, out of the search's reach (docs/robust-grasp.md)
-ROLLING_SPEED = 0.5
 
 
 class Jaws:
@@ -51,7 +47,6 @@ class Jaws:
         hand = ctx.info.hand
         if len(hand.dofs) != 1:
             raise ValueError(f"a parallel-jaw controller needs a one-DOF gripper; this hand has {len(hand.dofs)} DOFs")
-        self.pad_surfaces = hand.pad_surfaces
         self.source = source
         self.closing = float(hand.closing[0])
         self.closed = float(hand.closed[0])
@@ -78,13 +73,6 @@ class Jaws:
 
     def empty(self, readings: Readings) -> bool:
         return abs(float(readings.hand_q[0]) - self.closed) < EMPTY
-
-    def gap(self, readings: Readings) -> float:
-        """m between the two pads' surfaces (the hand's forward kinematics); inf without two pads."""
-        surfaces = self.pad_surfaces(readings.hand_q)
-        if len(surfaces) != 2:
-            return float("inf")
-        return float(np.linalg.norm(surfaces[0, :3, 3] - surfaces[1, :3, 3]))
 
     def held(self, readings: Readings, reference: float) -> bool:
         """The jaws stand still short of the closing `reference`: something holds them."""
@@ -130,13 +118,6 @@ class CloseUntilForce(Controller):
         self.grasp_force = float(self.params["grasp_force"])
         self.rim_moves_left = rim_moves  # reopenings off a rim left: 0 where the arm moves nothing along the jaws
         self.speed = float(self.params["closing_speed"])
-        # m: the believed width of an object that rolls on its support (a ball), for jaws without tactile pads,
-        # else 0: their first touch, unfelt, gives a ball the jaw's speed and it rolls on with it (pads feel it
-        # and the arm follows the touching pad); an object that slides stops within a fraction of a mm
-        obj = ctx.object
-        rolls = obj is not None and obj.object_class is ObjectClass.SPHERE and self.params["force_source"] != "tactile"
-        self.rolling = obj.widest if rolls else 0.0
-        self.closing_speed = self.speed * (ROLLING_SPEED if self.rolling else 1.0)
         self.max_recentre = float(self.params["max_recentre"])
         self.jaws = Jaws(ctx, str(self.params["force_source"]))
         self.squeeze = Squeeze(ctx)  # presses on until the pads feel the force (a tilted grip loses some)
@@ -156,7 +137,7 @@ class CloseUntilForce(Controller):
     def update(self, readings: Readings, dt: float) -> ControlData:
         board = self.ctx.blackboard
         if self.guided and not self.pressing and not board.contact:
-            return self._reopen(readings, dt)
+            return self._reopen(dt)
         if self.status is Status.RUNNING:
             force = self.jaws.force(readings)
             self.unfelt = self.unfelt + dt if self.pressing and self.jaws.pad_unfelt(readings) else 0.0
@@ -189,7 +170,7 @@ class CloseUntilForce(Controller):
                 self.pressing = True
                 self.squeeze.reset()  # each press starts from the grasp force
         if board.jaws_empty:
-            return self._reopen(readings, dt)
+            return self._reopen(dt)
         if self.pressing:
             board.arm_nudge = None
             return self.squeeze.update(readings, dt)
@@ -204,7 +185,7 @@ class CloseUntilForce(Controller):
         closing = abs(off_centre) <= ALIGNED  # closing on a pad's rim pushes the object along the jaws' width
         board.arm_nudge = self._nudge(readings, off_centre, closing)
         if closing:
-            self.reference += self.jaws.closing * self.closing_speed * dt
+            self.reference += self.jaws.closing * self.speed * dt
         return position_command(np.array([self.reference]))
 
     def _gripped(self, force: float) -> bool:
@@ -246,17 +227,13 @@ class CloseUntilForce(Controller):
         then either grips or closes on nothing."""
         return self.jaws.held(readings, self.reference)
 
-    def _reopen(self, readings: Readings, dt: float) -> ControlData:
-        """Back to the opening the grasp began with, at full speed (nothing is in the way), or
-        at the closing speed while the pads may still touch an object that rolls (a Baxter's
-        paddles let go of a ball's flank at 7 cm/s and it rolled 5 cm off); `jaws_empty` holds
-        until it is reached."""
+    def _reopen(self, dt: float) -> ControlData:
+        """Back to the opening the grasp began with, at full speed (nothing is in the way);
+        `jaws_empty` holds until it is reached."""
         board = self.ctx.blackboard
         board.arm_nudge = None
         if board.jaws_empty:
-            touching = self.rolling and self.jaws.gap(readings) < self.rolling
-            speed = self.closing_speed if touching else float(self.ctx.info.hand.velocity_limit[0])
-            self.reference -= self.jaws.closing * speed * dt
+            self.reference -= self.jaws.closing * float(self.ctx.info.hand.velocity_limit[0]) * dt
             if self.jaws.closing * (self.reference - self.opened) <= 0.0:
                 self.reference = self.opened
                 self.recentred = 0.0
