@@ -11,7 +11,7 @@ A third loop gives the floor under that ratio: the engine handed its servo refer
 every true reading fetched, with none of the interface's own work (reference generator,
 sensor models, taxel images, the snapshot).
 
-    python benchmarks/bench_robot_interface.py [--seconds 2] [--repeat 3]
+    python benchmarks/bench_robot_interface.py [--seconds 2] [--repeat 3] [--robot melfa]
 """
 
 from __future__ import annotations
@@ -96,12 +96,13 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--seconds", type=float, default=2.0, help="simulated seconds per measurement")
     parser.add_argument("--repeat", type=int, default=3, help="measurements per loop; the fastest counts")
+    parser.add_argument("--robot", help="only this robot (default: every robot and arm)")
     args = parser.parse_args()
 
     print(f"{'robot':<20} {'engine':<9} {'bare steps/s':>13} {'interface steps/s':>18} {'x real time':>12} "
           f"{'overhead':>9} {'raw floor':>10}")
     worst = 0.0
-    for robot_name, arm in variants():
+    for robot_name, arm in variants(args.robot):
         description = load_description(robot_name, arm)
         for engine in ENGINES:
             robot = make_robot(description, engine=engine)

@@ -8,7 +8,7 @@ both real-time factors (simulated seconds per wall-clock second) and their ratio
 the cost of the whole executor over bare physics. Targets (issue 5): MuJoCo pick-and-place at
 least 20x real time; executor at most 1.30x bare stepping.
 
-    python benchmarks/bench_run.py [--repeat 3] [--engine mujoco|pybullet]
+    python benchmarks/bench_run.py [--repeat 3] [--engine mujoco|pybullet] [--robot melfa]
 """
 
 from __future__ import annotations
@@ -34,11 +34,12 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--repeat", type=int, default=3, help="runs per measurement; the fastest counts")
     parser.add_argument("--engine", choices=ENGINES, action="append", help="engines to measure (default: both)")
+    parser.add_argument("--robot", help="only this robot (default: every robot and arm)")
     args = parser.parse_args()
     task, _ = load_task(TASK)
     scene = scene_from_task(Task(known_objects=task.known_objects, environment=task.environment), TASK)
     print(f"{'robot':<20} {'engine':<9} {'outcome':<8} {'sim s':>6} {'atd run x rt':>13} {'bare x rt':>10} {'ratio':>6}")
-    for robot_name, arm in variants():
+    for robot_name, arm in variants(args.robot):
         factory = create(robot_name, arm)
         estd = translate(task, factory).estd
         for engine in args.engine or ENGINES:

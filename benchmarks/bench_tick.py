@@ -115,17 +115,14 @@ def main() -> None:
     if args.cpu:
         use_cpu_time()
     if args.profile:
-        for robot_name, arm in variants():
-            if not args.robot or robot_name == args.robot:
-                profiled(create(robot_name, arm), args.profile)
+        for robot_name, arm in variants(args.robot):
+            profiled(create(robot_name, arm), args.profile)
         return
     task, _ = load_task(TASK)
     scene = scene_from_task(Task(known_objects=task.known_objects, environment=task.environment), TASK)
     print(f"{'robot':<20} {'ticks':>6} {'bare':>14} {'interface':>14} {'empty executor':>15} {'atd run':>14} {'its physics':>14} "
           f"{'its executor':>14} {'run/phys':>9}   us/tick (x bare)")
-    for robot_name, arm in variants():
-        if args.robot and robot_name != args.robot:
-            continue
+    for robot_name, arm in variants(args.robot):
         factory = create(robot_name, arm)
         estd = translate(task, factory).estd
         full, spent, physics, own = min((timed_run(estd, factory) for _ in range(args.repeat)), key=lambda r: r[1])

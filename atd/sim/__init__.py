@@ -25,9 +25,10 @@ def installed_engines() -> tuple[str, ...]:
     return ENGINES if pybullet_installed() else ("mujoco",)
 
 
-def variants() -> list[tuple[str, str]]:
-    """Every (robot, arm) model the installed factories offer."""
-    return [(name, arm.name) for name, entry in installed().items() for arm in entry.load().arms]
+def variants(robot: str | None = None) -> list[tuple[str, str]]:
+    """Every (robot, arm) model the installed factories offer, or only `robot`'s."""
+    return [(name, arm.name) for name, entry in installed().items() if robot in (None, name)
+            for arm in entry.load().arms]
 
 
 def load_description(robot: str, arm: str | None = None) -> RobotDescription:

@@ -13,8 +13,8 @@ from tests.conftest import REPO
 
 @pytest.mark.parametrize(("script", "args", "row"), [
     ("bench_tick.py", ("--repeat", "1", "--robot", "melfa", "--cpu"), "melfa/main"),
-    ("bench_run.py", ("--repeat", "1", "--engine", "mujoco"), "tombatossals/left"),
-    ("bench_robot_interface.py", ("--seconds", "0.05", "--repeat", "1"), "worst overhead ratio"),
+    ("bench_run.py", ("--repeat", "1", "--engine", "mujoco", "--robot", "melfa"), "melfa/main"),
+    ("bench_robot_interface.py", ("--seconds", "0.05", "--repeat", "1", "--robot", "melfa"), "worst overhead ratio"),
     ("bench_campaign.py", ("--trials", "2", "--workers", "2", "--repeat", "1"), "speed-up, 2 workers over 1"),
     ("bench_record.py", ("--repeat", "1",), "recording at 100 Hz"),
     ("bench_video.py", ("--repeat", "1", "--size", "320x240"), "ratio, wall"),

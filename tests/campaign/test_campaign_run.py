@@ -22,7 +22,7 @@ from atd.campaign.runner import _Pool, run_local
 from atd.campaign.spec import load_spec
 from atd.campaign.store import Store
 from atd.campaign.trial import run_trial
-from tests.campaign.conftest import outcomes
+from tests.campaign.conftest import RAY_WORKERS_AT_OUR_PRIORITY, outcomes
 from tests.conftest import REPO
 
 DATA = REPO / "tests" / "data" / "campaign"
@@ -117,7 +117,8 @@ def test_one_worker_two_workers_and_ray_give_identical_records(tmp_path: Path, s
     try:
         result = subprocess.run([sys.executable, "-m", "atd", "campaign", "run", str(DATA / "small.toml"),
                                  "--ray", "-j", "2", "-q", "--store", str(tmp_path / "ray.sqlite")], cwd=tmp_path,
-                                capture_output=True, text=True, timeout=300, env={**os.environ, "RAY_TMPDIR": short})
+                                capture_output=True, text=True, timeout=300,
+                                env={**os.environ, "RAY_TMPDIR": short, **RAY_WORKERS_AT_OUR_PRIORITY})
     finally:
         shutil.rmtree(short, ignore_errors=True)
     assert result.returncode == 0, result.stderr

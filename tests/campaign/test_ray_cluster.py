@@ -24,7 +24,7 @@ from typing import Iterator
 import pytest
 
 from atd.campaign.store import Store
-from tests.campaign.conftest import outcomes
+from tests.campaign.conftest import RAY_WORKERS_AT_OUR_PRIORITY, outcomes
 from tests.conftest import REPO
 
 SPEC = REPO / "tests" / "data" / "campaign" / "small.toml"  # 4 trials of the Melfa in MuJoCo
@@ -96,7 +96,7 @@ def cluster() -> Iterator[Cluster]:
     token = base / "token"
     token.write_text(secrets.token_hex(32))
     env = {**os.environ, "RAY_AUTH_MODE": "token", "RAY_AUTH_TOKEN_PATH": str(token),
-           "RAY_USAGE_STATS_ENABLED": "0"}
+           "RAY_USAGE_STATS_ENABLED": "0", **RAY_WORKERS_AT_OUR_PRIORITY}
     port = _free_port()
     groups: list[int] = []
     try:
