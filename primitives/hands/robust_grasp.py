@@ -15,7 +15,7 @@ import numpy as np
 from atd.model.frames import GRAVITY
 from primitives.arm.motion import SUPPORT_BAND
 from primitives.base import Context, Status
-from primitives.blackboard import EMPTY_HAND, Shift
+from primitives.blackboard import EMPTY_HAND, STEEP_PINCH, Shift
 from primitives.filters import WEIGHED, LowPass, held_wrench, world_load
 from primitives.hands.extension import ExtensionGauge, contact_points
 from primitives.hands.grasp_phases import Closing, Corrections, Holding, Phase, Weighing
@@ -58,6 +58,7 @@ class RobustGraspHand(ForceGrasp):
 
     def start(self, readings: Readings) -> None:
         super().start(readings)
+        self.ctx.memory.pop(STEEP_PINCH, None)
         self.corrections = Corrections()
         self.closing = Closing()
         if self.fingers:
@@ -147,6 +148,7 @@ class RobustGraspHand(ForceGrasp):
         carried = abs(offset) <= FAR_OFF and abs(torque) <= (self.ctx.object.friction or 0.0) * squeeze * RIM_CONTACT
         if near or carried:
             self.phase = Phase.HOLD
+            self.ctx.memory[STEEP_PINCH] = self._steep(readings)
             self.finish(Status.DONE, f"object held after {self.corrections.retries} corrections, its weight "
                                      f"{abs(offset) * 100:.1f} cm off the pinch line: {self._forces(readings.pad_force)}"
                                      f"{self._short_of()}")
@@ -155,6 +157,15 @@ class RobustGraspHand(ForceGrasp):
         weighing.regrasp = self.search.look(self.search.across + offset, weighed=True)
         self.phase = Phase.SET_DOWN
         self.ctx.blackboard.weigh = -WEIGH_LIFT
+
+    def _steep(self, readings: Readings) -> bool:
+        """The pads stand closer than the object's least width W by more than friction
+        allows (gap < W / hypot(1, mu)): on a round body they press faces turned from the
+        squeeze line by acos(gap / W), past the friction angle, and the squeeze pushes it out
+        of the fingertips, slowly (the Barrett's mug at generalisation seed 27191,
+        docs/robust-grasp.md). Where the body is not round (a duck's neck) such a pinch holds."""
+        thing = self.ctx.object
+        return self.gauge.gap(readings.hand_q) < thing.least_width / np.hypot(1.0, thing.friction or 0.0)
 
     def _set_down(self, readings: Readings, dt: float) -> None:
         """Once the arm has set the object down: grasp it again across its centre of mass."""
