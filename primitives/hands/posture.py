@@ -100,9 +100,8 @@ class HoldPosition(PostureDrive):
 
     A pinch steeper than friction holds (`STEEP_PINCH`) creeps out of the fingertips with
     every sensor steady until it goes: the hand says it holds such a grip only once it has
-    held it STEEP_WATCH, so that a lift which loses it meanwhile says so (the Barrett's mug at
-    generalisation seed 27191 went 3.9 s after its lift began, 0.6 s after the lift had said
-    success).
+    held it STEEP_WATCH, so that a lift which loses it meanwhile says so
+    (docs/robust-grasp.md, "A steep pinch watched").
     """
 
     def start(self, readings: Readings) -> None:

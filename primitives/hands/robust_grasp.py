@@ -162,8 +162,7 @@ class RobustGraspHand(ForceGrasp):
         """The pads stand closer than the object's least width W by more than friction
         allows (gap < W / hypot(1, mu)): on a round body they press faces turned from the
         squeeze line by acos(gap / W), past the friction angle, and the squeeze pushes it out
-        of the fingertips, slowly (the Barrett's mug at generalisation seed 27191,
-        docs/robust-grasp.md). Where the body is not round (a duck's neck) such a pinch holds."""
+        of the fingertips, slowly. Where the body is not round (a duck's neck) such a pinch holds."""
         thing = self.ctx.object
         return self.gauge.gap(readings.hand_q) < thing.least_width / np.hypot(1.0, thing.friction or 0.0)
 
