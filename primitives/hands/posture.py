@@ -118,9 +118,11 @@ class HoldPosition(PostureDrive):
         self._watched()
 
     def _watched(self) -> None:
-        if self.held >= self.watch:
-            self.finish(Status.DONE, "holding the fingers" + (f", a pinch steeper than friction holds watched "
-                                                              f"{self.watch:g} s" if self.watch else ""))
+        """Done once the grip has been held as long as it must be watched."""
+        if self.held < self.watch:
+            return
+        watched = f", a pinch steeper than friction holds watched {self.watch:g} s" if self.watch else ""
+        self.finish(Status.DONE, f"holding the fingers{watched}")
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         if self.status is Status.RUNNING:
