@@ -10,9 +10,8 @@ the top: move the hand across by that much, along the jaws' width no further tha
 jaw is wide, and no further than halfway back to where an earlier contact said the other
 side, so that moves across bracket the object instead of swinging over it; rise, descend again),
 or under the middle or below the top (the support under both jaws, or the palm on the
-object: the jaws straddle its place, so close; but on a ball, with pads that give no
-tactile image, only once the pads reach its middle: higher, they close on its cap). The
-descent stops with the fingertips clear of the support. The jaws closing on nothing (`jaws_empty`) means the object lies
+object: the jaws straddle its place, so close). The descent stops with the fingertips
+clear of the support. The jaws closing on nothing (`jaws_empty`) means the object lies
 beyond the jaws' width, where closing does not sweep: the arm rises and goes where the
 palm's contact placed the object, or a step beyond the pads' edge that brushed it on the
 way (`jaws_brushed`) or beyond where the wrist felt a finger's bare rim push it (`RimLever`),
@@ -382,7 +381,7 @@ class JawGraspCorrection(Controller):
         drift = self._off_line(self.line - readings.tcp[:3, 3])
         return GAIN * drift - self.descent * self.back
 
-    def _met(self, readings: Readings, wrench: np.ndarray, stalled: bool) -> None:
+    def _met(self, readings: Readings, wrench: np.ndarray, stalled: bool = False) -> None:
         """The first contact of a descent: where it sits across the hand says what it is."""
         across = self._contact_across(readings, wrench)
         off_centre = across is not None and norm(across) > self.centre_band and self.vertical
