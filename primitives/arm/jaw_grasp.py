@@ -38,7 +38,6 @@ from enum import Enum
 
 import numpy as np
 
-from atd.model.vocabulary import ObjectClass
 from primitives.arm.motion import (
     GAIN,
     ORIENTATION_TOLERANCE,
@@ -146,7 +145,6 @@ class JawGraspCorrection(Controller):
         # m: a move along the jaws this long takes a contact on a finger's rim beside a pad onto the pad
         self.pad_half_width = max((pad.half_size[0] for pad in ctx.info.hand.pads), default=0.0)
         self.pad_half_height = max((pad.half_size[1] for pad in ctx.info.hand.pads), default=0.0)
-        self.imaged = any(pad.taxels is not None for pad in ctx.info.hand.pads)  # pads that see where they press
         self.step = float(p["search_step"])
         self.offsets = search_offsets(self.step, int(p["search_points"]))
         self.locate = bool(p["locate_along"])
@@ -355,7 +353,6 @@ class JawGraspCorrection(Controller):
         self.top = self._depth(readings.tcp[:3, 3])
         self.line = readings.tcp[:3, 3].copy()  # the descent keeps to the vertical through here
         self.descent_stall.reset(readings.time, self.top)
-        self.straddling = False  # a contact between the jaws above a ball's middle: on down to it
         obj = self.ctx.object
         self.spannable = self.locate and self.ctx.info.has_range and self.vertical and obj is not None \
             and obj.pose is not None
@@ -369,8 +366,8 @@ class JawGraspCorrection(Controller):
         # From the side the jaws straddle the object's place on their way in, and a push
         # tips a standing object long before the wrist feels it (0.4 N tips a 0.2 kg bottle
         # 4 cm wide pushed 9 cm up; the Melfa's contact is 2 N): only a blocked descent has met it
-        if (self.contact.force >= self.threshold and self.vertical and not self.straddling) or stalled:
-            self._met(readings, wrench, stalled)
+        if (self.contact.force >= self.threshold and self.vertical) or stalled:
+            self._met(readings, wrench)
         elif self.top - z >= self.max_depth or z <= self._grasp_height():
             self._close_here(readings, 0.0)
         if self.phase is not JawPhase.DESCEND:
@@ -381,17 +378,12 @@ class JawGraspCorrection(Controller):
         drift = self._off_line(self.line - readings.tcp[:3, 3])
         return GAIN * drift - self.descent * self.back
 
-    def _met(self, readings: Readings, wrench: np.ndarray, stalled: bool = False) -> None:
+    def _met(self, readings: Readings, wrench: np.ndarray) -> None:
         """The first contact of a descent: where it sits across the hand says what it is."""
         across = self._contact_across(readings, wrench)
         off_centre = across is not None and norm(across) > self.centre_band and self.vertical
         below_top = self._depth(readings.tcp[:3, 3]) < self._object_top()
         if below_top or not off_centre or self.shifts >= self.max_shifts:
-            if not stalled and self._above_middle(readings):
-                # A jaw's edge on a ball's flank above its middle: closed there, the pads squeeze
-                # its cap down into the table and the jaws creep shut (docs/robust-grasp.md). On down.
-                self.straddling = True
-                return
             # Below the object's top the jaws straddle its place: close, and should they
             # close on nothing, look first where the contact was (the palm on its top, as
             # wide as the hand; not the fingertips on the support, which say nothing of
@@ -414,16 +406,6 @@ class JawGraspCorrection(Controller):
         self.shifts += 1
         self.centre = self.centre + self._level(shift)  # the search goes on from there
         self._rise(readings, shift)
-
-    def _above_middle(self, readings: Readings) -> bool:
-        """From above, with jaws whose pads give no tactile image (a grip read from the motor
-        alone, held on a cap as on a side), the object a ball as the task believes it, and
-        the pads' lower edges above its middle: they would close on its cap, not its sides."""
-        obj = self.ctx.object
-        if not self.vertical or self.imaged or obj is None or obj.pose is None:
-            return False
-        lowest = self._depth(readings.tcp[:3, 3]) - self.pad_half_height  # the pads' lower edges
-        return obj.object_class is ObjectClass.SPHERE and lowest > self._depth(np.asarray(obj.pose.position, float))
 
     def _jaw_move(self, across: np.ndarray) -> np.ndarray:
         """The move across (hand frame) for a jaw on the object's top at `across`: the torque's
