@@ -331,6 +331,65 @@ class FingersStill(Debounced):
         return {"drift": round(self.rate, 4), "still_below": self.drift}
 
 
+class ContactsStill(Debounced):
+    """No pressed pad's centre of pressure has moved more than `distance` over the last
+    `window` of the arm's hold at its target: a grip whose contacts travel across a pad while
+    the hand holds still is letting the object turn or slide out. A Panda's jaws held a mug at
+    a pad's corner; the mug turned in them 0.2 degrees a second through the transport's 2 s
+    hold, both pads pressing 15 N and the wrist feeling its weight, the right pad's pressed
+    taxels moved a row, and it fell in the judge's hold. A grip seen moving must then stay
+    still the whole window, so one that keeps creeping is lost before it is claimed. Only
+    pads with a taxel array are read; a pad pressing nothing on a tick has no centre then."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...]) -> None:
+        super().__init__(ctx, sensors)
+        pads = [ctx.info.hand.pads[i] for i in pad_indices(ctx.info.hand, sensors)]
+        self.names = [p.name for p in pads if p.taxels is not None]
+        # Per pad: the taxels' centres in the pad's frame (m), columns along x, rows along y.
+        self.cells = [self._centres(p.taxels, p.half_size) for p in pads if p.taxels is not None]
+        self.distance = float(self.params["distance"])
+        self.window = float(self.params["window"])
+        self.recent = RecentRows(2 * len(self.names))
+
+    @staticmethod
+    def _centres(taxels: tuple[int, int], half: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
+        rows, cols = taxels
+        x = ((np.arange(cols) + 0.5) / cols * 2.0 - 1.0) * half[0]
+        y = ((np.arange(rows) + 0.5) / rows * 2.0 - 1.0) * half[1]
+        return x, y
+
+    def start(self, readings: Readings) -> None:
+        super().start(readings)
+        self.recent.clear()
+        self.moved = dict.fromkeys(self.names, 0.0)
+
+    def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
+        """Watched only while the arm holds at its target: a moving arm shifts the load on the pads."""
+        if state.arm is not Status.DONE:
+            return self.debounce(True, dt)
+        return super().holds(readings, state, dt)
+
+    def test(self, readings: Readings, dt: float) -> bool:
+        centre = np.full(2 * len(self.names), np.nan)
+        for i, (name, (x, y)) in enumerate(zip(self.names, self.cells)):
+            image = readings.taxels[name]
+            total = float(image.sum())
+            if total > 0.0:
+                centre[2 * i] = float(image.sum(axis=0) @ x) / total
+                centre[2 * i + 1] = float(image.sum(axis=1) @ y) / total
+        self.recent.add(readings.time, centre, readings.time - self.window)
+        rows = self.recent.rows()
+        pressed = ~np.isnan(rows).all(axis=0)
+        spread = np.zeros(len(centre))
+        spread[pressed] = np.nanmax(rows[:, pressed], axis=0) - np.nanmin(rows[:, pressed], axis=0)
+        moved = np.hypot(spread[0::2], spread[1::2])
+        self.moved = dict(zip(self.names, moved.tolist()))
+        return float(moved.max(initial=0.0)) <= self.distance
+
+    def explain(self) -> dict[str, Any]:
+        return {"moved": {name: round(m, 4) for name, m in self.moved.items()}, "still_within": self.distance}
+
+
 class Gripper(Debounced):
     """A parallel gripper's own sensing: motor force (N, along closing) or jaw opening
     (m between the pads, beyond the closed gap), compared with a threshold."""

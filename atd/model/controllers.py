@@ -638,6 +638,8 @@ _TACTILE_PARAMS = {
     "for_time": _FOR,
 }
 
+SLIP_DISTANCE = 0.001  # m a pad's centre of pressure may move and count as still: under a third of a taxel (3.3-4.8 mm), which a contact crossing into the next one moves it by more
+
 _CONDITIONS = (
     ConditionSpec("arm_done", "The state's arm controller reports it has finished.",
                   params={"for_time": _p(NUM, "the arm must have been finished this long (ours; 0 = at once)",
@@ -690,6 +692,19 @@ _CONDITIONS = (
                               "chatters by a few mm/s about a still mean (ours)", 0.5,
                               unit="s"),
             "for_time": _p(NUM, "how long the fingers must stay still (ours)", 0.2, unit="s"),
+        },
+    ),
+    ConditionSpec(
+        "contacts_still",
+        "No pressed pad's centre of pressure has moved more than `distance` over the last `window` of the arm's "
+        "hold at its target: contacts travelling across a pad while the hand holds still are the object turning or "
+        "sliding in the grip. Reads the pads' taxel arrays; a pad without one is not read.", SensorKind.TACTILE,
+        {
+            "distance": _p(NUM, "how far a pad's centre of pressure may move within the window and count as still "
+                           "(ours)", SLIP_DISTANCE, unit="m"),
+            "window": _p(NUM, "the stretch of the arm's hold, up to now, over which the centres must stay within "
+                         "`distance`: a grip seen slipping must then hold still three times a transport's 2 s hold "
+                         "(ours)", 6.0, unit="s"),
         },
     ),
     ConditionSpec(
