@@ -331,15 +331,17 @@ class FingersStill(Debounced):
         return {"drift": round(self.rate, 4), "still_below": self.drift}
 
 
-class ContactsStill(Debounced):
-    """No pressed pad's centre of pressure has moved more than `distance` over the last
-    `window` of the arm's hold at its target: a grip whose contacts travel across a pad while
-    the hand holds still is letting the object turn or slide out. A Panda's jaws held a mug at
-    a pad's corner; the mug turned in them 0.2 degrees a second through the transport's 2 s
-    hold, both pads pressing 15 N and the wrist feeling its weight, the right pad's pressed
-    taxels moved a row, and it fell in the judge's hold. A grip seen moving must then stay
-    still the whole window, so one that keeps creeping is lost before it is claimed. Only
-    pads with a taxel array are read; a pad pressing nothing on a tick has no centre then."""
+class SlipWatched(Debounced):
+    """The pads' contacts have not moved across them while the arm holds at its target, or
+    have been watched `watch` since they first did: a grip whose contacts travel while the
+    hand holds still may be letting the object turn or slide out, and one that does drops
+    it within the watch. A Panda's jaws held a mug at a pad's corner; the mug turned in them
+    0.2 degrees a second through the transport's 2 s hold, both pads pressing 15 N and the
+    wrist feeling its weight, the right pad's centre of pressure moved 1.6 mm, and the mug
+    fell 2.8 s later, in the judge's hold. A contact on the line between two taxels flickers
+    from one to the other while the object stays put, so a move starts the watch once, rather
+    than a stillness the watch must wait for. Only pads with a taxel array are read; a pad
+    pressing nothing on a tick has no centre then."""
 
     def __init__(self, ctx: Context, sensors: tuple[str, ...]) -> None:
         super().__init__(ctx, sensors)
@@ -348,8 +350,7 @@ class ContactsStill(Debounced):
         # Per pad: the taxels' centres in the pad's frame (m), columns along x, rows along y.
         self.cells = [self._centres(p.taxels, p.half_size) for p in pads if p.taxels is not None]
         self.distance = float(self.params["distance"])
-        self.window = float(self.params["window"])
-        self.recent = RecentRows(2 * len(self.names))
+        self.watch = float(self.params["watch"])
 
     @staticmethod
     def _centres(taxels: tuple[int, int], half: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
@@ -360,8 +361,11 @@ class ContactsStill(Debounced):
 
     def start(self, readings: Readings) -> None:
         super().start(readings)
-        self.recent.clear()
-        self.moved = dict.fromkeys(self.names, 0.0)
+        self.low = np.full((len(self.names), 2), np.inf)  # each pad's centre, least and most, over the hold
+        self.high = -self.low
+        self.moved = np.zeros(len(self.names))
+        self.moved_at: float | None = None  # when a centre first moved more than `distance`
+        self.time = readings.time
 
     def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
         """Watched only while the arm holds at its target: a moving arm shifts the load on the pads."""
@@ -370,24 +374,25 @@ class ContactsStill(Debounced):
         return super().holds(readings, state, dt)
 
     def test(self, readings: Readings, dt: float) -> bool:
-        centre = np.full(2 * len(self.names), np.nan)
-        for i, (name, (x, y)) in enumerate(zip(self.names, self.cells)):
-            image = readings.taxels[name]
-            total = float(image.sum())
-            if total > 0.0:
-                centre[2 * i] = float(image.sum(axis=0) @ x) / total
-                centre[2 * i + 1] = float(image.sum(axis=1) @ y) / total
-        self.recent.add(readings.time, centre, readings.time - self.window)
-        rows = self.recent.rows()
-        pressed = ~np.isnan(rows).all(axis=0)
-        spread = np.zeros(len(centre))
-        spread[pressed] = np.nanmax(rows[:, pressed], axis=0) - np.nanmin(rows[:, pressed], axis=0)
-        moved = np.hypot(spread[0::2], spread[1::2])
-        self.moved = dict(zip(self.names, moved.tolist()))
-        return float(moved.max(initial=0.0)) <= self.distance
+        self.time = readings.time
+        if self.moved_at is None:
+            for i, (name, (x, y)) in enumerate(zip(self.names, self.cells)):
+                image = readings.taxels[name]
+                total = float(image.sum())
+                if total > 0.0:
+                    centre = np.array([image.sum(axis=0) @ x, image.sum(axis=1) @ y]) / total
+                    self.low[i] = np.minimum(self.low[i], centre)
+                    self.high[i] = np.maximum(self.high[i], centre)
+                    self.moved[i] = float(np.hypot(*(self.high[i] - self.low[i])))
+            if self.moved.max(initial=0.0) > self.distance:
+                self.moved_at = readings.time
+        return self.moved_at is None or readings.time - self.moved_at >= self.watch
 
     def explain(self) -> dict[str, Any]:
-        return {"moved": {name: round(m, 4) for name, m in self.moved.items()}, "still_within": self.distance}
+        if self.moved_at is None:
+            return {"moved": {name: round(float(m), 4) for name, m in zip(self.names, self.moved)}, "still_within": self.distance}
+        return {"moved": {name: round(float(m), 4) for name, m in zip(self.names, self.moved)},
+                "watched": round(self.time - self.moved_at, 3), "watch": self.watch}
 
 
 class Gripper(Debounced):

@@ -25,7 +25,6 @@ from primitives.arm.surface import Place, ReleaseRetreat
 from primitives.arm.unscrew import UnscrewArm
 from primitives.base import Condition, Context, Controller, Status
 from primitives.conditions import (
-    ContactsStill,
     Fault,
     FingersStill,
     Gripper,
@@ -33,6 +32,7 @@ from primitives.conditions import (
     Perceived,
     Range,
     SimulationUnstable,
+    SlipWatched,
     StatusIs,
     SubtaskEndedIn,
     TactileForce,
@@ -108,7 +108,7 @@ CONDITION_KINDS: Mapping[str, ConditionMaker] = {
     "tactile_load_change": TactileLoadChange,
     "load_held": LoadHeld,
     "fingers_still": FingersStill,
-    "contacts_still": ContactsStill,
+    "slip_watched": SlipWatched,
     "wrist_force_above": WristForceAbove,
     "gripper_force_above": lambda ctx, sensors: Gripper(ctx, sensors, "force", above=True),
     "gripper_force_below": lambda ctx, sensors: Gripper(ctx, sensors, "force", above=False),

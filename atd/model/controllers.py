@@ -638,7 +638,7 @@ _TACTILE_PARAMS = {
     "for_time": _FOR,
 }
 
-SLIP_DISTANCE = 0.001  # m a pad's centre of pressure may move and count as still: under a third of a taxel (3.3-4.8 mm), which a contact crossing into the next one moves it by more
+SLIP_DISTANCE = 0.001  # m a pad's centre of pressure may move and count as still: a contact crossing into the next taxel (3.3-4.8 mm) moved it 1.5-1.7 mm
 
 _CONDITIONS = (
     ConditionSpec("arm_done", "The state's arm controller reports it has finished.",
@@ -695,16 +695,16 @@ _CONDITIONS = (
         },
     ),
     ConditionSpec(
-        "contacts_still",
-        "No pressed pad's centre of pressure has moved more than `distance` over the last `window` of the arm's "
-        "hold at its target: contacts travelling across a pad while the hand holds still are the object turning or "
-        "sliding in the grip. Reads the pads' taxel arrays; a pad without one is not read.", SensorKind.TACTILE,
+        "slip_watched",
+        "The pads' contacts have not moved more than `distance` across them while the arm holds at its target, or "
+        "have been watched `watch` since they first did: contacts travelling across a pad while the hand holds still "
+        "may be the object turning or sliding out of the grip, which then drops it within the watch. Reads the pads' "
+        "taxel arrays; a pad without one is not read.", SensorKind.TACTILE,
         {
-            "distance": _p(NUM, "how far a pad's centre of pressure may move within the window and count as still "
+            "distance": _p(NUM, "how far a pad's centre of pressure may move over the arm's hold and count as still "
                            "(ours)", SLIP_DISTANCE, unit="m"),
-            "window": _p(NUM, "the stretch of the arm's hold, up to now, over which the centres must stay within "
-                         "`distance`: a grip seen slipping must then hold still three times a transport's 2 s hold "
-                         "(ours)", 6.0, unit="s"),
+            "watch": _p(NUM, "how long a grip whose contacts moved is held before it counts as stable: three times a "
+                        "transport's 2 s hold (ours)", 6.0, unit="s"),
         },
     ),
     ConditionSpec(
