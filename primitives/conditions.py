@@ -389,10 +389,10 @@ class SlipWatched(Debounced):
         return self.moved_at is None or readings.time - self.moved_at >= self.watch
 
     def explain(self) -> dict[str, Any]:
+        moved = {name: round(float(m), 4) for name, m in zip(self.names, self.moved)}
         if self.moved_at is None:
-            return {"moved": {name: round(float(m), 4) for name, m in zip(self.names, self.moved)}, "still_within": self.distance}
-        return {"moved": {name: round(float(m), 4) for name, m in zip(self.names, self.moved)},
-                "watched": round(self.time - self.moved_at, 3), "watch": self.watch}
+            return {"moved": moved, "still_within": self.distance}
+        return {"moved": moved, "watched": round(self.time - self.moved_at, 3), "watch": self.watch}
 
 
 class Gripper(Debounced):
