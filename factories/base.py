@@ -369,22 +369,29 @@ class Factory(ABC):
         a transport has taken it off its support, the fingers must have stopped closing (a
         grip that keeps closing is squeezing the object out) and a wrist force-torque sensor
         must feel at least half its weight (the task's, or `load_held`'s default) beyond the
-        empty hand. The hand's own reading must last as long as the stillness: a PyBullet
-        SDH2 finger chattering on a turning object touched it every other tick, and one
-        such tick passed a pad count that needed no time."""
+        empty hand; where the pads have taxel arrays, a grip whose contacts moved across them
+        while the arm held still is watched longer (`slip_watched`: a mug turning in a Panda's
+        jaws passed every other test and fell in the judge's hold). The hand's own reading
+        must last as long as the stillness: a PyBullet SDH2 finger chattering on a turning
+        object touched it every other tick, and one such tick passed a pad count that needed
+        no time."""
         if origin.type is not StateType.TRANSPORT:
             return held
         refuse_uncarriable(context.object, f"transport state '{origin.name}'")
         still = self.condition(EventType.GRASP_STABLE, "fingers_still")
         held = pressing(lasting(held, float(still.params["for_time"])), carrying_force(context.object))
+        parts = [held, still]
+        tactile = self.arm.sensors_of(SensorKind.TACTILE)
+        arrays = tuple(p.name for p in self.robot.hand.pads if p.taxels is not None and p.name in tactile)
+        if arrays:
+            parts.append(self.condition(EventType.GRASP_STABLE, "slip_watched", arrays))
         wrist = self.arm.sensors_of(SensorKind.FORCE_TORQUE)
-        if not wrist:
-            return all_of(held, still)
-        weight = context.object.weight if context.object is not None else None
-        # Half the weight, but no less than the least a load_held accepts (an object under 2 g).
-        load = self.condition(EventType.GRASP_STABLE, "load_held", wrist,
-                              weight=None if weight is None else round(max(weight / 2, WEIGHT.low), 6))
-        return all_of(held, still, load)
+        if wrist:
+            weight = context.object.weight if context.object is not None else None
+            # Half the weight, but no less than the least a load_held accepts (an object under 2 g).
+            parts.append(self.condition(EventType.GRASP_STABLE, "load_held", wrist,
+                                        weight=None if weight is None else round(max(weight / 2, WEIGHT.low), 6)))
+        return all_of(*parts)
 
     def success(self, origin: State) -> ConditionNode:
         """Thesis 7.2.2: one abstract success may need the arm AND the hand controller done."""

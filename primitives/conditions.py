@@ -331,6 +331,70 @@ class FingersStill(Debounced):
         return {"drift": round(self.rate, 4), "still_below": self.drift}
 
 
+class SlipWatched(Debounced):
+    """The pads' contacts have not moved across them while the arm holds at its target, or
+    have been watched `watch` since they first did: a grip whose contacts travel while the
+    hand holds still may be letting the object turn or slide out, and one that does drops
+    it within the watch. A Panda's jaws held a mug at a pad's corner; the mug turned in them
+    0.2 degrees a second through the transport's 2 s hold, both pads pressing 15 N and the
+    wrist feeling its weight, the right pad's centre of pressure moved 1.6 mm, and the mug
+    fell 2.8 s later, in the judge's hold. A contact on the line between two taxels flickers
+    from one to the other while the object stays put, so a move starts the watch once, rather
+    than a stillness the watch must wait for. Only pads with a taxel array are read; a pad
+    pressing nothing on a tick has no centre then."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...]) -> None:
+        super().__init__(ctx, sensors)
+        pads = [ctx.info.hand.pads[i] for i in pad_indices(ctx.info.hand, sensors)]
+        self.names = [p.name for p in pads if p.taxels is not None]
+        # Per pad: the taxels' centres in the pad's frame (m), columns along x, rows along y.
+        self.cells = [self._centres(p.taxels, p.half_size) for p in pads if p.taxels is not None]
+        self.distance = float(self.params["distance"])
+        self.watch = float(self.params["watch"])
+
+    @staticmethod
+    def _centres(taxels: tuple[int, int], half: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
+        rows, cols = taxels
+        x = ((np.arange(cols) + 0.5) / cols * 2.0 - 1.0) * half[0]
+        y = ((np.arange(rows) + 0.5) / rows * 2.0 - 1.0) * half[1]
+        return x, y
+
+    def start(self, readings: Readings) -> None:
+        super().start(readings)
+        self.low = np.full((len(self.names), 2), np.inf)  # each pad's centre, least and most, over the hold
+        self.high = -self.low
+        self.moved = np.zeros(len(self.names))
+        self.moved_at: float | None = None  # when a centre first moved more than `distance`
+        self.time = readings.time
+
+    def holds(self, readings: Readings, state: StateView, dt: float) -> bool:
+        """Watched only while the arm holds at its target: a moving arm shifts the load on the pads."""
+        if state.arm is not Status.DONE:
+            return self.debounce(True, dt)
+        return super().holds(readings, state, dt)
+
+    def test(self, readings: Readings, dt: float) -> bool:
+        self.time = readings.time
+        if self.moved_at is None:
+            for i, (name, (x, y)) in enumerate(zip(self.names, self.cells)):
+                image = readings.taxels[name]
+                total = float(image.sum())
+                if total > 0.0:
+                    centre = np.array([image.sum(axis=0) @ x, image.sum(axis=1) @ y]) / total
+                    self.low[i] = np.minimum(self.low[i], centre)
+                    self.high[i] = np.maximum(self.high[i], centre)
+                    self.moved[i] = float(np.hypot(*(self.high[i] - self.low[i])))
+            if self.moved.max(initial=0.0) > self.distance:
+                self.moved_at = readings.time
+        return self.moved_at is None or readings.time - self.moved_at >= self.watch
+
+    def explain(self) -> dict[str, Any]:
+        moved = {name: round(float(m), 4) for name, m in zip(self.names, self.moved)}
+        if self.moved_at is None:
+            return {"moved": moved, "still_within": self.distance}
+        return {"moved": moved, "watched": round(self.time - self.moved_at, 3), "watch": self.watch}
+
+
 class Gripper(Debounced):
     """A parallel gripper's own sensing: motor force (N, along closing) or jaw opening
     (m between the pads, beyond the closed gap), compared with a threshold."""

@@ -638,6 +638,8 @@ _TACTILE_PARAMS = {
     "for_time": _FOR,
 }
 
+SLIP_DISTANCE = 0.001  # m a pad's centre of pressure may move and count as still: a contact crossing into the next taxel (3.3-4.8 mm) moved it 1.5-1.7 mm
+
 _CONDITIONS = (
     ConditionSpec("arm_done", "The state's arm controller reports it has finished.",
                   params={"for_time": _p(NUM, "the arm must have been finished this long (ours; 0 = at once)",
@@ -690,6 +692,19 @@ _CONDITIONS = (
                               "chatters by a few mm/s about a still mean (ours)", 0.5,
                               unit="s"),
             "for_time": _p(NUM, "how long the fingers must stay still (ours)", 0.2, unit="s"),
+        },
+    ),
+    ConditionSpec(
+        "slip_watched",
+        "The pads' contacts have not moved more than `distance` across them while the arm holds at its target, or "
+        "have been watched `watch` since they first did: contacts travelling across a pad while the hand holds still "
+        "may be the object turning or sliding out of the grip, which then drops it within the watch. Reads the pads' "
+        "taxel arrays; a pad without one is not read.", SensorKind.TACTILE,
+        {
+            "distance": _p(NUM, "how far a pad's centre of pressure may move over the arm's hold and count as still "
+                           "(ours)", SLIP_DISTANCE, unit="m"),
+            "watch": _p(NUM, "how long a grip whose contacts moved is held before it counts as stable: three times a "
+                        "transport's 2 s hold (ours)", 6.0, unit="s"),
         },
     ),
     ConditionSpec(
