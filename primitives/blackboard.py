@@ -140,11 +140,11 @@ contact to the target it was going to; absent once a move arrived. A gripper's u
 it: its jaws, lowered around a cap, stopped short where one landed on the cap's top."""
 
 STEEP_PINCH = "steep_pinch"
-"""In `Context.memory`: True where the latest robust grasp held a pinch narrower than its
-object's believed least width by more than friction allows (gap < W / hypot(1, mu)): on a
-round body its pads press faces turned past the friction angle and squeeze it out, slowly.
-The hand that holds it next reads it once (`HoldPosition`) and watches the grip before it
-says it holds."""
+"""In `Context.memory`: True where the latest robust grasp held a pinch that may creep out:
+narrower than its object's believed least width by more than friction allows (gap < W /
+hypot(1, mu)), or with the object's weight hanging beyond the pads' edge; on a round body
+its pads press faces turned from the squeeze and squeeze it out, slowly. The hand that holds
+it next reads it once (`HoldPosition`) and watches the grip before it says it holds."""
 
 ARM_KEYS = frozenset({EMPTY_HAND, ARM_TWIST, HAND_LEVEL, YAW_REFERENCE, SHORT_OF_TARGET, STEEP_PINCH})
 """The keys of `Context.memory` that say something of one arm: in a run of two arms each

@@ -98,10 +98,10 @@ class HoldPosition(PostureDrive):
     stiffness: lifting a cylinder pinched by the SDH2, whose distal joints held 0.23 N m,
     folded them open 0.15 rad in 0.17 s in PyBullet and the cylinder fell out.
 
-    A pinch steeper than friction holds (`STEEP_PINCH`) creeps out of the fingertips with
-    every sensor steady until it goes: the hand says it holds such a grip only once it has
-    held it STEEP_WATCH, so that a lift which loses it meanwhile says so
-    (docs/robust-grasp.md, "A steep pinch watched").
+    A pinch that may creep out (`STEEP_PINCH`: steeper than friction holds, or held by the
+    object's flank) goes with every sensor steady until it goes: the hand says it holds such
+    a grip only once it has held it STEEP_WATCH, so that a lift which loses it meanwhile says
+    so (docs/robust-grasp.md, "A steep pinch watched", "A pinch held by the flank").
     """
 
     def start(self, readings: Readings) -> None:
@@ -121,7 +121,7 @@ class HoldPosition(PostureDrive):
         """Done once the grip has been held as long as it must be watched."""
         if self.held < self.watch:
             return
-        watched = f", a pinch steeper than friction holds watched {self.watch:g} s" if self.watch else ""
+        watched = f", a pinch that may creep out watched {self.watch:g} s" if self.watch else ""
         self.finish(Status.DONE, f"holding the fingers{watched}")
 
     def update(self, readings: Readings, dt: float) -> ControlData:

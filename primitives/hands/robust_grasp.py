@@ -148,7 +148,7 @@ class RobustGraspHand(ForceGrasp):
         carried = abs(offset) <= FAR_OFF and abs(torque) <= (self.ctx.object.friction or 0.0) * squeeze * RIM_CONTACT
         if near or carried:
             self.phase = Phase.HOLD
-            self.ctx.memory[STEEP_PINCH] = self._steep(readings)
+            self.ctx.memory[STEEP_PINCH] = self._steep(readings) or self._beside(offset)
             self.finish(Status.DONE, f"object held after {self.corrections.retries} corrections, its weight "
                                      f"{abs(offset) * 100:.1f} cm off the pinch line: {self._forces(readings.pad_force)}"
                                      f"{self._short_of()}")
@@ -165,6 +165,14 @@ class RobustGraspHand(ForceGrasp):
         of the fingertips, slowly. Where the body is not round (a duck's neck) such a pinch holds."""
         thing = self.ctx.object
         return self.gauge.gap(readings.hand_q) < thing.least_width / np.hypot(1.0, thing.friction or 0.0)
+
+    def _beside(self, offset: float) -> bool:
+        """The weight hangs beyond the pads' edge (more than the narrower pad's half-width
+        off the pinch line): the pads hold the object by its flank, every face they press
+        turned the same way from the squeeze, which pushes a round body out sideways, slowly
+        (the Barrett's duck, docs/robust-grasp.md "A pinch held by the flank")."""
+        hand = self.ctx.info.hand
+        return abs(offset) > min(hand.pads[self.pad_of[f]].half_size[1] for f in self.fingers)
 
     def _set_down(self, readings: Readings, dt: float) -> None:
         """Once the arm has set the object down: grasp it again across its centre of mass."""

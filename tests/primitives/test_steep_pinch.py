@@ -1,8 +1,10 @@
-"""A pinch steeper than friction holds is watched before a lift says it holds: at
-generalisation seed 27191 the Barrett pinched the mug 40 mm apart across its 49 mm body,
-its pads' corners on faces turned past the friction angle; lifted, with its weight felt,
-its pads and fingers steady, the lift said success, and the mug slid out of the
-fingertips 0.6 s into the judge's hold (docs/robust-grasp.md, "A steep pinch watched")."""
+"""A pinch that may creep out is watched before a lift says it holds: at generalisation
+seed 27191 the Barrett pinched the mug 40 mm apart across its 49 mm body, its pads' corners
+on faces turned past the friction angle; lifted, with its weight felt, its pads and fingers
+steady, the lift said success, and the mug slid out of the fingertips 0.6 s into the
+judge's hold (docs/robust-grasp.md, "A steep pinch watched"). In Table 3.3 it held the duck
+by its flank, its weight 1.3 cm off the pinch line beyond the pads' 1.2 cm half-width, and
+the duck went the same way ("A pinch held by the flank")."""
 
 from __future__ import annotations
 
@@ -20,11 +22,19 @@ def test_a_lift_whose_mug_creeps_out_of_a_steep_pinch_says_it_lost_it(tmp_path: 
     spec = (CAMPAIGNS / "generalisation.toml").read_text()
     spec = spec.replace("base_seed = 8117", "base_seed = 27191").replace('"places/', f'"{CAMPAIGNS}/places/')
     (tmp_path / "g.toml").write_text(spec)
-    loaded, diagnostics = load_spec(tmp_path / "g.toml")
+    _says_it_lost_it(tmp_path / "g.toml", ("task=centre_far", "object=mug"), "the creeping pinch")
+
+
+def test_a_lift_whose_duck_creeps_out_of_a_flank_pinch_says_it_lost_it() -> None:
+    _says_it_lost_it(CAMPAIGNS / "table_3_3.toml", ("grasp=robust", "object=duck"), "the flank pinch")
+
+
+def _says_it_lost_it(spec: Path, cell: tuple[str, ...], shows: str) -> None:
+    """Trial 1 of the Barrett's MuJoCo cell with the approach error ends in the lift on grasp_lost."""
+    loaded, diagnostics = load_spec(spec)
     assert loaded is not None, diagnostics
-    only = parse_only(("task=centre_far", "robot=tombatossals", "arm=right", "engine=mujoco", "object=mug",
-                       "perturbation=approach"))
+    only = parse_only(("robot=tombatossals", "arm=right", "engine=mujoco", "perturbation=approach", *cell))
     [record] = [run_trial(plan) for plan in plans(loaded, only, 2) if plan.index == 1]
-    assert not record.judged_succeeded, "the trial no longer shows the creeping pinch"
+    assert not record.judged_succeeded, f"the trial no longer shows {shows}"
     assert not record.task_succeeded, (record.judge_reason, record.summary)
     assert "grasp_lost" in record.summary, record.summary
