@@ -16,8 +16,8 @@ the approach says the top's height (`Approach.top`), so the grasp knows a jaw la
 for a jaw on the object rather than close above it.
 A look after another starts where that one's approach lay: landing on an object there, the
 grasp took nothing out, and the jaws are turned another way this time (`TURNS`). Once every
-turn has missed there, the look comes down at random a hand's reach away from it instead: an
-object no turn of the jaws takes (against another, or a wall) would hold every later round.
+turn has been tried there, the look comes down at random a hand's reach away from it instead:
+an object no turn of the jaws takes (against another, or a wall) would hold every later round.
 """
 
 from __future__ import annotations
@@ -152,7 +152,7 @@ class BlindExploration(Perceiver):
         self.tried: Tried | None = self.ctx.memory.get(TRIED)
         given_up = self.tried is not None and self.tried.times >= len(TURNS) - 1
         self.again = False  # the probe landed on an object where the last approach lay
-        if given_up:  # every turn of the jaws missed there: come down elsewhere, as a first look does
+        if given_up:  # every turn of the jaws tried there: come down elsewhere, as a first look does
             xy = self._away(self.container.to_local(self.tried.point[None])[0][:2], low, high)
             self.tried = None
         elif self.tried is None:

@@ -290,10 +290,10 @@ def _probe_after(times: int, seed: int) -> np.ndarray:
     return probe.to[:2]
 
 
-def test_blind_exploration_comes_down_elsewhere_once_every_turn_of_the_jaws_missed_there() -> None:
+def test_blind_exploration_comes_down_elsewhere_once_every_turn_of_the_jaws_was_tried_there() -> None:
     """Each look comes down where the last approach lay while a turn of the jaws is left to try
-    there; once all have missed, a hand's reach (5 cm) away or more. On a fresh seed every one
-    of a trial's 13 rounds came down on the same spray can lying against the ball, none took
+    there; once all have been tried, a hand's reach (5 cm) away or more. On a fresh seed every
+    one of a trial's 13 rounds came down on the same spray can lying against the ball, none took
     anything out (docs/empty-the-box.md); on main the fifth look came down there again."""
     for times in range(len(TURNS) - 1):
         assert np.linalg.norm(_probe_after(times, 0) - OPEN) < 1e-9
