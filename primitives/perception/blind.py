@@ -64,7 +64,7 @@ WALL_CLEARANCE = 0.005
 # feel chose the wrong one of the box's axes), then the diagonals (a wood block or a spray can
 # lying 32-45 degrees off the box's axes is longer than the Melfa's jaws open along either)
 TURNS = (0.0, math.pi / 2, math.pi / 4, -math.pi / 4)
-DRAWS = 32  # random probe points drawn for one a hand's reach from a spot given up: the first that is, else the farthest
+DRAWS = 32  # random probe points drawn for one a hand's reach from a spot given up (else the farthest is taken)
 TRIED = "blind_exploration_tried"  # in Context.memory: the last approach given (`Tried`)
 
 
