@@ -15,7 +15,9 @@ towards where it goes on and turned so the jaws close across a top long along th
 the approach says the top's height (`Approach.top`), so the grasp knows a jaw landing there
 for a jaw on the object rather than close above it.
 A look after another starts where that one's approach lay: landing on an object there, the
-grasp took nothing out, and the jaws are turned another way this time (`TURNS`).
+grasp took nothing out, and the jaws are turned another way this time (`TURNS`). Once every
+turn has been tried there, the look comes down at random a hand's reach away from it instead:
+an object no turn of the jaws takes (against another, or a wall) would hold every later round.
 """
 
 from __future__ import annotations
@@ -62,6 +64,7 @@ WALL_CLEARANCE = 0.005
 # feel chose the wrong one of the box's axes), then the diagonals (a wood block or a spray can
 # lying 32-45 degrees off the box's axes is longer than the Melfa's jaws open along either)
 TURNS = (0.0, math.pi / 2, math.pi / 4, -math.pi / 4)
+DRAWS = 32  # random probe points drawn for one a hand's reach from a spot given up (else the farthest is taken)
 TRIED = "blind_exploration_tried"  # in Context.memory: the last approach given (`Tried`)
 
 
@@ -147,10 +150,15 @@ class BlindExploration(Perceiver):
         clear = self._clear(readings)
         low, high = self.container.footprint(self.room)
         self.tried: Tried | None = self.ctx.memory.get(TRIED)
+        given_up = self.tried is not None and self.tried.times >= len(TURNS) - 1
         self.again = False  # the probe landed on an object where the last approach lay
-        # down where the last approach lay: what it did not take out is likely still there
-        xy = self.ctx.rng.uniform(low, high) if self.tried is None else \
-            np.clip(self.container.to_local(self.tried.point[None])[0][:2], low, high)
+        if given_up:  # every turn of the jaws tried there: come down elsewhere, as a first look does
+            xy = self._away(self.container.to_local(self.tried.point[None])[0][:2], low, high)
+            self.tried = None
+        elif self.tried is None:
+            xy = self.ctx.rng.uniform(low, high)
+        else:  # down where the last approach lay: what it did not take out is likely still there
+            xy = np.clip(self.container.to_local(self.tried.point[None])[0][:2], low, high)
         probe = self.container.to_world(np.array([[*xy, 0.0]]))[0]
         self.plan = [Waypoint(np.array([here[0], here[1], clear]), Leg.TRANSIT),
                      Waypoint(np.array([probe[0], probe[1], clear]), Leg.TRANSIT),
@@ -159,6 +167,14 @@ class BlindExploration(Perceiver):
         self.swept: Swept | None = None
         self.result: Finding | None = None  # once the hand has felt an object
         self._next(readings)
+
+    def _away(self, spot: np.ndarray, low: np.ndarray, high: np.ndarray) -> np.ndarray:
+        """A random point of the floor (the container's frame) at least the hand's reach
+        sideways from `spot`, where one of DRAWS draws is, else the farthest of them."""
+        draws = self.ctx.rng.uniform(low, high, size=(DRAWS, 2))
+        distance = np.linalg.norm(draws - spot, axis=1)
+        far = np.flatnonzero(distance >= self.margin)
+        return draws[far[0]] if far.size else draws[int(np.argmax(distance))]
 
     def _clear(self, readings: Readings) -> float:
         """The TCP's height over the container with the hand clear of its rim, or higher where it is."""
