@@ -334,14 +334,11 @@ class FingersStill(Debounced):
 class SlipWatched(Debounced):
     """The pads' contacts have not moved across them while the arm holds at its target, or
     have been watched `watch` since they first did: a grip whose contacts travel while the
-    hand holds still may be letting the object turn or slide out, and one that does drops
-    it within the watch. A Panda's jaws held a mug at a pad's corner; the mug turned in them
-    0.2 degrees a second through the transport's 2 s hold, both pads pressing 15 N and the
-    wrist feeling its weight, the right pad's centre of pressure moved 1.6 mm, and the mug
-    fell 2.8 s later, in the judge's hold. A contact on the line between two taxels flickers
-    from one to the other while the object stays put, so a move starts the watch once, rather
-    than a stillness the watch must wait for. Only pads with a taxel array are read; a pad
-    pressing nothing on a tick has no centre then."""
+    hand holds still may be letting the object turn or slide out, and one that does drops it
+    within the watch (docs/robust-grasp.md, "A slipping grip watched on the taxels"). A
+    contact on the line between two taxels flickers from one to the other while the object
+    stays put, so a move starts the watch once rather than a stillness the watch must wait
+    for. Only pads with a taxel array are read; a pad pressing nothing has no centre."""
 
     def __init__(self, ctx: Context, sensors: tuple[str, ...]) -> None:
         super().__init__(ctx, sensors)
