@@ -241,12 +241,15 @@ class UnscrewArm(Controller):
         return gap
 
     def _pressed_outside(self, readings: Readings, dt: float) -> bool:
-        """Jaws that say they grip the cap while standing wider apart than it, the wrist
-        pushed along their line: one jaw presses the cap from outside, the arm holding it
-        there, the other clear of it (a motor's grip force reads the grasp force all the
-        same; the Baxter, docs/unscrew-campaign.md). The arm yields the way the wrist is
-        pushed, no further than the jaws' room, until both close on the cap."""
-        if self.room <= 0.0 or self._jaws_gap(readings) <= self.cap_width:
+        """Jaws without tactile pads (one force for both, their motor's) that say they grip
+        the cap while standing wider apart than it, the wrist pushed along their line: one
+        jaw presses the cap from outside, the arm holding it there, the other clear of it,
+        and the motor reads the grasp force all the same (the Baxter, docs/unscrew-campaign.md;
+        tactile pads say so themselves). The arm yields the way the wrist is pushed, no
+        further than the jaws' room, until both close on the cap."""
+        if self.room <= 0.0 or self.ctx.info.hand.pads[0].taxels is not None:
+            return False
+        if self._jaws_gap(readings) <= self.cap_width:
             return False
         push = float(held_wrench(self.ctx.info.hand, readings)[:3] @ self.jaw_line)
         if abs(push) < STALL_CONTACT * self.threshold:
