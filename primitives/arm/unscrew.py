@@ -26,7 +26,7 @@ from primitives.arm.move import arm_output
 from primitives.arm.unscrew_phases import Phase, Pulling, Seating, Tally, TcpPose, Twisting
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import SHORT_OF_TARGET, CapGrip
-from primitives.filters import ContactWrench
+from primitives.filters import ContactWrench, held_wrench
 from primitives.robot import Readings
 from primitives.search import search_offsets
 
@@ -46,6 +46,7 @@ SEAT_RISE = 0.005  # m up off the cap's top before moving across: the jaw stoppe
 ACROSS_ARRIVED = 0.0005  # m: the move across ends this near its end; at ARRIVED a jaw came down on the cap's rim
 SEARCH_STEP = 1.0 / 3.0  # of the jaws' room around the cap: a step that cannot jump over the band where they fit
 SEARCH_POINTS = 14  # moves across, to either side in turn: 7 steps each way (Melfa 19 mm), then pinch
+OUTSIDE_SPEED = 0.01  # m/s the arm yields to a jaw pressing the cap from outside: slow beside the jaws' closing
 
 
 class UnscrewArm(Controller):
@@ -75,7 +76,8 @@ class UnscrewArm(Controller):
         self.tally = Tally(pinches=1)
         short = self.ctx.memory.pop(SHORT_OF_TARGET, None)
         down = 0.0 if short is None else float(np.asarray(short) @ (self.start_pose.rotation @ self.direction))
-        if self.alignment and down > SEAT_SHORT and self._jaws_room(readings):
+        self.room = self._jaws_room(readings)
+        if self.alignment and down > SEAT_SHORT and self.room > 0.0:
             along = self.start_pose.rotation @ self.direction
             goal = self.start_pose.position + down * along
             self.seating = Seating(goal, goal, [self.start_pose.position - SEAT_RISE * along])
@@ -109,13 +111,21 @@ class UnscrewArm(Controller):
         return self._toward(readings, TcpPose(goal, self.start_pose.rotation), SEAT_SPEED)
 
     def _across(self, readings: Readings, dt: float) -> np.ndarray:
-        """Up off the cap's top, then across; then down again."""
-        route = self.seating.route
+        """Up off the cap's top, then across, the wrist watched as the seat's descent watches
+        it: a jaw that meets the cap on the way across is on it again (`_jaw_on_top`), not
+        pushed on into it; then down again."""
+        seating = self.seating
+        route = seating.route
+        if seating.watched and self.wrench.force >= self.threshold:
+            self._jaw_on_top(readings)
+            return self._toward(readings, self.still, RETURN_SPEED)
         if norm(route[0] - readings.tcp[:3, 3]) < (ACROSS_ARRIVED if len(route) == 1 else ARRIVED):
             route.pop(0)
             if not route:
-                self._begin_seat(readings, self.seating)
+                self._begin_seat(readings, seating)
                 return self._toward(readings, self.still, RETURN_SPEED)
+            self.wrench.start(readings)  # off the top, in free air
+            seating.watched = True
         return self._toward(readings, TcpPose(route[0], self.start_pose.rotation), RETURN_SPEED)
 
     def _pinch(self, readings: Readings, dt: float) -> np.ndarray:
@@ -128,7 +138,7 @@ class UnscrewArm(Controller):
             self.still.position = self.still.position + nudge * dt
         if self.cap.empty:
             self._again(readings, "the fingers closed on nothing")
-        elif self.cap.pinched:
+        elif self.cap.pinched and not self._pressed_outside(readings, dt):
             self._begin_twist(readings)
         elif readings.time - self.pinch_started > PINCH_TIME:
             self._again(readings, f"the pads did not all press the grasp force within {PINCH_TIME:.0f} s")
@@ -198,7 +208,7 @@ class UnscrewArm(Controller):
         if norm(start.position - readings.tcp[:3, 3]) < ARRIVED and left < ORIENTATION_TOLERANCE:
             self.phase = Phase.PINCH
             self.still = TcpPose(start.position.copy(), start.rotation.copy())
-            self.pinch_started = readings.time
+            self.pinch_started, self.yielded = readings.time, 0.0
             self.tally.pinches += 1
             self.ctx.blackboard.contact = True
         return self._toward(readings, start, RETURN_SPEED)
@@ -212,18 +222,43 @@ class UnscrewArm(Controller):
         return self._toward(readings, self.still, RETURN_SPEED)
 
     # -- transitions ----------------------------------------------------------------------
-    def _jaws_room(self, readings: Readings) -> bool:
-        """Whether the open jaws have room around the cap (a gripper's pads, the cap's width
-        known): where to look for it (`search`, SEARCH_STEP of that room apart: how much wider
-        they stand than the cap) along `jaw_line`, the hand-frame line they close along."""
-        hand = self.ctx.info.hand
-        if self.cap_width <= 0.0 or len(hand.pads) != 2:
-            return False
-        left, right = hand.pad_surfaces(readings.hand_q)[:2, :3, 3]
-        gap = norm(left - right)
-        room, self.jaw_line = gap - self.cap_width, (left - right) / gap
+    def _jaws_room(self, readings: Readings) -> float:
+        """How much wider the open jaws stand than the cap (m; 0 unless a gripper's pads and
+        the cap's width are known), and where to look for it (`search`, SEARCH_STEP of that
+        room apart) along `jaw_line`, the hand-frame line they close along."""
+        if self.cap_width <= 0.0 or len(self.ctx.info.hand.pads) != 2:
+            return 0.0
+        gap = self._jaws_gap(readings)
+        room = gap - self.cap_width
         self.search = search_offsets(SEARCH_STEP * room, SEARCH_POINTS)
-        return room > 0.0
+        return max(room, 0.0)
+
+    def _jaws_gap(self, readings: Readings) -> float:
+        """How far apart the two jaws' pads stand (their joint's reading); sets `jaw_line`."""
+        left, right = self.ctx.info.hand.pad_surfaces(readings.hand_q)[:2, :3, 3]
+        gap = norm(left - right)
+        self.jaw_line = (left - right) / gap
+        return gap
+
+    def _pressed_outside(self, readings: Readings, dt: float) -> bool:
+        """Jaws without tactile pads (one force for both, their motor's) that say they grip
+        the cap while standing wider apart than it, the wrist pushed along their line: one
+        jaw presses the cap from outside, the arm holding it there, the other clear of it,
+        and the motor reads the grasp force all the same (the Baxter, docs/unscrew-campaign.md;
+        tactile pads say so themselves). The arm yields the way the wrist is pushed, no
+        further than the jaws' room, until both close on the cap."""
+        if self.room <= 0.0 or self.ctx.info.hand.pads[0].taxels is not None:
+            return False
+        if self._jaws_gap(readings) <= self.cap_width:
+            return False
+        push = float(held_wrench(self.ctx.info.hand, readings)[:3] @ self.jaw_line)
+        if abs(push) < STALL_CONTACT * self.threshold:
+            return False
+        if self.yielded < self.room:
+            self.yielded += OUTSIDE_SPEED * dt
+            self.still.position = self.still.position + np.sign(push) * OUTSIDE_SPEED * dt * (
+                self.still.rotation @ self.jaw_line)
+        return True
 
     def _begin_seat(self, readings: Readings, seating: Seating) -> None:
         self.wrench.start(readings)  # in free air, over the cap
@@ -237,16 +272,19 @@ class UnscrewArm(Controller):
         Off the top and across to the next point of the jaw grasp's search along the jaws'
         line (`search_offsets`, around where the descent was first going, to either side in
         turn: the wrist's torque does not say which jaw stands on the cap, docs/unscrew-campaign.md),
-        steps narrower than the window in which the jaws clear the cap. With the search spent:
-        pinch here."""
+        steps narrower than the window in which the jaws clear the cap. Up to SEAT_RISE over
+        the cap's top as the first stop felt it (`start_pose`), or over here if higher: a jaw
+        stopped lower, down the cap's side, is still beside the cap that far up. With the
+        search spent: pinch here."""
         if self.tally.seated >= len(self.search):
             self._pinch_from(readings)
             return
         seating = self.seating
         rotation = self.start_pose.rotation
         goal = seating.first + rotation @ (self.search[self.tally.seated] * self.jaw_line)
-        up = readings.tcp[:3, 3] - SEAT_RISE * (rotation @ self.direction)
-        seating.route, seating.goal = [up, up + goal - seating.goal], goal
+        along, here = rotation @ self.direction, readings.tcp[:3, 3]
+        up = here + (min(0.0, float((self.start_pose.position - here) @ along)) - SEAT_RISE) * along
+        seating.route, seating.goal, seating.watched = [up, up + goal - seating.goal], goal, False
         self.tally.seated += 1
         self._hold_here(readings, Phase.ACROSS)
 
@@ -255,7 +293,7 @@ class UnscrewArm(Controller):
         position = readings.tcp[:3, 3].copy()
         self.start_pose = TcpPose(position, self.start_pose.rotation)
         self.still = TcpPose(position.copy(), self.start_pose.rotation)
-        self.pinch_started = readings.time
+        self.pinch_started, self.yielded = readings.time, 0.0
         self.phase = Phase.PINCH
         self.ctx.blackboard.contact = True  # the hand is over the cap: it may close
 

@@ -43,6 +43,7 @@ class Seating:
     goal: np.ndarray  # where this descent goes: `first`, or moved across it by the search
     route: list[np.ndarray] = field(default_factory=list)  # world TCP waypoints off the cap's top and across
     stall: Stall = field(default_factory=lambda: Stall(STALL_TIME))  # the descent pressing on something
+    watched: bool = False  # off the top: the move across watches the wrist for a jaw meeting the cap
 
 
 @dataclass
