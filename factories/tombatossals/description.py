@@ -257,7 +257,7 @@ def _sdh2() -> tuple[tuple[Link, ...], Hand, float]:
     centres = {"pinch_grasp_preshape": pinch, "pinch_grasp": pinch, "push": (SDH_THUMB_X, 0.0, 0.0)}
     # Three fingers 120 degrees apart balance each other on a small box.
     hand = Hand("schunk_sdh2", dofs, tuple(pads), postures, test_grasp="spherical_grasp", grasp_centres=centres,
-                push_posture="push")  # the object's friction: rubber pads held the jam jar's neck against the unscrew's pull (docs/slide.md)
+                push_posture="push", side_edge_pinch=True)  # the object's friction: rubber pads held the jam jar's neck against the unscrew's pull (docs/slide.md)
     return tuple(links), hand, 0.225
 
 

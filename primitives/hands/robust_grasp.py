@@ -53,6 +53,7 @@ class RobustGraspHand(ForceGrasp):
         self.correct = bool(self.params["finger_lost_correction"])
         self.finger_lost_shift = float(self.params["finger_lost_shift"])
         self.extension_correction = bool(self.params["extension_correction"])
+        self.side_edge_correction = bool(self.params["side_edge_correction"])
         self.stable_quality = float(self.params["stable_quality"])
         self.alpha_threshold = np.radians(float(self.params["alpha_threshold"]))
 
@@ -299,7 +300,7 @@ class RobustGraspHand(ForceGrasp):
         true if that correction is under way; with the budget spent the grasp holds what it has."""
         pads = [self.pad_of[f] for f in self.fingers]
         hand = self.ctx.info.hand
-        if not self._corrects_pinch() or self.corrections.retries >= RETRIES \
+        if not (self.side_edge_correction and self._corrects_pinch()) or self.corrections.retries >= RETRIES \
                 or not all(on_side_row(hand, readings, k) for k in pads):
             return False
         across = (contact_points(hand, readings, pads)[:, :2] - self.base[self.fingers[0]]) @ self.search.normal
