@@ -75,3 +75,17 @@ def test_an_sdh2_fingertip_feels_whatever_its_inner_face_touches_across_its_widt
         [face] = [shape for shape in links[pad.link].shapes if shape.kind == "box"]
         # the pad's normal is its link's x, its y the fingertip's width (the link's y)
         assert pad.half_size[1] >= face.size[1], (pad.name, pad.half_size[1], face.size[1])
+
+
+def test_a_pinch_on_its_pads_side_edges_alone_closes_again_across() -> None:
+    """The preset's steel weight in PyBullet with the approach error, trial 12: both pads,
+    now as wide as the fingertip, pressed the weight with their outermost taxel row alone,
+    on the same side of the pinch line, on its flank beside them; the squeeze pushed it out
+    sideways and it shot out of the fingers as the lift began (failed at 9b807eb, the wide
+    pads without this correction; docs/robust-grasp.md, "Pinched by the pads' side edges").
+    The pinch closes again across, where the pads pressed, and lifts it."""
+    from tests.primitives.conftest import preset_trials
+
+    [record] = preset_trials((12,), robot="tombatossals", arm="left", engine="pybullet", grasp="robust",
+                             object="weight", perturbation="approach")
+    assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
