@@ -77,15 +77,17 @@ def test_an_sdh2_fingertip_feels_whatever_its_inner_face_touches_across_its_widt
         assert pad.half_size[1] >= face.size[1], (pad.name, pad.half_size[1], face.size[1])
 
 
-def test_a_pinch_on_its_pads_side_edges_alone_closes_again_across() -> None:
-    """The preset's steel weight in PyBullet with the approach error, trial 12: both pads,
-    now as wide as the fingertip, pressed the weight with their outermost taxel row alone,
-    on the same side of the pinch line, on its flank beside them; the squeeze pushed it out
-    sideways and it shot out of the fingers as the lift began (failed at 9b807eb, the wide
-    pads without this correction; docs/robust-grasp.md, "Pinched by the pads' side edges").
+@pytest.mark.parametrize("index", [9, 12])
+def test_a_pinch_on_its_pads_side_edges_alone_closes_again_across(index: int) -> None:
+    """The preset's steel weight in PyBullet with the approach error: both pads, as wide as
+    the fingertip, pressed the weight with their outermost taxel row alone, on the same side
+    of the pinch line, on its flank beside them; the squeeze pushed it out sideways and in
+    trial 12 it shot out of the fingers as the lift began (failed at 9b807eb, the wide pads
+    without this correction; docs/robust-grasp.md, "Pinched by the pads' side edges"). With
+    18 mm pads both trials jammed there unfelt (each failed at deaccd7, until the nudge).
     The pinch closes again across, where the pads pressed, and lifts it."""
     from tests.primitives.conftest import preset_trials
 
-    [record] = preset_trials((12,), robot="tombatossals", arm="left", engine="pybullet", grasp="robust",
+    [record] = preset_trials((index,), robot="tombatossals", arm="left", engine="pybullet", grasp="robust",
                              object="weight", perturbation="approach")
     assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
