@@ -44,24 +44,6 @@ def pad_corners(hand: HandInfo, hand_q: np.ndarray, pads: list[int]) -> np.ndarr
     return np.array(corners)
 
 
-def pressure_centre(hand: HandInfo, readings: Readings, k: int) -> np.ndarray:
-    """Pad k's centre of pressure (x, y) in its surface's frame, m; its centre without an image."""
-    image = readings.taxels.get(hand.pads[k].name)
-    if image is None or image.sum() <= 0.0:
-        return np.zeros(2)
-    rows, cols = image.shape
-    cell = np.array([image.sum(axis=0) @ (np.arange(cols) + 0.5) / cols,
-                     image.sum(axis=1) @ (np.arange(rows) + 0.5) / rows]) / image.sum()
-    return (2.0 * cell - 1.0) * np.asarray(hand.pads[k].half_size)
-
-
-def on_side_row(hand: HandInfo, readings: Readings, k: int) -> bool:
-    """Pad k presses only with (mostly) its outermost row across its finger: it touches
-    what lies beside it with its side edge."""
-    taxels, half = hand.pads[k].taxels, hand.pads[k].half_size[1]
-    return taxels is not None and abs(pressure_centre(hand, readings, k)[1]) > half * (1.0 - 2.0 / taxels[0])
-
-
 def on_side_row(hand: HandInfo, readings: Readings, k: int) -> bool:
     """Pad k presses with one of its two outermost rows across its finger and nothing else:
     it touches what lies beside it with its side edge."""
@@ -76,7 +58,15 @@ def contact_points(hand: HandInfo, readings: Readings, pads: list[int]) -> np.nd
     """Where each pad touches, hand frame: its centre of pressure, or its centre without an image."""
     points = []
     for surface, k in zip(hand.pad_surfaces(readings.hand_q)[pads], pads):
-        points.append((surface @ np.array([*pressure_centre(hand, readings, k), 0.0, 1.0]))[:3])
+        image = readings.taxels.get(hand.pads[k].name)
+        local = np.zeros(2)
+        if image is not None and image.sum() > 0.0:
+            rows, cols = image.shape
+            half = np.asarray(hand.pads[k].half_size)
+            cell = np.array([image.sum(axis=0) @ (np.arange(cols) + 0.5) / cols,
+                             image.sum(axis=1) @ (np.arange(rows) + 0.5) / rows]) / image.sum()
+            local = (2.0 * cell - 1.0) * half
+        points.append((surface @ np.array([*local, 0.0, 1.0]))[:3])
     return np.array(points)
 
 
