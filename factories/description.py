@@ -287,6 +287,10 @@ class Hand:
     rising_grasps: frozenset[str] = frozenset()
     """Hand shapes whose fingertips are left to rise off the support as they close: the
     sliding grasp only backs off the surface, never follows it down (`follow_surface`)."""
+    side_edge_pinch: bool = False
+    """Its pinch reopens and moves across when both pads press the object with their side
+    edges only (`side_edge_correction`): measured on the SDH2, whose wide pads feel a body
+    standing beside them there and lost it in the lift (docs/robust-grasp.md)."""
     push_posture: str = "closed"
     """The posture a closed hand takes to move and push (not a D5 shape): a hand whose fist
     meets an object with sloping links names one that leads with a vertical face."""

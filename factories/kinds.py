@@ -149,7 +149,8 @@ class MultiFingerFactory(Factory):
         configured = float(self.controller("robust_grasp_hand").params["grasp_force"])
         refuse_uncarriable(context.object, f"grasp state '{state.name}'")
         needed = holding_force(context.object)
-        hand = self.controller("robust_grasp_hand", grasp_shape=grasp.value,
+        edges = {"side_edge_correction": True} if self.robot.hand.side_edge_pinch else None
+        hand = self.controller("robust_grasp_hand", edges, grasp_shape=grasp.value,
                                preshape=preshape_made.value if preshape_made else None,
                                pregrasp_size=self.pregrasp_size(state, context),
                                grasp_force=round(needed, 3) if needed > configured else None)

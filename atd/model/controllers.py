@@ -537,6 +537,9 @@ _HAND_CONTROLLERS = (
             "extension_correction": _p(FLAG, "D5 3.3.3: with every finger on the object, reopen and move the hand "
                                        "(position correction Z, orientation correction alpha) while the grasp "
                                        "is unstable by the finger-extension criterion", True),
+            "side_edge_correction": _p(FLAG, "with both pinching pads pressing the object with their side edges "
+                                       "only, on one side of the pinch line, reopen and move across to where they "
+                                       "pressed (ours; the factory's hand says where: docs/robust-grasp.md)", False),
             "stable_quality": _p(NUM, "D5's bound on the finger-extension quality Q (Eq. 3.1) of a stable grasp, "
                                  "extensions in units of the preshape's reach (D5: 0.01)", 0.01),
             "alpha_threshold": _p(NUM, "the least orientation correction alpha (Eq. 3.2) made (D5: 0.01 rad)",

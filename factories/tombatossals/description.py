@@ -173,6 +173,7 @@ def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
 # Flexion 0 = straight out along the approach axis; positive curls the finger inwards.
 SDH_BASE_Z, SDH_KNUCKLE, SDH_PROXIMAL, SDH_DISTAL = 0.0745, 0.0165, 0.0865, 0.0685
 SDH_FINGER_X, SDH_FINGER_Y, SDH_THUMB_X = 0.019, 0.033, -0.038
+SDH_TIP_HALF_WIDTH = 0.011  # m: its pad spans it; 2 mm bare strips each side met objects off the pinch line unfelt (docs/robust-grasp.md)
 _SDH_SERVO = Servo(kp=30.0, kv=1.0)
 _SDH_SPEED = 210 * D  # thesis A.1.2
 
@@ -187,14 +188,14 @@ def _sdh_finger(finger: str, parent: str, origin: Origin, pad_name: str | None =
     )
     distal = Link(
         f"sdh_{finger}_distal", proximal.name, Origin((0, 0, SDH_PROXIMAL)), 0.1,
-        (box((0, 0, SDH_DISTAL / 2), (0.009, 0.011, SDH_DISTAL / 2), METAL),),
+        (box((0, 0, SDH_DISTAL / 2), (0.009, SDH_TIP_HALF_WIDTH, SDH_DISTAL / 2), METAL),),
         Joint(f"sdh_{finger}_distal", "revolute", curl, -np.pi / 2, np.pi / 2, _SDH_SPEED, 1.4, _SDH_SERVO,
               damping=0.05, armature=0.01),
     )
-    # Weiss pad on the inner (+x) face of the distal link, 6 x 13 taxels; Ry(90 deg) turns
-    # the pad's normal to +x and its x down the finger.
+    # Weiss pad on the inner (+x) face of the distal link, 6 x 13 taxels, edge to edge across
+    # it; Ry(90 deg) turns the pad's normal to +x and its x down the finger.
     pad = FingerPad(pad_name or f"tactile_{finger}", distal.name, Origin((0.0105, 0, 0.038), (0, np.pi / 2, 0)),
-                    (0.024, 0.009), 0.003, (6, 13))
+                    (0.024, SDH_TIP_HALF_WIDTH), 0.003, (6, 13))
     return (proximal, distal), pad
 
 
@@ -256,7 +257,7 @@ def _sdh2() -> tuple[tuple[Link, ...], Hand, float]:
     centres = {"pinch_grasp_preshape": pinch, "pinch_grasp": pinch, "push": (SDH_THUMB_X, 0.0, 0.0)}
     # Three fingers 120 degrees apart balance each other on a small box.
     hand = Hand("schunk_sdh2", dofs, tuple(pads), postures, test_grasp="spherical_grasp", grasp_centres=centres,
-                push_posture="push")  # the object's friction: rubber pads held the jam jar's neck against the unscrew's pull (docs/slide.md)
+                push_posture="push", side_edge_pinch=True)  # the object's friction: rubber pads held the jam jar's neck against the unscrew's pull (docs/slide.md)
     return tuple(links), hand, 0.225
 
 

@@ -44,6 +44,16 @@ def pad_corners(hand: HandInfo, hand_q: np.ndarray, pads: list[int]) -> np.ndarr
     return np.array(corners)
 
 
+def on_side_row(hand: HandInfo, readings: Readings, k: int) -> bool:
+    """Pad k presses with one of its two outermost rows across its finger and nothing else:
+    it touches what lies beside it with its side edge."""
+    image = readings.taxels.get(hand.pads[k].name)
+    if image is None:
+        return False
+    rows = np.flatnonzero(image.sum(axis=1) > 0.0)
+    return len(rows) > 0 and (rows[0] == rows[-1] == 0 or rows[0] == len(image) - 1)
+
+
 def contact_points(hand: HandInfo, readings: Readings, pads: list[int]) -> np.ndarray:
     """Where each pad touches, hand frame: its centre of pressure, or its centre without an image."""
     points = []

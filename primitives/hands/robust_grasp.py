@@ -17,7 +17,7 @@ from primitives.arm.motion import SUPPORT_BAND
 from primitives.base import Context, Status
 from primitives.blackboard import EMPTY_HAND, STEEP_PINCH, Shift
 from primitives.filters import WEIGHED, LowPass, held_wrench, world_load
-from primitives.hands.extension import ExtensionGauge, contact_points
+from primitives.hands.extension import ExtensionGauge, contact_points, on_side_row
 from primitives.hands.grasp_phases import Closing, Corrections, Holding, Phase, Weighing
 from primitives.hands.force_grasp import ForceGrasp
 from primitives.hands.multi_finger import CLOSING_SPEED
@@ -53,6 +53,7 @@ class RobustGraspHand(ForceGrasp):
         self.correct = bool(self.params["finger_lost_correction"])
         self.finger_lost_shift = float(self.params["finger_lost_shift"])
         self.extension_correction = bool(self.params["extension_correction"])
+        self.side_edge_correction = bool(self.params["side_edge_correction"])
         self.stable_quality = float(self.params["stable_quality"])
         self.alpha_threshold = np.radians(float(self.params["alpha_threshold"]))
 
@@ -251,7 +252,7 @@ class RobustGraspHand(ForceGrasp):
         if not touching and set(self.fingers) - self.closing.brushed:
             touching = [f for f in self.fingers if f in self.closing.brushed]
         lost = [f for f in self.fingers if f not in touching]
-        if not lost and self._uneven(readings):
+        if not lost and (self._uneven(readings) or self._by_side_edges(readings)):
             return
         if not lost:
             self.phase, self.held = Phase.HOLD, Holding(LowPass(FELT_TIME))
@@ -297,6 +298,24 @@ class RobustGraspHand(ForceGrasp):
         shift = check.shift if move else np.zeros(3)
         what = f"uneven grasp (Q {check.quality:.3f}, alpha {np.degrees(turn):.1f} deg)"
         self._try_again(shift, what, turn)
+        return True
+
+    def _by_side_edges(self, readings: Readings) -> bool:
+        """Both pinching pads press the object with their side edges only, on the same side
+        of the pinch line: they meet the flank of a body standing beside them, the squeeze
+        pushes it out sideways and the lift loses it (docs/robust-grasp.md, "Pinched by the
+        pads' side edges"). Close again that far across, the line through where they pressed:
+        true if that correction is under way; with the budget spent the grasp holds what it has."""
+        pads = [self.pad_of[f] for f in self.fingers]
+        hand = self.ctx.info.hand
+        if not (self.side_edge_correction and self._corrects_pinch()) or self.corrections.retries >= RETRIES \
+                or not all(on_side_row(hand, readings, k) for k in pads):
+            return False
+        across = (contact_points(hand, readings, pads)[:, :2] - self.base[self.fingers[0]]) @ self.search.normal
+        if across[0] * across[1] <= 0.0:
+            return False
+        self._try_again(self.search.look(self.search.across + float(across.mean())),
+                        "the pads pressed the object with their side edges only")
         return True
 
     def _pushed_aside(self) -> bool:

@@ -60,17 +60,6 @@ def test_a_hold_whose_pads_all_lose_the_object_searches_again_at_once() -> None:
     assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
 
 
-@pytest.mark.parametrize("index", [9, 12])
-def test_fingers_jammed_on_the_object_beside_their_pads_look_either_side(index: int) -> None:
-    """The SDH2 in PyBullet on the preset's steel weight: a close 11 mm off the pinch line
-    stopped both fingers on the weight, 35 mm apart, with their 18 mm pads beside it
-    feeling nothing; the sliding grasp backed off for 4 s while they stood there, and the
-    search went on 4 cm above the table (each failed at deaccd7). Stopped as far apart as
-    the weight is wide, the fingers look 1.35 cm to one side, then the other."""
-    [record] = preset_trials((index,), **APPROACH_ERROR, arm="left", engine="pybullet", object="weight")
-    assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
-
-
 def test_a_regrasp_whose_fingertips_push_the_object_on_looks_further_that_way() -> None:
     """The SDH2 on the preset's mug in PyBullet, trial 7: the pinch held the mug by its
     handle, its weight weighed 1.7 cm off the pinch line; set down and grasped again 1.7 cm

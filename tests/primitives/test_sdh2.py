@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 
 from atd.model import load_task
+from atd.sim import load_description
 from factories.registry import create
 from tests.primitives.conftest import EXAMPLES, run_example
 from translator import translate
@@ -60,4 +61,33 @@ def test_a_hold_that_loses_one_pad_corrects_towards_the_other(engine: str, index
 
     [record] = preset_trials((index,), robot="tombatossals", arm="left", engine=engine, grasp="robust",
                              object="stapler", perturbation="approach")
+    assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
+
+
+def test_an_sdh2_fingertip_feels_whatever_its_inner_face_touches_across_its_width() -> None:
+    """An 18 mm pad on the 22 mm fingertip left a bare 2 mm strip each side: the preset's mug,
+    speaker and ball trials (PyBullet, the approach error) met it on bodies standing off the
+    pinch line, and the pinch read "nothing between the fingers" while it pushed them out
+    (docs/robust-grasp.md, "The SDH2's empty closes in PyBullet")."""
+    description = load_description("tombatossals", "left")
+    links = {link.name: link for link in description.links}
+    for pad in description.hand.pads:
+        [face] = [shape for shape in links[pad.link].shapes if shape.kind == "box"]
+        # the pad's normal is its link's x, its y the fingertip's width (the link's y)
+        assert pad.half_size[1] >= face.size[1], (pad.name, pad.half_size[1], face.size[1])
+
+
+@pytest.mark.parametrize("index", [9, 12])
+def test_a_pinch_on_its_pads_side_edges_alone_closes_again_across(index: int) -> None:
+    """The preset's steel weight in PyBullet with the approach error: both pads, as wide as
+    the fingertip, pressed the weight with their outermost taxel row alone, on the same side
+    of the pinch line, on its flank beside them; the squeeze pushed it out sideways and in
+    trial 12 it shot out of the fingers as the lift began (failed at 9b807eb, the wide pads
+    without this correction; docs/robust-grasp.md, "Pinched by the pads' side edges"). With
+    18 mm pads both trials jammed there unfelt (each failed at deaccd7, until the nudge).
+    The pinch closes again across, where the pads pressed, and lifts it."""
+    from tests.primitives.conftest import preset_trials
+
+    [record] = preset_trials((index,), robot="tombatossals", arm="left", engine="pybullet", grasp="robust",
+                             object="weight", perturbation="approach")
     assert record.judged_succeeded and record.task_succeeded, (record.judge_reason, record.summary)
