@@ -641,6 +641,7 @@ _TACTILE_PARAMS = {
     "for_time": _FOR,
 }
 
+CREEP_WATCH = 6.0  # s a grip that may creep out is watched before it counts as held: three times a transport's 2 s hold
 SLIP_DISTANCE = 0.001  # m a pad's centre of pressure may move and count as still: a contact crossing into the next taxel (3.3-4.8 mm) moved it 1.5-1.7 mm
 
 _CONDITIONS = (
@@ -707,7 +708,7 @@ _CONDITIONS = (
             "distance": _p(NUM, "how far a pad's centre of pressure may move over the arm's hold and count as still "
                            "(ours)", SLIP_DISTANCE, unit="m"),
             "watch": _p(NUM, "how long a grip whose contacts moved is held before it counts as stable: three times a "
-                        "transport's 2 s hold (ours)", 6.0, unit="s"),
+                        "transport's 2 s hold (ours)", CREEP_WATCH, unit="s"),
         },
     ),
     ConditionSpec(

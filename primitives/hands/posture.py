@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from atd.model.controllers import CREEP_WATCH
 from atd.model.vocabulary import HandShape as Shape
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
 from primitives.blackboard import STEEP_PINCH
@@ -17,7 +18,7 @@ REACHED = 0.02  # of a DOF's range: close enough to the goal
 STALL_TIME = 1.0  # s stopped short of the goal: something blocks the fingers
 STILL_SPEED = 0.05  # of a DOF's speed limit: a finger slower than this on average has stopped
 LOADED = 0.05  # of a DOF's effort limit, in the closing direction: the finger presses on something
-STEEP_WATCH = 6.0  # s a steep pinch is held before the hand says it holds: three times a transport's 2 s hold
+STEEP_WATCH = CREEP_WATCH  # s a steep pinch is held before the hand says it holds
 
 
 def position_command(values: np.ndarray) -> ControlData:
