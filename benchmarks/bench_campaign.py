@@ -5,7 +5,7 @@ resetting the robot and scene, measured in one run.
 The campaign is tests/data/campaign/small.toml (the Melfa lifting the example cylinder in
 MuJoCo under a small approach error) with --trials N. One worker runs in this process;
 each pool starts its worker processes inside the timed part, as `atd campaign run` does
-(forked from a server that imports the trial code once per process: the first pool run
+(forked from a server that imports the trial code and MuJoCo once per process: the first pool run
 pays for that server, as one `atd campaign run` does). Each is run --repeat times, in turn,
 and the fastest of each counts, as in the other benchmarks: on a shared VM one run's ratio
 ranged from 1.70x to 2.36x within four minutes, the host's noise and not the pool's.

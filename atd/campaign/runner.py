@@ -34,6 +34,8 @@ HANG_GRACE = 120.0
 RAY_AHEAD = 10_000
 #: Plans a local worker holds at once: the one it runs and the next (see `_Pool`).
 BATCH = 2
+#: What the forkserver imports before it forks a worker (multiprocessing skips it silently if it fails).
+WORKER_PRELOAD = "atd.campaign.preload"
 
 
 def run_local(plans: Iterable[TrialPlan], workers: int, sink: Sink) -> None:
@@ -131,12 +133,13 @@ def _work(conn: Connection) -> None:
 
 
 def _worker_context() -> mp.context.BaseContext:
-    """Workers forked from a server that has imported the trial code once, and no engine:
-    a plain fork would copy whatever engines and threads the caller holds."""
+    """Workers forked from a server that has loaded the trial code and MuJoCo once
+    (WORKER_PRELOAD), and built no engine: a plain fork would copy whatever engines and
+    threads the caller holds."""
     if "forkserver" not in mp.get_all_start_methods():
         return mp.get_context("spawn")
     context = mp.get_context("forkserver")
-    context.set_forkserver_preload(["atd.campaign.trial"])
+    context.set_forkserver_preload([WORKER_PRELOAD])
     return context
 
 

@@ -153,6 +153,13 @@ _ENV = jinja2.Environment(
 )
 
 
+def compile_templates() -> None:
+    """Compile every model template now (jinja2 keeps them): a process that forks workers does
+    it once for all of them, where each would otherwise do it on its first trial."""
+    for name in _ENV.list_templates():
+        _ENV.get_template(name)
+
+
 @dataclass
 class MeshView:
     """One mesh geom of a body and the asset it draws on."""

@@ -20,6 +20,7 @@ from tests.conftest import REPO
     ("bench_video.py", ("--repeat", "1", "--size", "320x240"), "ratio, wall"),
     ("bench_perception.py", ("--engine", "mujoco", "--methods", "vision"), "vision: corner"),
     ("bench_slide.py", ("--runs", "1", "--arms", "baxter:right"), "false successes 0"),
+    ("bench_state_entry.py", ("--rounds", "1"), "ratio, 10,000 states over 500"),
     ("count_tick.py", ("--robot", "melfa"), "melfa/main: 3845 ticks, succeeded"),
 ])
 def test_a_simulation_benchmark_prints_its_table(script: str, args: tuple[str, ...], row: str) -> None:

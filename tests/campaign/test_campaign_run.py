@@ -275,6 +275,25 @@ def test_workers_that_cannot_start_stop_the_campaign_with_a_message(tmp_path: Pa
     assert "stopped: a worker process could not start (exit code 1)" in result.stdout, result.stderr
 
 
+def test_a_pool_worker_loads_no_engine_and_compiles_no_model_on_its_first_trial() -> None:
+    # A worker is forked from a server that has imported WORKER_PRELOAD: building its first
+    # trial then imports no engine and compiles no model template (each worker did both, 0.54 G
+    # instructions of its first trial; docs/campaigns.md). Counted in a fresh Python.
+    script = ("import importlib, sys\nfrom pathlib import Path\nimport jinja2\n"
+              "from atd.campaign.runner import WORKER_PRELOAD\nimportlib.import_module(WORKER_PRELOAD)\n"
+              "from atd.campaign.cells import plans\nfrom atd.campaign.record import TrialRecord\n"
+              "from atd.campaign.spec import load_spec\nfrom atd.campaign.trial import trial_run\n"
+              "compiled = []\ncompile_ = jinja2.Environment.compile\n"
+              "jinja2.Environment.compile = lambda *a, **k: compiled.append(1) or compile_(*a, **k)\n"
+              f"plan = next(iter(plans(load_spec(Path({str(DATA / 'small.toml')!r}))[0])))\n"
+              "before = set(sys.modules)\n"
+              "trial_run(plan, TrialRecord(cell=plan.cell, index=plan.index, seed=plan.seed))\n"
+              "print(len(compiled), sorted(m for m in set(sys.modules) - before if m.startswith(('mujoco', 'OpenGL', 'atd.sim'))))\n")
+    result = subprocess.run([sys.executable, "-"], input=script, capture_output=True, text=True, timeout=120)
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.split("\n")[0] == "0 []"
+
+
 def test_the_trials_the_judge_fails_are_recorded_for_atd_report(tmp_path: Path) -> None:
     folder = tmp_path / "failed"
     folder.mkdir()
