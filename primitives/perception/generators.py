@@ -106,31 +106,35 @@ def principal_axis(top: np.ndarray, container: ContainerBelief) -> tuple[np.ndar
     return axes[:, 1], bool(spread[1] >= ELONGATED**2 * max(spread[0], 1e-12))
 
 
-def long_side(top: np.ndarray, container: ContainerBelief) -> float:
+def long_side(top: np.ndarray, container: ContainerBelief, halved: bool = False) -> float:
     """The yaw (rad, from the container's x, within a quarter turn of it) of the long axis of
     an object's top (its points, world), so that jaws closing along the hand's y close across
-    its narrow side; 0 for a top with no clear long axis."""
+    its narrow side; 0 for a top with no clear long axis, unless it is `halved` (split across
+    that axis by `part_to_aim_at`, clear or not)."""
     (x, y), clear = principal_axis(top, container)
-    if not clear:
+    if not clear and not halved:
         return 0.0
     yaw = float(np.arctan2(y, x))
     return float((yaw + np.pi / 2) % np.pi - np.pi / 2)
 
 
-def jaw_yaw(top: np.ndarray, container: ContainerBelief, extent: tuple[float, float]) -> float:
+def jaw_yaw(top: np.ndarray, container: ContainerBelief, extent: tuple[float, float],
+            half: np.ndarray | None = None) -> float:
     """The yaw (see `approach_pose`) for jaws closing along the hand's y over an object's top
-    (its points, world): of the two ways along and across its long side, one whose jaws the
-    walls leave room to open over its middle (pushed less than WALL_PUSH off it along the
-    closing axis), then the one that closes across the narrower width."""
-    long = long_side(top, container)
-    centre = np.array([*top[:, :2].mean(axis=0), container.rim])
+    (its points, world), or over the `half` of it aimed at: of the two ways along and across its
+    long side, one whose jaws the walls leave room to open over the middle aimed at (pushed less
+    than WALL_PUSH off it along the closing axis), then the one that closes across the narrower
+    width; over a half, across the axis it was split along: along that axis lies the other half,
+    the rest of one object or a neighbour touching it, and a jaw closing that way lands on it."""
+    long = long_side(top, container, half is not None)
+    centre = np.array([*(top if half is None else half)[:, :2].mean(axis=0), container.rim])
 
     def cost(yaw: float) -> tuple[bool, float]:
         pose = approach_pose(container, centre, 0.0, 0.0, yaw)
         closing = pose[:3, 1]
         pushed = abs(float((clear_of_walls([container], pose, extent)[:3, 3] - pose[:3, 3]) @ closing))
         width = float(np.ptp(top[:, :2] @ closing[:2]))
-        return pushed > WALL_PUSH, width
+        return pushed > WALL_PUSH, 0.0 if half is not None and yaw == long else width
 
     return min((long, (long + np.pi) % np.pi - np.pi / 2), key=cost)
 
@@ -171,7 +175,7 @@ def vision(image: DepthImage, container: ContainerBelief, rng: np.random.Generat
     were aimed at least often: an object still there after a round aimed at it was missed, and
     the next round tries another first; over the middle of its top, or of the part of it that
     the earlier rounds' misses leave (`part_to_aim_at`). Turned for the jaws to close across
-    its narrow side (that part's, where it has one) where the walls leave them room
+    its narrow side (across the split, over a part) where the walls leave them room
     (`jaw_yaw`); None when it shows none."""
     clusters = objects_seen(image, container, settings)
     if not clusters:
@@ -179,9 +183,9 @@ def vision(image: DepthImage, container: ContainerBelief, rng: np.random.Generat
     counts = [len(aimed_at(cluster, aimed)) for cluster in clusters]
     least = [cluster for cluster, count in zip(clusters, counts) if count == min(counts)]
     chosen = least[int(rng.integers(len(least)))]
-    part = part_to_aim_at(near_top(chosen), container, aimed_at(chosen, aimed))
+    top = near_top(chosen)
+    part = part_to_aim_at(top, container, aimed_at(chosen, aimed))
     point = top_centre(part)
     pose = approach_pose(container, point, approaching.grasp_reach, approaching.height,
-                         jaw_yaw(part if principal_axis(part, container)[1] else near_top(chosen), container,
-                                 settings.grasp_extent))
+                         jaw_yaw(top, container, settings.grasp_extent, part if len(part) < len(top) else None))
     return Approach(pose, point, "vision", len(clusters), float(point[2]))

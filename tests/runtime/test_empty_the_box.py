@@ -54,6 +54,14 @@ def test_a_ball_in_a_corner_that_no_jaw_fits_beside_is_rolled_off_both_walls():
     assert inside_x - x > 0.065 and inside_y - y > 0.065
 
 
+def test_a_grasp_over_half_of_a_standing_speakers_top_holds_it():
+    """A second look at an object the first aimed at (as after a miss) aims at a half of its
+    top: the jaws close across the split, the half's offset along the pads, and hold the 5 x 5
+    cm speaker (closing along the split, a jaw came down on its top: docs/empty-the-box.md)."""
+    result = run(BOX_DATA / "half_grasp.xml", robot="melfa", world=BOX_DATA / "speaker_standing.toml")
+    assert result.end_state == "held", result.summary
+
+
 def test_a_random_blind_round_on_an_empty_spot_rises_out_at_once_and_costs_under_17_s():
     """Random blind needs many rounds, most of them on a spot with nothing there, so a round's
     simulated time decides whether it empties the box in its budget: the jaws that closed on
