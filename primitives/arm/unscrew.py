@@ -198,7 +198,7 @@ class UnscrewArm(Controller):
     def _release(self, readings: Readings, dt: float) -> np.ndarray:
         """Still while the hand opens; it clears `release` once open."""
         if not self.ctx.blackboard.release:
-            self.wrench.start(readings)  # the hand open: what the return meets from here is a contact
+            self.wrench.start(readings, settle=False)  # the hand open and still: what the return meets is contact
             self.phase = Phase.RETURN
         return self._toward(readings, self.still, RETURN_SPEED)
 
