@@ -204,10 +204,14 @@ class UnscrewArm(Controller):
 
     def _return(self, readings: Readings, dt: float) -> np.ndarray:
         """Back to the start pose (the twist undone), then pinch again. A gripper's wrist
-        pushed back along the approach on the way is an open jaw on the cap's top (the pull
-        drew the jaws up the cap, the untwist swung one over it): off the top and round."""
+        pushed along the approach while still over SEAT_SHORT above the start pose is an
+        open jaw on the cap's top (the pull drew the jaws up the cap, the untwist swung one
+        over it): off the top and round. Lower, the jaws are beside the cap: a jaw the
+        untwist drags along its side loads the wrist as much (33-35 N on the Baxter)."""
         start = self.start_pose
-        if self.room > 0.0 and abs(float(self.wrench.value[:3] @ self.direction)) >= self.threshold:
+        above = float((start.position - readings.tcp[:3, 3]) @ (start.rotation @ self.direction))
+        pushed = abs(float(self.wrench.value[:3] @ self.direction))
+        if self.room > 0.0 and above > SEAT_SHORT and pushed >= self.threshold:
             self._off_the_top(readings)
             return self._toward(readings, self.still, RETURN_SPEED)
         _, left = orientation_twist(start.rotation, readings.tcp[:3, :3])
