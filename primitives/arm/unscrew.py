@@ -198,12 +198,22 @@ class UnscrewArm(Controller):
     def _release(self, readings: Readings, dt: float) -> np.ndarray:
         """Still while the hand opens; it clears `release` once open."""
         if not self.ctx.blackboard.release:
+            self.wrench.start(readings, settle=False)  # the hand open and still: what the return meets is contact
             self.phase = Phase.RETURN
         return self._toward(readings, self.still, RETURN_SPEED)
 
     def _return(self, readings: Readings, dt: float) -> np.ndarray:
-        """Back to the start pose (the twist undone), then pinch again."""
+        """Back to the start pose (the twist undone), then pinch again. A gripper's wrist
+        pushed along the approach while still over SEAT_SHORT above the start pose is an
+        open jaw on the cap's top (the pull drew the jaws up the cap, the untwist swung one
+        over it): off the top and round. Lower, the jaws are beside the cap: a jaw the
+        untwist drags along its side loads the wrist as much (33-35 N on the Baxter)."""
         start = self.start_pose
+        above = float((start.position - readings.tcp[:3, 3]) @ (start.rotation @ self.direction))
+        pushed = abs(float(self.wrench.value[:3] @ self.direction))
+        if self.room > 0.0 and above > SEAT_SHORT and pushed >= self.threshold:
+            self._off_the_top(readings)
+            return self._toward(readings, self.still, RETURN_SPEED)
         _, left = orientation_twist(start.rotation, readings.tcp[:3, :3])
         if norm(start.position - readings.tcp[:3, 3]) < ARRIVED and left < ORIENTATION_TOLERANCE:
             self.phase = Phase.PINCH
@@ -286,6 +296,19 @@ class UnscrewArm(Controller):
         up = here + (min(0.0, float((self.start_pose.position - here) @ along)) - SEAT_RISE) * along
         seating.route, seating.goal, seating.watched = [up, up + goal - seating.goal], goal, False
         self.tally.seated += 1
+        self._hold_here(readings, Phase.ACROSS)
+
+    def _off_the_top(self, readings: Readings) -> None:
+        """The return met the cap's top: up SEAT_RISE off it, across to over the start pose
+        (the twist undone there, clear of the cap), and down to it as the seat goes down,
+        watched, the jaw grasp's search about it if a jaw meets the cap again; that pinch
+        is the next one."""
+        start = self.start_pose
+        along = start.rotation @ self.direction
+        up = readings.tcp[:3, 3] - SEAT_RISE * along
+        over = start.position + float((up - start.position) @ along) * along
+        self.seating = Seating(start.position.copy(), start.position.copy(), [up, over])
+        self.tally.pinches += 1
         self._hold_here(readings, Phase.ACROSS)
 
     def _pinch_from(self, readings: Readings) -> None:

@@ -24,6 +24,7 @@ from primitives.robot import Readings
 RADIUS = 0.03  # m: the cap's
 TOP = 0.10  # m: the cap's top, world z
 PUSH = 30.0  # N the wrist reads while the arm holds a jaw on the cap (the Baxter's read 20-44 N there)
+ON_TOP = 170.0  # N the wrist reads while the arm presses an open jaw down on the cap's top (the Baxter's 155-200 N)
 BAND = 0.009  # m under the cap's top where a jaw beside it stopped (Melfa, PyBullet: 9 mm, 3 mm short of its depth)
 DOWN = np.diag([1.0, -1.0, -1.0])  # the hand points down; its y, the jaws' line, is the world's -y
 
@@ -120,3 +121,39 @@ def test_a_motor_grip_with_one_jaw_pressing_the_cap_from_outside_is_no_pinch_unt
         world.time += dt
     assert arm.phase is Phase.TWIST and arm.tally.twists == 1, arm.phase
     assert abs(world.tcp[1, 3]) < 0.0006, world.tcp[:3, 3]  # both jaws on the cap
+
+
+def test_a_return_whose_open_jaw_meets_the_caps_top_gets_off_it_and_round_to_the_start_pose() -> None:
+    """The Baxter's PyBullet `hardware_failure` trials (left arm, Table 3.5, seed 90413,
+    docs/unscrew-campaign.md): a pull drew the jaws 11 mm up the cap, the untwist back to
+    the start pose swung the open left jaw over the cap's top, and the return, which watched
+    no force, held it pressed there at 155-200 N for 20 s until the arm's fault fired. Here
+    the twist stalls (the script does not turn the hand), the jaws end 18 mm up and 10 mm
+    across, one tip over the cap's top, and the hand opens. Now the return gets off the top,
+    across over the start pose and down round the cap, and pinches there."""
+    world = ScriptedJaws("baxter", "left", (0.0, 0.0, TOP - 0.012 + create("baxter", "left").robot.hand_reach("open")),
+                         gap=0.0676)
+    arm, dt = world.arm, world.info.control_period
+    start = world.tcp[:3, 3].copy()
+    arm.start(world.read())
+    world.ctx.blackboard.cap = CapGrip(pinched=True, holding=True)
+    while world.time < 10.0 and arm.phase is not Phase.RELEASE:  # twists, stalls, asks the hand to open
+        arm.update(world.read(), dt)
+        world.time += dt
+    assert arm.phase is Phase.RELEASE, arm.phase
+    world.tcp[:3, 3] += (0.0, 0.010, 0.018)  # drawn up and across: the -y jaw's tip 6 mm over the cap's top
+    board = world.ctx.blackboard
+    board.release, board.cap = False, CapGrip()  # the hand has opened; a fresh grip waits for the arm's contact
+    readings, pressed = world.read(), 0.0
+    while world.time < 30.0 and arm.phase is not Phase.PINCH and pressed < 1.0:
+        v = arm.update(readings, dt).arm.twist[:3]
+        moved = world.tcp[:3, 3] + v * dt
+        blocked = any(_in_cap(tip, skirt=0.0) for tip in world.tips(moved))
+        world.force = -ON_TOP * v / max(float(np.linalg.norm(v)), 1e-9) if blocked else np.zeros(3)
+        pressed = pressed + dt if blocked else 0.0
+        if not blocked:
+            world.tcp[:3, 3] = moved
+        world.time += dt
+        readings = world.read()
+    assert arm.phase is Phase.PINCH and arm.tally.pinches == 2, (arm.phase, pressed, world.tcp[:3, 3])
+    assert np.linalg.norm(world.tcp[:3, 3] - start) < 0.002, world.tcp[:3, 3]  # round the cap where it pinched
