@@ -147,7 +147,7 @@ class RobustGraspHand(ForceGrasp):
         squeeze = float(sum(readings.pad_force[self.pad_of[f]] for f in self.fingers))
         near = abs(offset) <= OFF_CENTRE and not self.held.short
         carried = abs(offset) <= FAR_OFF and abs(torque) <= (self.ctx.object.friction or 0.0) * squeeze * RIM_CONTACT
-        again = self._off_again(offset)
+        again = not (near or carried) and self._off_again(offset)
         self.corrections.weighed_off = offset
         if near or carried or again:
             self.phase = Phase.HOLD
