@@ -222,11 +222,14 @@ class RobustGraspApproach(Controller):
         probed = shifting.probing and self.contact.force >= self.force_threshold
         blocked = readings.time - shifting.started > SHIFT_TIME
         if (made or blocked) and shifting.onward(readings.time):
+            shifting.probing = shifting.hop and not shifting.route  # coming down: a contact there is the object
+            self.contact.start(readings)
             return
         if made or probed or blocked:
             board.shift = None
-            if shifting.hop:  # over the object: come down on it as the first approach did
+            if shifting.hop and probed:  # came down on the object: approach it as the first approach did
                 self.phase, self.still = Phase.SETTLE, 0.0
+                board.contact = False
             elif board.preshaped:
                 self._begin_slide(readings)
             else:
@@ -246,13 +249,10 @@ class RobustGraspApproach(Controller):
         across = shift - float(shift @ self.direction) * self.direction
         if self._rolls() and norm(across) >= SHIFT_TOLERANCE:
             # The open fingers swept across at grasp height push a ball ahead of them,
-            # and it rolls on out of reach: rise clear of its top, move across, and
-            # approach again from there; the hand waits for that approach's contact.
-            back = -(rotation @ self.direction)
-            up = position + (2.0 * self.ctx.object.half_height + self.clearance) * back
-            above = goal + 2.0 * self.ctx.object.half_height * back  # fingertips at its top: approach from there
-            self.shifting = Shifting(up, False, readings.time, [up + goal - position, above], hop=True)
-            self.ctx.blackboard.contact = False
+            # and it rolls on out of reach: rise clear of its top, move across, come
+            # down; a contact on the way down is the ball, approached as at first.
+            up = position - (2.0 * self.ctx.object.half_height + self.clearance) * (rotation @ self.direction)
+            self.shifting = Shifting(up, False, readings.time, [up + goal - position, goal], hop=True)
         self.phase = Phase.SHIFT
         self.contact.start(readings)
 
