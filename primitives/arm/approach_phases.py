@@ -62,15 +62,6 @@ class Shifting:
     goal: np.ndarray  # world TCP position
     probing: bool  # along the approach: looking for the object, so a contact ends it
     started: float  # s: when the move began
-    route: list[np.ndarray] = field(default_factory=list)  # the goals after this one
-    hop: bool = False  # up and across over a rolling object, to approach it again from above
-
-    def onward(self, time: float) -> bool:
-        """On to the next goal of the route; false when the route is done."""
-        if not self.route:
-            return False
-        self.goal, self.started = self.route.pop(0), time
-        return True
 
 
 class NaivePhase(Enum):

@@ -7,7 +7,6 @@ from __future__ import annotations
 import numpy as np
 
 from atd.model.frames import axis_rotation
-from atd.model.vocabulary import ObjectClass
 from primitives.arm.approach_phases import SETTLE, Approaching, Holding, Phase, Shifting
 from primitives.arm.motion import (GAIN, ORIENTATION_TOLERANCE, SUPPORT_BAND, WORLD_DOWN, clamp_norm, norm,
                                    orientation_twist, top_down, unit, what_stops)
@@ -220,17 +219,9 @@ class RobustGraspApproach(Controller):
         shifting, board = self.shifting, self.ctx.blackboard
         made = np.linalg.norm(shifting.goal - readings.tcp[:3, 3]) < SHIFT_TOLERANCE and angle < ORIENTATION_TOLERANCE
         probed = shifting.probing and self.contact.force >= self.force_threshold
-        blocked = readings.time - shifting.started > SHIFT_TIME
-        if (made or blocked) and shifting.onward(readings.time):
-            shifting.probing = shifting.hop and not shifting.route  # coming down: a contact there is the object
-            self.contact.start(readings)
-            return
-        if made or probed or blocked:
+        if made or probed or readings.time - shifting.started > SHIFT_TIME:
             board.shift = None
-            if shifting.hop and probed:  # came down on the object: approach it as the first approach did
-                self.phase, self.still = Phase.SETTLE, 0.0
-                board.contact = False
-            elif board.preshaped:
+            if board.preshaped:
                 self._begin_slide(readings)
             else:
                 self.phase, self.still = Phase.SETTLE, 0.0
@@ -246,19 +237,8 @@ class RobustGraspApproach(Controller):
         # sideways one drags the fingertips over the surface, which is no reason to stop.
         goal = self.walls.inside(self.rotation, position + rotation @ shift)
         self.shifting = Shifting(goal, float(shift @ self.direction) > 0.0, readings.time)
-        across = shift - float(shift @ self.direction) * self.direction
-        if self._rolls() and norm(across) >= SHIFT_TOLERANCE:
-            # The open fingers swept across at grasp height push a ball ahead of them,
-            # and it rolls on out of reach: rise clear of its top, move across, come
-            # down; a contact on the way down is the ball, approached as at first.
-            up = position - (2.0 * self.ctx.object.half_height + self.clearance) * (rotation @ self.direction)
-            self.shifting = Shifting(up, False, readings.time, [up + goal - position, goal], hop=True)
         self.phase = Phase.SHIFT
         self.contact.start(readings)
-
-    def _rolls(self) -> bool:
-        """The task believes the object round (a ball): the least push rolls it away."""
-        return self.ctx.object is not None and self.ctx.object.object_class is ObjectClass.SPHERE
 
     def _over_contact(self, readings: Readings, wrench: np.ndarray) -> bool:
         """A first contact above the support and off the grasp centre across the hand is a

@@ -97,10 +97,7 @@ class RobustGraspHand(ForceGrasp):
     def _shift(self, readings: Readings, dt: float) -> None:
         if self.ctx.blackboard.shift is None:  # the arm has made the move
             self.corrections.retries += 1
-            if self.ctx.blackboard.contact:
-                self._begin_closing()
-            else:  # it hopped over the object: close once its approach meets something
-                self.phase = Phase.WAIT
+            self._begin_closing()
 
     def _hold(self, readings: Readings, dt: float) -> None:
         """Force adaptation until the squeeze settles at the grasp force (within 1 - HELD,
