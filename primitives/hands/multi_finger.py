@@ -47,6 +47,7 @@ class FingerGrasp(Controller):
         self.touch = float(self.params["contact_threshold"])
         self.range = hand.upper - hand.lower
         self.rate = CLOSING_SPEED * hand.velocity_limit
+        self.slowed = 1.0  # of `rate` the grasping fingers close at
         self.stillness = Stillness(hand.velocity_limit, STALL_TIME)
         # A finger is known by its pad; a DOF belongs to the one finger whose pad it moves
         # (a spread that moves two fingers, and a palm pad no DOF moves, belong to none).
@@ -128,7 +129,7 @@ class FingerGrasp(Controller):
         q = readings.hand_q
         waiting = self.moving & ~self._on_object(readings) if self.ctx.blackboard.pressing else np.zeros_like(self.moving)
         closing = self.moving & ~waiting
-        step = self.rate * dt
+        step = self.rate * self.slowed * dt
         self.reference[closing] += np.clip(hand.closed[closing] - self.reference[closing], -step[closing], step[closing])
         self.reference[waiting] = q[waiting]
         lead = LEAD * self.range  # how far the reference may run ahead of a blocked finger

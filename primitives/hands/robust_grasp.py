@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from atd.model.frames import GRAVITY
+from atd.model.vocabulary import ObjectClass
 from primitives.arm.motion import SUPPORT_BAND
 from primitives.base import Context, Status
 from primitives.blackboard import EMPTY_HAND, STEEP_PINCH, Shift
@@ -41,6 +42,7 @@ WEIGH_TIME = 0.2  # s it feels it there: the swing of the lift's stop dies down 
 OFF_CENTRE = 0.015  # m the weight may hang off the pinch line: further, it turned out of the hand
 RIM_CONTACT = 0.0015  # m over which a pad's contact on a curved face carries friction against the turn
 FAR_OFF = 0.03  # m beyond which friction is not trusted: holds lasted to 2.9 cm off, one at 3.4 cm fell
+ROLLING_CLOSE = 0.5  # of the closing speed, on a ball: a finger's edge meeting it at full speed kicks it away
 GAP_CHECK = 0.05  # s between looks at the pads' gap: a look (forward kinematics) costs 0.3-0.5 ms
 
 
@@ -62,6 +64,8 @@ class RobustGraspHand(ForceGrasp):
         self.ctx.memory.pop(STEEP_PINCH, None)
         self.corrections = Corrections()
         self.closing = Closing()
+        thing = self.ctx.object
+        self.slowed = ROLLING_CLOSE if thing is not None and thing.object_class is ObjectClass.SPHERE else 1.0
         if self.fingers:
             hand = self.ctx.info.hand
             self.gauge = ExtensionGauge(hand, [self.pad_of[f] for f in self.fingers], self.pre)
