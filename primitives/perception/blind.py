@@ -12,6 +12,11 @@ comes over the object's near part and goes down onto it (landing on the floor, t
 keeps the sweep's estimate, its top unknown). On a top, found either way, the hand comes down
 beside it along the container's axes to feel how far it reaches, and the approach is moved
 towards where it goes on and turned so the jaws close across a top long along the box's y;
+a top the hand landed on as near a wall as the walls let it come down, and that ends on the
+other side, lies against that wall, and the approach is moved towards it as far as the
+hand's tip may come down there (its wider part over the rim): a grasp of the open hand is
+kept off the wall by its own reach anyway, and what presses on the top from there to free it
+(examples/free_one.xml) presses on its middle, not on its edge towards the box's middle;
 the approach says the top's height (`Approach.top`), so the grasp knows a jaw landing there
 for a jaw on the object rather than close above it.
 A look after another starts where that one's approach lay: landing on an object there, the
@@ -64,6 +69,7 @@ WALL_CLEARANCE = 0.005
 # feel chose the wrong one of the box's axes), then the diagonals (a wood block or a spray can
 # lying 32-45 degrees off the box's axes is longer than the Melfa's jaws open along either)
 TURNS = (0.0, math.pi / 2, math.pi / 4, -math.pi / 4)
+AT_WALL = 0.005  # m from the nearest a wall lets the hand come down (the sweep's) within which it landed held off by it
 DRAWS = 32  # random probe points drawn for one a hand's reach from a spot given up (else the farthest is taken)
 TRIED = "blind_exploration_tried"  # in Context.memory: the last approach given (`Tried`)
 
@@ -138,6 +144,7 @@ class BlindExploration(Perceiver):
         self.lane_spacing = float(p["lane_spacing"])
         self.floor_band = float(p["floor_band"])
         self.tip = np.array(p["sweep_extent"], float)
+        self.tip_length = float(p["tip_length"])
         inner = self.container.inner
         if np.any(inner[:2] <= 2 * self.margin):
             raise ValueError(f"a hand reaching {self.margin:g} m sideways cannot sweep a container "
@@ -305,16 +312,26 @@ class BlindExploration(Perceiver):
 
     def _conclude(self) -> None:
         """The approach over what was felt: moved SIDE_STEP / 2 towards a side the top reaches
-        where the other side's does not, and turned to close the jaws (along the hand's y)
-        across the container's x where the top is long along its y and not along its x
-        (`_long`), else across its y."""
+        where the other side's does not, or towards a wall the hand landed as near as the walls
+        let it where the other side's does not reach (`_to_wall`), and turned to close the jaws
+        (along the hand's y) across the container's x where the top is long along its y and not
+        along its x (`_long`), else across its y."""
         finding = self.result
         local = self.container.to_local(finding.point[None])[0]
         reaches = finding.reaches
+        walled = []
+        _, high = self.container.footprint(self.room)
         for axis in (0, 1):
             plus, minus = reaches.get((axis, 1)), reaches.get((axis, -1))
             if plus is not None and minus is not None and plus != minus:
                 local[axis] += (1 if plus else -1) * SIDE_STEP / 2
+            for sign in (1, -1):
+                if sign * local[axis] >= high[axis] - AT_WALL and reaches.get((axis, -sign)) is False:
+                    moved = self._to_wall(float(local[axis]), axis, sign, float(finding.point[2]))
+                    if moved != local[axis]:
+                        walled.append(f"{abs(moved - local[axis]) * 100:.1f} cm towards the "
+                                      f"{'+' if sign > 0 else '-'}{'xy'[axis]} wall")
+                    local[axis] = moved
         along = [_long(reaches.get((axis, 1)), reaches.get((axis, -1))) for axis in (0, 1)]
         yaw = math.pi / 2 if along[1] and not along[0] else 0.0
         point = self.container.to_world(local[None])[0]
@@ -326,10 +343,23 @@ class BlindExploration(Perceiver):
         felt = ", ".join(f"{'+' if sign > 0 else '-'}{'xy'[axis]} {'yes' if on else 'no'}"
                          for (axis, sign), on in reaches.items())
         how = finding.how + (f"; its top reaches {SIDE_STEP * 100:g} cm out: {felt}" if felt else "")
+        if walled:
+            how += f"; a wall kept the hand off it: moved {', '.join(walled)}"
         if times:
             how += (f"; landed where the last approach lay ({times} in a row): the jaws turned "
                     f"{math.degrees(turn):g} deg")
         self.found(Approach(pose, point, self.method, top=float(point[2]) if finding.on_top else None), "", how)
+
+    def _to_wall(self, at: float, axis: int, sign: int, top: float) -> float:
+        """Where (along the container's `axis`, its own frame) an approach at `at` over a top
+        (world height `top`) lying against the wall on the `sign` side goes: SIDE_STEP towards
+        it, no nearer than the hand's tip keeps WALL_CLEARANCE from it; not at all where the
+        hand's part wider than its tip (`tip_length` above its lowest point) would come below
+        the rim with the tip on that top."""
+        if top + self.tip_length < self.container.rim + WALL_CLEARANCE:
+            return at
+        nearest = float(self.container.inner[axis]) / 2 - float(np.max(self.tip)) - WALL_CLEARANCE
+        return sign * max(sign * at, min(sign * at + SIDE_STEP, nearest))
 
     def _ahead(self, readings: Readings, contact: Contact) -> np.ndarray:
         """Where, at the sweep's height, the hand comes down to feel what the sweep met: its

@@ -16,7 +16,7 @@ from primitives.base import Context, StateView, Status
 from primitives.blackboard import AIMED
 from primitives.perception.clusters import euclidean_clusters
 from primitives.perception.container import ContainerBelief
-from primitives.perception.blind import TRIED, TURNS, Leg, Tried
+from primitives.perception.blind import TRIED, TURNS, Finding, Leg, Tried
 from primitives.perception.generators import Approaching, VisionSettings, random_blind, vision
 from primitives.registry import BuildError, build_condition, build_controller
 from primitives.robot import DepthImage
@@ -299,6 +299,35 @@ def test_blind_exploration_comes_down_elsewhere_once_every_turn_of_the_jaws_was_
         assert np.linalg.norm(_probe_after(times, 0) - OPEN) < 1e-9
     for seed in range(5):
         assert np.linalg.norm(_probe_after(len(TURNS) - 1, seed) - OPEN) >= 0.05
+
+
+def _concluded(point: tuple[float, float, float], reaches: dict, tip_length: float) -> Approach:
+    """The approach a look gives once its hand has felt a top at `point` (world) and whether
+    it `reaches` out each side (as `_sides` leaves them: a side the walls kept it from, absent)."""
+    ctx = Context(info=MELFA, params={}, rng=np.random.default_rng(0))
+    look = build_controller(perceive("blind_exploration", tip_length=tip_length), "arm", ctx)
+    look.start(still((0.18, 0.15, 0.30)))
+    look.result = Finding(np.array(point), "the probe felt it", True, reaches)
+    look._conclude()
+    return ctx.memory["found"]
+
+
+def test_blind_exploration_comes_towards_the_wall_a_top_it_landed_on_lies_against() -> None:
+    """The hand came down as near the +y wall as the sweep keeps it (5.5 cm; a block flush
+    with it has its middle 2.5 cm from it), on a top that ends 3 cm out on the box's side: the
+    approach goes 3 cm towards the wall, where the Melfa's fingers (6 cm under its gripper
+    body, which stays over the rim) fit, so freeing presses on the block's middle; a block
+    lower than the rim by more than the fingers' length, a top that goes on towards the
+    middle, and a top in the open keep the approach where the hand landed. On main the
+    approach stayed 5.5 cm off the wall, on the block's edge towards the box's middle."""
+    edge = 0.24 - 0.055  # the box's +y wall, less the sweep's room
+    ends = {(1, -1): False, (0, 1): False, (0, -1): False}
+    found = _concluded((0.18, edge, FLOOR + 0.05), ends, 0.06)
+    assert found.point[1] == pytest.approx(edge + 0.03) and found.point[0] == pytest.approx(0.18)
+    assert found.pose[1, 3] == pytest.approx(edge + 0.03)
+    assert _concluded((0.18, edge, FLOOR + 0.05), ends, 0.02).point[1] == pytest.approx(edge)  # its body in the wall
+    assert _concluded((0.18, edge, FLOOR + 0.05), {**ends, (1, -1): True}, 0.06).point[1] == pytest.approx(edge)
+    assert _concluded((0.18, edge - 0.02, FLOOR + 0.05), ends, 0.06).point[1] == pytest.approx(edge - 0.02)
 
 
 def test_blind_exploration_lands_on_an_object_under_its_probe_and_knows_its_top() -> None:
