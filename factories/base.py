@@ -328,7 +328,8 @@ class Factory(ABC):
                               container_wall=container.wall, hand_reach=round(reach, 6), hand_radius=round(radius, 6),
                               grasp_reach=round(max(self.robot.hand_reach(p) for p in self.robot.hand.postures), 6),
                               grasp_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)),
-                              sweep_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture, SWEEPING_TIP)))
+                              sweep_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture, SWEEPING_TIP)),
+                              tip_length=round(self.robot.tip_length(posture, SWEEPING_TIP), 6))
         return NodeMapping("perceive", arm, self.controller("hand_shape", shape=posture), notes)
 
     @abstractmethod

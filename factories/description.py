@@ -535,6 +535,24 @@ class RobotDescription:
         x, y = (max(reach(tcp[:3, axis]), reach(-tcp[:3, axis])) for axis in (0, 1))
         return x, y
 
+    def tip_length(self, posture: str | np.ndarray, within: float) -> float:
+        """How far up from the hand's lowest point, pointing down, its links reach sideways no
+        further than its tip (`hand_extent` with `within`) does: how deep below a wall's top the
+        hand may go beside it as near as its tip lets (the Melfa's fingers, under its gripper
+        body); the whole hand's length where it is no wider anywhere."""
+        poses, tcp = self._hand_in(posture)
+        approach = tcp[:3, 2]
+        shapes = [(poses[name], shape) for name in self.hand_links for shape in self.links_by_name[name].shapes]
+        lowest = max(shape.support(pose, approach) for pose, shape in shapes)
+        tip = self.hand_extent(posture, within)
+
+        def wider(pose: np.ndarray, shape: Shape) -> bool:
+            return any(shape.support(pose, sign * tcp[:3, axis]) - sign * float(tcp[:3, 3] @ tcp[:3, axis])
+                       > tip[axis] + 1e-9 for axis in (0, 1) for sign in (1, -1))
+
+        wide = [lowest - shape.support(pose, approach) for pose, shape in shapes if wider(pose, shape)]
+        return min(wide, default=lowest + max(shape.support(pose, -approach) for pose, shape in shapes))
+
     def hand_radius(self, posture: str | np.ndarray) -> float:
         """How far the hand's links reach sideways from the TCP's axis in a posture, the
         furthest along the hand's x and y: what a hand pointing down must keep from a wall it

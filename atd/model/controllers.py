@@ -448,6 +448,11 @@ _ARM_CONTROLLERS = (
                                "point) reaches sideways along its x and its y: what meets an object in a sweep, which "
                                "places the object's near side ahead of the TCP (the robot's own geometry: "
                                "`RobotDescription.hand_extent` within 2 cm)", (0.015, 0.01), unit="m", length=2),
+            "tip_length": _p(NUM, "blind exploration: how far up from the hand's lowest point its links reach "
+                             "sideways no further than its tip (`sweep_extent`): with the tip on a top that far below "
+                             "the rim or less, the approach to a top against a wall comes as near it as the tip lets "
+                             "(the robot's own geometry: `RobotDescription.tip_length`); 0: never nearer than "
+                             "`hand_radius`", 0.0, unit="m"),
             "floor_band": _p(NUM, "blind exploration: a contact of the hand's lowest point within this of the "
                              "floor is the floor (ours)", 0.015, unit="m"),
             "camera": _p(WORD, "vision: the depth camera to look with; unset: the robot's first"),

@@ -12,6 +12,12 @@ comes over the object's near part and goes down onto it (landing on the floor, t
 keeps the sweep's estimate, its top unknown). On a top, found either way, the hand comes down
 beside it along the container's axes to feel how far it reaches, and the approach is moved
 towards where it goes on and turned so the jaws close across a top long along the box's y;
+where the walls keep the hand from coming down beside a top, its tip alone feels there, as
+near the wall as it fits, wherever the hand's wider part stays over the rim; a top that goes
+on towards a wall and not the other way lies against it, and the approach is moved up to
+SIDE_STEP towards it: a grasp of the open hand is kept off the wall by its own reach anyway,
+and what presses on the top to free it (examples/free_one.xml) presses on its middle, not on
+its edge towards the box's middle;
 the approach says the top's height (`Approach.top`), so the grasp knows a jaw landing there
 for a jaw on the object rather than close above it.
 A look after another starts where that one's approach lay: landing on an object there, the
@@ -110,6 +116,7 @@ class Finding:
     how: str
     on_top: bool
     reaches: dict[tuple[int, int], bool] = field(default_factory=dict)
+    by_wall: set[tuple[int, int]] = field(default_factory=set)  # sides felt by the tip alone, nearer a wall
 
 
 @dataclass(frozen=True)
@@ -138,6 +145,7 @@ class BlindExploration(Perceiver):
         self.lane_spacing = float(p["lane_spacing"])
         self.floor_band = float(p["floor_band"])
         self.tip = np.array(p["sweep_extent"], float)
+        self.tip_length = float(p["tip_length"])
         inner = self.container.inner
         if np.any(inner[:2] <= 2 * self.margin):
             raise ValueError(f"a hand reaching {self.margin:g} m sideways cannot sweep a container "
@@ -283,9 +291,9 @@ class BlindExploration(Perceiver):
         """Over the top at `point` (world) and down beside it along each of the container's
         axes, both ways, the hand's tip (`sweep_extent`, the hand turned as it is) reaching to
         SIDE_STEP out and no nearer, where that keeps the hand as far inside the walls as the
-        sweep does; from one side to the next SIDE_RISE over the top."""
+        sweep does, else (`_by_wall`) as near the wall as the tip fits; from one side to the
+        next SIDE_RISE over the top."""
         above = float(point[2]) + self.approaching.reach + SIDE_RISE
-        down = above - SIDE_RISE - SIDE_DEPTH
         low, high = self.container.footprint(self.room)
         centre = self.container.to_local(point[None])[0]
         # how far the tip reaches along each of the container's axes
@@ -295,26 +303,40 @@ class BlindExploration(Perceiver):
             for sign in (1, -1):
                 local = centre.copy()
                 local[axis] += sign * (SIDE_STEP + tip[axis])
+                depth = SIDE_DEPTH
                 if not np.all((local[:2] >= low - 1e-9) & (local[:2] <= high + 1e-9)):
-                    continue  # a side the hand cannot come down at: not felt
+                    depth = self._by_wall(local, centre, axis, sign, float(tip[axis]), float(point[2]))
+                    if depth <= 0.0:
+                        continue  # a side the hand cannot come down at: not felt
+                    self.result.by_wall.add((axis, sign))
                 x, y, _ = self.container.to_world(local[None])[0]
                 legs += [Waypoint(np.array([x, y, above]), Leg.ABOVE),
-                         Waypoint(np.array([x, y, down]), Leg.SIDE, (axis, sign)),
+                         Waypoint(np.array([x, y, above - SIDE_RISE - depth]), Leg.SIDE, (axis, sign)),
                          Waypoint(np.array([x, y, above]), Leg.ABOVE)]
         return legs
 
     def _conclude(self) -> None:
         """The approach over what was felt: moved SIDE_STEP / 2 towards a side the top reaches
-        where the other side's does not, and turned to close the jaws (along the hand's y)
-        across the container's x where the top is long along its y and not along its x
-        (`_long`), else across its y."""
+        where the other side's does not, SIDE_STEP where the hand's tip alone felt that side by
+        a wall (no nearer the wall than the tip fits), and turned to close the jaws (along the
+        hand's y) across the container's x where the top is long along its y and not along its
+        x (`_long`), else across its y."""
         finding = self.result
         local = self.container.to_local(finding.point[None])[0]
         reaches = finding.reaches
+        walled = []
         for axis in (0, 1):
             plus, minus = reaches.get((axis, 1)), reaches.get((axis, -1))
             if plus is not None and minus is not None and plus != minus:
-                local[axis] += (1 if plus else -1) * SIDE_STEP / 2
+                sign = 1 if plus else -1
+                if (axis, sign) in finding.by_wall:  # against the wall: as far towards it as the tip fits
+                    room = self._wall_room(axis, float(np.max(self.tip)))
+                    moved = sign * max(sign * local[axis], min(sign * local[axis] + SIDE_STEP, room))
+                    walled.append(f"{abs(moved - local[axis]) * 100:.1f} cm towards the {'+' if sign > 0 else '-'}"
+                                  f"{'xy'[axis]} wall")
+                    local[axis] = moved
+                else:
+                    local[axis] += sign * SIDE_STEP / 2
         along = [_long(reaches.get((axis, 1)), reaches.get((axis, -1))) for axis in (0, 1)]
         yaw = math.pi / 2 if along[1] and not along[0] else 0.0
         point = self.container.to_world(local[None])[0]
@@ -326,10 +348,29 @@ class BlindExploration(Perceiver):
         felt = ", ".join(f"{'+' if sign > 0 else '-'}{'xy'[axis]} {'yes' if on else 'no'}"
                          for (axis, sign), on in reaches.items())
         how = finding.how + (f"; its top reaches {SIDE_STEP * 100:g} cm out: {felt}" if felt else "")
+        if walled:
+            how += f"; its top goes on towards a wall: moved {', '.join(walled)}"
         if times:
             how += (f"; landed where the last approach lay ({times} in a row): the jaws turned "
                     f"{math.degrees(turn):g} deg")
         self.found(Approach(pose, point, self.method, top=float(point[2]) if finding.on_top else None), "", how)
+
+    def _wall_room(self, axis: int, tip: float) -> float:
+        """How far from the container's middle along its `axis` the TCP may go with the hand's
+        tip, reaching `tip` that way, WALL_CLEARANCE off the wall."""
+        return float(self.container.inner[axis]) / 2 - tip - WALL_CLEARANCE
+
+    def _by_wall(self, local: np.ndarray, centre: np.ndarray, axis: int, sign: int, tip: float, top: float) -> float:
+        """For a side of the top at `centre` (the container's frame, world height `top`) where the
+        walls keep the hand from coming down: moves `local` (the side's TCP) as near the wall as
+        the tip, reaching `tip` along `axis`, fits, and says how far below the top the tip may
+        go down there with the hand's part wider than it (`tip_length` above its lowest point)
+        WALL_CLEARANCE over the rim, at most SIDE_DEPTH; 0 where it cannot feel there (the
+        top too low, or no room beside where it landed)."""
+        local[axis] = sign * self._wall_room(axis, tip)
+        if sign * (local[axis] - centre[axis]) < 2 * tip:
+            return 0.0
+        return max(0.0, min(SIDE_DEPTH, top + self.tip_length - self.container.rim - WALL_CLEARANCE))
 
     def _ahead(self, readings: Readings, contact: Contact) -> np.ndarray:
         """Where, at the sweep's height, the hand comes down to feel what the sweep met: its

@@ -4,6 +4,8 @@ generators know only the box the task believes in and what their sensors say."""
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
@@ -16,7 +18,7 @@ from primitives.base import Context, StateView, Status
 from primitives.blackboard import AIMED
 from primitives.perception.clusters import euclidean_clusters
 from primitives.perception.container import ContainerBelief
-from primitives.perception.blind import TRIED, TURNS, Leg, Tried
+from primitives.perception.blind import TRIED, TURNS, Finding, Leg, Tried
 from primitives.perception.generators import Approaching, VisionSettings, random_blind, vision
 from primitives.registry import BuildError, build_condition, build_controller
 from primitives.robot import DepthImage
@@ -323,6 +325,49 @@ def test_blind_exploration_comes_down_elsewhere_once_every_turn_of_the_jaws_was_
         assert np.linalg.norm(_probe_after(times, 0) - OPEN) < 1e-9
     for seed in range(5):
         assert np.linalg.norm(_probe_after(len(TURNS) - 1, seed) - OPEN) >= 0.05
+
+
+def _feeling(point: tuple[float, float, float], tip_length: float) -> tuple:
+    """A look of the Melfa's closed hand (its fingers 6 cm long under a gripper body 10 x 8 cm)
+    that has landed on a top at `point` (world): the look, and where it feels beside the top."""
+    ctx = Context(info=MELFA, params={}, rng=np.random.default_rng(0))
+    look = build_controller(perceive("blind_exploration", tip_length=tip_length), "arm", ctx)
+    at = still(point)
+    look.start(at)
+    look.result = Finding(np.array(point), "the probe felt it", True)
+    look.explore = SimpleNamespace(rest=np.array(point))
+    return look, ctx, look._sides(at, np.array(point))
+
+
+EDGE = 0.24 - 0.055  # the box's +y wall, less the sweep's room: as near it as the whole hand comes down
+TOP = FLOOR + 0.05
+
+
+def test_blind_exploration_feels_by_a_wall_with_the_tip_of_its_hand_and_comes_towards_a_top_against_it() -> None:
+    """The hand lands on a 5 cm top as near the +y wall as the sweep lets it (5.5 cm off; a
+    block flush with it has its middle 2.5 cm off). Its fingers alone then feel beside the top
+    towards the wall (1 cm deep where the wall's rim leaves the body room), and a top that goes
+    on there and ends 3 cm out the other way lies against the wall: the approach goes 3 cm
+    towards it, where freeing (examples/free_one.xml) presses on the block's middle. A top
+    that ends before the wall keeps the approach where the hand landed (the block already
+    freed); a top lower than the rim by more than the fingers' length is not felt there (the
+    body would meet the rim). On main the side by the wall was not felt, and the approach
+    stayed on the block's edge towards the box's middle."""
+    look, ctx, legs = _feeling((0.18, EDGE, TOP), 0.06)
+    by_wall = [leg for leg in legs if leg.kind is Leg.SIDE and leg.side == (1, 1)]
+    assert len(by_wall) == 1 and look.result.by_wall == {(1, 1)}
+    assert by_wall[0].to[1] == pytest.approx(0.24 - 0.01 - 0.005)  # the fingers 1 cm along y, 5 mm off the wall
+    assert by_wall[0].to[2] == pytest.approx(TOP + MELFA_REACH - 0.015)
+    look.result.reaches = {(1, 1): True, (1, -1): False, (0, 1): False, (0, -1): False}
+    look._conclude()
+    assert ctx.memory["found"].point[1] == pytest.approx(EDGE + 0.03)
+    assert ctx.memory["found"].pose[1, 3] == pytest.approx(EDGE + 0.03)
+    look, ctx, _ = _feeling((0.18, EDGE, TOP), 0.06)
+    look.result.reaches = {(1, 1): False, (1, -1): False, (0, 1): False, (0, -1): False}
+    look._conclude()
+    assert ctx.memory["found"].point[1] == pytest.approx(EDGE)
+    look, _, legs = _feeling((0.18, EDGE, TOP), 0.02)
+    assert not [leg for leg in legs if leg.kind is Leg.SIDE and leg.side == (1, 1)] and not look.result.by_wall
 
 
 def test_blind_exploration_lands_on_an_object_under_its_probe_and_knows_its_top() -> None:
