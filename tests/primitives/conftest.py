@@ -11,6 +11,10 @@ from typing import Callable
 import numpy as np
 import pytest
 
+from atd.campaign.cells import parse_only, plans
+from atd.campaign.record import TrialRecord
+from atd.campaign.spec import load_spec
+from atd.campaign.trial import run_trial
 from atd.model import load_task
 from atd.model.estd import Condition, ConditionGroup, Controller, Estd, EstdEvent, EstdState, EstdTransition
 from atd.model.vocabulary import EventType, StateType
@@ -25,6 +29,7 @@ from primitives.base import Context
 from translator import translate
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+CAMPAIGNS = EXAMPLES / "campaigns"
 Hook = Callable[[SimRobot, str, float], None]  # robot, current state path, sim time
 
 
@@ -149,3 +154,20 @@ def lifted_but_at_most_one(trials: list[tuple[str, int]], **cell: str) -> None:
     assert not [r for r in records if r.task_succeeded and not r.judged_succeeded], "a false success"
     failed = [(r.cell.object, r.index, r.judge_reason, r.summary) for r in records if not r.judged_succeeded]
     assert len(failed) <= 1, failed
+
+
+def generalisation_at(seed: int, folder: Path) -> Path:
+    """`generalisation.toml` with another base seed, written in `folder` (its places' paths
+    made absolute): a campaign trial nobody tuned on, pinned by a test."""
+    spec = (CAMPAIGNS / "generalisation.toml").read_text()
+    spec = spec.replace("base_seed = 8117", f"base_seed = {seed}").replace('"places/', f'"{CAMPAIGNS}/places/')
+    (folder / "g.toml").write_text(spec)
+    return folder / "g.toml"
+
+
+def campaign_trial(spec: Path, index: int, *cell: str) -> TrialRecord:
+    """Trial `index` of the one cell of `spec` that `cell` (`--only` terms) names, run here."""
+    loaded, diagnostics = load_spec(spec)
+    assert loaded is not None, diagnostics
+    [record] = [run_trial(plan) for plan in plans(loaded, parse_only(cell), index + 1) if plan.index == index]
+    return record

@@ -7,24 +7,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from atd.campaign.cells import parse_only, plans
-from atd.campaign.spec import load_spec
-from atd.campaign.trial import run_trial
-from tests.primitives.conftest import EXAMPLES
-
-CAMPAIGNS = EXAMPLES / "campaigns"
+from tests.primitives.conftest import campaign_trial, generalisation_at
 
 
 def test_the_sdh2_lifts_a_ball_its_first_close_met_off_the_pinch_line(tmp_path: Path) -> None:
     """Seed 77003, the ball at (0.22, 0.06) (centre_far), trial 2 with the approach error: at full speed the
     grasp ended "nothing between the fingers after 5 corrections"."""
-    spec = (CAMPAIGNS / "generalisation.toml").read_text()
-    spec = spec.replace("base_seed = 8117", "base_seed = 77003").replace('"places/', f'"{CAMPAIGNS}/places/')
-    (tmp_path / "g.toml").write_text(spec)
-    loaded, diagnostics = load_spec(tmp_path / "g.toml")
-    assert loaded is not None, diagnostics
-    only = parse_only(("robot=tombatossals", "arm=left", "engine=mujoco", "perturbation=approach",
-                       "task=centre_far", "object=ball"))
-    [record] = [run_trial(plan) for plan in plans(loaded, only, 3) if plan.index == 2]
+    record = campaign_trial(generalisation_at(77003, tmp_path), 2, "robot=tombatossals", "arm=left", "engine=mujoco",
+                            "perturbation=approach", "task=centre_far", "object=ball")
     assert record.judged_succeeded, (record.judge_reason, record.summary)
     assert record.task_succeeded, record.summary

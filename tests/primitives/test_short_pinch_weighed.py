@@ -12,22 +12,11 @@ from pathlib import Path
 
 import pytest
 
-from atd.campaign.cells import parse_only, plans
-from atd.campaign.spec import load_spec
-from atd.campaign.trial import run_trial
-from tests.primitives.conftest import EXAMPLES
-
-CAMPAIGNS = EXAMPLES / "campaigns"
+from tests.primitives.conftest import campaign_trial, generalisation_at
 
 
 @pytest.mark.parametrize("obj", ["mug", "duck"])
 def test_the_sdh2s_pinch_with_its_weight_off_its_line_is_no_false_success(tmp_path: Path, obj: str) -> None:
-    spec = (CAMPAIGNS / "generalisation.toml").read_text()
-    spec = spec.replace("base_seed = 8117", "base_seed = 71389").replace('"places/', f'"{CAMPAIGNS}/places/')
-    (tmp_path / "g.toml").write_text(spec)
-    loaded, diagnostics = load_spec(tmp_path / "g.toml")
-    assert loaded is not None, diagnostics
-    only = parse_only(("task=left_near", "robot=tombatossals", "arm=left", "engine=mujoco", f"object={obj}",
-                       "perturbation=approach"))
-    [record] = [run_trial(plan) for plan in plans(loaded, only, 1)]
+    record = campaign_trial(generalisation_at(71389, tmp_path), 0, "task=left_near", "robot=tombatossals", "arm=left",
+                            "engine=mujoco", f"object={obj}", "perturbation=approach")
     assert record.judged_succeeded or not record.task_succeeded, (record.judge_reason, record.summary)

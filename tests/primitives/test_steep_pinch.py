@@ -10,19 +10,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from atd.campaign.cells import parse_only, plans
-from atd.campaign.spec import load_spec
-from atd.campaign.trial import run_trial
-from tests.primitives.conftest import EXAMPLES
-
-CAMPAIGNS = EXAMPLES / "campaigns"
+from tests.primitives.conftest import CAMPAIGNS, campaign_trial, generalisation_at
 
 
 def test_a_lift_whose_mug_creeps_out_of_a_steep_pinch_says_it_lost_it(tmp_path: Path) -> None:
-    spec = (CAMPAIGNS / "generalisation.toml").read_text()
-    spec = spec.replace("base_seed = 8117", "base_seed = 27191").replace('"places/', f'"{CAMPAIGNS}/places/')
-    (tmp_path / "g.toml").write_text(spec)
-    _says_it_lost_it(tmp_path / "g.toml", ("task=centre_far", "object=mug"), "the creeping pinch")
+    _says_it_lost_it(generalisation_at(27191, tmp_path), ("task=centre_far", "object=mug"), "the creeping pinch")
 
 
 def test_a_lift_whose_duck_creeps_out_of_a_flank_pinch_says_it_lost_it() -> None:
@@ -31,10 +23,7 @@ def test_a_lift_whose_duck_creeps_out_of_a_flank_pinch_says_it_lost_it() -> None
 
 def _says_it_lost_it(spec: Path, cell: tuple[str, ...], shows: str) -> None:
     """Trial 1 of the Barrett's MuJoCo cell with the approach error ends in the lift on grasp_lost."""
-    loaded, diagnostics = load_spec(spec)
-    assert loaded is not None, diagnostics
-    only = parse_only(("robot=tombatossals", "arm=right", "engine=mujoco", "perturbation=approach", *cell))
-    [record] = [run_trial(plan) for plan in plans(loaded, only, 2) if plan.index == 1]
+    record = campaign_trial(spec, 1, "robot=tombatossals", "arm=right", "engine=mujoco", "perturbation=approach", *cell)
     assert not record.judged_succeeded, f"the trial no longer shows {shows}"
     assert not record.task_succeeded, (record.judge_reason, record.summary)
     assert "grasp_lost" in record.summary, record.summary

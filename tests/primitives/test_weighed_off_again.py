@@ -9,24 +9,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from atd.campaign.cells import parse_only, plans
-from atd.campaign.spec import load_spec
-from atd.campaign.trial import run_trial
-from tests.primitives.conftest import EXAMPLES
-
-CAMPAIGNS = EXAMPLES / "campaigns"
+from tests.primitives.conftest import campaign_trial, generalisation_at
 
 
 def test_a_bunny_weighed_off_its_pinch_line_again_is_lifted_not_regrasped_until_the_time_runs_out(
         tmp_path: Path) -> None:
-    spec = (CAMPAIGNS / "generalisation.toml").read_text()
-    spec = spec.replace("base_seed = 8117", "base_seed = 24683").replace('"places/', f'"{CAMPAIGNS}/places/')
-    (tmp_path / "g.toml").write_text(spec)
-    loaded, diagnostics = load_spec(tmp_path / "g.toml")
-    assert loaded is not None, diagnostics
-    only = parse_only(("robot=tombatossals", "arm=right", "engine=mujoco", "perturbation=approach",
-                       "task=centre_far", "object=bunny"))
-    [record] = [run_trial(plan) for plan in plans(loaded, only, 2) if plan.index == 1]
+    record = campaign_trial(generalisation_at(24683, tmp_path), 1, "robot=tombatossals", "arm=right", "engine=mujoco",
+                            "perturbation=approach", "task=centre_far", "object=bunny")
     assert record.judged_succeeded, (record.judge_reason, record.summary)
     held = [why for event in record.events for why in event["why"] if why.startswith("object held after")]
     assert held and "off the pinch line" in held[0], record.events
