@@ -452,7 +452,8 @@ _ARM_CONTROLLERS = (
                              "sideways no further than its tip (`sweep_extent`): with the tip on a top that far below "
                              "the rim or less, the approach to a top against a wall comes as near it as the tip lets "
                              "(the robot's own geometry: `RobotDescription.tip_length`); 0: never nearer than "
-                             "`hand_radius`", 0.0, unit="m"),
+                             "`hand_radius`", 0.0, unit="m",
+                             limits=ranges.SIZE_OR_NONE),
             "floor_band": _p(NUM, "blind exploration: a contact of the hand's lowest point within this of the "
                              "floor is the floor (ours)", 0.015, unit="m"),
             "camera": _p(WORD, "vision: the depth camera to look with; unset: the robot's first"),
