@@ -78,4 +78,4 @@ class Corrections:
     quality: float = np.inf  # D5's Q at the latest uneven grasp
     freed: bool = False  # the arm has risen once to free a blocked preshape
     jammed: bool = False  # the latest close stopped on something beside the pads
-    weighed_off: float = 0.0  # m across the pinch line the weight hung at the latest weighing that regrasped
+    weighed_off: float = 0.0  # m across the pinch line (signed) the weight hung at the latest weighing

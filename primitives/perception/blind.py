@@ -305,7 +305,7 @@ class BlindExploration(Perceiver):
                 local[axis] += sign * (SIDE_STEP + tip[axis])
                 depth = SIDE_DEPTH
                 if not np.all((local[:2] >= low - 1e-9) & (local[:2] <= high + 1e-9)):
-                    depth = self._by_wall(local, centre, axis, sign, float(tip[axis]), float(point[2]))
+                    local[axis], depth = self._by_wall(centre, axis, sign, float(tip[axis]), float(point[2]))
                     if depth <= 0.0:
                         continue  # a side the hand cannot come down at: not felt
                     self.result.by_wall.add((axis, sign))
@@ -358,19 +358,19 @@ class BlindExploration(Perceiver):
     def _wall_room(self, axis: int, tip: float) -> float:
         """How far from the container's middle along its `axis` the TCP may go with the hand's
         tip, reaching `tip` that way, WALL_CLEARANCE off the wall."""
-        return float(self.container.inner[axis]) / 2 - tip - WALL_CLEARANCE
+        return float(self.container.footprint(tip + WALL_CLEARANCE)[1][axis])
 
-    def _by_wall(self, local: np.ndarray, centre: np.ndarray, axis: int, sign: int, tip: float, top: float) -> float:
+    def _by_wall(self, centre: np.ndarray, axis: int, sign: int, tip: float, top: float) -> tuple[float, float]:
         """For a side of the top at `centre` (the container's frame, world height `top`) where the
-        walls keep the hand from coming down: moves `local` (the side's TCP) as near the wall as
-        the tip, reaching `tip` along `axis`, fits, and says how far below the top the tip may
-        go down there with the hand's part wider than it (`tip_length` above its lowest point)
-        WALL_CLEARANCE over the rim, at most SIDE_DEPTH; 0 where it cannot feel there (the
-        top too low, or no room beside where it landed)."""
-        local[axis] = sign * self._wall_room(axis, tip)
-        if sign * (local[axis] - centre[axis]) < 2 * tip:
-            return 0.0
-        return max(0.0, min(SIDE_DEPTH, top + self.tip_length - self.container.rim - WALL_CLEARANCE))
+        walls keep the hand from coming down: where along `axis` its TCP comes as near the wall as
+        the tip, reaching `tip` that way, fits, and how far below the top the tip may go down there
+        with the hand's part wider than it (`tip_length` above its lowest point) WALL_CLEARANCE
+        over the rim, at most SIDE_DEPTH; depth 0 where it cannot feel there (the top too low, or
+        no room beside where it landed)."""
+        near = sign * self._wall_room(axis, tip)
+        if sign * (near - centre[axis]) < 2 * tip:
+            return near, 0.0
+        return near, max(0.0, min(SIDE_DEPTH, top + self.tip_length - self.container.rim - WALL_CLEARANCE))
 
     def _ahead(self, readings: Readings, contact: Contact) -> np.ndarray:
         """Where, at the sweep's height, the hand comes down to feel what the sweep met: its
