@@ -89,14 +89,16 @@ class BaxterFactory(Factory):
         return NodeMapping("move", arm, *self.hand_for_motion(state))
 
     def preshape_target(self, state: State, context: MappingContext, target: Vec3) -> Vec3:
-        """The guarded move straight into the robust grasp ends with the TCP that grasp's
-        `above_object` over the top of the object the task believes in, not at its centre: the
-        grasp's correction makes the descent onto the object itself, at 4 cm/s feeling 8 N, where
-        the move came down at 15 cm/s until it felt 30 N, and its paddle swept a standing cylinder
-        6 cm and tipped it over (docs/robust-grasp.md). The naive grasp's move goes down as the task says."""
+        """The guarded move straight into the robust grasp, its target left to the object (no
+        path), ends with the TCP that grasp's `above_object` over the top of the object the task
+        believes in, not at its centre: the grasp's correction makes the descent onto the object
+        itself, at 4 cm/s feeling 8 N, where the move came down at 15 cm/s until it felt 30 N,
+        and its paddle swept a standing cylinder 6 cm and tipped it over (docs/robust-grasp.md).
+        The naive grasp's move goes down as the task says."""
         obj = context.object
         if self.grasp == "naive" or state.type is not StateType.MOVE or state.movement is not Movement.GUARDED \
-                or obj is None or obj.pose is None or leads_into(context.task, state, StateType.GRASP) is None:
+                or state.path or obj is None or obj.pose is None \
+                or leads_into(context.task, state, StateType.GRASP) is None:
             return target
         above = float(self.controller("jaw_grasp_correction").params["above_object"])
         return (target[0], target[1], max(target[2], float(obj.pose.position[2]) + obj.half_height + above))
