@@ -78,6 +78,10 @@ FREE_SPEED = 0.15  # m/s of a move wholly over RIM_CLEARANCE: a free move's (car
 # N over the start's that stops a transit, where any contact is an error anyway: a free move's (cartesian_move's
 # force_threshold); at the explore's 3 N a look begun as a rise out of the box stopped read its jolt as a contact
 TRANSIT_FORCE = 15.0
+# N over the start's that stops the rise out of where the last state left the hand, which may have
+# ended pressing on something (pick_one.xml's clear stopped on 15 N, and rising off it read that as a
+# contact at TRANSIT_FORCE): only what holds it down, as pick_one.xml's rise
+RISE_FORCE = 150.0
 DRAWS = 32  # random probe points drawn for one a hand's reach from a spot given up (else the farthest is taken)
 TRIED = "blind_exploration_tried"  # in Context.memory: the last approach given (`Tried`)
 
@@ -85,6 +89,7 @@ TRIED = "blind_exploration_tried"  # in Context.memory: the last approach given 
 class Leg(Enum):
     """What an explore move is for, and so what a contact on the way means."""
 
+    RISE = "rise"  # up out of where the last state left the hand: something holding it down, an error
     TRANSIT = "transit"  # over the container to the probe: something in the way, an error
     PROBE = "probe"  # down onto the floor: an object's top, or the floor
     SWEEP = "sweep"  # along the floor: an object ahead
@@ -177,9 +182,9 @@ class BlindExploration(Perceiver):
             xy = np.clip(self.container.to_local(self.tried.point[None])[0][:2], low, high)
         probe = self.container.to_world(np.array([[*xy, 0.0]]))[0]
         over = self._over_rim()
-        # out of the container first, if in it; then straight over the probe, clear of the rim, and
+        # up to just over the rim first, if lower; then straight over the probe, clear of the rim, and
         # fast down to just over it (a contact there is a top over the rim), then down until a contact
-        self.plan = [Waypoint(np.array([here[0], here[1], max(float(here[2]), over)]), Leg.TRANSIT),
+        self.plan = [Waypoint(np.array([here[0], here[1], max(float(here[2]), over)]), Leg.RISE),
                      Waypoint(np.array([probe[0], probe[1], clear]), Leg.TRANSIT),
                      Waypoint(np.array([probe[0], probe[1], over]), Leg.PROBE),
                      Waypoint(np.array([probe[0], probe[1], self._below_floor()]), Leg.PROBE)]
@@ -241,8 +246,8 @@ class BlindExploration(Perceiver):
         moving = dict(self.moving)
         if min(float(here[2]), float(self.leg.to[2])) >= self._over_rim() - ARRIVED:  # wholly over the rim
             moving["speed"] = max(float(moving["speed"]), FREE_SPEED)
-        if self.leg.kind is Leg.TRANSIT:
-            moving["force_threshold"] = max(float(moving["force_threshold"]), TRANSIT_FORCE)
+        least = {Leg.RISE: RISE_FORCE, Leg.TRANSIT: TRANSIT_FORCE}.get(self.leg.kind, 0.0)
+        moving["force_threshold"] = max(float(moving["force_threshold"]), least)
         self.explore = Explore(replace(self.ctx, params={**moving, "direction": tuple(way / distance),
                                                          "max_distance": distance}))
         self.explore.start(readings)
@@ -257,7 +262,7 @@ class BlindExploration(Perceiver):
             self.plan = []  # something higher than the top found: what is known so far will do
         elif kind is Leg.SIDE:
             self.result.reaches[self.leg.side] = contact is not None
-        elif kind is Leg.TRANSIT and contact is not None:
+        elif kind in (Leg.RISE, Leg.TRANSIT) and contact is not None:
             x, y, z = contact.point
             self.finish(Status.ERROR, f"something in the way over the container: a contact at ({x:.3f}, {y:.3f}, "
                                       f"{z:.3f}) on the way to the probe")
