@@ -5,22 +5,21 @@ random, clear of its rim, and goes down until it feels something (wholly over th
 no object lay, at a free move's speed; in the container at an explore's). A contact above the
 floor (the floor's height is the container's believed pose; the contact's, the TCP's height
 less the hand's reach) is an object's top: the approach is there. The floor itself starts a
-sweep: the hand, its lowest point just above the floor, goes along the container in lanes
-(a boustrophedon) until it feels something, which is an object ahead of it; a sweep that
-feels nothing found nothing. A sweep's contact places the object only by its near side, at
-the height of the hand's tip, so the hand then feels for its top: it backs off, rises just
-over the rim, comes over the object's near part and goes down onto it (landing on the floor,
-the approach keeps the sweep's estimate, its top unknown). On a top, found either way, the hand comes down
-beside it along the container's axes to feel how far it reaches, and the approach is moved
-towards where it goes on and turned so the jaws close across a top long along the box's y;
-where the walls keep the hand from coming down beside a top, its tip alone feels there, as
-near the wall as it fits, wherever the hand's wider part stays over the rim; a top that goes
-on towards a wall and not the other way lies against it, and the approach is moved up to
-SIDE_STEP towards it: a grasp of the open hand is kept off the wall by its own reach anyway,
-and what presses on the top to free it (examples/free_one.xml) presses on its middle, not on
-its edge towards the box's middle;
-the approach says the top's height (`Approach.top`), so the grasp knows a jaw landing there
-for a jaw on the object rather than close above it.
+sweep: the hand, its lowest point just above the floor, goes along the container in lanes (a
+boustrophedon) until it feels something, which is an object ahead of it; a sweep that feels
+nothing found nothing. A sweep's contact places the object only by its near side, at the
+height of the hand's tip, so the hand then feels for its top: it backs off, rises just over
+the rim, comes over the object's near part and goes down onto it (landing on the floor, the
+approach keeps the sweep's estimate, its top unknown). On a top, found either way, the hand
+comes down beside it along the container's axes to feel how far it reaches, and the approach
+is moved towards where it goes on and turned so the jaws close across a top long along the
+box's y; where the walls keep the hand from coming down beside a top, its tip alone feels
+there, as near the wall as it fits, wherever the hand's wider part stays over the rim; a top
+that goes on towards a wall and not the other way lies against it, and the approach is moved
+up to SIDE_STEP towards it: a grasp of the open hand is kept off the wall by its own reach
+anyway, and what presses on the top to free it (examples/free_one.xml) presses on its middle,
+not on its edge towards the box's middle; the approach says the top's height (`Approach.top`),
+so the grasp knows a jaw landing there for a jaw on the object rather than close above it.
 A look after another starts where that one's approach lay: landing on an object there, the
 grasp took nothing out, and the jaws are turned another way this time (`TURNS`). Once every
 turn has been tried there, the look comes down at random a hand's reach away from it instead:
