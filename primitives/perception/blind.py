@@ -71,7 +71,7 @@ WALL_CLEARANCE = 0.005
 # lying 32-45 degrees off the box's axes is longer than the Melfa's jaws open along either)
 TURNS = (0.0, math.pi / 2, math.pi / 4, -math.pi / 4)
 # m over the rim above which the hand's lowest point moves at FREE_SPEED, a contact unlikely there: the
-# library's objects lying in the box reached at most 9.1 cm up at a look's start, under the 10 cm rim (ours)
+# library's objects lying in the box reached at most 9.3 cm up, under the 10 cm rim (docs/empty-the-box.md)
 RIM_CLEARANCE = 0.01
 FREE_SPEED = 0.15  # m/s of a move wholly over RIM_CLEARANCE: a free move's (cartesian_move's max_speed)
 # N over the start's that stops a transit, where any contact is an error anyway: a free move's (cartesian_move's
