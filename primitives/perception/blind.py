@@ -1,25 +1,25 @@
 """Blind exploration (thesis 3.4.3, Fig. 3.26a): find an object in the container by touch.
 
 A plan of `explore` moves. The hand comes over a point of the container's floor drawn at
-random, clear of its rim, and goes down until it feels something. A contact above the floor
-(the floor's height is the container's believed pose; the contact's, the TCP's height less
-the hand's reach) is an object's top: the approach is there. The floor itself starts a
-sweep: the hand, its lowest point just above the floor, goes along the container in lanes
-(a boustrophedon) until it feels something, which is an object ahead of it; a sweep that
-feels nothing found nothing. A sweep's contact places the object only by its near side, at
-the height of the hand's tip, so the hand then feels for its top: it backs off, rises clear,
-comes over the object's near part and goes down onto it (landing on the floor, the approach
-keeps the sweep's estimate, its top unknown). On a top, found either way, the hand comes down
-beside it along the container's axes to feel how far it reaches, and the approach is moved
-towards where it goes on and turned so the jaws close across a top long along the box's y;
-where the walls keep the hand from coming down beside a top, its tip alone feels there, as
-near the wall as it fits, wherever the hand's wider part stays over the rim; a top that goes
-on towards a wall and not the other way lies against it, and the approach is moved up to
-SIDE_STEP towards it: a grasp of the open hand is kept off the wall by its own reach anyway,
-and what presses on the top to free it (examples/free_one.xml) presses on its middle, not on
-its edge towards the box's middle;
-the approach says the top's height (`Approach.top`), so the grasp knows a jaw landing there
-for a jaw on the object rather than close above it.
+random, clear of its rim, and goes down until it feels something (wholly over the rim, where
+no object lay, at a free move's speed; in the container at an explore's). A contact above the
+floor (the floor's height is the container's believed pose; the contact's, the TCP's height
+less the hand's reach) is an object's top: the approach is there. The floor itself starts a
+sweep: the hand, its lowest point just above the floor, goes along the container in lanes (a
+boustrophedon) until it feels something, which is an object ahead of it; a sweep that feels
+nothing found nothing. A sweep's contact places the object only by its near side, at the
+height of the hand's tip, so the hand then feels for its top: it backs off, rises just over
+the rim, comes over the object's near part and goes down onto it (landing on the floor, the
+approach keeps the sweep's estimate, its top unknown). On a top, found either way, the hand
+comes down beside it along the container's axes to feel how far it reaches, and the approach
+is moved towards where it goes on and turned so the jaws close across a top long along the
+box's y; where the walls keep the hand from coming down beside a top, its tip alone feels
+there, as near the wall as it fits, wherever the hand's wider part stays over the rim; a top
+that goes on towards a wall and not the other way lies against it, and the approach is moved
+up to SIDE_STEP towards it: a grasp of the open hand is kept off the wall by its own reach
+anyway, and what presses on the top to free it (examples/free_one.xml) presses on its middle,
+not on its edge towards the box's middle; the approach says the top's height (`Approach.top`),
+so the grasp knows a jaw landing there for a jaw on the object rather than close above it.
 A look after another starts where that one's approach lay: landing on an object there, the
 grasp took nothing out, and the jaws are turned another way this time (`TURNS`). Once every
 turn has been tried there, the look comes down at random a hand's reach away from it instead:
@@ -70,6 +70,17 @@ WALL_CLEARANCE = 0.005
 # feel chose the wrong one of the box's axes), then the diagonals (a wood block or a spray can
 # lying 32-45 degrees off the box's axes is longer than the Melfa's jaws open along either)
 TURNS = (0.0, math.pi / 2, math.pi / 4, -math.pi / 4)
+# m over the rim above which the hand's lowest point moves at FREE_SPEED, a contact unlikely there: the
+# library's objects lying in the box reached at most 9.3 cm up, under the 10 cm rim (docs/empty-the-box.md)
+RIM_CLEARANCE = 0.01
+FREE_SPEED = 0.15  # m/s of a move wholly over RIM_CLEARANCE: a free move's (cartesian_move's max_speed)
+# N over the start's that stops a transit, where any contact is an error anyway: a free move's (cartesian_move's
+# force_threshold); at the explore's 3 N a look begun as a rise out of the box stopped read its jolt as a contact
+TRANSIT_FORCE = 15.0
+# N over the start's that stops the rise out of where the last state left the hand, which may have
+# ended pressing on something (pick_one.xml's clear stopped on 15 N, and rising off it read that as a
+# contact at TRANSIT_FORCE): only what holds it down, as pick_one.xml's rise
+RISE_FORCE = 150.0
 DRAWS = 32  # random probe points drawn for one a hand's reach from a spot given up (else the farthest is taken)
 TRIED = "blind_exploration_tried"  # in Context.memory: the last approach given (`Tried`)
 
@@ -77,6 +88,7 @@ TRIED = "blind_exploration_tried"  # in Context.memory: the last approach given 
 class Leg(Enum):
     """What an explore move is for, and so what a contact on the way means."""
 
+    RISE = "rise"  # up out of where the last state left the hand: something holding it down, an error
     TRANSIT = "transit"  # over the container to the probe: something in the way, an error
     PROBE = "probe"  # down onto the floor: an object's top, or the floor
     SWEEP = "sweep"  # along the floor: an object ahead
@@ -155,7 +167,7 @@ class BlindExploration(Perceiver):
     def start(self, readings: Readings) -> None:
         super().start(readings)
         here = readings.tcp[:3, 3]
-        clear = self._clear(readings)
+        clear = self._clear()
         low, high = self.container.footprint(self.room)
         self.tried: Tried | None = self.ctx.memory.get(TRIED)
         given_up = self.tried is not None and self.tried.times >= len(TURNS) - 1
@@ -168,8 +180,12 @@ class BlindExploration(Perceiver):
         else:  # down where the last approach lay: what it did not take out is likely still there
             xy = np.clip(self.container.to_local(self.tried.point[None])[0][:2], low, high)
         probe = self.container.to_world(np.array([[*xy, 0.0]]))[0]
-        self.plan = [Waypoint(np.array([here[0], here[1], clear]), Leg.TRANSIT),
+        over = self._over_rim()
+        # up to just over the rim first, if lower; then straight over the probe, clear of the rim, and
+        # fast down to just over it (a contact there is a top over the rim), then down until a contact
+        self.plan = [Waypoint(np.array([here[0], here[1], max(float(here[2]), over)]), Leg.RISE),
                      Waypoint(np.array([probe[0], probe[1], clear]), Leg.TRANSIT),
+                     Waypoint(np.array([probe[0], probe[1], over]), Leg.PROBE),
                      Waypoint(np.array([probe[0], probe[1], self._below_floor()]), Leg.PROBE)]
         self.explore: Explore | None = None
         self.swept: Swept | None = None
@@ -184,9 +200,13 @@ class BlindExploration(Perceiver):
         far = np.flatnonzero(distance >= self.margin)
         return draws[far[0]] if far.size else draws[int(np.argmax(distance))]
 
-    def _clear(self, readings: Readings) -> float:
-        """The TCP's height over the container with the hand clear of its rim, or higher where it is."""
-        return max(float(readings.tcp[2, 3]), self.container.rim + self.approaching.height + self.approaching.reach)
+    def _clear(self) -> float:
+        """The TCP's height with the hand's lowest point the approach's height over the container's rim."""
+        return self.container.rim + self.approaching.height + self.approaching.reach
+
+    def _over_rim(self) -> float:
+        """The TCP's height with the hand's lowest point RIM_CLEARANCE over the container's rim."""
+        return self.container.rim + RIM_CLEARANCE + self.approaching.reach
 
     def _below_floor(self) -> float:
         """The TCP's height with the hand PROBE_BEYOND below the believed floor: where a descent gives up."""
@@ -222,7 +242,12 @@ class BlindExploration(Perceiver):
         self.leg = self.plan.pop(0)
         way = self.leg.to - here
         distance = float(np.linalg.norm(way))
-        self.explore = Explore(replace(self.ctx, params={**self.moving, "direction": tuple(way / distance),
+        moving = dict(self.moving)
+        if min(float(here[2]), float(self.leg.to[2])) >= self._over_rim() - ARRIVED:  # wholly over the rim
+            moving["speed"] = max(float(moving["speed"]), FREE_SPEED)
+        least = {Leg.RISE: RISE_FORCE, Leg.TRANSIT: TRANSIT_FORCE}.get(self.leg.kind, 0.0)
+        moving["force_threshold"] = max(float(moving["force_threshold"]), least)
+        self.explore = Explore(replace(self.ctx, params={**moving, "direction": tuple(way / distance),
                                                          "max_distance": distance}))
         self.explore.start(readings)
         self.handled = False
@@ -236,10 +261,12 @@ class BlindExploration(Perceiver):
             self.plan = []  # something higher than the top found: what is known so far will do
         elif kind is Leg.SIDE:
             self.result.reaches[self.leg.side] = contact is not None
-        elif kind is Leg.TRANSIT and contact is not None:
+        elif kind in (Leg.RISE, Leg.TRANSIT) and contact is not None:
             x, y, z = contact.point
             self.finish(Status.ERROR, f"something in the way over the container: a contact at ({x:.3f}, {y:.3f}, "
                                       f"{z:.3f}) on the way to the probe")
+        elif kind in (Leg.PROBE, Leg.FEEL) and contact is None and self.plan:
+            pass  # down to just over the rim: the descent goes on
         elif kind in (Leg.PROBE, Leg.FEEL) and contact is None:
             self.finish(Status.ERROR, f"no floor within {PROBE_BEYOND * 100:g} cm below where the container's "
                                       f"floor is believed to be ({self.container.floor:.3f} m)")
@@ -389,12 +416,12 @@ class BlindExploration(Perceiver):
         return point
 
     def _feel(self, readings: Readings, swept: Swept) -> list[Waypoint]:
-        """Back off what the sweep met, up clear of the rim, over where it lies, and down onto it."""
+        """Back off what the sweep met, up just over the rim, over where it lies, and down onto it."""
         back = readings.tcp[:3, 3] - BACK_OFF * swept.contact.direction
-        clear = self._clear(readings)
+        over = self._over_rim()
         x, y = swept.estimate[:2]
-        return [Waypoint(back, Leg.RETREAT), Waypoint(np.array([back[0], back[1], clear]), Leg.RETREAT),
-                Waypoint(np.array([x, y, clear]), Leg.RETREAT),
+        return [Waypoint(back, Leg.RETREAT), Waypoint(np.array([back[0], back[1], over]), Leg.RETREAT),
+                Waypoint(np.array([x, y, over]), Leg.RETREAT),
                 Waypoint(np.array([x, y, self._below_floor()]), Leg.FEEL)]
 
     def _sweep(self, readings: Readings) -> list[Waypoint]:
