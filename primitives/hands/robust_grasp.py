@@ -66,7 +66,8 @@ class RobustGraspHand(ForceGrasp):
         self.corrections = Corrections()
         self.closing = Closing()
         thing = self.ctx.object
-        self.slowed = ROLLING_CLOSE if thing is not None and thing.object_class is ObjectClass.SPHERE else 1.0
+        self.round = thing is not None and thing.object_class is ObjectClass.SPHERE
+        self.slowed = ROLLING_CLOSE if self.round else 1.0
         if self.fingers:
             hand = self.ctx.info.hand
             self.gauge = ExtensionGauge(hand, [self.pad_of[f] for f in self.fingers], self.pre)
@@ -83,12 +84,13 @@ class RobustGraspHand(ForceGrasp):
             self.ctx.memory[EMPTY_HAND] = world_load(readings)
 
     def _wait(self, readings: Readings, dt: float) -> None:
-        """Told to close with a grasping pad on the table: first rise as far as the closing
-        swings the fingertips down (`closing_swing`), once per grasp, and close in free air.
-        Closed from there, the fingertips pressed on the table levered the hand up only as
-        fast as the arm gave way: 6-8 s of the grasp's 20 for the Barrett's first close
-        (docs/robust-grasp.md, "The Barrett's first close levered up off the table")."""
-        if self.ctx.blackboard.contact and self.swing > 0.0 and not self.corrections.lifted \
+        """Told to close on a ball with a grasping pad on the table: first rise as far as the
+        closing swings the fingertips down (`closing_swing`), once per grasp, and close in
+        free air. Closed from there, the fingertips pressed on the table levered the hand up
+        only as fast as the arm gave way: 6-8 s of the grasp's 20 for the Barrett's first close,
+        which the ball's half-speed closes could not spare; on other objects the rise's second
+        gained nothing (docs/robust-grasp.md, "The Barrett's first close levered up off the table")."""
+        if self.round and self.ctx.blackboard.contact and self.swing > 0.0 and not self.corrections.lifted \
                 and self._on_table(readings):
             self.corrections.lifted = True
             self.ctx.blackboard.shift = Shift(np.array([0.0, 0.0, -self.swing]))
