@@ -1,5 +1,5 @@
-"""A multi-finger grasp told to close with a fingertip pad on the table first rises as far as
-its closing swings the fingertips down: closed there, the Barrett's fingertips levered the
+"""A multi-finger grasp told to close on a ball with a fingertip pad on the table first rises as
+far as its closing swings the fingertips down: closed there, the Barrett's fingertips levered the
 hand up only as fast as the arm gave way, 6-8 s of the grasp's 20 s for its first close, and
 the searches that followed ran out of time (generalisation seed 53719, the Barrett's ball;
 docs/robust-grasp.md, "The Barrett's first close levered up off the table")."""
