@@ -150,17 +150,19 @@ class MultiFingerFactory(Factory):
         refuse_uncarriable(context.object, f"grasp state '{state.name}'")
         needed = holding_force(context.object)
         edges = {"side_edge_correction": True} if self.robot.hand.side_edge_pinch else None
+        placed = preshape_made.value if preshape_made else grasp.value
+        swing = self.robot.closing_swing(placed, grasp.value)
         hand = self.controller("robust_grasp_hand", edges, grasp_shape=grasp.value,
                                preshape=preshape_made.value if preshape_made else None,
                                pregrasp_size=self.pregrasp_size(state, context),
-                               grasp_force=round(needed, 3) if needed > configured else None)
-        placed = preshape_made.value if preshape_made else grasp.value
+                               grasp_force=round(needed, 3) if needed > configured else None,
+                               closing_swing=round(swing, 6))
         rising = grasp.value in self.robot.hand.rising_grasps
         arm = self.controller("robust_grasp_approach", {"follow_surface": False} if rising else None,
                               max_distance=self.side_travel(state, context),
                               wrist_to_tcp=round(self._wrist_to_tcp, 6),
                               fingertip_reach=round(max(self.robot.hand_reach(placed), 0.001), 6),
-                              max_back_off=round(self.robot.closing_swing(placed, grasp.value) + SWING_MARGIN, 6),
+                              max_back_off=round(swing + SWING_MARGIN, 6),
                               hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(placed)),
                               grasp_centre=tuple(round(float(c), 6) for c in
                                                  self.robot.hand.grasp_centres.get(grasp.value, (0.0, 0.0, 0.0))))

@@ -546,6 +546,9 @@ _HAND_CONTROLLERS = (
             "side_edge_correction": _p(FLAG, "with both pinching pads pressing the object with their side edges "
                                        "only, on one side of the pinch line, reopen and move across to where they "
                                        "pressed (ours; the factory's hand says where: docs/robust-grasp.md)", False),
+            "closing_swing": _p(NUM, "how much further the hand reaches along the approach on its way from the "
+                                "preshape to the grasp: told to close on a ball with a grasping pad on the table, it "
+                                "first rises this far (the robot's own geometry; 0: it never does)", 0.0, unit="m"),
             "stable_quality": _p(NUM, "D5's bound on the finger-extension quality Q (Eq. 3.1) of a stable grasp, "
                                  "extensions in units of the preshape's reach (D5: 0.01)", 0.01),
             "alpha_threshold": _p(NUM, "the least orientation correction alpha (Eq. 3.2) made (D5: 0.01 rad)",

@@ -77,5 +77,6 @@ class Corrections:
     lost_shift: np.ndarray = field(default_factory=lambda: np.zeros(3))  # the latest finger-lost shift
     quality: float = np.inf  # D5's Q at the latest uneven grasp
     freed: bool = False  # the arm has risen once to free a blocked preshape
+    lifted: bool = False  # the arm has risen once off the table the fingertips were told to close on
     jammed: bool = False  # the latest close stopped on something beside the pads
     weighed_off: float = 0.0  # m across the pinch line (signed) the weight hung at the latest weighing

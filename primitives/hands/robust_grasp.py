@@ -58,6 +58,7 @@ class RobustGraspHand(ForceGrasp):
         self.side_edge_correction = bool(self.params["side_edge_correction"])
         self.stable_quality = float(self.params["stable_quality"])
         self.alpha_threshold = np.radians(float(self.params["alpha_threshold"]))
+        self.swing = float(self.params["closing_swing"])
 
     def start(self, readings: Readings) -> None:
         super().start(readings)
@@ -65,7 +66,8 @@ class RobustGraspHand(ForceGrasp):
         self.corrections = Corrections()
         self.closing = Closing()
         thing = self.ctx.object
-        self.slowed = ROLLING_CLOSE if thing is not None and thing.object_class is ObjectClass.SPHERE else 1.0
+        self.round = thing is not None and thing.object_class is ObjectClass.SPHERE
+        self.slowed = ROLLING_CLOSE if self.round else 1.0
         if self.fingers:
             hand = self.ctx.info.hand
             self.gauge = ExtensionGauge(hand, [self.pad_of[f] for f in self.fingers], self.pre)
@@ -80,6 +82,21 @@ class RobustGraspHand(ForceGrasp):
             self.phase = Phase.PRESHAPE
             self.stillness.seconds[:] = 0.0
             self.ctx.memory[EMPTY_HAND] = world_load(readings)
+
+    def _wait(self, readings: Readings, dt: float) -> None:
+        """Told to close on a ball with a grasping pad on the table: first rise as far as the
+        closing swings the fingertips down (`closing_swing`), once per grasp, and close in
+        free air. Closed from there, the fingertips pressed on the table levered the hand up
+        only as fast as the arm gave way: 6-8 s of the grasp's 20 for the Barrett's first close,
+        which the ball's half-speed closes could not spare; on other objects the rise's second
+        gained nothing (docs/robust-grasp.md, "The Barrett's first close levered up off the table")."""
+        if self.round and self.ctx.blackboard.contact and self.swing > 0.0 and not self.corrections.lifted \
+                and self._on_table(readings):
+            self.corrections.lifted = True
+            self.ctx.blackboard.shift = Shift(np.array([0.0, 0.0, -self.swing]))
+            self.phase = Phase.FREE
+            return
+        super()._wait(readings, dt)
 
     def _close(self, readings: Readings, dt: float) -> None:
         touching = self._touching(readings)
@@ -243,15 +260,24 @@ class RobustGraspHand(ForceGrasp):
         (m, hand frame, from the line through the fingers): each pad's centre of pressure,
         weighted by its force. Fingertips on the table say nothing of the object."""
         pads = [self.pad_of[f] for f in touching]
-        points = contact_points(self.ctx.info.hand, readings, pads)
-        heights = points @ readings.tcp[2, :3] + readings.tcp[2, 3]  # world z
-        above = heights >= SUPPORT_BAND
+        points, above = self._above_table(readings, pads)
         if not above.any():
             return
         self.closing.felt_by.update(f for f, up in zip(touching, above) if up)
         weights = readings.pad_force[pads] * above
         across = (points[:, :2] - self.base[self.fingers[0]]) @ self.search.normal
         self.closing.felt_at = float(weights @ across) / float(weights.sum())
+
+    def _above_table(self, readings: Readings, pads: list[int]) -> tuple[np.ndarray, np.ndarray]:
+        """Where pads `pads` touch (hand frame), and per pad whether that is above the
+        table (SUPPORT_BAND over the world's z = 0) rather than on it."""
+        points = contact_points(self.ctx.info.hand, readings, pads)
+        return points, points @ readings.tcp[2, :3] + readings.tcp[2, 3] >= SUPPORT_BAND
+
+    def _on_table(self, readings: Readings) -> bool:
+        """A grasping pad touches the table."""
+        pads = [self.pad_of[f] for f in self._touching(readings)]
+        return bool(pads) and not self._above_table(readings, pads)[1].all()
 
     # -- judging a close ----------------------------------------------------------------
     def _judge(self, readings: Readings) -> None:
