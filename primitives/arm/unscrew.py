@@ -149,7 +149,8 @@ class UnscrewArm(Controller):
 
     def _twist(self, readings: Readings, dt: float) -> np.ndarray:
         """Turn about the approach axis through the grasp centre (the lever's feed-forward
-        keeps the centre still); on to the pull once turned, back to pinch again early."""
+        keeps the centre still, unless a motor-only gripper's arm gives way along the jaws'
+        line: `_give_way`); on to the pull once turned, back to pinch again early."""
         rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
         torque = abs(float(self.wrench.value[3:] @ self.direction))
         w, left = orientation_twist(self.twisting.goal, rotation)
