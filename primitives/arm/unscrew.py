@@ -149,7 +149,8 @@ class UnscrewArm(Controller):
 
     def _twist(self, readings: Readings, dt: float) -> np.ndarray:
         """Turn about the approach axis through the grasp centre (the lever's feed-forward
-        keeps the centre still); on to the pull once turned, back to pinch again early."""
+        keeps the centre still, unless a motor-only gripper's arm gives way along the jaws'
+        line: `_give_way`); on to the pull once turned, back to pinch again early."""
         rotation, position = readings.tcp[:3, :3], readings.tcp[:3, 3]
         torque = abs(float(self.wrench.value[3:] @ self.direction))
         w, left = orientation_twist(self.twisting.goal, rotation)
@@ -165,6 +166,8 @@ class UnscrewArm(Controller):
             self.phase = Phase.PULL
         if self.phase is not Phase.TWIST:
             return np.zeros(6)
+        if self._motor_jaws():
+            self._give_way(readings, dt)
         w = clamp_norm(w, TWIST_SPEED)
         lever = rotation @ self.grasp_centre
         v = GAIN * (self.twisting.centre - position - lever) + np.cross(w, -lever)
@@ -257,11 +260,9 @@ class UnscrewArm(Controller):
         and the motor reads the grasp force all the same (the Baxter, docs/unscrew-campaign.md;
         tactile pads say so themselves). The arm yields the way the wrist is pushed, no
         further than the jaws' room, until both close on the cap."""
-        if self.room <= 0.0 or self.ctx.info.hand.pads[0].taxels is not None:
+        if not self._motor_jaws() or self._jaws_gap(readings) <= self.cap_width:
             return False
-        if self._jaws_gap(readings) <= self.cap_width:
-            return False
-        push = float(held_wrench(self.ctx.info.hand, readings)[:3] @ self.jaw_line)
+        push = self._jaw_push(readings)
         if abs(push) < STALL_CONTACT * self.threshold:
             return False
         if self.yielded < self.room:
@@ -269,6 +270,30 @@ class UnscrewArm(Controller):
             self.still.position = self.still.position + np.sign(push) * OUTSIDE_SPEED * dt * (
                 self.still.rotation @ self.jaw_line)
         return True
+
+    def _give_way(self, readings: Readings, dt: float) -> None:
+        """A twist about the grasp centre while the cap's axis stands off it across the jaws'
+        width (which a motor's one force cannot place) swings the cap's centre along the
+        jaws' line: one jaw drives into the cap, forcing the other off it and the jaws open
+        to their stop (the Baxter, docs/unscrew-campaign.md). The arm yields the way the
+        wrist is pushed along their line, as the pinch's yield does, so that the hand turns
+        about the cap's own axis; no further than the alignment moves it (MAX_ALIGN)."""
+        push = self._jaw_push(readings)
+        twisting = self.twisting
+        step = float(np.sign(push)) * OUTSIDE_SPEED * dt
+        if abs(push) < STALL_CONTACT * self.threshold or abs(twisting.yielded + step) > MAX_ALIGN:
+            return
+        twisting.yielded += step
+        twisting.centre = twisting.centre + step * (readings.tcp[:3, :3] @ self.jaw_line)
+
+    def _motor_jaws(self) -> bool:
+        """Jaws without tactile pads around a cap of known width: their one force, the motor's,
+        says nothing of which jaw presses the cap; the wrist does."""
+        return self.room > 0.0 and self.ctx.info.hand.pads[0].taxels is None
+
+    def _jaw_push(self, readings: Readings) -> float:
+        """The wrist's push along the jaws' line (N, hand frame): one jaw pressing the cap harder."""
+        return float(held_wrench(self.ctx.info.hand, readings)[:3] @ self.jaw_line)
 
     def _begin_seat(self, readings: Readings, seating: Seating) -> None:
         self.wrench.start(readings)  # in free air, over the cap

@@ -51,8 +51,9 @@ class Twisting:
     """One twist."""
 
     goal: np.ndarray  # world TCP orientation once turned TWIST_ANGLE
-    centre: np.ndarray  # world: the grasp centre, which stays where it was pinched
+    centre: np.ndarray  # world: the grasp centre, held where it was pinched unless the arm gives way (`_give_way`)
     started: float  # s: when it began
+    yielded: float = 0.0  # m the arm has given way along the jaws' line to a jaw the twist drives into the cap
 
 
 @dataclass

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from atd.model.frames import axis_rotation
 from atd.model.task import State
 from atd.model.vocabulary import StateType
 from atd.sim import load_description
@@ -157,3 +158,39 @@ def test_a_return_whose_open_jaw_meets_the_caps_top_gets_off_it_and_round_to_the
         readings = world.read()
     assert arm.phase is Phase.PINCH and arm.tally.pinches == 2, (arm.phase, pressed, world.tcp[:3, 3])
     assert np.linalg.norm(world.tcp[:3, 3] - start) < 0.002, world.tcp[:3, 3]  # round the cap where it pinched
+
+
+def test_a_motor_grip_twisted_off_the_caps_axis_gives_way_and_keeps_both_jaws_on_the_cap() -> None:
+    """The Baxter's PyBullet trials 4 and 5 at the fresh seed 57731 (docs/unscrew-campaign.md):
+    the jaws pinched the cap with the hand 11 mm off its axis across their width, which the
+    motor's one force cannot see. Twisting about its own axis, the hand swung the cap's
+    centre along the jaws' line: one jaw drove into it at 20-31 N and forced the jaws open
+    to their stop, and 10 and 7 twists took the cap off against 4. Here the cap turns only
+    about its own axis; a jaw pressed by it reads PUSH at the wrist along their line. Now
+    the arm gives way to that push: the cap's axis stays within 1.5 mm of the jaws' middle
+    (on main 5 mm, past the 3.8 mm to their stop), and the twist ends turned."""
+    across = 0.011  # m: the hand's grasp centre from the cap's axis, across the jaws' width
+    world = ScriptedJaws("baxter", "left", (-across, 0.0, TOP), gap=0.0676)
+    arm, dt = world.arm, world.info.control_period
+    arm.start(world.read())
+    world.ctx.blackboard.cap = CapGrip(pinched=True, holding=True)
+    hand = world.info.hand
+    left, right = hand.pad_surfaces(np.zeros(len(hand.open)))[:2, :3, 3]
+    line = (left - right) / np.linalg.norm(left - right)  # the jaws' line, hand frame
+    worst = 0.0  # m: the largest offset of the cap's axis from the jaws' middle, along their line, while twisting
+    while world.time < 5.0 and arm.phase in (Phase.PINCH, Phase.TWIST):
+        rotation = world.tcp[:3, :3]
+        along = rotation @ line
+        off = -float((world.tcp[:3, 3] + rotation @ arm.grasp_centre) @ along)  # the axis from the jaws' middle
+        if arm.phase is Phase.TWIST:
+            worst = max(worst, abs(off))
+        world.gap = 2.0 * RADIUS + 2.0 * abs(off) - 0.0005  # the jaws squeeze the cap, one pushed back by it
+        world.force = np.sign(off) * PUSH * along if abs(off) > 0.0005 else np.zeros(3)
+        twist = arm.update(world.read(), dt).arm.twist
+        world.tcp[:3, 3] += twist[:3] * dt
+        turn = float(np.linalg.norm(twist[3:]))
+        if turn > 0.0:
+            world.tcp[:3, :3] = axis_rotation(twist[3:] / turn, turn * dt) @ rotation
+        world.time += dt
+    assert arm.phase is Phase.PULL and arm.tally.twists == 1, arm.phase  # turned TWIST_ANGLE
+    assert worst < 0.5 * arm.room and worst < 0.0015, (worst, arm.room)  # both jaws on the cap, short of their stop
