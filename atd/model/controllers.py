@@ -548,7 +548,8 @@ _HAND_CONTROLLERS = (
                                        "pressed (ours; the factory's hand says where: docs/robust-grasp.md)", False),
             "closing_swing": _p(NUM, "how much further the hand reaches along the approach on its way from the "
                                 "preshape to the grasp: told to close on a ball with a grasping pad on the table, it "
-                                "first rises this far (the robot's own geometry; 0: it never does)", 0.0, unit="m"),
+                                "first rises this far (the robot's own geometry; 0: it never does)", 0.0, unit="m",
+                                limits=ranges.SIZE_OR_NONE),
             "stable_quality": _p(NUM, "D5's bound on the finger-extension quality Q (Eq. 3.1) of a stable grasp, "
                                  "extensions in units of the preshape's reach (D5: 0.01)", 0.01),
             "alpha_threshold": _p(NUM, "the least orientation correction alpha (Eq. 3.2) made (D5: 0.01 rad)",
