@@ -262,13 +262,12 @@ class UnscrewArm(Controller):
         further than the jaws' room, until both close on the cap."""
         if not self._motor_jaws() or self._jaws_gap(readings) <= self.cap_width:
             return False
-        push = self._jaw_push(readings)
-        if abs(push) < STALL_CONTACT * self.threshold:
+        step = self._yield_step(readings, dt)
+        if step == 0.0:
             return False
         if self.yielded < self.room:
-            self.yielded += OUTSIDE_SPEED * dt
-            self.still.position = self.still.position + np.sign(push) * OUTSIDE_SPEED * dt * (
-                self.still.rotation @ self.jaw_line)
+            self.yielded += abs(step)
+            self.still.position = self.still.position + step * (self.still.rotation @ self.jaw_line)
         return True
 
     def _give_way(self, readings: Readings, dt: float) -> None:
@@ -278,10 +277,9 @@ class UnscrewArm(Controller):
         to their stop (the Baxter, docs/unscrew-campaign.md). The arm yields the way the
         wrist is pushed along their line, as the pinch's yield does, so that the hand turns
         about the cap's own axis; no further than the alignment moves it (MAX_ALIGN)."""
-        push = self._jaw_push(readings)
         twisting = self.twisting
-        step = float(np.sign(push)) * OUTSIDE_SPEED * dt
-        if abs(push) < STALL_CONTACT * self.threshold or abs(twisting.yielded + step) > MAX_ALIGN:
+        step = self._yield_step(readings, dt)
+        if step == 0.0 or abs(twisting.yielded + step) > MAX_ALIGN:
             return
         twisting.yielded += step
         twisting.centre = twisting.centre + step * (readings.tcp[:3, :3] @ self.jaw_line)
@@ -291,9 +289,14 @@ class UnscrewArm(Controller):
         says nothing of which jaw presses the cap; the wrist does."""
         return self.room > 0.0 and self.ctx.info.hand.pads[0].taxels is None
 
-    def _jaw_push(self, readings: Readings) -> float:
-        """The wrist's push along the jaws' line (N, hand frame): one jaw pressing the cap harder."""
-        return float(held_wrench(self.ctx.info.hand, readings)[:3] @ self.jaw_line)
+    def _yield_step(self, readings: Readings, dt: float) -> float:
+        """How far (m, signed along `jaw_line`) the arm yields this tick to the wrist's push
+        along the jaws' line, one jaw pressing the cap harder: at OUTSIDE_SPEED the way it
+        is pushed, once the push is past STALL_CONTACT of the threshold; else 0."""
+        push = float(held_wrench(self.ctx.info.hand, readings)[:3] @ self.jaw_line)
+        if abs(push) < STALL_CONTACT * self.threshold:
+            return 0.0
+        return float(np.sign(push)) * OUTSIDE_SPEED * dt
 
     def _begin_seat(self, readings: Readings, seating: Seating) -> None:
         self.wrench.start(readings)  # in free air, over the cap

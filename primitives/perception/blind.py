@@ -34,6 +34,7 @@ from enum import Enum
 
 import numpy as np
 
+from atd.model.controllers import ARM_CONTROLLERS
 from primitives.arm.approach_phases import SETTLE
 from primitives.arm.explore import ARRIVED, Explore
 from primitives.base import Context, ControlData, Status
@@ -73,10 +74,11 @@ TURNS = (0.0, math.pi / 2, math.pi / 4, -math.pi / 4)
 # m over the rim above which the hand's lowest point moves at FREE_SPEED, a contact unlikely there: the
 # library's objects lying in the box reached at most 9.3 cm up, under the 10 cm rim (docs/empty-the-box.md)
 RIM_CLEARANCE = 0.01
-FREE_SPEED = 0.15  # m/s of a move wholly over RIM_CLEARANCE: a free move's (cartesian_move's max_speed)
-# N over the start's that stops a transit, where any contact is an error anyway: a free move's (cartesian_move's
-# force_threshold); at the explore's 3 N a look begun as a rise out of the box stopped read its jolt as a contact
-TRANSIT_FORCE = 15.0
+_FREE_MOVE = ARM_CONTROLLERS["cartesian_move"].params  # a free move's speed and contact force, from its own spec
+FREE_SPEED = float(_FREE_MOVE["max_speed"].default)  # m/s of a move wholly over RIM_CLEARANCE
+# N over the start's that stops a transit, where any contact is an error anyway: at the explore's
+# 3 N a look begun as a rise out of the box stopped read its jolt as a contact
+TRANSIT_FORCE = float(_FREE_MOVE["force_threshold"].default)
 # N over the start's that stops the rise out of where the last state left the hand, which may have
 # ended pressing on something (pick_one.xml's clear stopped on 15 N, and rising off it read that as a
 # contact at TRANSIT_FORCE): only what holds it down, as pick_one.xml's rise
