@@ -430,12 +430,12 @@ _ARM_CONTROLLERS = (
                               "reaches furthest: the approach keeps this clear of the rim, whatever the grasp opens "
                               "the hand to (the robot's own geometry: `RobotDescription.hand_reach`)", 0.0, unit="m",
                               limits=ranges.COORDINATE),
-            "hand_radius": _p(NUM, "how far the hand reaches sideways from the TCP: random blind and the sweep "
-                              "keep the TCP this far in from the walls (the robot's own geometry: "
+            "hand_radius": _p(NUM, "how far the hand reaches sideways from the TCP: blind exploration's sweep "
+                              "keeps the TCP this far in from the walls (the robot's own geometry: "
                               "`RobotDescription.hand_radius`)", 0.05, unit="m"),
-            "grasp_extent": _p(VEC, "vision: how far the open hand reaches sideways along its x and along its y "
-                               "(the jaws' closing axis), to turn the jaws where the walls leave them room "
-                               "(the robot's own geometry: `RobotDescription.hand_extent`)", (0.04, 0.05),
+            "grasp_extent": _p(VEC, "vision and random blind: how far the open hand reaches sideways along its x "
+                               "and along its y (the jaws' closing axis), to turn the jaws where the walls leave them "
+                               "room (the robot's own geometry: `RobotDescription.hand_extent`)", (0.04, 0.05),
                                unit="m", length=2),
             "approach_height": _p(NUM, "the approach puts the hand's lowest point this far over the higher of "
                                   "the object's top and the container's rim (ours)", 0.05, unit="m"),

@@ -47,14 +47,28 @@ class Approaching:
     grasp_reach: float
 
 
-def random_blind(container: ContainerBelief, rng: np.random.Generator, margin: float,
+def random_blind(container: ContainerBelief, rng: np.random.Generator, extent: tuple[float, float],
                  approaching: Approaching) -> Approach:
-    """A top approach at a point drawn uniformly over the container's floor, `margin` in from
-    its walls (thesis 3.4.3 random blind). It never says "nothing found": it cannot know."""
-    low, high = container.footprint(margin)
-    local = np.array([*rng.uniform(low, high), 0.0])
-    point = container.to_world(local[None])[0]
-    return Approach(approach_pose(container, point, approaching.grasp_reach, approaching.height), point, "random_blind")
+    """A top approach at a point drawn uniformly over the container's whole floor (thesis 3.4.3
+    random blind: anywhere inside the known box). Where the walls leave the open hand (reaching
+    `extent` along its x and its y) no room over that point, the hand is moved in as little as
+    it takes (`clear_of_walls`), turned so that its jaws close along the wall it is moved off
+    where that pushes them less off the point: an object lying against a wall is then between
+    the jaws, not under one. It never says "nothing found": it cannot know."""
+    low, high = container.footprint(0.0)
+    point = container.to_world(np.array([[*rng.uniform(low, high), 0.0]]))[0]
+    poses = [approach_pose(container, point, approaching.grasp_reach, approaching.height, yaw)
+             for yaw in (0.0, np.pi / 2)]
+    pose = min(poses, key=lambda turned: walls_push(container, turned, extent)[0])  # jaws along the box's y on a tie
+    moved = walls_push(container, pose, extent)[1]
+    return Approach(moved, np.array([*moved[:2, 3], point[2]]), "random_blind")
+
+
+def walls_push(container: ContainerBelief, pose: np.ndarray, extent: tuple[float, float]) -> tuple[float, np.ndarray]:
+    """How far (m) the container's walls push a top-down hand at `pose` (reaching `extent`)
+    along its jaws' closing axis (its y) to keep it inside them, and the pose they leave it at."""
+    moved = clear_of_walls([container], pose, extent)
+    return abs(float((moved[:3, 3] - pose[:3, 3]) @ pose[:3, 1])), moved
 
 
 @dataclass(frozen=True)
@@ -131,9 +145,8 @@ def jaw_yaw(top: np.ndarray, container: ContainerBelief, extent: tuple[float, fl
 
     def cost(yaw: float) -> tuple[bool, float]:
         pose = approach_pose(container, centre, 0.0, 0.0, yaw)
-        closing = pose[:3, 1]
-        pushed = abs(float((clear_of_walls([container], pose, extent)[:3, 3] - pose[:3, 3]) @ closing))
-        width = float(np.ptp(top[:, :2] @ closing[:2]))
+        pushed = walls_push(container, pose, extent)[0]
+        width = float(np.ptp(top[:, :2] @ pose[:2, 1]))
         return pushed > WALL_PUSH, 0.0 if half is not None and yaw == long else width
 
     return min((long, (long + np.pi) % np.pi - np.pi / 2), key=cost)

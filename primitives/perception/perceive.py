@@ -14,15 +14,17 @@ from primitives.robot import Readings
 
 
 class RandomBlind(Perceiver):
-    """Random blind: an approach drawn over the container's floor, `hand_radius` in from its
-    walls, from the run's seeded generator. It always finds "something"."""
+    """Random blind: an approach drawn over the container's whole floor, from the run's seeded
+    generator, the hand moved in and turned where the walls leave it no room (`grasp_extent`).
+    It always finds "something"."""
 
     method = "random_blind"
 
     def start(self, readings: Readings) -> None:
         super().start(readings)
-        self.found(random_blind(self.container, self.ctx.rng, float(self.params["hand_radius"]), self.approaching),
-                   "")
+        extent = self.params["grasp_extent"]
+        self.found(random_blind(self.container, self.ctx.rng, (float(extent[0]), float(extent[1])),
+                                self.approaching), "")
 
 
 class Vision(Perceiver):

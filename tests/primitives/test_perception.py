@@ -58,16 +58,33 @@ def test_the_container_belief_is_the_room_inside_the_box() -> None:
         ContainerBelief.from_params(bent)
 
 
-def test_random_blind_draws_over_the_whole_floor_inside_the_walls_and_never_gives_up() -> None:
+def test_random_blind_draws_over_the_whole_floor_and_keeps_the_hand_inside_the_walls() -> None:
     rng = np.random.default_rng(3)
-    drawn = [random_blind(BELIEF, rng, 0.03, APPROACHING) for _ in range(2000)]
-    points = np.array([a.point for a in drawn])
-    assert np.all(np.abs(points[:, 0] - 0.18) <= 0.08 + 1e-9) and np.all(np.abs(points[:, 1] - 0.15) <= 0.06 + 1e-9)
-    assert np.ptp(points[:, 0]) > 0.15 and np.ptp(points[:, 1]) > 0.11  # all of it, not the middle
+    drawn = [random_blind(BELIEF, rng, (0.04, 0.05), APPROACHING) for _ in range(2000)]
+    tcp = np.array([a.pose[:3, 3] for a in drawn]) - BELIEF.pose[:3, 3]
+    jaws = np.array([a.pose[:3, 1] for a in drawn])  # the closing axis
+    along_y = np.abs(jaws[:, 1]) > 0.99
+    # the open hand (4 cm along its x, 5 along its jaws) inside the 22 x 18 cm box, turned either way
+    assert np.all(np.abs(tcp[along_y, 0]) <= 0.07 + 1e-9) and np.all(np.abs(tcp[along_y, 1]) <= 0.04 + 1e-9)
+    assert np.all(np.abs(tcp[~along_y, 0]) <= 0.06 + 1e-9) and np.all(np.abs(tcp[~along_y, 1]) <= 0.05 + 1e-9)
+    assert np.all(along_y | (np.abs(jaws[:, 0]) > 0.99))
+    assert np.ptp(tcp[:, 0]) > 0.13 and np.ptp(tcp[:, 1]) > 0.09  # all of it, not the middle
     assert all(a.candidates is None for a in drawn)  # it cannot count
     pose = drawn[0].pose
     np.testing.assert_allclose(pose[:3, 2], (0.0, 0.0, -1.0))  # top-down
     assert pose[2, 3] == pytest.approx(RIM + 0.05 + MELFA_REACH)  # the fingertips 5 cm over the rim
+
+
+def test_random_blind_comes_down_over_an_object_against_a_wall_with_its_jaws_along_the_wall() -> None:
+    """A ball's middle 2.5 cm off the +y wall: jaws closing towards that wall (the hand reaching 5
+    cm along them) cannot straddle it, jaws closing along the wall (4 cm its other way) can; on
+    main the draws kept the TCP 5 cm from every wall, so none came over it."""
+    rng = np.random.default_rng(5)
+    ball = BELIEF.pose[:3, 3] + (0.0, BELIEF.inner[1] / 2 - 0.025, 0.0)
+    drawn = [random_blind(BELIEF, rng, (0.04, 0.05), APPROACHING) for _ in range(2000)]
+    over = [a for a in drawn if abs(a.pose[0, 3] - ball[0]) < 0.015 and abs(a.pose[1, 3] - ball[1]) < 0.02]
+    assert len(over) >= 20  # 1% of the draws or more: within a pad's half width across, 1.5 cm along the jaws
+    assert all(abs(a.pose[0, 1]) > 0.99 for a in over)  # the jaws close along the wall
 
 
 # -- vision ---------------------------------------------------------------------------------

@@ -62,15 +62,17 @@ def test_a_grasp_over_half_of_a_standing_speakers_top_holds_it():
     assert result.end_state == "held", result.summary
 
 
-def test_a_random_blind_round_on_an_empty_spot_rises_out_at_once_and_costs_under_17_s():
+def test_a_random_blind_round_on_an_empty_spot_rises_out_at_once_and_costs_under_19_s():
     """Random blind needs many rounds, most of them on a spot with nothing there, so a round's
     simulated time decides whether it empties the box in its budget: the jaws that closed on
     nothing go up without stopping to open, at a free move's speed (the round cost 19.3 s when
-    they opened first, 1.6 s, and rose at an explore's 4 cm/s, 4.2 s; docs/empty-the-box.md)."""
+    they opened first, 1.6 s, and rose at an explore's 4 cm/s, 4.2 s, with its grasp closing at
+    two points; 15.0 s since. The draw over the whole floor comes down on another spot, where
+    the grasp closes at three points: 18.0 s; docs/empty-the-box.md)."""
     result = run(BOX_DATA / "random_round.xml", robot="melfa")
     assert result.end_state == "done", result.summary
     assert "take_one_out/open_empty" not in result.path and "take_one_out/rise" in result.path
-    assert result.sim_time < 17.0
+    assert result.sim_time < 19.0
 
 
 @pytest.fixture(scope="module")
