@@ -153,7 +153,8 @@ class RobustGraspHand(ForceGrasp):
         if self.status is not Status.RUNNING:
             return
         if held.settled >= SETTLE_TIME and self._corrects_pinch():
-            self.phase, self.weighing = Phase.WEIGH, Weighing(float(readings.tcp[2, 3]))  # lift it, to feel where its weight hangs
+            # lift it, to feel where its weight hangs
+            self.phase, self.weighing = Phase.WEIGH, Weighing(float(readings.tcp[2, 3]))
             self.ctx.blackboard.weigh = WEIGH_LIFT
         elif held.settled >= SETTLE_TIME:
             self.finish(Status.DONE, f"object held after {self.corrections.retries} corrections: "
