@@ -69,7 +69,8 @@ class Blackboard:
     weigh: float | None = None
     """Hand -> arm: m for the arm to raise (+) or lower (-) the hand, holding, and then hold
     still there; the arm sets it back to None once it has, still for a moment. The robust
-    grasp lifts what it holds off the table this way to feel where its weight hangs."""
+    grasp lifts what it holds off the table this way to feel where its weight hangs, and
+    lowers its open hand back as far when the object slipped out of the pads meanwhile."""
 
     arm_nudge: np.ndarray | None = None
     """Hand -> arm: (3,) world-frame TCP velocity, m/s, to add to the arm's own motion."""

@@ -24,6 +24,7 @@ class Phase(Enum):
     WAIT = "_wait"  # preshaped: the arm approaches until it says the hand may close
     CLOSE = "_close"  # the grasping fingers close until they can close no further
     REOPEN = "_reopen"  # a close failed: back to the preshape before the arm moves the hand
+    LOWER = "_lower"  # open after the object slipped out in the weighing: the arm lowers the hand back first
     SHIFT = "_shift"  # open, while the arm makes the correction's move
     HOLD = "_hold"  # closed on the object: force adaptation until the pads settle
     WEIGH = "_weigh"  # holding, lifted off the table by the arm: where does the weight hang
@@ -45,6 +46,7 @@ class Closing:
     felt_at: float = 0.0  # m across the pinch line where the pads last felt the object
     pinched: float = 0.0  # s every grasping pad has pressed with PINCHED times the grasp force
     looked: float = -np.inf  # s: when the pads' gap was last looked at
+    dropped: float | None = None  # m the arm had lifted the hand when the object slipped out of the pads
 
 
 @dataclass
@@ -63,6 +65,7 @@ class Holding:
 class Weighing:
     """The held object lifted to feel where its weight hangs, and what to do once it is set down."""
 
+    lifted_from: float = 0.0  # m: the TCP's height (world z) as the arm began to lift it
     weights: list[np.ndarray] = field(default_factory=list)  # wrist loads felt, lifted, less the hand's own
     regrasp: np.ndarray = field(default_factory=lambda: np.zeros(3))  # the shift across its weight (hand frame)
     off_line: str = ""  # why, for the error once the corrections are spent

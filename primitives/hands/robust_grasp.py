@@ -110,8 +110,19 @@ class RobustGraspHand(ForceGrasp):
             self._judge(readings)
 
     def _reopen(self, readings: Readings, dt: float) -> None:
-        """Back to the preshape, fast; then the arm is asked for the correction's move."""
+        """Back to the preshape, fast; then the arm is asked for the correction's move, or
+        first to lower the hand as far as it had lifted an object that slipped out of the pads."""
         if self._ramp(self.pre, dt, readings.hand_q, OPENING_SPEED / CLOSING_SPEED) or self._blocked(readings, dt):
+            if self.closing.dropped is not None:
+                self.ctx.blackboard.weigh, self.closing.dropped = -self.closing.dropped, None
+                self.phase = Phase.LOWER
+                return
+            self.ctx.blackboard.shift = self.corrections.shift
+            self.phase = Phase.SHIFT
+
+    def _lower(self, readings: Readings, dt: float) -> None:
+        """Once the arm has lowered the open hand back: the correction's move."""
+        if self.ctx.blackboard.weigh is None:
             self.ctx.blackboard.shift = self.corrections.shift
             self.phase = Phase.SHIFT
 
@@ -142,7 +153,8 @@ class RobustGraspHand(ForceGrasp):
         if self.status is not Status.RUNNING:
             return
         if held.settled >= SETTLE_TIME and self._corrects_pinch():
-            self.phase, self.weighing = Phase.WEIGH, Weighing()  # lift it, to feel where its weight hangs
+            # lift it, to feel where its weight hangs
+            self.phase, self.weighing = Phase.WEIGH, Weighing(float(readings.tcp[2, 3]))
             self.ctx.blackboard.weigh = WEIGH_LIFT
         elif held.settled >= SETTLE_TIME:
             self.finish(Status.DONE, f"object held after {self.corrections.retries} corrections: "
@@ -285,7 +297,11 @@ class RobustGraspHand(ForceGrasp):
         fingers that touch it; when none does, towards those that touched something on the
         way and lost it (the object pushed aside by the finger that met it first), as long
         as some did not: that side is where the object went. A regrasp to the object's weighed
-        weight that closes on nothing pushed it on: one step further that way."""
+        weight that closes on nothing pushed it on: one step further that way. An object that
+        slipped down out of the pads as the arm lifted it to weigh it stands where they held
+        it: close again there, as low as they held it, not half its footprint beyond as after
+        a push (the Barrett's bunny, sent 4.5 cm off it; docs/robust-grasp.md, "The bunny
+        dropped in the weighing")."""
         search = self.search
         heading, search.heading = search.heading, 0.0
         weighed, search.weighed = search.weighed, False
@@ -314,6 +330,9 @@ class RobustGraspHand(ForceGrasp):
                 shift = search.next()
             self.corrections.lost_shift = shift
             self._try_again(shift, what)
+        elif self.closing.dropped is not None and self._corrects_pinch():
+            self._try_again(search.look(search.across + self.closing.felt_at),
+                            "the object slipped out of the pads as the arm lifted it")
         elif self._pushed_aside():
             self._try_again(self._after_pushed(), "the fingers pushed the object off their line")
         elif heading and weighed and self.pinch:  # set down there a moment ago, and gone: pushed on that way
@@ -416,6 +435,8 @@ class RobustGraspHand(ForceGrasp):
         held = self.held
         held.lost_for = held.lost_for + dt if self.correct and len(touching) < len(self.fingers) else 0.0
         if held.lost_for >= LOST_TIME and self.status is Status.RUNNING:
+            if self.phase is Phase.WEIGH:
+                self.closing.dropped = float(readings.tcp[2, 3]) - self.weighing.lifted_from
             self.ctx.blackboard.weigh = None  # dropped while weighed: no more weighing
             self._judge(readings)
             return None
