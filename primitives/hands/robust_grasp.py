@@ -21,7 +21,7 @@ from primitives.filters import WEIGHED, LowPass, held_wrench, world_load
 from primitives.hands.extension import ExtensionGauge, contact_points, on_side_row
 from primitives.hands.grasp_phases import Closing, Corrections, Holding, Phase, Weighing
 from primitives.hands.force_grasp import ForceGrasp
-from primitives.hands.multi_finger import CLOSING_SPEED, STALL_TIME
+from primitives.hands.multi_finger import CLOSING_SPEED
 from primitives.hands.pinch_search import PinchSearch
 from primitives.robot import Readings
 
@@ -82,20 +82,6 @@ class RobustGraspHand(ForceGrasp):
             self.phase = Phase.PRESHAPE
             self.stillness.seconds[:] = 0.0
             self.ctx.memory[EMPTY_HAND] = world_load(readings)
-
-    def _preshape(self, readings: Readings, dt: float) -> None:
-        """Risen off the table for a ball (`_wait`), the whole preshape is made in free air,
-        the Barrett's spread included, fast as a reopen, before the close: ended on its
-        closing fingers alone (already there, so still), the first close ran with the spread
-        short and the two pinching fingers some 30 degrees from facing each other, and pushed
-        the ball aside (docs/robust-grasp.md, "The ball's first close with the spread short")."""
-        if not (self.round and self.corrections.lifted):
-            super()._preshape(readings, dt)
-            return
-        made = self._ramp(self.pre, dt, readings.hand_q, OPENING_SPEED / CLOSING_SPEED)
-        if made or (self.stillness.update(readings.hand_q, dt) > STALL_TIME).all():
-            self.phase = Phase.WAIT
-            self.ctx.blackboard.preshaped = True
 
     def _wait(self, readings: Readings, dt: float) -> None:
         """Told to close on a ball with a grasping pad on the table: first rise as far as the
