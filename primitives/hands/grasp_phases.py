@@ -79,4 +79,5 @@ class Corrections:
     freed: bool = False  # the arm has risen once to free a blocked preshape
     lifted: bool = False  # the arm has risen once off the table the fingertips were told to close on
     jammed: bool = False  # the latest close stopped on something beside the pads
+    raised: np.ndarray = field(default_factory=lambda: np.zeros(3))  # hand frame: a raise to weigh what dropped
     weighed_off: float = 0.0  # m across the pinch line (signed) the weight hung at the latest weighing

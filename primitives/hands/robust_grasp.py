@@ -392,11 +392,15 @@ class RobustGraspHand(ForceGrasp):
     def _try_again(self, shift: np.ndarray, what: str, turn: float = 0.0) -> None:
         """A failed attempt: reopen, have the arm make `shift` (hand frame) and `turn`
         (about the approach axis), close again; once RETRIES are spent, fail saying `what`
-        went wrong this last time."""
+        went wrong this last time. Dropped while weighed, the move also comes back down by the
+        weighing's raise: the Barrett's pinch never follows the table down (`rising_grasps`), so
+        its next closes ran WEIGH_LIFT higher, over a ball's top (docs/robust-grasp.md, "The
+        ball's first close with the spread short")."""
         if self.corrections.retries >= RETRIES:
             self._fail(what)
             return
-        self.corrections.shift = Shift(np.array(shift, float), float(turn))
+        self.corrections.shift = Shift(np.array(shift, float) + self.corrections.raised, float(turn))
+        self.corrections.raised = np.zeros(3)
         self.effort[:] = 0.0
         self.stillness.seconds[:] = 0.0
         self.phase = Phase.REOPEN
@@ -417,6 +421,8 @@ class RobustGraspHand(ForceGrasp):
         held.lost_for = held.lost_for + dt if self.correct and len(touching) < len(self.fingers) else 0.0
         if held.lost_for >= LOST_TIME and self.status is Status.RUNNING:
             self.ctx.blackboard.weigh = None  # dropped while weighed: no more weighing
+            if self.phase is Phase.WEIGH:  # the arm has raised the hand: the next close comes back down
+                self.corrections.raised = readings.tcp[:3, :3].T @ np.array([0.0, 0.0, -WEIGH_LIFT])
             self._judge(readings)
             return None
         felt = self._adapt(readings, dt)
