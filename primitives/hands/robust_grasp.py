@@ -394,8 +394,8 @@ class RobustGraspHand(ForceGrasp):
         (about the approach axis), close again; once RETRIES are spent, fail saying `what`
         went wrong this last time. Dropped while weighed, the move also comes back down by the
         weighing's raise: the Barrett's pinch never follows the table down (`rising_grasps`), so
-        its next closes ran WEIGH_LIFT higher, over a ball's top (docs/robust-grasp.md, "The
-        ball's first close with the spread short")."""
+        its next closes ran WEIGH_LIFT higher, over a ball's top (docs/robust-grasp.md, "A ball
+        dropped while weighed")."""
         if self.corrections.retries >= RETRIES:
             self._fail(what)
             return
