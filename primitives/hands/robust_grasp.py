@@ -113,18 +113,21 @@ class RobustGraspHand(ForceGrasp):
         """Back to the preshape, fast; then the arm is asked for the correction's move, or
         first to lower the hand as far as it had lifted an object that slipped out of the pads."""
         if self._ramp(self.pre, dt, readings.hand_q, OPENING_SPEED / CLOSING_SPEED) or self._blocked(readings, dt):
-            if self.closing.dropped is not None:
+            if self.closing.dropped is None:
+                self._ask_for_shift()
+            else:
                 self.ctx.blackboard.weigh, self.closing.dropped = -self.closing.dropped, None
                 self.phase = Phase.LOWER
-                return
-            self.ctx.blackboard.shift = self.corrections.shift
-            self.phase = Phase.SHIFT
 
     def _lower(self, readings: Readings, dt: float) -> None:
         """Once the arm has lowered the open hand back: the correction's move."""
         if self.ctx.blackboard.weigh is None:
-            self.ctx.blackboard.shift = self.corrections.shift
-            self.phase = Phase.SHIFT
+            self._ask_for_shift()
+
+    def _ask_for_shift(self) -> None:
+        """The hand open: the arm is asked for the correction's move."""
+        self.ctx.blackboard.shift = self.corrections.shift
+        self.phase = Phase.SHIFT
 
     def _shift(self, readings: Readings, dt: float) -> None:
         if self.ctx.blackboard.shift is None:  # the arm has made the move
@@ -154,7 +157,7 @@ class RobustGraspHand(ForceGrasp):
             return
         if held.settled >= SETTLE_TIME and self._corrects_pinch():
             # lift it, to feel where its weight hangs
-            self.phase, self.weighing = Phase.WEIGH, Weighing(float(readings.tcp[2, 3]))
+            self.phase, self.weighing = Phase.WEIGH, Weighing(lifted_from=float(readings.tcp[2, 3]))
             self.ctx.blackboard.weigh = WEIGH_LIFT
         elif held.settled >= SETTLE_TIME:
             self.finish(Status.DONE, f"object held after {self.corrections.retries} corrections: "

@@ -57,10 +57,9 @@ def random_blind(container: ContainerBelief, rng: np.random.Generator, extent: t
     the jaws, not under one. It never says "nothing found": it cannot know."""
     low, high = container.footprint(0.0)
     point = container.to_world(np.array([[*rng.uniform(low, high), 0.0]]))[0]
-    poses = [approach_pose(container, point, approaching.grasp_reach, approaching.height, yaw)
-             for yaw in (0.0, np.pi / 2)]
-    pose = min(poses, key=lambda turned: walls_push(container, turned, extent)[0])  # jaws along the box's y on a tie
-    moved = walls_push(container, pose, extent)[1]
+    pushes = [walls_push(container, approach_pose(container, point, approaching.grasp_reach, approaching.height, yaw),
+                         extent) for yaw in (0.0, np.pi / 2)]
+    moved = min(pushes, key=lambda push: push[0])[1]  # jaws along the box's y on a tie
     return Approach(moved, np.array([*moved[:2, 3], point[2]]), "random_blind")
 
 
