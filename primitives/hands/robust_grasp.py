@@ -368,10 +368,16 @@ class RobustGraspHand(ForceGrasp):
         of the pinch line: they meet the flank of a body standing beside them, the squeeze
         pushes it out sideways and the lift loses it (docs/robust-grasp.md, "Pinched by the
         pads' side edges"). Close again that far across, the line through where they pressed:
-        true if that correction is under way; with the budget spent the grasp holds what it has."""
+        true if that correction is under way; with the budget spent the grasp holds what it has.
+        Not on a ball: the pads' edge contacts lie short of its centre (the correction left the
+        SDH2's ball 1-2 cm off the line close after close, each squeeze and reopening rolling it
+        on, until a close kicked it away), and a pad's face pressing it near its edge reads the
+        same; the weighing measures where its weight hangs and grasps it again across that
+        (docs/robust-grasp.md, "A ball pinched at the pads' edges")."""
         pads = [self.pad_of[f] for f in self.fingers]
         hand = self.ctx.info.hand
-        if not (self.side_edge_correction and self._corrects_pinch()) or self.corrections.retries >= RETRIES \
+        if not (self.side_edge_correction and self._corrects_pinch()) or self.round \
+                or self.corrections.retries >= RETRIES \
                 or not all(on_side_row(hand, readings, k) for k in pads):
             return False
         across = (contact_points(hand, readings, pads)[:, :2] - self.base[self.fingers[0]]) @ self.search.normal
