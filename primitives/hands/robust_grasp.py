@@ -28,7 +28,6 @@ from primitives.robot import Readings
 OPENING_SPEED = 1.0  # of each DOF's speed limit: reopening at the closing speed left time for only two closes
 SETTLE_TIME = 0.1  # s every pad must feel the grasp force (HELD) before the object counts as held
 HELD = 0.9  # the squeeze within 10 % of the grasp force: the object is held
-FIRMER = 1.5  # times the grasp force a steady squeeze may settle at: Barrett pads came to rest at 6.5-7 N of 5 N asked
 FELT_TIME = SETTLE_TIME  # s the pad forces are averaged over: a pad on a tilted object swings about a steady mean
 SETTLE_LIMIT = 4.0  # s a hold may take to settle: 1.5 times the slowest measured; one unsettled then never will
 RETRIES = 5  # corrections of any kind per grasp: room for a search and a regrasp within a task's 20 s
@@ -136,15 +135,11 @@ class RobustGraspHand(ForceGrasp):
             self._begin_closing()
 
     def _hold(self, readings: Readings, dt: float) -> None:
-        """Force adaptation until the squeeze settles (averaged over FELT_TIME, steady within
-        1 - HELD of the grasp force for SETTLE_TIME, not only passing through) from the grasp
-        force (within that band) up to FIRMER times it, or below it with every finger at its
-        effort limit (`_strongest`); then a pinch weighs what it holds, other grasps are done.
-        A squeeze at rest above the grasp force holds the object more firmly, not less: the
-        Barrett's pads, their joints holding the force against a falling effort, came to rest
-        there and crept down to the band for 1-2 s of the grasp's 20 (docs/robust-grasp.md,
-        "The Barrett's holds settled from above"). Pads pressed on the table (22-55 N) stay
-        out of it. Unsettled after SETTLE_LIMIT: an error naming the pads."""
+        """Force adaptation until the squeeze settles at the grasp force (within 1 - HELD,
+        averaged over FELT_TIME, and not only passing through the band) for SETTLE_TIME, or
+        below it with every finger at its effort limit (`_strongest`); then a pinch weighs
+        what it holds, other grasps are done. Unsettled after SETTLE_LIMIT: an error naming
+        the pads."""
         averaged = self._squeeze(readings, dt)
         if averaged is None:
             return
@@ -152,8 +147,7 @@ class RobustGraspHand(ForceGrasp):
         squeeze = float(averaged.mean() if self.pinch else averaged.min())
         band = (1.0 - HELD) * self.grasp_force
         short = squeeze < self.grasp_force - band and self._strongest()  # steady there, it is all the hand has
-        outside = squeeze < self.grasp_force - band or squeeze > FIRMER * self.grasp_force
-        if (outside and not short) or abs(squeeze - held.entered) > band:
+        if (abs(squeeze - self.grasp_force) > band and not short) or abs(squeeze - held.entered) > band:
             held.entered, held.settled = squeeze, 0.0  # out of the band, or only passing through it
         else:
             held.settled += dt
