@@ -44,6 +44,7 @@ RIM_CONTACT = 0.0015  # m over which a pad's contact on a curved face carries fr
 FAR_OFF = 0.03  # m beyond which friction is not trusted: holds lasted to 2.9 cm off, one at 3.4 cm fell
 ROLLING_CLOSE = 0.5  # of the closing speed, on a ball: a finger's edge meeting it at full speed kicks it away
 GAP_CHECK = 0.05  # s between looks at the pads' gap: a look (forward kinematics) costs 0.3-0.5 ms
+SLIPPED_GRIP = 2.0  # times the grasp force after the object slipped out of the pads as the arm lifted it
 
 
 class RobustGraspHand(ForceGrasp):
@@ -116,8 +117,18 @@ class RobustGraspHand(ForceGrasp):
             if self.closing.dropped is None:
                 self._ask_for_shift()
             else:
-                self.ctx.blackboard.weigh, self.closing.dropped = -self.closing.dropped, None
-                self.phase = Phase.LOWER
+                self._lower_back()
+
+    def _lower_back(self) -> None:
+        """The object slipped out of the pads as the arm lifted it to weigh it: the arm lowers
+        the open hand as far as it had lifted, and every hold after presses SLIPPED_GRIP times
+        the force asked. Where the pads met it their friction did not carry its weight (the
+        Barrett's pinch on the bunny's and the tape's flanks, 4.5-5 N each on 0.12 kg; closed
+        there again, it slipped again: docs/robust-grasp.md, "The Barrett beyond the preset at
+        two fresh seeds"); friction grows with the squeeze."""
+        self.ctx.blackboard.weigh, self.closing.dropped = -self.closing.dropped, None
+        self.grasp_force = SLIPPED_GRIP * float(self.params["grasp_force"])
+        self.phase = Phase.LOWER
 
     def _lower(self, readings: Readings, dt: float) -> None:
         """Once the arm has lowered the open hand back: the correction's move."""
