@@ -171,7 +171,8 @@ def under_jaws(points: np.ndarray, pose: np.ndarray, band: tuple[float, float, f
     down there lands on."""
     flat = points[:, :2] - pose[:2, 3]
     along, across = np.abs(flat @ pose[:2, 1]), np.abs(flat @ pose[:2, 0])
-    return int(np.count_nonzero((along >= band[0]) & (along <= band[1] + JAW_MARGIN) & (across <= band[2] + JAW_MARGIN)))
+    under = (along >= band[0]) & (along <= band[1] + JAW_MARGIN) & (across <= band[2] + JAW_MARGIN)
+    return int(np.count_nonzero(under))
 
 
 def clear_jaws(pose: np.ndarray, point: np.ndarray, seen: np.ndarray, container: ContainerBelief,
