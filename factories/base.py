@@ -328,9 +328,21 @@ class Factory(ABC):
                               container_wall=container.wall, hand_reach=round(reach, 6), hand_radius=round(radius, 6),
                               grasp_reach=round(max(self.robot.hand_reach(p) for p in self.robot.hand.postures), 6),
                               grasp_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)),
+                              jaw_band=self.jaw_band(),
                               sweep_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture, SWEEPING_TIP)),
                               tip_length=round(self.robot.tip_length(posture, SWEEPING_TIP), 6))
         return NodeMapping("perceive", arm, self.controller("hand_shape", shape=posture), notes)
+
+    def jaw_band(self) -> tuple[float, float, float]:
+        """A parallel jaw's open fingertips, which a box round's grasp comes down with (`perceive`'s
+        `jaw_band`): from its pads' half opening along the hand's y to how far its tips reach
+        along it, and how far along its x; zeros for a multi-finger hand, whose fingers are no
+        two jaws closing along its y."""
+        if self.arm.hand.kind != "parallel jaw":
+            return (0.0, 0.0, 0.0)
+        inner = self.robot.pad_opening(HandShape.OPEN.value, np.pi / 2) / 2.0
+        across, along = self.robot.hand_extent(HandShape.OPEN.value, SWEEPING_TIP)
+        return (round(inner, 6), round(along, 6), round(across, 6))
 
     @abstractmethod
     def map_node(self, state: State, context: MappingContext) -> NodeMapping:

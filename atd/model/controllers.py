@@ -437,6 +437,12 @@ _ARM_CONTROLLERS = (
                                "and along its y (the jaws' closing axis), to turn the jaws where the walls leave them "
                                "room (the robot's own geometry: `RobotDescription.hand_extent`)", (0.04, 0.05),
                                unit="m", length=2),
+            "jaw_band": _p(VEC, "vision: the open jaws' fingertips, from how far along the hand's y their pads' "
+                           "inner faces stand to how far they reach, and how far they reach along its x: where "
+                           "they would come down on what the picture shows, the approach turns and slides to "
+                           "keep them off it (the robot's own geometry: `RobotDescription.pad_opening`, "
+                           "`hand_extent` within 2 cm); 0 0 0: not known, the turn is the top's alone",
+                           (0.0, 0.0, 0.0), unit="m", length=3, limits=ranges.SIZE_OR_NONE),
             "approach_height": _p(NUM, "the approach puts the hand's lowest point this far over the higher of "
                                   "the object's top and the container's rim (ours)", 0.05, unit="m"),
             **_EXPLORING,

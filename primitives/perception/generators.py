@@ -33,6 +33,17 @@ WALL_PUSH = 0.01
 # it: a grasp that misses nudges what it came down on by a centimetre or two, and the library's
 # objects lie 3.8 cm or more apart at their middles.
 AIMED_NEAR = 0.02
+# The turns (rad from the container's x) and the slides along the jaws' closing axis (m) off the
+# middle aimed at that vision weighs where the jaws' first choice would come down on something:
+# every 15 degrees, and up to 1.5 cm either way (the library's objects are 3.8 cm or more across,
+# the WRT-102's jaws open 6.8 cm: a slide further leaves no object between them).
+TURNS = np.radians(np.arange(-90.0, 90.0, 15.0))
+SLIDES = (0.0, -0.005, 0.005, -0.01, 0.01, -0.015, 0.015)
+# m the jaws' fingertips are taken to reach further, outwards and along the hand's x, than the
+# hand's geometry says: the arm reaches an approach to within 3 mm, and the picture's points stop a
+# few mm short of an object's edge (a jaw 0.7 mm past a neighbour's seen edge landed on its top;
+# MuJoCo, tests/data/empty_the_box/two_blocks.toml)
+JAW_MARGIN = 0.005
 
 
 @dataclass(frozen=True)
@@ -80,6 +91,9 @@ class VisionSettings:
     voxel: float  # m, the clustering grid
     min_points: int  # a cluster of fewer is noise
     grasp_extent: tuple[float, float]  # m the open hand reaches sideways along its x and its y (the jaws' closing)
+    # m, the open jaws' fingertips: from how far along the hand's y their inner faces stand to how far
+    # they reach, and how far along its x; zeros: not known, the jaws' turn is chosen by the top alone
+    jaw_band: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
 
 def inside(points: np.ndarray, container: ContainerBelief, settings: VisionSettings) -> np.ndarray:
@@ -151,6 +165,49 @@ def jaw_yaw(top: np.ndarray, container: ContainerBelief, extent: tuple[float, fl
     return min((long, (long + np.pi) % np.pi - np.pi / 2), key=cost)
 
 
+def under_jaws(points: np.ndarray, pose: np.ndarray, band: tuple[float, float, float]) -> int:
+    """How many of `points` (world) lie under the open jaws' fingertips of a top-down hand at
+    `pose` (reaching `band`, see VisionSettings, and JAW_MARGIN further out): what a jaw coming
+    down there lands on."""
+    flat = points[:, :2] - pose[:2, 3]
+    along, across = np.abs(flat @ pose[:2, 1]), np.abs(flat @ pose[:2, 0])
+    under = (along >= band[0]) & (along <= band[1] + JAW_MARGIN) & (across <= band[2] + JAW_MARGIN)
+    return int(np.count_nonzero(under))
+
+
+def clear_jaws(pose: np.ndarray, point: np.ndarray, seen: np.ndarray, container: ContainerBelief,
+               settings: VisionSettings) -> np.ndarray:
+    """The approach `pose` over `point`, or, where its open jaws (`jaw_band`), kept inside the
+    walls as the grasp keeps them, would come down on something the picture shows (`seen`: a
+    neighbour, the object itself where it is wider that way than the jaws open, or pushed under
+    a jaw by a wall), the turn (TURNS) and slide along the closing axis (SLIDES) that leave the
+    fewest points under them, then the least slide, then the least turn from `pose`'s. A jaw on
+    something as high as the top stops the grasp's descent there, and it closed on nothing
+    round after round (docs/empty-the-box.md, "Jaws kept off what the picture shows")."""
+    band, extent = settings.jaw_band, settings.grasp_extent
+    if band[1] <= 0.0:
+        return pose
+
+    def landed(candidate: np.ndarray) -> int:
+        return under_jaws(seen, clear_of_walls([container], candidate, extent), band)
+
+    if landed(pose) == 0:
+        return pose
+    first = float(np.arctan2(pose[1, 1], pose[0, 1]))  # the hand's y, the closing axis, in the world
+
+    def turned(turn: float, slide: float) -> np.ndarray:
+        candidate = approach_pose(container, point, 0.0, 0.0, turn)
+        candidate[:3, 3] = pose[:3, 3] + slide * candidate[:3, 1]
+        return candidate
+
+    def cost(candidate: np.ndarray, slide: float) -> tuple[int, float, float]:
+        off = float(np.arctan2(candidate[1, 1], candidate[0, 1])) - first
+        return landed(candidate), abs(slide), abs((off + np.pi / 2) % np.pi - np.pi / 2)
+
+    return min(((turned(turn, slide), slide) for turn in TURNS for slide in SLIDES),
+               key=lambda pair: cost(*pair))[0]
+
+
 def aimed_at(cluster: np.ndarray, aimed: Sequence[np.ndarray]) -> list[np.ndarray]:
     """The earlier approaches' points (`aimed`, world) aimed at this cluster: within
     AIMED_NEAR of one of its points, across."""
@@ -188,7 +245,8 @@ def vision(image: DepthImage, container: ContainerBelief, rng: np.random.Generat
     the next round tries another first; over the middle of its top, or of the part of it that
     the earlier rounds' misses leave (`part_to_aim_at`). Turned for the jaws to close across
     its narrow side (across the split, over a part) where the walls leave them room
-    (`jaw_yaw`); None when it shows none."""
+    (`jaw_yaw`), turned or slid further where the open jaws would come down on something the
+    picture shows (`clear_jaws`); None when it shows none."""
     clusters = objects_seen(image, container, settings)
     if not clusters:
         return None
@@ -200,4 +258,5 @@ def vision(image: DepthImage, container: ContainerBelief, rng: np.random.Generat
     point = top_centre(part)
     pose = approach_pose(container, point, approaching.grasp_reach, approaching.height,
                          jaw_yaw(top, container, settings.grasp_extent, part if len(part) < len(top) else None))
+    pose = clear_jaws(pose, point, np.concatenate(clusters), container, settings)
     return Approach(pose, point, "vision", len(clusters), float(point[2]))

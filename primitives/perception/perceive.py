@@ -44,8 +44,10 @@ class Vision(Perceiver):
                              f"{'only ' + ', '.join(cameras) if cameras else 'none'}"
                              + (f", not '{self.camera}'" if self.camera else ""))
         extent = p["grasp_extent"]
+        band = tuple(float(v) for v in p["jaw_band"])
         self.settings = VisionSettings(float(p["floor_margin"]), float(p["wall_margin"]), float(p["above_rim"]),
-                                       float(p["voxel"]), int(p["min_points"]), (float(extent[0]), float(extent[1])))
+                                       float(p["voxel"]), int(p["min_points"]), (float(extent[0]), float(extent[1])),
+                                       (band[0], band[1], band[2]))
 
     def start(self, readings: Readings) -> None:
         super().start(readings)
