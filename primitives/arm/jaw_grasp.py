@@ -28,7 +28,9 @@ way the press pushes it, rises, and the grasp fails, saying so. Asked to (`locat
 place cannot weigh where the jaws hold the object), a hand with a range sensor along its
 approach axis sweeps the open jaws along their width before its first close of a descent,
 sees where the object's top spans (`primitives.arm.jaw_span`) and closes on its middle; it
-tells the place whether it did (`LOCATED_ALONG`).
+tells the place whether it did (`LOCATED_ALONG`). Over a known container, with the open
+fingertips over its rim and over the top the task believes in, nothing can be met: the grasp
+does not rise first, and its descent goes at a free move's speed down to just over them.
 """
 
 from __future__ import annotations
@@ -38,6 +40,7 @@ from enum import Enum
 
 import numpy as np
 
+from primitives.arm.approach_phases import APPROACH_ACCELERATION
 from primitives.arm.motion import (
     GAIN,
     ORIENTATION_TOLERANCE,
@@ -57,6 +60,7 @@ from primitives.arm.walls import KnownWalls
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import ARM_TWIST, EMPTY_HAND, LOCATED_ALONG
 from primitives.filters import ContactWrench, contact_across, world_load
+from primitives.perception.blind import FREE_SPEED, RIM_CLEARANCE
 from primitives.robot import Readings
 from primitives.search import search_offsets
 
@@ -190,7 +194,9 @@ class JawGraspCorrection(Controller):
         self.ctx.blackboard.contact = False
         self.spannable = False  # the next close first finds the object's middle along the jaws
         self.sweep: Sweep | None = None  # that sweep, once begun
-        self._rise(readings, np.zeros(3), self._above_object())
+        # an approach that ended in free air over a known container's rim touches nothing to rise off
+        clear = self._over_rim(readings.tcp[:3, 3]) > 0.0
+        self._rise(readings, np.zeros(3), self._above_object(), 0.0 if clear else self.clearance)
 
     def _depth(self, point: np.ndarray) -> float:
         """How far back `point` lies: its height, or along `back` for a grasp from the side."""
@@ -249,10 +255,24 @@ class JawGraspCorrection(Controller):
         """TCP depth from which a descent meets the object's top (or facing side) first."""
         return self._object_top() + self.above
 
-    def _rise(self, readings: Readings, across: np.ndarray, height: float = -np.inf) -> None:
-        """Back clear of the contact (at least to depth `height`), then `across` (world frame), then descend again."""
+    def _over_rim(self, position: np.ndarray) -> float:
+        """How far (m) the open fingertips of a hand from above at `position` (its TCP, world)
+        are over the line down to which nothing can be met: RIM_CLEARANCE over the rim of the
+        known container they are over, and over the top the task believes in (the library's
+        objects lying in a box reach no higher than its rim); -inf over no known container, or
+        for a grasp from the side."""
+        rim = self.walls.rim(position)
+        if rim is None or not self.vertical:
+            return -np.inf
+        return float(position[2]) - self.tip_depth - max(rim, self._object_top()) - RIM_CLEARANCE
+
+    def _rise(self, readings: Readings, across: np.ndarray, height: float = -np.inf,
+              clearance: float | None = None) -> None:
+        """Back `clearance` (by default the grasp's) clear of the contact, at least to depth `height`,
+        then `across` (world frame), then descend again."""
         here = readings.tcp[:3, 3]
-        up = self._at_depth(here, max(self._depth(here) + self.clearance, height))
+        rise = self.clearance if clearance is None else clearance
+        up = self._at_depth(here, max(self._depth(here) + rise, height))
         # from inside a box, a search point beyond its wall is a move into the wall (it pressed
         # the hand there at 240 N; Melfa, MuJoCo, docs/empty-the-box.md): kept inside it
         self.route = [up, self.walls.inside(self.rotation, up + self._level(across), here)]
@@ -304,8 +324,8 @@ class JawGraspCorrection(Controller):
                     self.phase, self.goal = JawPhase.HOLD, position.copy()
                     self.finish(Status.ERROR, self.wedged)
                     return np.zeros(3)
-                if self.ctx.blackboard.jaws_empty:  # the jaws are still opening
-                    self.route = [goal]
+                if self.ctx.blackboard.jaws_empty or len(self.free_loads) < self.free_loads.maxlen:
+                    self.route = [goal]  # the jaws are still opening, or the empty hand not yet weighed
                     return np.zeros(3)
                 self._start_descent(readings)
                 return np.zeros(3)
@@ -353,6 +373,7 @@ class JawGraspCorrection(Controller):
         self.top = self._depth(readings.tcp[:3, 3])
         self.line = readings.tcp[:3, 3].copy()  # the descent keeps to the vertical through here
         self.descent_stall.reset(readings.time, self.top)
+        self.falling = self.descent  # m/s the descent goes at (`_descent_speed`)
         obj = self.ctx.object
         self.spannable = self.locate and self.ctx.info.has_range and self.vertical and obj is not None \
             and obj.pose is not None
@@ -376,7 +397,20 @@ class JawGraspCorrection(Controller):
         # trades accuracy for bounded joint speeds (near a wrist singularity the Melfa's jaws
         # drifted 8 mm sideways in an 8 cm descent, off the object they had found).
         drift = self._off_line(self.line - readings.tcp[:3, 3])
-        return GAIN * drift - self.descent * self.back
+        return GAIN * drift - self._descent_speed(readings, dt) * self.back
+
+    def _descent_speed(self, readings: Readings, dt: float) -> float:
+        """`descent_velocity`, or faster, up to FREE_SPEED, while the open fingertips are over the
+        line where nothing can be met (`_over_rim`): speeding up and slowing down at
+        APPROACH_ACCELERATION (a sudden start reads on the wrist as a contact), so that they
+        reach it at `descent_velocity`."""
+        over = self._over_rim(readings.tcp[:3, 3])
+        if over <= 0.0:
+            self.falling = self.descent
+            return self.descent
+        braking = float(np.sqrt(self.descent**2 + 2.0 * APPROACH_ACCELERATION * over))
+        self.falling = min(FREE_SPEED, braking, self.falling + APPROACH_ACCELERATION * dt)
+        return self.falling
 
     def _met(self, readings: Readings, wrench: np.ndarray) -> None:
         """The first contact of a descent: where it sits across the hand says what it is."""

@@ -39,6 +39,11 @@ class KnownWalls:
         moved = clear_of_walls(list(self.containers), pose, self.extent, start)
         return position if moved is pose else moved[:3, 3]
 
+    def rim(self, position: np.ndarray) -> float | None:
+        """World z of the rim of the known container `position` (world) is over; None over none."""
+        container = container_under(list(self.containers), position)
+        return None if container is None else container.rim
+
     def support(self, position: np.ndarray) -> float:
         """Height of the support under `position` (world): the floor of a known container it
         is over (a box's floor stands its wall's thickness over the table), else the table's
