@@ -453,7 +453,7 @@ class PybulletRobot(SimRobot):
                 points = pb.getContactPoints(physicsClientId=self.client)
                 for arm in feeling:
                     arm._see_contacts(points)
-                    arm._feel_pads()
+                    arm._felt.extend(arm._pad_hits())
         for thread in self._threads:  # a cap at the thread's end is let go
             if thread.free is None and pb.getJointState(thread.object, 1, physicsClientId=self.client)[0] >= thread.end:
                 self._let_go(thread)
@@ -563,9 +563,9 @@ class PybulletRobot(SimRobot):
                               p[10], tuple(-v for v in p[11]), p[12], tuple(-v for v in p[13])))
         self._contact_cache = (points, tuple(found))
 
-    def _feel_pads(self) -> None:
-        """Add this physics step's pad contacts to the period's (`_pad_contacts`)."""
-        self._felt.extend((self._pad_of_link[p[3]], p[5], p[9]) for p in self._contacts() if p[3] in self._pad_of_link)
+    def _pad_hits(self) -> list[tuple[int, tuple, float]]:
+        """The contacts on the pads now: pad index, point (world frame), normal force."""
+        return [(self._pad_of_link[p[3]], p[5], p[9]) for p in self._contacts() if p[3] in self._pad_of_link]
 
     def _hand_root(self) -> np.ndarray:
         if self._root_cache is None:
@@ -633,10 +633,7 @@ class PybulletRobot(SimRobot):
         object in one or two steps of the period's five, and the last step alone read 0 N while
         the pad pushed a 0.34 kg weight along the table (docs/robust-grasp.md, `pbw33`). Before
         any period (a teleported arm), the contacts as they stand."""
-        if self._felt is None:
-            hits, share = [(self._pad_of_link[p[3]], p[5], p[9]) for p in self._contacts() if p[3] in self._pad_of_link], 1.0
-        else:
-            hits, share = self._felt, 1.0 / self.substeps
+        hits, share = (self._pad_hits(), 1.0) if self._felt is None else (self._felt, 1.0 / self.substeps)
         if not hits:
             return self._untouched
         pad = np.array([k for k, _, _ in hits])

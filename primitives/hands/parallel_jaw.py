@@ -217,7 +217,8 @@ class CloseUntilForce(Controller):
             return None
         felt = self._pad_across(readings, int(np.argmin(readings.pad_force)))
         edge = felt if felt is not None and abs(felt) >= EDGE else 0.0
-        if self.rimmed >= RIM_TIME or (gripped and (force < CONFIRM * self.reachable or self._on_flank(readings)) and edge):
+        short = force < CONFIRM * self.reachable
+        if self.rimmed >= RIM_TIME or (gripped and (short or self._on_flank(readings)) and edge):
             return edge
         return None
 
