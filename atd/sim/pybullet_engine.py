@@ -188,7 +188,7 @@ class PybulletRobot(SimRobot):
             [-GRAVITY * pb.getDynamicsInfo(self.body, i, physicsClientId=c)[0] for i in [self._hand_link, *self._hand_links]]
         )
         self._contact_cache: tuple[tuple, tuple] | None = None
-        self._felt: list[tuple[int, tuple, float]] | None = None  # the control period's pad contacts (`_pad_contacts`)
+        self._felt: list[tuple[int, tuple, float]] | None = None  # this control period's pad contacts
         self._root_cache: np.ndarray | None = None
         hand_root = d.links_by_name[d.hand_root]
         self._tcp_offset = d.tcp.origin.matrix()

@@ -108,7 +108,8 @@ class CloseUntilForce(Controller):
     other pad, if it touches, saying which side the object is. Tactile jaws whose grip stays
     under SATURATED_GRIP for RIM_TIME with the squeeze at its limit press partly through a
     finger's bare rim beside the pads, as do jaws the squeeze counts as gripping only at its
-    limit with the weaker pad's contact at its edge: they reopen too (at most RIM_MOVES times),
+    limit with the weaker pad's contact at its edge, or whose two pads both feel the object at
+    their edge on one side (its flank, beyond the pads): they reopen too (at most RIM_MOVES times),
     saying where the weaker pad feels the object (`jaws_rim`), for the arm to move along the
     jaws' width until the pads take the push.
     """
