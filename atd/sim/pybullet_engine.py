@@ -188,6 +188,7 @@ class PybulletRobot(SimRobot):
             [-GRAVITY * pb.getDynamicsInfo(self.body, i, physicsClientId=c)[0] for i in [self._hand_link, *self._hand_links]]
         )
         self._contact_cache: tuple[tuple, tuple] | None = None
+        self._felt: list[tuple[int, tuple, float]] | None = None  # this control period's pad contacts
         self._root_cache: np.ndarray | None = None
         hand_root = d.links_by_name[d.hand_root]
         self._tcp_offset = d.tcp.origin.matrix()
@@ -225,7 +226,7 @@ class PybulletRobot(SimRobot):
         self._apply_hand(np.zeros(len(self._hand), bool), np.array([self._home[n] for n in self.hand_joints]))
 
     def _set_joints(self, positions: dict[str, float]) -> None:
-        self._contact_cache = self._root_cache = None
+        self._contact_cache = self._root_cache = self._felt = None
         for name, q in positions.items():
             pb.resetJointState(self.body, self._index[name], q, 0.0, physicsClientId=self.client)
 
@@ -431,6 +432,9 @@ class PybulletRobot(SimRobot):
         arms = self.arms
         for arm in arms:
             arm._contact_cache = arm._root_cache = None
+        feeling = [arm for arm in arms if arm._pad_of_link and arm._squeeze is None]
+        for arm in feeling:
+            arm._felt = []
         driven = [arm for arm in arms if len(arm._driven)]
         pushed = any(thread.push is not None for thread in self._threads)
         for _ in range(self.substeps):
@@ -445,6 +449,11 @@ class PybulletRobot(SimRobot):
             if pushed:
                 self._push_caps()
             pb.stepSimulation(physicsClientId=self.client)
+            if feeling:
+                points = pb.getContactPoints(physicsClientId=self.client)
+                for arm in feeling:
+                    arm._see_contacts(points)
+                    arm._felt.extend(arm._pad_hits())
         for thread in self._threads:  # a cap at the thread's end is let go
             if thread.free is None and pb.getJointState(thread.object, 1, physicsClientId=self.client)[0] >= thread.end:
                 self._let_go(thread)
@@ -540,16 +549,23 @@ class PybulletRobot(SimRobot):
     def _contact_lists(self) -> tuple[tuple, tuple]:
         """This tick's contact points: Bullet's whole list, and the robot's (`_contacts`)."""
         if self._contact_cache is None:
-            points = pb.getContactPoints(physicsClientId=self.client)
-            found = []
-            for p in points:
-                if p[1] == self.body:
-                    found.append(p)
-                elif p[2] == self.body:
-                    found.append((p[0], p[2], p[1], p[4], p[3], p[6], p[5], tuple(-v for v in p[7]), p[8], p[9],
-                                  p[10], tuple(-v for v in p[11]), p[12], tuple(-v for v in p[13])))
-            self._contact_cache = (points, tuple(found))
+            self._see_contacts(pb.getContactPoints(physicsClientId=self.client))
         return self._contact_cache
+
+    def _see_contacts(self, points: tuple) -> None:
+        """Cache Bullet's whole list `points` and the robot's contacts in it (`_contact_lists`)."""
+        found = []
+        for p in points:
+            if p[1] == self.body:
+                found.append(p)
+            elif p[2] == self.body:
+                found.append((p[0], p[2], p[1], p[4], p[3], p[6], p[5], tuple(-v for v in p[7]), p[8], p[9],
+                              p[10], tuple(-v for v in p[11]), p[12], tuple(-v for v in p[13])))
+        self._contact_cache = (points, tuple(found))
+
+    def _pad_hits(self) -> list[tuple[int, tuple, float]]:
+        """The contacts on the pads now: pad index, point (world frame), normal force."""
+        return [(self._pad_of_link[p[3]], p[5], p[9]) for p in self._contacts() if p[3] in self._pad_of_link]
 
     def _hand_root(self) -> np.ndarray:
         if self._root_cache is None:
@@ -612,13 +628,18 @@ class PybulletRobot(SimRobot):
         return couple
 
     def _pad_contacts(self):
-        hits = [(self._pad_of_link[p[3]], p) for p in self._contacts() if p[3] in self._pad_of_link]
+        """Every physics step's pad contacts of the last control period, each with its share of
+        the period's mean force: a jaw whose servo steps to each period's reference pushes an
+        object in one or two steps of the period's five, and the last step alone read 0 N while
+        the pad pushed a 0.34 kg weight along the table (docs/robust-grasp.md, `pbw33`). Before
+        any period (a teleported arm), the contacts as they stand."""
+        hits, share = (self._pad_hits(), 1.0) if self._felt is None else (self._felt, 1.0 / self.substeps)
         if not hits:
             return self._untouched
-        pad = np.array([k for k, _ in hits])
+        pad = np.array([k for k, _, _ in hits])
         frames = {k: self._link_pose(self._pad_links[k]) for k in set(pad.tolist())}
-        xy = np.array([(np.asarray(p[5]) - frames[k][:3, 3]) @ frames[k][:3, :2] for k, p in hits])
-        return pad, xy, np.array([p[9] for _, p in hits])
+        xy = np.array([(np.asarray(at) - frames[k][:3, 3]) @ frames[k][:3, :2] for k, at, _ in hits])
+        return pad, xy, share * np.array([force for _, _, force in hits])
 
     def _range(self) -> float:
         pose = self._link_pose(self._range_link) @ self._range_offset
@@ -672,7 +693,7 @@ class PybulletRobot(SimRobot):
         pb.resetBasePositionAndOrientation(self.object, pose[:3, 3].tolist(), _xyzw(pose), physicsClientId=self.client)
         pb.resetBaseVelocity(self.object, [0, 0, 0], [0, 0, 0], physicsClientId=self.client)
         for arm in self.arms:
-            arm._contact_cache = None
+            arm._contact_cache = arm._felt = None
 
     def render(self, width: int, height: int, camera: str = WORKSPACE_CAMERA) -> np.ndarray:
         """An RGB picture of the scene (software renderer), from the same viewpoints as MuJoCo's."""

@@ -79,9 +79,12 @@ class Body:
 
     @property
     def rolls(self) -> bool:
-        """It rests on the table at one point, so only rolling friction stops it rolling: the
-        engines model that contact apart (MuJoCo's condim 6, no PyBullet friction anchor)."""
-        return self.kind == "sphere"
+        """It can rest on the table at one point or along one line (a ball; a cylinder knocked
+        onto its side), so only rolling friction stops it rolling: the engines model that
+        contact apart (MuJoCo's condim 6, no PyBullet friction anchor). A lying cylinder set
+        rolling at 15 cm/s sped up to 24 cm/s in PyBullet, anchored, and kept its speed in
+        MuJoCo without rolling friction (docs/robust-grasp.md, `pbw33`)."""
+        return self.kind in ("sphere", "cylinder")
 
     @property
     def half_extents(self) -> tuple[float, ...]:
