@@ -108,8 +108,7 @@ class CloseUntilForce(Controller):
     other pad, if it touches, saying which side the object is. Tactile jaws whose grip stays
     under SATURATED_GRIP for RIM_TIME with the squeeze at its limit press partly through a
     finger's bare rim beside the pads, as do jaws the squeeze counts as gripping only at its
-    limit with the weaker pad's contact at its edge, or whose two pads both feel the object at
-    their edge on one side (its flank, beyond the pads): they reopen too (at most RIM_MOVES times),
+    limit with the weaker pad's contact at its edge: they reopen too (at most RIM_MOVES times),
     saying where the weaker pad feels the object (`jaws_rim`), for the arm to move along the
     jaws' width until the pads take the push.
     """
@@ -212,25 +211,14 @@ class CloseUntilForce(Controller):
         along the jaws' width: where the weaker pad feels the object if at its edge (EDGE), else
         0; None where not. A grip held RIM_TIME under SATURATED_GRIP is on a rim, and so is one
         the squeeze counts only at its limit with the weaker pad's contact at its edge (the
-        Melfa's grips at 10.5-11.1 N of 15 on a rim fell in the lift; docs/robust-grasp.md),
-        or one that holds the object by its flank beyond the pads' edge (`_on_flank`)."""
+        Melfa's grips at 10.5-11.1 N of 15 on a rim fell in the lift; docs/robust-grasp.md)."""
         if not (self.guided and self.pressing and self.rim_moves_left > 0):
             return None
         felt = self._pad_across(readings, int(np.argmin(readings.pad_force)))
         edge = felt if felt is not None and abs(felt) >= EDGE else 0.0
-        short = force < CONFIRM * self.reachable
-        if self.rimmed >= RIM_TIME or (gripped and (short or self._on_flank(readings)) and edge):
+        if self.rimmed >= RIM_TIME or (gripped and force < CONFIRM * self.reachable and edge):
             return edge
         return None
-
-    def _on_flank(self, readings: Readings) -> bool:
-        """Both pads feel the object at their edge (EDGE), on the same side: they hold it by its
-        flank, its middle beyond the pads' edge, where a round object's face slants away from
-        the pads and the squeeze wedges it out along them (the Melfa's steel weight gripped
-        2 cm off its axis with 15 N slid out in the lift's first 0.1 s; docs/robust-grasp.md)."""
-        felt = [self._pad_across(readings, k) for k in range(len(readings.pad_force))]
-        return (all(at is not None and abs(at) >= EDGE for at in felt)
-                and len({float(np.sign(at)) for at in felt}) == 1)
 
     def _blocked(self, readings: Readings) -> bool:
         """Held short of where they are driven: near their closed stop a position servo has
