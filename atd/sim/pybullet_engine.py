@@ -629,10 +629,9 @@ class PybulletRobot(SimRobot):
 
     def _pad_contacts(self):
         """Every physics step's pad contacts of the last control period, each with its share of
-        the period's mean force: a jaw whose servo steps to each period's reference pushes an
-        object in one or two steps of the period's five, and the last step alone read 0 N while
-        the pad pushed a 0.34 kg weight along the table (docs/robust-grasp.md, `pbw33`). Before
-        any period (a teleported arm), the contacts as they stand."""
+        the period's mean force: a jaw servo stepped to each period's reference pushes in one
+        or two of its physics steps, which the last step alone may miss (docs/robust-grasp.md,
+        `pbw33`). Before any period (a teleported arm), the contacts as they stand."""
         hits, share = (self._pad_hits(), 1.0) if self._felt is None else (self._felt, 1.0 / self.substeps)
         if not hits:
             return self._untouched

@@ -81,9 +81,8 @@ class Body:
     def rolls(self) -> bool:
         """It can rest on the table at one point or along one line (a ball; a cylinder knocked
         onto its side), so only rolling friction stops it rolling: the engines model that
-        contact apart (MuJoCo's condim 6, no PyBullet friction anchor). A lying cylinder set
-        rolling at 15 cm/s sped up to 24 cm/s in PyBullet, anchored, and kept its speed in
-        MuJoCo without rolling friction (docs/robust-grasp.md, `pbw33`)."""
+        contact apart (MuJoCo's condim 6, no PyBullet friction anchor); without it a lying
+        cylinder rolled on at constant or growing speed (docs/robust-grasp.md, `pbw33`)."""
         return self.kind in ("sphere", "cylinder")
 
     @property

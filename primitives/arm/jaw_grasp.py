@@ -56,11 +56,10 @@ from primitives.arm.motion import (
 from primitives.arm.jaw_rim import RimLever
 from primitives.arm.jaw_span import BeamSpan, Sweep
 from primitives.arm.move import arm_output
-from primitives.arm.walls import KnownWalls
+from primitives.arm.walls import FREE_SPEED, RIM_CLEARANCE, KnownWalls
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import ARM_TWIST, EMPTY_HAND, LOCATED_ALONG
 from primitives.filters import ContactWrench, contact_across, world_load
-from primitives.perception.blind import FREE_SPEED, RIM_CLEARANCE
 from primitives.robot import Readings
 from primitives.search import search_offsets
 

@@ -9,8 +9,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from atd.model.controllers import ARM_CONTROLLERS
 from primitives.base import Context
 from primitives.perception.container import ContainerBelief, clear_of_walls, container_under
+
+# m over the rim above which the hand's lowest point moves at FREE_SPEED, a contact unlikely there: the
+# library's objects lying in the box reached at most 9.3 cm up, under the 10 cm rim (docs/empty-the-box.md)
+RIM_CLEARANCE = 0.01
+FREE_SPEED = float(ARM_CONTROLLERS["cartesian_move"].params["max_speed"].default)  # m/s, a free move's (its spec)
 
 
 @dataclass(frozen=True)

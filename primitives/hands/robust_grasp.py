@@ -122,10 +122,9 @@ class RobustGraspHand(ForceGrasp):
     def _lower_back(self) -> None:
         """The object slipped out of the pads as the arm lifted it to weigh it: the arm lowers
         the open hand as far as it had lifted, and every hold after presses SLIPPED_GRIP times
-        the force asked. Where the pads met it their friction did not carry its weight (the
-        Barrett's pinch on the bunny's and the tape's flanks, 4.5-5 N each on 0.12 kg; closed
-        there again, it slipped again: docs/robust-grasp.md, "The Barrett beyond the preset at
-        two fresh seeds"); friction grows with the squeeze."""
+        the force asked: where the pads met it their friction did not carry its weight, and
+        friction grows with the squeeze (docs/robust-grasp.md, "The Barrett beyond the preset
+        at two fresh seeds")."""
         self.ctx.blackboard.weigh, self.closing.dropped = -self.closing.dropped, None
         self.grasp_force = SLIPPED_GRIP * float(self.params["grasp_force"])
         self.phase = Phase.LOWER

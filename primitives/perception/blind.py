@@ -37,6 +37,7 @@ import numpy as np
 from atd.model.controllers import ARM_CONTROLLERS
 from primitives.arm.approach_phases import SETTLE
 from primitives.arm.explore import ARRIVED, Explore
+from primitives.arm.walls import FREE_SPEED, RIM_CLEARANCE
 from primitives.base import Context, ControlData, Status
 from primitives.perception.container import approach_pose
 from primitives.perception.perceiver import Perceiver
@@ -71,11 +72,7 @@ WALL_CLEARANCE = 0.005
 # feel chose the wrong one of the box's axes), then the diagonals (a wood block or a spray can
 # lying 32-45 degrees off the box's axes is longer than the Melfa's jaws open along either)
 TURNS = (0.0, math.pi / 2, math.pi / 4, -math.pi / 4)
-# m over the rim above which the hand's lowest point moves at FREE_SPEED, a contact unlikely there: the
-# library's objects lying in the box reached at most 9.3 cm up, under the 10 cm rim (docs/empty-the-box.md)
-RIM_CLEARANCE = 0.01
-_FREE_MOVE = ARM_CONTROLLERS["cartesian_move"].params  # a free move's speed and contact force, from its own spec
-FREE_SPEED = float(_FREE_MOVE["max_speed"].default)  # m/s of a move wholly over RIM_CLEARANCE
+_FREE_MOVE = ARM_CONTROLLERS["cartesian_move"].params  # a free move's contact force, from its own spec
 # N over the start's that stops a transit, where any contact is an error anyway: at the explore's
 # 3 N a look begun as a rise out of the box stopped read its jolt as a contact
 TRANSIT_FORCE = float(_FREE_MOVE["force_threshold"].default)
