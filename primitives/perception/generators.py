@@ -37,12 +37,11 @@ AIMED_NEAR = 0.02
 # middle aimed at that vision weighs where the jaws' first choice would come down on something:
 # every 15 degrees, and up to 1.5 cm either way (the library's objects are 3.8 cm or more across,
 # the WRT-102's jaws open 6.8 cm: a slide further leaves no object between them).
-TURNS = np.radians(np.arange(-90.0, 90.0, 15.0))
-SLIDES = (0.0, -0.005, 0.005, -0.01, 0.01, -0.015, 0.015)
+CLEARING_TURNS = np.radians(np.arange(-90.0, 90.0, 15.0))
+CLEARING_SLIDES = (0.0, -0.005, 0.005, -0.01, 0.01, -0.015, 0.015)
 # m the jaws' fingertips are taken to reach further, outwards and along the hand's x, than the
 # hand's geometry says: the arm reaches an approach to within 3 mm, and the picture's points stop a
-# few mm short of an object's edge (a jaw 0.7 mm past a neighbour's seen edge landed on its top;
-# MuJoCo, tests/data/empty_the_box/two_blocks.toml)
+# few mm short of an object's edge
 JAW_MARGIN = 0.005
 
 
@@ -180,10 +179,10 @@ def clear_jaws(pose: np.ndarray, point: np.ndarray, seen: np.ndarray, container:
     """The approach `pose` over `point`, or, where its open jaws (`jaw_band`), kept inside the
     walls as the grasp keeps them, would come down on something the picture shows (`seen`: a
     neighbour, the object itself where it is wider that way than the jaws open, or pushed under
-    a jaw by a wall), the turn (TURNS) and slide along the closing axis (SLIDES) that leave the
-    fewest points under them, then the least slide, then the least turn from `pose`'s. A jaw on
-    something as high as the top stops the grasp's descent there, and it closed on nothing
-    round after round (docs/empty-the-box.md, "Jaws kept off what the picture shows")."""
+    a jaw by a wall), the turn (CLEARING_TURNS) and slide along the closing axis
+    (CLEARING_SLIDES) that leave the fewest points under them, then the least slide, then the
+    least turn from `pose`'s: a jaw on something as high as the top stops the grasp's descent
+    there (docs/empty-the-box.md, "Jaws kept off what the picture shows")."""
     band, extent = settings.jaw_band, settings.grasp_extent
     if band[1] <= 0.0:
         return pose
@@ -204,7 +203,7 @@ def clear_jaws(pose: np.ndarray, point: np.ndarray, seen: np.ndarray, container:
         off = float(np.arctan2(candidate[1, 1], candidate[0, 1])) - first
         return landed(candidate), abs(slide), abs((off + np.pi / 2) % np.pi - np.pi / 2)
 
-    return min(((turned(turn, slide), slide) for turn in TURNS for slide in SLIDES),
+    return min(((turned(turn, slide), slide) for turn in CLEARING_TURNS for slide in CLEARING_SLIDES),
                key=lambda pair: cost(*pair))[0]
 
 
