@@ -309,7 +309,8 @@ class RobustGraspHand(ForceGrasp):
         """Every grasping finger on the object: hold it. Otherwise correct, towards the
         fingers that touch it; when none does, towards those that touched something on the
         way and lost it (the object pushed aside by the finger that met it first), as long
-        as some did not: that side is where the object went. A regrasp to the object's weighed
+        as some did not: that side is where the object went; a ball one pad met off the line
+        lies across it (`_rolled_aside`). A regrasp to the object's weighed
         weight that closes on nothing pushed it on: one step further that way. An object that
         slipped down out of the pads as the arm lifted it to weigh it stands where they held
         it: close again there, as low as they held it, not half its footprint beyond as after
@@ -334,6 +335,8 @@ class RobustGraspHand(ForceGrasp):
             self._fail(what)
         elif touching and heading and self.pinch:  # a search step's close met the object's edge: further that way
             self._try_again(search.next(beyond=heading), what)
+        elif touching and self._rolled_aside():  # a ball met by one pad off the line: across, that side
+            self._try_again(self._after_pushed(), what)
         elif touching:  # finger lost: shift towards the fingers that touched
             toward = np.mean([self.base[f] for f in touching], axis=0) - np.mean([self.base[f] for f in lost], axis=0)
             shift = np.array([*toward / np.linalg.norm(toward), 0.0]) * self.finger_lost_shift
@@ -402,6 +405,16 @@ class RobustGraspHand(ForceGrasp):
         they last felt it off the pinch line: they pushed it out sideways."""
         closing = self.closing
         return self._corrects_pinch() and set(self.fingers) <= closing.felt_by and abs(closing.felt_at) >= FELT_OFF_LINE
+
+    def _rolled_aside(self) -> bool:
+        """The pads felt a ball above the table, off the pinch line, and a finger missed it:
+        a ball between the fingers meets both, so it stood across the line on the side the
+        pads felt it, and the touch rolled it on that way. D5's finger-lost shift along the
+        line, towards the finger that touched, brings the line no nearer it; the SDH2 lost such
+        balls to it (docs/robust-grasp.md, "A ball met by one pad"): look across, as after a push."""
+        closing = self.closing
+        return self.round and self._corrects_pinch() and bool(closing.felt_by) and \
+            abs(closing.felt_at) >= FELT_OFF_LINE
 
     def _after_pushed(self) -> np.ndarray:
         """The shift (hand frame) that closes next with the pinch line through the pushed
