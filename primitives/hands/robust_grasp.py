@@ -351,7 +351,7 @@ class RobustGraspHand(ForceGrasp):
         elif heading and weighed and self.pinch:  # set down there a moment ago, and gone: pushed on that way
             self._try_again(search.onward(heading), what)
         else:
-            self._try_again(search.next(), what)
+            self._try_again(search.next(side=self._felt_side()), what)
 
     def _uneven(self, readings: Readings) -> bool:
         """D5 3.3.3: every finger is on the object, but unevenly: correct, true if a
@@ -402,6 +402,19 @@ class RobustGraspHand(ForceGrasp):
         they last felt it off the pinch line: they pushed it out sideways."""
         closing = self.closing
         return self._corrects_pinch() and set(self.fingers) <= closing.felt_by and abs(closing.felt_at) >= FELT_OFF_LINE
+
+    def _felt_side(self) -> float:
+        """The side of the pinch line (+1, -1) where a pad felt the object above the table
+        on a close that ended with nothing between the fingers, 0 if none did. A first
+        close from the table (the approach stopped on the fingertips, the object beside
+        the hand) that brushed the object with one pad, or swept it along, left it beyond
+        that pad's edge: the search looks that side first, not wherever its fixed order
+        begins (docs/robust-grasp.md, "The Barrett's first search step, chosen by the pads").
+        Not on a ball, whose edge contacts lie short of its centre (`_by_side_edges`)."""
+        closing = self.closing
+        if not self._corrects_pinch() or self.round or not closing.felt_by or abs(closing.felt_at) < FELT_OFF_LINE:
+            return 0.0
+        return float(np.sign(closing.felt_at))
 
     def _after_pushed(self) -> np.ndarray:
         """The shift (hand frame) that closes next with the pinch line through the pushed
