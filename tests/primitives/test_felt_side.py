@@ -24,5 +24,5 @@ def test_the_wood_felt_by_one_pad_is_looked_for_on_its_side_and_lifted(tmp_path:
 def test_the_search_steps_first_to_the_nearest_point_on_the_felt_side() -> None:
     search = PinchSearch(np.array([0.0, 1.0]), 0.025, 0.01, 0.01)
     assert np.allclose(search.next(side=-1.0), [0.0, -0.025, 0.0])
-    assert np.allclose(search.next(side=-1.0), [0.0, -0.025, 0.0])  # on to -5 cm, the nearer of -5 and +2.5 that way
+    assert np.allclose(search.next(side=-1.0), [0.0, -0.025, 0.0])  # on to -5 cm, the one point left that way
     assert np.allclose(search.next(), [0.0, 0.075, 0.0])  # no side felt: the fixed order, +2.5 cm
