@@ -26,14 +26,18 @@ class PinchSearch:
         self.weighed = False  # that step went to where the object was just weighed: it stood there
         self.nudged = 0  # nudges made after a jam: 0, then 1 (one side), -1 (both)
 
-    def next(self, beyond: float = 0.0) -> np.ndarray:
+    def next(self, beyond: float = 0.0, side: float = 0.0) -> np.ndarray:
         """The shift (hand frame) to the next place to look: `step` to one side of where
         the hand first closed, then as far to the other, then twice as far each way, then
         D5's step along the approach. `beyond` (+1 or -1): the last step's close touched
-        the object's edge on that side, so one step further that way instead."""
+        the object's edge on that side, so one step further that way instead. `side` (+1
+        or -1): a pad felt the object that way of the hand on the close, so the nearest
+        point not yet visited on that side comes first."""
         if self.normal is None or not (self.plan or beyond):
             return np.array([0.0, 0.0, self.lost_step])
-        point = self.across + beyond * self.step if beyond else self.plan[0]
+        toward = [p for p in self.plan if (p - self.across) * side > 0.0]
+        point = self.across + beyond * self.step if beyond else min(toward or self.plan[:1],
+                                                                    key=lambda p: abs(p - self.across))
         self.plan = [p for p in self.plan if not np.isclose(p, point)]
         return self.look(point)
 

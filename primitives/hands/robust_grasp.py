@@ -354,7 +354,7 @@ class RobustGraspHand(ForceGrasp):
         elif heading and weighed and self.pinch:  # set down there a moment ago, and gone: pushed on that way
             self._try_again(search.onward(heading), what)
         else:
-            self._try_again(search.next(), what)
+            self._try_again(search.next(side=self._felt_side()), what)
 
     def _uneven(self, readings: Readings) -> bool:
         """D5 3.3.3: every finger is on the object, but unevenly: correct, true if a
@@ -406,15 +406,29 @@ class RobustGraspHand(ForceGrasp):
         closing = self.closing
         return self._corrects_pinch() and set(self.fingers) <= closing.felt_by and abs(closing.felt_at) >= FELT_OFF_LINE
 
-    def _rolled_aside(self) -> bool:
-        """The pads felt a ball above the table, off the pinch line, and a finger missed it:
-        a ball between the fingers meets both, so it stood across the line on the side the
-        pads felt it, and the touch rolled it on that way. D5's finger-lost shift along the
-        line, towards the finger that touched, brings the line no nearer it; the SDH2 lost such
-        balls to it (docs/robust-grasp.md, "A ball met by one pad"): look across, as after a push."""
+    def _felt_off_line(self) -> float:
+        """The side of the pinch line (+1, -1) where a pad felt the object above the table,
+        at least `FELT_OFF_LINE` off it, on the close just judged; 0 if none did."""
         closing = self.closing
-        return self.round and self._corrects_pinch() and bool(closing.felt_by) and \
-            abs(closing.felt_at) >= FELT_OFF_LINE
+        if not self._corrects_pinch() or not closing.felt_by or abs(closing.felt_at) < FELT_OFF_LINE:
+            return 0.0
+        return float(np.sign(closing.felt_at))
+
+    def _rolled_aside(self) -> bool:
+        """The pads felt a ball off the pinch line and a finger missed it: a ball between the
+        fingers meets both, so it stood across the line on the side the pads felt it, and the
+        touch rolled it on that way. D5's finger-lost shift along the line, towards the finger
+        that touched, brings the line no nearer it; the SDH2 lost such balls to it
+        (docs/robust-grasp.md, "A ball met by one pad"): look across, as after a push."""
+        return self.round and self._felt_off_line() != 0.0
+
+    def _felt_side(self) -> float:
+        """Where a pad felt the object (`_felt_off_line`) on a close that ended with nothing
+        between the fingers: a first close from the table that brushed the object with one
+        pad, or swept it along, left it beyond that pad's edge, so the search looks that side
+        first (docs/robust-grasp.md, "The Barrett's first search step, chosen by the pads").
+        Not on a ball, whose edge contacts lie short of its centre (`_by_side_edges`)."""
+        return 0.0 if self.round else self._felt_off_line()
 
     def _after_pushed(self) -> np.ndarray:
         """The shift (hand frame) that closes next with the pinch line through the pushed
