@@ -70,6 +70,7 @@ SWEEPING_TIP = 0.02
 TIE_SHORT = np.radians(1.0)
 TURN_TOLERANCE = np.radians(1.0)  # rad: a turn to the object under a degree changes no grasp; the hand keeps its yaw
 WRIST_ALIGNED = 0.99  # cos: a last joint within 8 degrees of the approach axis rolls the hand about it (ours)
+ALONG_Y = np.radians(10.0)  # rad: a pinch closing this near the hand's y closes as vision turns jaws (the SDH2's: exactly)
 
 
 class Unmappable(Exception):
@@ -328,10 +329,25 @@ class Factory(ABC):
                               container_wall=container.wall, hand_reach=round(reach, 6), hand_radius=round(radius, 6),
                               grasp_reach=round(max(self.robot.hand_reach(p) for p in self.robot.hand.postures), 6),
                               grasp_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)),
-                              jaw_band=self.jaw_band(),
+                              jaw_band=self.jaw_band(), grasp_footprint=self.grasp_footprint(),
                               sweep_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture, SWEEPING_TIP)),
                               tip_length=round(self.robot.tip_length(posture, SWEEPING_TIP), 6))
         return NodeMapping("perceive", arm, self.controller("hand_shape", shape=posture), notes)
+
+    def grasp_footprint(self) -> tuple[float, float, float, float]:
+        """What vision's approach is for, on a multi-finger hand: its pinch (a box round's grasp),
+        its preshape's footprint (`hand_footprint`) about where it closes. Zeros for a parallel
+        jaw, alike either way round, and for a pinch that does not close along the hand's y, as
+        vision turns jaws (the Barrett's closes along its x)."""
+        preshape, pinch = HandShape.PINCH_GRASP_PRESHAPE.value, HandShape.PINCH_GRASP.value
+        if self.arm.hand.kind == "parallel jaw" or preshape not in self.robot.hand.postures:
+            return (0.0, 0.0, 0.0, 0.0)
+        line = self.robot.closing_line(preshape, pinch) if pinch in self.robot.hand.postures else None
+        if line is None or abs(line - np.pi / 2) > ALONG_Y:
+            return (0.0, 0.0, 0.0, 0.0)
+        centre = self.robot.hand.grasp_centres.get(preshape, (0.0, 0.0, 0.0))
+        extent, offset = self.robot.hand_footprint(preshape, (float(centre[0]), float(centre[1])))
+        return (round(extent[0], 6), round(extent[1], 6), round(offset[0], 6), round(offset[1], 6))
 
     def jaw_band(self) -> tuple[float, float, float]:
         """A parallel jaw's open fingertips, which a box round's grasp comes down with (`perceive`'s

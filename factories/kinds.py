@@ -158,12 +158,14 @@ class MultiFingerFactory(Factory):
                                grasp_force=round(needed, 3) if needed > configured else None,
                                closing_swing=round(swing, 6))
         rising = grasp.value in self.robot.hand.rising_grasps
+        extent, offset = self.robot.hand_footprint(placed)
         arm = self.controller("robust_grasp_approach", {"follow_surface": False} if rising else None,
                               max_distance=self.side_travel(state, context),
                               wrist_to_tcp=round(self._wrist_to_tcp, 6),
                               fingertip_reach=round(max(self.robot.hand_reach(placed), 0.001), 6),
                               max_back_off=round(swing + SWING_MARGIN, 6),
-                              hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(placed)),
+                              hand_extent=tuple(round(e, 6) for e in extent),
+                              hand_offset=tuple(round(o, 6) for o in offset),
                               grasp_centre=tuple(round(float(c), 6) for c in
                                                  self.robot.hand.grasp_centres.get(grasp.value, (0.0, 0.0, 0.0))))
         return NodeMapping("robust_grasp", arm, hand, notes)

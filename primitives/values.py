@@ -35,13 +35,15 @@ class Approach:
     container's floor under the pose). `method` says which generator found it,
     `candidates` how many objects it saw (None: it cannot count) and `top` the height (world
     z) of the top it saw under the pose (None: it does not know it), which a grasp's
-    `<object_top from>` reads. An ATD `pose` value."""
+    `<object_top from>` reads; `either_way` whether the hand grasps alike turned half a turn
+    from the pose (parallel jaws), so a move may turn it the shorter way. An ATD `pose` value."""
 
     pose: np.ndarray  # (4, 4)
     point: np.ndarray  # (3,)
     method: str
     candidates: int | None = None
     top: float | None = None
+    either_way: bool = True
 
 
 @dataclass(frozen=True)

@@ -253,10 +253,15 @@ _ARM_CONTROLLERS = (
             "max_back_off": _p(NUM, "how far the sliding grasp may back off above where it began (the robot's "
                                "own geometry: how far its fingertips swing down as they close, and 5 mm; the "
                                "default covers the Barrett pinch's 18 mm)", 0.025, unit="m"),
-            "hand_extent": _p(VEC, "how far the preshaped hand reaches sideways from the TCP, along the hand's x "
-                              "and along its y: its moves stay this far inside the walls of a container the task "
-                              "knows (the robot's own geometry: `RobotDescription.hand_extent`)", (0.1, 0.1),
-                              unit="m", length=2),
+            "hand_extent": _p(VEC, "how far the preshaped hand reaches sideways either way from the middle of its "
+                              "footprint (`hand_offset`), along the hand's x and along its y: its moves stay this far "
+                              "inside the walls of a container the task knows (the robot's own geometry: "
+                              "`RobotDescription.hand_sides`)", (0.1, 0.1), unit="m", length=2),
+            "hand_offset": _p(VEC, "where the middle of the preshaped hand's footprint lies from the TCP, along the "
+                              "hand's x and along its y: a hand reaching further one way than the other (the SDH2's "
+                              "thumb) comes nearer a wall with its shorter side towards it (the robot's own geometry: "
+                              "`RobotDescription.hand_sides`)", (0.0, 0.0), unit="m", length=2,
+                              limits=ranges.COORDINATE),
             "filter_time": _FILTER,
         },
     ),
@@ -443,6 +448,13 @@ _ARM_CONTROLLERS = (
                            "keep them off it (the robot's own geometry: `RobotDescription.pad_opening`, "
                            "`hand_extent` within 2 cm); 0 0 0: not known, the turn is the top's alone",
                            (0.0, 0.0, 0.0), unit="m", length=3, limits=ranges.SIZE_OR_NONE),
+            "grasp_footprint": _p(VEC, "vision: the rectangle a hand reaching further one way than the other covers "
+                                  "as it comes down to grasp: how far it reaches either way from its middle along the "
+                                  "hand's x and y, and where that middle lies from the point it grasps at; vision turns "
+                                  "the hand, whose half turn then matters, to the way the walls leave it room (the "
+                                  "robot's own geometry: `RobotDescription.hand_footprint` of its pinch's preshape, the "
+                                  "SDH2's thumb 8.9 cm out); 0 0 0 0: a hand alike either way round (`grasp_extent`)",
+                                  (0.0, 0.0, 0.0, 0.0), unit="m", length=4, limits=ranges.COORDINATE),
             "approach_height": _p(NUM, "the approach puts the hand's lowest point this far over the higher of "
                                   "the object's top and the container's rim (ours)", 0.05, unit="m"),
             **_EXPLORING,

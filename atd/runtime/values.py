@@ -23,10 +23,12 @@ class MissingValue(RuntimeError):
 def target_of(value: Any) -> dict[str, Any]:
     """The arm controller parameters a value sets: an `Approach`'s pose, its position as the
     `target` and its hand x as the `yaw` (deg; the move turns the hand about the vertical, so
-    the jaws close the way vision chose), a `Contact`'s point as the `target` only."""
+    the jaws close the way vision chose; to that yaw itself, not `either_way`, where the
+    approach's half turn matters), a `Contact`'s point as the `target` only."""
     if isinstance(value, Approach):
         x = value.pose[:3, 0]
-        return {"target": _rounded(value.pose[:3, 3]), "yaw": round(math.degrees(math.atan2(x[1], x[0])), 6)}
+        turn = {} if value.either_way else {"either_way": False}
+        return {"target": _rounded(value.pose[:3, 3]), "yaw": round(math.degrees(math.atan2(x[1], x[0])), 6), **turn}
     if isinstance(value, Contact):
         return {"target": _rounded(value.point)}
     raise MissingValue(f"it holds {type(value).__name__ if value is not None else 'nothing'}, not an approach "

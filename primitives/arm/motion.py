@@ -59,19 +59,29 @@ def turn_to_yaw(level: np.ndarray, yaw: float, reference: float, either_way: boo
     the joint that rolls the hand ends from its nearer limit), the other way too where the
     first would leave that joint less than TURN_MARGIN and the other leaves it more, as a grasp
     turn the factory plans keeps it (`factories.base`, `coming_down`). Not `either_way`: to `yaw`
-    itself, by the shorter way round (a factory that chose the longer turn to keep a wrist off its stop)."""
+    itself (a factory that chose the longer turn to keep a wrist off its stop, an approach whose half
+    turn matters), by the shorter way round; given `room`, the opposite way after all where `yaw`
+    would leave that joint less than TURN_MARGIN and the opposite more (the SDH2's wrist, turned
+    to the yaw that put its thumb towards the middle of a box, stopped at its limit and the arm
+    with it: a thumb towards a wall is the lesser harm)."""
     heading = heading_of(level)
     if not either_way:
         turn = (yaw - heading + math.pi) % (2 * math.pi) - math.pi
-        return _about_vertical(turn)
+        return _about_vertical(_roomier(turn, room))
     turn = (yaw - heading + math.pi / 2) % math.pi - math.pi / 2
     if abs((heading + turn - reference + math.pi) % (2 * math.pi) - math.pi) > WIND_LIMIT:
         turn -= math.copysign(math.pi, turn)
+    return _about_vertical(_roomier(turn, room))
+
+
+def _roomier(turn: float, room: Callable[[float], float] | None) -> float:
+    """`turn`, or half a turn the other way where `turn` would leave the joint that rolls the
+    hand less than TURN_MARGIN from its limit (`room`) and that leaves it more."""
     if room is not None and room(turn) < TURN_MARGIN:
         other = turn - math.copysign(math.pi, turn)
         if room(other) > room(turn):
-            turn = other
-    return _about_vertical(turn)
+            return other
+    return turn
 
 
 def _about_vertical(turn: float) -> np.ndarray:

@@ -52,8 +52,11 @@ class RobustGraspApproach(Controller):
     A shift the hand asks for before it has preshaped (rising to free a preshape blocked
     on the table) ends in settling and approaching again, not in the slide.
     In a container the task knows (`KnownWalls`, as the parallel jaws' grasp), every move
-    keeps the open hand inside its walls by the hand's `hand_extent`, a start too near a
-    wall first moving the hand in (ACROSS), and its floor is the support.
+    keeps the open hand inside its walls by the hand's `hand_extent` about its footprint's
+    middle (`hand_offset`), a start too near a wall first moving the hand in (ACROSS), and its
+    floor is the support. There it always settles before its approach, as after that move in:
+    the switch onto the grasp jolts the wrist (the SDH2's: 5 N for a tick), and read as a
+    finger on a top it moved the hand 5 cm off what vision aimed at (docs/empty-the-box.md).
     """
 
     def __init__(self, ctx: Context) -> None:
@@ -90,8 +93,10 @@ class RobustGraspApproach(Controller):
         self.from_side = float((rotation @ self.direction) @ WORLD_DOWN) < FROM_SIDE  # no fingertip below its TCP
         self.rotation = top_down(rotation) if from_above and self.level_within > 0.0 else rotation.copy()
         _, tilt = orientation_twist(self.rotation, rotation)
-        # a level hand from above starts at once; one from the side first stands still (class docstring)
-        self.phase = Phase.SETTLE if tilt >= ORIENTATION_TOLERANCE or self.from_side else Phase.APPROACH
+        # a level hand from above starts at once; one from the side, or over a known box, first stands still
+        # (class docstring)
+        settle = tilt >= ORIENTATION_TOLERANCE or self.from_side or bool(self.walls.containers)
+        self.phase = Phase.SETTLE if settle else Phase.APPROACH
         position = readings.tcp[:3, 3]
         inside = self.walls.inside(self.rotation, position)
         if norm(inside - position) >= SHIFT_TOLERANCE:  # the open hand would come down on a wall

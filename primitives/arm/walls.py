@@ -21,17 +21,22 @@ FREE_SPEED = float(ARM_CONTROLLERS["cartesian_move"].params["max_speed"].default
 
 @dataclass(frozen=True)
 class KnownWalls:
-    """The known containers and the open hand's reach (along its x, along its y; m)."""
+    """The known containers and the open hand's reach (along its x, along its y; m) either way
+    from the middle of its footprint, `offset` from the TCP (m; a multi-finger hand's thumb
+    reaches further one way than its fingers the other)."""
 
     containers: tuple[ContainerBelief, ...]
     extent: tuple[float, float]
+    offset: tuple[float, float] = (0.0, 0.0)
 
     @classmethod
     def of(cls, ctx: Context) -> KnownWalls:
-        """From the task's environment and the controller's `hand_extent` parameter."""
+        """From the task's environment and the controller's `hand_extent` and (where it has one)
+        `hand_offset` parameters."""
         known = ctx.environment.containers if ctx.environment is not None else ()
-        extent = ctx.params["hand_extent"]
-        return cls(tuple(ContainerBelief.known(c) for c in known), (float(extent[0]), float(extent[1])))
+        extent, offset = ctx.params["hand_extent"], ctx.params.get("hand_offset", (0.0, 0.0))
+        return cls(tuple(ContainerBelief.known(c) for c in known), (float(extent[0]), float(extent[1])),
+                   (float(offset[0]), float(offset[1])))
 
     def inside(self, rotation: np.ndarray, position: np.ndarray, start: np.ndarray | None = None) -> np.ndarray:
         """`position` (world) moved sideways, as little as it takes, for the hand turned by
@@ -42,7 +47,7 @@ class KnownWalls:
             return position
         pose = np.eye(4)
         pose[:3, :3], pose[:3, 3] = rotation, position
-        moved = clear_of_walls(list(self.containers), pose, self.extent, start)
+        moved = clear_of_walls(list(self.containers), pose, self.extent, start, self.offset)
         return position if moved is pose else moved[:3, 3]
 
     def rim(self, position: np.ndarray) -> float | None:

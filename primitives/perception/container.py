@@ -89,23 +89,25 @@ def container_under(containers: list[ContainerBelief], position: np.ndarray) -> 
 
 
 def clear_of_walls(containers: list[ContainerBelief], tcp: np.ndarray, extent: tuple[float, float],
-                   start: np.ndarray | None = None) -> np.ndarray:
+                   start: np.ndarray | None = None, offset: tuple[float, float] = (0.0, 0.0)) -> np.ndarray:
     """The TCP pose `tcp` (4x4, world) moved sideways, as little as it takes, so that a hand
-    reaching `extent` (along its x, along its y) stays inside the walls of the container it is
-    over, or of the one a move to it starts over (`start`, world: a move from inside a box to
-    beyond its wall goes into the wall); unchanged over none (a grasp on the table). Moves
-    along the walls are free, so a grasp's corrections slide along a wall instead of pressing
-    into it."""
+    reaching `extent` (along its x, along its y) either way from the middle of its footprint,
+    `offset` from the TCP (along its x and y: a hand whose thumb reaches further one way than
+    its fingers the other), stays inside the walls of the container it is over, or of the one
+    a move to it starts over (`start`, world: a move from inside a box to beyond its wall goes
+    into the wall); unchanged over none (a grasp on the table). Moves along the walls are
+    free, so a grasp's corrections slide along a wall instead of pressing into it."""
     container = container_under(containers, tcp[:3, 3])
     if container is None and start is not None:
         container = container_under(containers, start)
     if container is None:
         return tcp
-    local = container.to_local(tcp[None, :3, 3])[0]
+    shift = tcp[:3, :3] @ np.array([offset[0], offset[1], 0.0])
+    local = container.to_local(tcp[None, :3, 3] + shift)[0]
     room = room_for_hand(container, tcp[:3, :3], extent)
     local[:2] = np.clip(local[:2], -room, room)
     moved = tcp.copy()
-    moved[:3, 3] = container.to_world(local[None])[0]
+    moved[:3, 3] = container.to_world(local[None])[0] - shift
     return moved
 
 

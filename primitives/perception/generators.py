@@ -73,10 +73,12 @@ def random_blind(container: ContainerBelief, rng: np.random.Generator, extent: t
     return Approach(moved, np.array([*moved[:2, 3], point[2]]), "random_blind")
 
 
-def walls_push(container: ContainerBelief, pose: np.ndarray, extent: tuple[float, float]) -> tuple[float, np.ndarray]:
-    """How far (m) the container's walls push a top-down hand at `pose` (reaching `extent`)
-    along its jaws' closing axis (its y) to keep it inside them, and the pose they leave it at."""
-    moved = clear_of_walls([container], pose, extent)
+def walls_push(container: ContainerBelief, pose: np.ndarray, extent: tuple[float, float],
+               offset: tuple[float, float] = (0.0, 0.0)) -> tuple[float, np.ndarray]:
+    """How far (m) the container's walls push a top-down hand at `pose` (reaching `extent`
+    either way from the middle of its footprint, `offset` from the pose; `clear_of_walls`) along
+    its jaws' closing axis (its y) to keep it inside them, and the pose they leave it at."""
+    moved = clear_of_walls([container], pose, extent, offset=offset)
     return abs(float((moved[:3, 3] - pose[:3, 3]) @ pose[:3, 1])), moved
 
 
@@ -93,6 +95,17 @@ class VisionSettings:
     # m, the open jaws' fingertips: from how far along the hand's y their inner faces stand to how far
     # they reach, and how far along its x; zeros: not known, the jaws' turn is chosen by the top alone
     jaw_band: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    # m, the rectangle a hand reaching further one way than the other (the SDH2's thumb) covers as it
+    # comes down to grasp: how far either way from its middle along the hand's x and y, and where that
+    # middle lies from the point it grasps at; zeros: a hand alike either way round (`grasp_extent`)
+    footprint: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)
+
+    @property
+    def walls(self) -> tuple[tuple[float, float], tuple[float, float]]:
+        """How far the hand reaches either way from its footprint's middle, and that middle's offset."""
+        if not any(self.footprint):
+            return self.grasp_extent, (0.0, 0.0)
+        return self.footprint[:2], self.footprint[2:]
 
 
 def inside(points: np.ndarray, container: ContainerBelief, settings: VisionSettings) -> np.ndarray:
@@ -145,23 +158,42 @@ def long_side(top: np.ndarray, container: ContainerBelief, halved: bool = False)
 
 
 def jaw_yaw(top: np.ndarray, container: ContainerBelief, extent: tuple[float, float],
-            half: np.ndarray | None = None) -> float:
+            half: np.ndarray | None = None, offset: tuple[float, float] = (0.0, 0.0)) -> float:
     """The yaw (see `approach_pose`) for jaws closing along the hand's y over an object's top
     (its points, world), or over the `half` of it aimed at: of the two ways along and across its
     long side, one whose jaws the walls leave room to open over the middle aimed at (pushed less
     than WALL_PUSH off it along the closing axis), then the one that closes across the narrower
     width; over a half, across the axis it was split along: along that axis lies the other half,
-    the rest of one object or a neighbour touching it, and a jaw closing that way lands on it."""
+    the rest of one object or a neighbour touching it, and a jaw closing that way lands on it.
+    A hand whose footprint's middle lies `offset` off its grasp point (`clear_of_walls`) is
+    taken each way round at the half turn that leaves it room (`roomier_half`)."""
     long = long_side(top, container, half is not None)
     centre = np.array([*(top if half is None else half)[:, :2].mean(axis=0), container.rim])
 
     def cost(yaw: float) -> tuple[bool, float]:
-        pose = approach_pose(container, centre, 0.0, 0.0, yaw)
-        pushed = walls_push(container, pose, extent)[0]
+        pose = approach_pose(container, centre, 0.0, 0.0, roomier_half(container, centre, yaw, extent, offset))
+        pushed = walls_push(container, pose, extent, offset)[0]
         width = float(np.ptp(top[:, :2] @ pose[:2, 1]))
         return pushed > WALL_PUSH, 0.0 if half is not None and yaw == long else width
 
-    return min((long, (long + np.pi) % np.pi - np.pi / 2), key=cost)
+    return roomier_half(container, centre, min((long, (long + np.pi) % np.pi - np.pi / 2), key=cost), extent, offset)
+
+
+def roomier_half(container: ContainerBelief, point: np.ndarray, yaw: float, extent: tuple[float, float],
+                 offset: tuple[float, float]) -> float:
+    """Of `yaw` and half a turn further (the same closing line), the one whose hand, its
+    footprint's middle `offset` off its grasp point, the walls push less off `point` (along the
+    closing axis, then at all): the SDH2's thumb, reaching 8.9 cm to its fingers' 5.0, towards
+    the middle of the box. `yaw` itself for a hand alike either way round (`offset` zero)."""
+    if not any(offset):
+        return yaw
+
+    def pushed(turn: float) -> tuple[float, float]:
+        pose = approach_pose(container, point, 0.0, 0.0, turn)
+        along, moved = walls_push(container, pose, extent, offset)
+        return round(along, 6), float(np.linalg.norm(moved[:2, 3] - pose[:2, 3]))
+
+    return min((yaw, yaw + np.pi), key=pushed)
 
 
 def under_jaws(points: np.ndarray, pose: np.ndarray, band: tuple[float, float, float]) -> int:
@@ -255,7 +287,8 @@ def vision(image: DepthImage, container: ContainerBelief, rng: np.random.Generat
     top = near_top(chosen)
     part = part_to_aim_at(top, container, aimed_at(chosen, aimed))
     point = top_centre(part)
+    extent, offset = settings.walls
     pose = approach_pose(container, point, approaching.grasp_reach, approaching.height,
-                         jaw_yaw(top, container, settings.grasp_extent, part if len(part) < len(top) else None))
+                         jaw_yaw(top, container, extent, part if len(part) < len(top) else None, offset))
     pose = clear_jaws(pose, point, np.concatenate(clusters), container, settings)
-    return Approach(pose, point, "vision", len(clusters), float(point[2]))
+    return Approach(pose, point, "vision", len(clusters), float(point[2]), either_way=not any(offset))

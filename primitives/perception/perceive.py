@@ -45,9 +45,11 @@ class Vision(Perceiver):
                              + (f", not '{self.camera}'" if self.camera else ""))
         extent = p["grasp_extent"]
         band = tuple(float(v) for v in p["jaw_band"])
+        footprint = tuple(float(v) for v in p["grasp_footprint"])
         self.settings = VisionSettings(float(p["floor_margin"]), float(p["wall_margin"]), float(p["above_rim"]),
                                        float(p["voxel"]), int(p["min_points"]), (float(extent[0]), float(extent[1])),
-                                       (band[0], band[1], band[2]))
+                                       (band[0], band[1], band[2]),
+                                       (footprint[0], footprint[1], footprint[2], footprint[3]))
 
     def start(self, readings: Readings) -> None:
         super().start(readings)

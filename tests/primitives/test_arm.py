@@ -312,3 +312,19 @@ def test_a_yaw_that_would_take_the_wrist_roll_onto_its_stop_is_reached_the_other
     assert _heading(turn_to_yaw(level, math.radians(50.0), 0.0, room=room) @ level) == pytest.approx(-130.0)
     assert _heading(turn_to_yaw(level, math.radians(-50.0), 0.0, room=room) @ level) == pytest.approx(-50.0)
     assert _heading(turn_to_yaw(level, math.radians(50.0), 0.0) @ level) == pytest.approx(50.0)  # no roll told
+
+
+def test_a_yaw_whose_half_turn_matters_is_kept_unless_the_wrist_roll_would_end_on_its_stop() -> None:
+    """An approach that says its half turn matters (the SDH2's thumb towards a box's middle)
+    is turned to: asked for 50 degrees, not the -130 a parallel jaw might take. Where that would
+    take the wrist roll (at -3.5 of -4.45..4.45 rad, turning +1 per turn of the hand) onto its
+    stop, the opposite way after all: a thumb towards a wall is the lesser harm (a PA10 stopped
+    there, and its arm with it)."""
+    level = np.array([[1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, -1.0]])  # hand x along +x, pointing down
+
+    def room(turn: float) -> float:
+        q = -3.5 + turn
+        return min(q + 4.451, 4.451 - q)
+    assert _heading(turn_to_yaw(level, math.radians(50.0), 0.0, False, room) @ level) == pytest.approx(50.0)
+    assert _heading(turn_to_yaw(level, math.radians(-50.0), 0.0, False, room) @ level) == pytest.approx(130.0)
+    assert _heading(turn_to_yaw(level, math.radians(-50.0), 0.0, False) @ level) == pytest.approx(-50.0)  # no roll told

@@ -50,6 +50,21 @@ def test_a_hand_near_a_wall_is_moved_in_by_its_reach_and_slides_along_it() -> No
     np.testing.assert_allclose(from_inside[:2, 3], (0.20, HIGH_Y - 0.05))  # from inside the box: kept in it
 
 
+def test_a_hand_reaching_further_one_way_comes_nearer_a_wall_with_its_shorter_side_towards_it() -> None:
+    """The SDH2's pinch reaches 8.9 cm towards its thumb (hand -x) and 5.0 cm the other way: its
+    footprint's middle lies 1.9 cm towards the thumb. With its fingers towards the wall the TCP
+    comes to 5.0 cm of it, with the thumb to 8.9 cm; a hand alike either way (no offset) to its
+    extent either way round."""
+    extent, offset = (0.06925, 0.068), (-0.01925, 0.0)
+    high_x = LOW_X + BELIEF.inner[0]
+    fingers = clear_of_walls([BELIEF], _tcp(high_x - 0.01, 0.15), extent, offset=offset)[:3, 3]
+    np.testing.assert_allclose(fingers[:2], (high_x - 0.050, 0.15))
+    thumb = clear_of_walls([BELIEF], _tcp(high_x - 0.01, 0.15, np.pi), extent, offset=offset)[:3, 3]
+    np.testing.assert_allclose(thumb[:2], (high_x - 0.0885, 0.15))
+    alike = clear_of_walls([BELIEF], _tcp(high_x - 0.01, 0.15, np.pi), extent)[:3, 3]
+    np.testing.assert_allclose(alike[:2], (high_x - 0.06925, 0.15))
+
+
 def _still_at(tcp: np.ndarray) -> Readings:
     """The Melfa's readings, still, its TCP at `tcp`, touching nothing."""
     zeros = np.zeros(6)

@@ -72,6 +72,18 @@ def test_vision_keeps_the_jaws_off_a_block_lying_beside_the_one_it_aims_at_and_t
     assert result.end_state == "held", result.summary
 
 
+def test_vision_turns_the_sdh2_s_thumb_away_from_the_wall_and_its_pinch_holds_a_speaker_beside_it():
+    """A speaker stands 1 cm from a wall, its 5 x 5 cm top with no long side: the SDH2's pinch
+    closes along the wall, its thumb (8.9 cm out, its fingers 5.0 cm the other way) turned
+    towards the wall or away from it. Towards it, the walls kept the pinch 7 cm off the speaker
+    and it closed on nothing; vision turns the thumb to the middle, the grasp keeps the hand's
+    own footprint inside the walls, and the pinch holds the speaker (docs/empty-the-box.md,
+    "The SDH2's thumb towards the room")."""
+    result = run(BOX_DATA / "one_look_grasp.xml", robot="tombatossals", arm="left",
+                 world=BOX_DATA / "speaker_at_a_wall.toml")
+    assert result.end_state == "held", result.summary
+
+
 def test_a_random_blind_round_on_an_empty_spot_rises_out_at_once_and_costs_under_19_s():
     """Random blind needs many rounds, most of them on a spot with nothing there, so a round's
     simulated time decides whether it empties the box in its budget: the jaws that closed on
