@@ -403,8 +403,7 @@ class RobustGraspHand(ForceGrasp):
     def _pushed_aside(self) -> bool:
         """Both pinching fingers felt the object on the way, then closed on nothing, where
         they last felt it off the pinch line: they pushed it out sideways."""
-        closing = self.closing
-        return self._corrects_pinch() and set(self.fingers) <= closing.felt_by and abs(closing.felt_at) >= FELT_OFF_LINE
+        return set(self.fingers) <= self.closing.felt_by and self._felt_off_line() != 0.0
 
     def _felt_off_line(self) -> float:
         """The side of the pinch line (+1, -1) where a pad felt the object above the table,

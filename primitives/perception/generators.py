@@ -170,13 +170,16 @@ def jaw_yaw(top: np.ndarray, container: ContainerBelief, extent: tuple[float, fl
     long = long_side(top, container, half is not None)
     centre = np.array([*(top if half is None else half)[:, :2].mean(axis=0), container.rim])
 
+    turned = {yaw: roomier_half(container, centre, yaw, extent, offset)
+              for yaw in (long, (long + np.pi) % np.pi - np.pi / 2)}
+
     def cost(yaw: float) -> tuple[bool, float]:
-        pose = approach_pose(container, centre, 0.0, 0.0, roomier_half(container, centre, yaw, extent, offset))
+        pose = approach_pose(container, centre, 0.0, 0.0, turned[yaw])
         pushed = walls_push(container, pose, extent, offset)[0]
         width = float(np.ptp(top[:, :2] @ pose[:2, 1]))
         return pushed > WALL_PUSH, 0.0 if half is not None and yaw == long else width
 
-    return roomier_half(container, centre, min((long, (long + np.pi) % np.pi - np.pi / 2), key=cost), extent, offset)
+    return turned[min(turned, key=cost)]
 
 
 def roomier_half(container: ContainerBelief, point: np.ndarray, yaw: float, extent: tuple[float, float],
