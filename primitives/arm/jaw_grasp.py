@@ -28,7 +28,9 @@ way the press pushes it, rises, and the grasp fails, saying so. Asked to (`locat
 place cannot weigh where the jaws hold the object), a hand with a range sensor along its
 approach axis sweeps the open jaws along their width before its first close of a descent,
 sees where the object's top spans (`primitives.arm.jaw_span`) and closes on its middle; it
-tells the place whether it did (`LOCATED_ALONG`). Over a known container, with the open
+tells the place whether it did (`LOCATED_ALONG`). Jaws without tactile images descend slowly
+past a ball's upper half, and place it from a contact by the sphere's geometry
+(`primitives.arm.jaw_ball`). Over a known container, with the open
 fingertips over its rim and over the top the task believes in, nothing can be met: the grasp
 does not rise first, and its descent goes at a free move's speed down to just over them.
 """
@@ -53,6 +55,7 @@ from primitives.arm.motion import (
     unit,
     what_stops,
 )
+from primitives.arm.jaw_ball import ROLLING_DESCENT, BallUnderJaws
 from primitives.arm.jaw_rim import RimLever
 from primitives.arm.jaw_span import BeamSpan, Sweep
 from primitives.arm.move import arm_output
@@ -178,6 +181,7 @@ class JawGraspCorrection(Controller):
         # the search's way: the hand's x, or level across a grasp from the side (its x would
         # search up and down the object, and down into the table)
         self.search_way = None if self.vertical else unit(np.cross(self.back, UP))
+        self.ball = BallUnderJaws.of(self.ctx, float(self.tip_extent[1]), self.vertical)
         self.centre = readings.tcp[:3, 3].copy()  # where the approach believes the object is
         self.shaper.start(self.ctx.memory.get(ARM_TWIST))
         self.searched = 0
@@ -402,10 +406,13 @@ class JawGraspCorrection(Controller):
         """`descent_velocity`, or faster, up to FREE_SPEED, while the open fingertips are over the
         line where nothing can be met (`_over_rim`): speeding up and slowing down at
         APPROACH_ACCELERATION (a sudden start reads on the wrist as a contact), so that they
-        reach it at `descent_velocity`."""
+        reach it at `descent_velocity`; slower (ROLLING_DESCENT) while they pass the upper half
+        of a ball that jaws without tactile images would kick away (`BallUnderJaws`)."""
         over = self._over_rim(readings.tcp[:3, 3])
         if over <= 0.0:
             self.falling = self.descent
+            if self.ball is not None and self.ball.passing(float(readings.tcp[2, 3]) - self.tip_depth):
+                return ROLLING_DESCENT * self.descent
             return self.descent
         braking = float(np.sqrt(self.descent**2 + 2.0 * APPROACH_ACCELERATION * over))
         self.falling = min(FREE_SPEED, braking, self.falling + APPROACH_ACCELERATION * dt)
@@ -451,10 +458,16 @@ class JawGraspCorrection(Controller):
     def _contact_across(self, readings: Readings, wrench: np.ndarray) -> np.ndarray | None:
         """(x, y, 0) in the hand frame of the contact point: where the contact force's line of
         action (from the wrist's force and torque, taken about the sensor `wrist_to_tcp` above
-        the TCP) crosses the object's top as the task believes it, or the TCP's height."""
+        the TCP) crosses the object's top as the task believes it, or the TCP's height; across
+        the jaws, for a ball met by jaws without tactile images, where its centre lies
+        (`BallUnderJaws.centre_across`): the contact is a finger's edge on its flank."""
         top = self._object_top()
         depth = self.wrist_to_tcp + (self._depth(readings.tcp[:3, 3]) - top if np.isfinite(top) else 0.0)
-        return contact_across(wrench, depth)
+        lever = contact_across(wrench, depth)
+        if lever is None or self.ball is None:
+            return lever
+        tips = float(readings.tcp[2, 3]) - self.tip_depth
+        return np.array([lever[0], self.ball.centre_across(float(lever[1]), float(wrench[1]), tips), 0.0])
 
     def _close_here(self, readings: Readings, back_off: float, touching: bool = False) -> None:
         """Close with the TCP `back_off` back from here; `touching`: the hand rests on something."""
