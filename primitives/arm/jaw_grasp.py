@@ -26,8 +26,8 @@ top, and the jaws do not close before the fingertips are past it; a jaw met ther
 halfway to it (the top spans from the hand's axis to that jaw), and the first such contact that
 no move across is left for turns the jaws a quarter turn about the vertical, and the hand comes
 down again. A hand pressed far beyond any grasp's need (`WEDGED`: between a wall and the
-pile) does not close there: it eases off the way the press pushes it, rises, and the grasp fails, saying so. Asked to (`locate_along`: its
-place cannot weigh where the jaws hold the object), a hand with a range sensor along its
+pile) does not close there: it eases off the way the press pushes it, rises, and the grasp
+fails, saying so. Asked to (`locate_along`: its place cannot weigh where the jaws hold the object), a hand with a range sensor along its
 approach axis sweeps the open jaws along their width before its first close of a descent,
 sees where the object's top spans (`primitives.arm.jaw_span`) and closes on its middle; it
 tells the place whether it did (`LOCATED_ALONG`). Over a known container, with the open
