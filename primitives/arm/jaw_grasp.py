@@ -22,17 +22,18 @@ grip pressed partly through a finger's bare rim (`jaws_rim`) have the object bet
 beyond the pads' edge: the arm moves along their width, towards where the weaker pad felt the
 object or else the rim's lever, by a pad's half width, and the jaws close again there. A task that knows no
 object may give it the top a perceive state saw (`object_top`): it stands in for the object's
-top, and the jaws do not close before the fingertips are past it; a jaw met there moves the jaws
-halfway to it (the top spans from the hand's axis to that jaw), and the first such contact that
-no move across is left for turns the jaws a quarter turn about the vertical, and the hand comes
-down again. A hand pressed far beyond any grasp's need (`WEDGED`: between a wall and the
+top, and the jaws do not close before the fingertips are past it; a jaw met there moves the
+jaws halfway to it (the top spans from the hand's axis to that jaw), and the first such contact
+that no move across is left for turns the jaws a quarter turn about the vertical, and the hand
+comes down again. A hand pressed far beyond any grasp's need (`WEDGED`: between a wall and the
 pile) does not close there: it eases off the way the press pushes it, rises, and the grasp
-fails, saying so. Asked to (`locate_along`: its place cannot weigh where the jaws hold the object), a hand with a range sensor along its
-approach axis sweeps the open jaws along their width before its first close of a descent,
-sees where the object's top spans (`primitives.arm.jaw_span`) and closes on its middle; it
-tells the place whether it did (`LOCATED_ALONG`). Over a known container, with the open
-fingertips over its rim and over the top the task believes in, nothing can be met: the grasp
-does not rise first, and its descent goes at a free move's speed down to just over them.
+fails, saying so. Asked to (`locate_along`: its place cannot weigh where the jaws hold the
+object), a hand with a range sensor along its approach axis sweeps the open jaws along their
+width before its first close of a descent, sees where the object's top spans
+(`primitives.arm.jaw_span`) and closes on its middle; it tells the place whether it did
+(`LOCATED_ALONG`). Over a known container, with the open fingertips over its rim and over the
+top the task believes in, nothing can be met: the grasp does not rise first, and its descent
+goes at a free move's speed down to just over them.
 """
 
 from __future__ import annotations
