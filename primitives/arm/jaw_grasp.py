@@ -85,6 +85,9 @@ MAX_RELIEF = 0.02  # m the arm rises for that in one close, at most
 FREE_LOAD_WINDOW = 0.1  # s: the empty hand's load is the wrist's mean over the end of a move in free air
 # m the fingertips reach past a seen top before the jaws close: a seen top is good to a few mm (docs/empty-the-box.md)
 PAST_SEEN_TOP = 0.005
+# m over a seen top beyond which the fingertips met something else: a descent's start from over the rim read as a
+# contact 7.5 cm over a standing speaker's top, and a turn there was spent on it (docs/empty-the-box.md)
+OVER_SEEN_TOP = 0.02
 # N on the wrist beyond the empty hand's load: no grasp needs a tenth of it (a contact 2 N, a grip 15 N, a
 # close on the table 96 N before its relief); a hand pressed so hard is wedged (docs/empty-the-box.md)
 WEDGED = 150.0
@@ -440,7 +443,7 @@ class JawGraspCorrection(Controller):
                 # over it. The jaws turn and come down again, once; then the hand goes on as if
                 # they had closed there on nothing.
                 self.goal = readings.tcp[:3, 3].copy()
-                if not self.turned:
+                if not self.turned and self._on_seen_top(readings):
                     self._turn(readings)
                     return
                 self._search_on(readings, "a jaw met something with the fingertips at the seen top")
@@ -461,13 +464,19 @@ class JawGraspCorrection(Controller):
         # A jaw on the top a perceive state saw where the hand came down: the top spans from the
         # hand's axis to the jaw, and the jaws go over its middle (all the way, the other jaw came
         # down on the top where the hand's axis had been: docs/empty-the-box.md)
-        return np.array([x, self.bracket.move(y / 2.0 if self._at_seen_top(readings) else y), 0.0])
+        return np.array([x, self.bracket.move(y / 2.0 if self._on_seen_top(readings) else y), 0.0])
 
     def _at_seen_top(self, readings: Readings) -> bool:
         """Whether the fingertips of a hand from above are not yet PAST_SEEN_TOP past the top a
         perceive state saw: a jaw meeting something there has met that top."""
         return self.seen_top is not None and self.vertical and \
             float(readings.tcp[2, 3]) - self.reach > self.seen_top - PAST_SEEN_TOP
+
+    def _on_seen_top(self, readings: Readings) -> bool:
+        """Whether the fingertips are at the seen top, neither past it nor OVER_SEEN_TOP over it:
+        what a jaw meets there is that top."""
+        return self._at_seen_top(readings) and \
+            float(readings.tcp[2, 3]) - self.reach < self.seen_top + OVER_SEEN_TOP
 
     def _turn(self, readings: Readings) -> None:
         """Turn the jaws a quarter turn about the vertical, the way that leaves the last arm
