@@ -22,17 +22,20 @@ grip pressed partly through a finger's bare rim (`jaws_rim`) have the object bet
 beyond the pads' edge: the arm moves along their width, towards where the weaker pad felt the
 object or else the rim's lever, by a pad's half width, and the jaws close again there. A task that knows no
 object may give it the top a perceive state saw (`object_top`): it stands in for the object's
-top, and the jaws do not close before the fingertips are past it. A hand pressed far beyond
-any grasp's need (`WEDGED`: between a wall and the pile) does not close there: it eases off the
-way the press pushes it, rises, and the grasp fails, saying so. Asked to (`locate_along`: its
-place cannot weigh where the jaws hold the object), a hand with a range sensor along its
-approach axis sweeps the open jaws along their width before its first close of a descent,
-sees where the object's top spans (`primitives.arm.jaw_span`) and closes on its middle; it
-tells the place whether it did (`LOCATED_ALONG`). Jaws without tactile images descend slowly
-past a ball's upper half, and place it from a contact by the sphere's geometry
-(`primitives.arm.jaw_ball`). Over a known container, with the open
-fingertips over its rim and over the top the task believes in, nothing can be met: the grasp
-does not rise first, and its descent goes at a free move's speed down to just over them.
+top, and the jaws do not close before the fingertips are past it; a jaw met there moves the
+jaws halfway to it (the top spans from the hand's axis to that jaw), and the first such contact
+that no move across is left for turns the jaws a quarter turn about the vertical, and the hand
+comes down again. A hand pressed far beyond any grasp's need (`WEDGED`: between a wall and the
+pile) does not close there: it eases off the way the press pushes it, rises, and the grasp
+fails, saying so. Asked to (`locate_along`: its place cannot weigh where the jaws hold the
+object), a hand with a range sensor along its approach axis sweeps the open jaws along their
+width before its first close of a descent, sees where the object's top spans
+(`primitives.arm.jaw_span`) and closes on its middle; it tells the place whether it did
+(`LOCATED_ALONG`). Jaws without tactile images descend slowly past a ball's upper half, and
+place it from a contact by the sphere's geometry (`primitives.arm.jaw_ball`). Over a known
+container, with the open fingertips over its rim and over the top the task believes in, nothing
+can be met: the grasp does not rise first, and its descent goes at a free move's speed down to
+just over them.
 """
 
 from __future__ import annotations
@@ -85,12 +88,19 @@ MAX_RELIEF = 0.02  # m the arm rises for that in one close, at most
 FREE_LOAD_WINDOW = 0.1  # s: the empty hand's load is the wrist's mean over the end of a move in free air
 # m the fingertips reach past a seen top before the jaws close: a seen top is good to a few mm (docs/empty-the-box.md)
 PAST_SEEN_TOP = 0.005
+# m over a seen top beyond which the fingertips met something else: a descent's start from over the rim read as a
+# contact 7.5 cm over a standing speaker's top, and a turn there was spent on it (docs/empty-the-box.md)
+OVER_SEEN_TOP = 0.02
 # N on the wrist beyond the empty hand's load: no grasp needs a tenth of it (a contact 2 N, a grip 15 N, a
 # close on the table 96 N before its relief); a hand pressed so hard is wedged (docs/empty-the-box.md)
 WEDGED = 150.0
 WEDGE_TIME = 0.1  # s the press lasts: a knock is over sooner (PyBullet's wrist read 158 N in a tick on a top)
 WEDGE_BACK_OFF = 0.01  # m a wedged hand moves the way the press pushes it, and so eases it, before it rises
 SPAN_SPEED = 0.1  # m/s the open jaws move along their width while the range sensor looks (its edges to 0.5 mm a tick)
+# rad the jaws turn about the vertical, once, where a jaw met the seen top: a top longer across the jaws than they
+# open (a speaker lying 7.2 cm across them), or one no move across reaches (a roll of tape by a wall), fits
+# the other way (docs/empty-the-box.md); a look costs 15-48 s, the turn and a descent a few
+TURN = np.pi / 2
 
 
 class JawPhase(Enum):
@@ -187,6 +197,7 @@ class JawGraspCorrection(Controller):
         self.searched = 0
         self.shifts = 0
         self.alongs = 0  # moves along the jaws off a finger's rim
+        self.turned = False  # the jaws have been turned a quarter turn off a seen top: they are, once
         self.bracket = Bracket()  # the moves across so far, and where their contacts placed the object
         self.hint: np.ndarray | None = None  # where the last contact says the object is, world frame
         self.hinted = False  # a contact's hint has been followed: one is, once
@@ -310,6 +321,7 @@ class JawGraspCorrection(Controller):
         if self.phase is JawPhase.CLOSE and board.fingers_stopped and relieved:
             self.phase = JawPhase.HOLD
             along = f", {self.alongs} along the jaws off a rim" if self.alongs else ""
+            along += ", turned a quarter turn off the seen top" if self.turned else ""
             self.finish(Status.DONE, f"the jaws hold the object after {self.shifts} moves across{along} and "
                                      f"{self.searched + self.hinted} search points")
         return arm_output(self.shaper(np.concatenate([v, w]), dt))
@@ -433,27 +445,60 @@ class JawGraspCorrection(Controller):
             on_support = self.vertical and float(readings.tcp[2, 3]) - self.tip_depth - self._support() < SUPPORT_BAND
             self.hint = None if not off_centre or on_support or self.hinted else \
                 readings.tcp[:3, 3] + readings.tcp[:3, :3] @ clamp_norm(across, self.max_shift)
-            if self.seen_top is not None and self.vertical and \
-                    float(readings.tcp[2, 3]) - self.reach > self.seen_top - PAST_SEEN_TOP:
+            if self._at_seen_top(readings):
                 # The fingertips barely past the top a perceive state saw: the pads would close
-                # over it. The hand goes on as if they had closed there on nothing.
+                # over it. The jaws turn and come down again, once; then the hand goes on as if
+                # they had closed there on nothing.
                 self.goal = readings.tcp[:3, 3].copy()
+                if not self.turned and self._on_seen_top(readings):
+                    self._turn(readings)
+                    return
                 self._search_on(readings, "a jaw met something with the fingertips at the seen top")
                 return
             self._close_here(readings, self.back_off, touching=True)
             return
-        shift = readings.tcp[:3, :3] @ self._jaw_move(across)
+        shift = readings.tcp[:3, :3] @ self._jaw_move(readings, across)
         self.shifts += 1
         self.centre = self.centre + self._level(shift)  # the search goes on from there
         self._rise(readings, shift)
 
-    def _jaw_move(self, across: np.ndarray) -> np.ndarray:
+    def _jaw_move(self, readings: Readings, across: np.ndarray) -> np.ndarray:
         """The move across (hand frame) for a jaw on the object's top at `across`: the torque's
         lever along the jaws' width is short and noisy, and the contact lies within the jaw's
-        width anyway; across the jaws, bracketed by the contacts before."""
+        width anyway; across the jaws, bracketed by the contacts before, halfway on a seen top."""
         x = float(np.clip(across[0], -self.jaw_half_width, self.jaw_half_width))
-        y = self.bracket.move(float(np.clip(across[1], -self.max_shift, self.max_shift)))
-        return np.array([x, y, 0.0])
+        y = float(np.clip(across[1], -self.max_shift, self.max_shift))
+        # A jaw on the top a perceive state saw where the hand came down: the top spans from the
+        # hand's axis to the jaw, and the jaws go over its middle (all the way, the other jaw came
+        # down on the top where the hand's axis had been: docs/empty-the-box.md)
+        return np.array([x, self.bracket.move(y / 2.0 if self._on_seen_top(readings) else y), 0.0])
+
+    def _at_seen_top(self, readings: Readings) -> bool:
+        """Whether the fingertips of a hand from above are not yet PAST_SEEN_TOP past the top a
+        perceive state saw: a jaw meeting something there has met that top."""
+        return self.seen_top is not None and self.vertical and \
+            float(readings.tcp[2, 3]) - self.reach > self.seen_top - PAST_SEEN_TOP
+
+    def _on_seen_top(self, readings: Readings) -> bool:
+        """Whether the fingertips are at the seen top, neither past it nor OVER_SEEN_TOP over it:
+        what a jaw meets there is that top."""
+        return self._at_seen_top(readings) and \
+            float(readings.tcp[2, 3]) - self.reach < self.seen_top + OVER_SEEN_TOP
+
+    def _turn(self, readings: Readings) -> None:
+        """Turn the jaws a quarter turn about the vertical, the way that leaves the last arm
+        joint more room (taken to turn the hand about its approach axis: the Melfa's j6, the
+        Baxter's w2), rise, and come down again where the search is centred: the moves across
+        start afresh along the new closing axis."""
+        self.turned = True
+        info = self.ctx.info
+        q = float(readings.arm_q[-1])
+        # a turn about the world's vertical turns a hand pointing down the other way about its own z
+        sign = 1.0 if q - float(info.arm_lower[-1]) >= float(info.arm_upper[-1]) - q else -1.0
+        c, s = np.cos(sign * TURN), np.sin(sign * TURN)
+        self.rotation = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]) @ self.rotation
+        self.shifts, self.bracket, self.hint = 0, Bracket(), None
+        self._rise(readings, self.centre - readings.tcp[:3, 3], self._above_object())
 
     def _contact_across(self, readings: Readings, wrench: np.ndarray) -> np.ndarray | None:
         """(x, y, 0) in the hand frame of the contact point: where the contact force's line of
@@ -588,7 +633,7 @@ class JawGraspCorrection(Controller):
             self.searched += 1
         else:
             self.phase = JawPhase.HOLD
-            self.finish(Status.ERROR, f"{why} at {self.searched + self.hinted + 1} points")
+            self.finish(Status.ERROR, f"{why} at {self.searched + self.hinted + self.turned + 1} points")
             return
         self._rise(readings, point - readings.tcp[:3, 3], self._above_object())
 
