@@ -4,7 +4,10 @@ test whether it is free; a twist above UNSCREW_TORQUE_LIMIT, a pull above PULL_F
 or fingers closed on nothing send the arm back to its start pose to pinch again, moved
 onto the cap's axis by the reactive alignment (Fig. 3.12) unless it is switched off. The
 cap is off when a pull has gone CAP_REMOVED_DISTANCE with the pads still pressing it:
-what the wrist and the pads say, never where the simulator has the cap. Its phases are
+what the wrist and the pads say, never where the simulator has the cap. A cap the pads
+held and twisted, and then close on nothing where they held it, has left its thread and
+the pads (a pinch off its axis squeezes a freed cap out): the unscrew ends saying so, not
+pinching on after a cap that is gone. Its phases are
 in `primitives.arm.unscrew_phases`; docs/writing-a-primitive.md draws the machine.
 
 A gripper's jaws have little room around a cap (the Melfa's 4 mm a side around a 60 mm
@@ -74,6 +77,7 @@ class UnscrewArm(Controller):
         self.start_pose = TcpPose(readings.tcp[:3, 3].copy(), readings.tcp[:3, :3].copy())
         self.still = TcpPose(self.start_pose.position, self.start_pose.rotation)  # where a still phase holds
         self.tally = Tally(pinches=1)
+        self.held = False  # the pads pinched the cap and twisted it from this start pose (or the alignment's move onto it)
         short = self.ctx.memory.pop(SHORT_OF_TARGET, None)
         down = 0.0 if short is None else float(np.asarray(short) @ (self.start_pose.rotation @ self.direction))
         self.room = self._jaws_room(readings)
@@ -136,7 +140,9 @@ class UnscrewArm(Controller):
         nudge = self.ctx.blackboard.arm_nudge
         if nudge is not None:
             self.still.position = self.still.position + nudge * dt
-        if self.cap.empty:
+        if self.cap.empty and self.held:
+            self._gone(readings)
+        elif self.cap.empty:
             self._again(readings, "the fingers closed on nothing")
         elif self.cap.pinched and not self._pressed_outside(readings, dt):
             self._begin_twist(readings)
@@ -339,8 +345,19 @@ class UnscrewArm(Controller):
         self.tally.pinches += 1
         self._hold_here(readings, Phase.ACROSS)
 
+    def _gone(self, readings: Readings) -> None:
+        """The fingers closed on nothing where they had pinched and twisted the cap: a cap on
+        its thread stays where it was pinched, so this one came free and left the pads (a
+        pinch across its axis squeezes a freed cap out, docs/unscrew-campaign.md). Give up
+        now, saying so: the remaining pinches would close on nothing too."""
+        self._hold_here(readings, Phase.FAILED)
+        self.finish(Status.ERROR, f"the cap came off its thread and left the pads after {self.tally.twists} twists: "
+                                  f"pinch {self.tally.pinches} closed on nothing where they had held it "
+                                  f"({self.tally.ended})", twists=self.tally.twists)
+
     def _pinch_from(self, readings: Readings) -> None:
         """Pinch here: every later pinch starts from this pose."""
+        self.held = False
         position = readings.tcp[:3, 3].copy()
         self.start_pose = TcpPose(position, self.start_pose.rotation)
         self.still = TcpPose(position.copy(), self.start_pose.rotation)
@@ -362,6 +379,7 @@ class UnscrewArm(Controller):
                         twists=self.tally.twists)
             return
         self.tally.twists += 1
+        self.held = True
         self.wrench.start(readings, settle=False)  # the squeeze's own load is no torque of the thread's
         goal = axis_rotation(rotation @ self.direction, -angle) @ rotation
         self.twisting = Twisting(goal, position + rotation @ self.grasp_centre, readings.time)

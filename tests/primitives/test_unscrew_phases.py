@@ -42,6 +42,7 @@ class Cap:
     stuck: bool = False  # its thread does not turn: the torque grows with the twist
     weak: float = 1.0  # of its finger's push f2's pad feels (the rest on the finger's bare link)
     chatter: float = 0.0  # N the pads' readings swing about their squeeze, in turn, tick to tick (PyBullet's contacts)
+    slips_out: bool = False  # once free it leaves the pads and falls away (a pinch across its axis squeezes it out)
     turned: float = field(default=0.0, init=False)  # rad the cap has turned
     wound: float = field(default=0.0, init=False)  # rad this pinch has twisted a stuck cap
     seated_at: float | None = field(default=None, init=False)  # TCP height when this pinch took hold of it
@@ -133,6 +134,8 @@ class ScriptedRobot:
             cap.wound += abs(float(turn[2]))
         elif not cap.free:
             cap.turned += max(0.0, float(turn[2]))  # it turns with the pads, unscrewing positive about the world's z
+        if cap.free and cap.slips_out:
+            cap.width = 0.0
         self.touching = blocked
         self.time += dt
         self.ticks += 1
@@ -183,6 +186,26 @@ def test_fingers_closing_on_nothing_stop_at_the_min_distance_and_never_twist() -
     robot, arm, _ = _run(Cap(width=0.0), max_pinches=2)
     assert arm.status is Status.ERROR and arm.tally.twists == 0, arm.reason
     assert "closed on nothing" in arm.reason, arm.reason
+
+
+@pytest.mark.parametrize("alignment", [True, False])
+def test_a_cap_that_comes_free_and_leaves_the_pads_ends_the_unscrew_saying_it_is_off(alignment: bool) -> None:
+    """The cap comes free in the second twist and falls out of the pads (the Panda's jaws
+    pinching 12-15 mm across a jam jar's cap squeezed it out, MuJoCo, docs/unscrew-campaign.md):
+    the next pinch, where the pads had held it, closes on nothing. The unscrew ends there,
+    saying the cap came off and was lost; it used to pinch on to `max_pinches` and say the
+    cap was still on, while the judge found it off its thread, on the table."""
+    robot, arm, _ = _run(Cap(turns_to_free=55.0 / 360.0, slips_out=True), alignment=alignment)
+    assert robot.cap.free
+    assert arm.status is Status.ERROR and arm.tally.twists == 2, arm.reason
+    assert "came off its thread and left the pads" in arm.reason and "still on" not in arm.reason, arm.reason
+    assert arm.tally.pinches == 3 and robot.time < 15.0, (arm.tally, robot.time)
+
+
+def test_fingers_that_close_on_nothing_before_ever_holding_the_cap_pinch_again() -> None:
+    """No cap was ever held: closing on nothing says nothing of a cap come off; the pinches run out."""
+    robot, arm, _ = _run(Cap(width=0.0), max_pinches=3)
+    assert arm.status is Status.ERROR and "cap still on after 3 pinches" in arm.reason, arm.reason
 
 
 @pytest.mark.parametrize("alignment", [True, False])
