@@ -52,8 +52,7 @@ class BallUnderJaws:
         `push` (N, hand y) with the fingertips at `tips_z`: a flank's width `d` from the
         finger's reach, inside it where the push is outwards, else beyond it. The reach is
         the finger's outer extent: the wrist reads the contact a few mm down the flank, by
-        then `d` is that much wider (in 11 contacts traced, PyBullet: its side right in all,
-        within 1 cm of the truth in 5, where the lever read at the ball's top was in 4)."""
+        then `d` is that much wider (docs/robust-grasp.md has the traced contacts)."""
         side = 1.0 if lever >= 0.0 else -1.0
         height = float(np.clip(tips_z - self.centre_z, 0.0, self.radius))
         flank = float(np.sqrt(self.radius**2 - height**2))
