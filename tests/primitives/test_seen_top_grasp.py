@@ -27,9 +27,9 @@ HEIGHT = 0.045  # m: a block lying as the wood block does
 ], ids=["under_one_jaw", "longer_than_the_jaws_open"])
 def test_a_grasp_whose_jaw_came_down_on_the_seen_top_holds_the_block_within_the_round(size, off) -> None:
     """The Melfa's approach over a block's top, the jaws closing along the box's y, told the top
-    (as blind exploration tells it): on main the grasp ended "a jaw met something with the
-    fingertips at the seen top" in both cases (its move across went the whole way to the jaw,
-    and the other jaw came down on the top; nothing turned the jaws)."""
+    (as blind exploration tells it): without the half move and the turn the grasp ended "a jaw
+    met something with the fingertips at the seen top" in both cases (its move across went the
+    whole way to the jaw, and the other jaw came down on the top; nothing turned the jaws)."""
     task = load(TASK)
     robot = box_world(cube("block", MIDDLE, size=size, height=HEIGHT))
     top = FLOOR + HEIGHT
