@@ -617,7 +617,7 @@ class Factory(ABC):
                               fingertip_extent=tuple(round(e, 6) for e in
                                                      self.robot.hand_extent(HandShape.OPEN.value, SWEEPING_TIP)),
                               hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)),
-                              locate_along=self.places_unweighed(context) or None)
+                              locate_along=self.places_unweighed(context) or None, wrist_roll=self.wrist_roll())
         return NodeMapping("grasp", arm, self.controller("close_until_force"), notes)
 
     def places_unweighed(self, context: MappingContext) -> bool:

@@ -315,6 +315,9 @@ _ARM_CONTROLLERS = (
             "object_top": _p(NUM, "height (world z) of the object's top as a perceive state saw it, for a task "
                              "that knows no object: set at run time from the value the ATD's <object_top from> "
                              "names; unset = the task's object, or none", unit="m", limits=ranges.COORDINATE),
+            "wrist_roll": _p(NUM, "how the last arm joint turns per turn of the hand about the vertical, +1 or -1 "
+                                  "(0: none rolls it): the quarter turn off a seen top goes the way that leaves "
+                                  "that joint more room (set by the factory)", 0.0, limits=ranges.DIRECTION),
             "filter_time": _FILTER,
         },
     ),

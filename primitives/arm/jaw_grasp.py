@@ -52,9 +52,11 @@ from primitives.arm.motion import (
     SUPPORT_BAND,
     Stall,
     TwistShaper,
+    about_vertical,
     clamp_norm,
     norm,
     orientation_twist,
+    roll_room,
     unit,
     what_stops,
 )
@@ -153,6 +155,7 @@ class JawGraspCorrection(Controller):
         self.back_off = float(p["back_off"])
         self.speed = float(p["correction_velocity"])
         self.descent = float(p["descent_velocity"])
+        self.wrist_roll = float(p["wrist_roll"])
         self.max_depth = float(p["max_depth"])
         self.centre_band = float(p["centre_band"])
         self.max_shift = float(p["max_shift"])
@@ -487,16 +490,15 @@ class JawGraspCorrection(Controller):
 
     def _turn(self, readings: Readings) -> None:
         """Turn the jaws a quarter turn about the vertical, the way that leaves the last arm
-        joint more room (taken to turn the hand about its approach axis: the Melfa's j6, the
-        Baxter's w2), rise, and come down again where the search is centred: the moves across
+        joint more room (`roll_room`, that joint turning `wrist_roll` times the turn, as the
+        factory says), rise, and come down again where the search is centred: the moves across
         start afresh along the new closing axis."""
         self.turned = True
         info = self.ctx.info
-        q = float(readings.arm_q[-1])
-        # a turn about the world's vertical turns a hand pointing down the other way about its own z
-        sign = 1.0 if q - float(info.arm_lower[-1]) >= float(info.arm_upper[-1]) - q else -1.0
-        c, s = np.cos(sign * TURN), np.sin(sign * TURN)
-        self.rotation = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]) @ self.rotation
+        room = roll_room(float(readings.arm_q[-1]), float(info.arm_lower[-1]), float(info.arm_upper[-1]),
+                         self.wrist_roll)
+        turn = -TURN if room is not None and room(-TURN) > room(TURN) else TURN
+        self.rotation = about_vertical(turn) @ self.rotation
         self.shifts, self.bracket, self.hint = 0, Bracket(), None
         self._rise(readings, self.centre - readings.tcp[:3, 3], self._above_object())
 

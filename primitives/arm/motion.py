@@ -67,11 +67,11 @@ def turn_to_yaw(level: np.ndarray, yaw: float, reference: float, either_way: boo
     heading = heading_of(level)
     if not either_way:
         turn = (yaw - heading + math.pi) % (2 * math.pi) - math.pi
-        return _about_vertical(_roomier(turn, room))
+        return about_vertical(_roomier(turn, room))
     turn = (yaw - heading + math.pi / 2) % math.pi - math.pi / 2
     if abs((heading + turn - reference + math.pi) % (2 * math.pi) - math.pi) > WIND_LIMIT:
         turn -= math.copysign(math.pi, turn)
-    return _about_vertical(_roomier(turn, room))
+    return about_vertical(_roomier(turn, room))
 
 
 def _roomier(turn: float, room: Callable[[float], float] | None) -> float:
@@ -84,9 +84,23 @@ def _roomier(turn: float, room: Callable[[float], float] | None) -> float:
     return turn
 
 
-def _about_vertical(turn: float) -> np.ndarray:
+def about_vertical(turn: float) -> np.ndarray:
+    """The rotation by `turn` (rad) about the world vertical."""
     c, s = math.cos(turn), math.sin(turn)
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def roll_room(now: float, low: float, high: float, wrist_roll: float) -> Callable[[float], float] | None:
+    """How far a turn of the hand about the vertical (rad) leaves the last arm joint, now at
+    `now` within [`low`, `high`], from its nearer limit, that joint turning `wrist_roll` times
+    the turn (the factory's); None where it does not roll the hand (`wrist_roll` 0)."""
+    if not wrist_roll:
+        return None
+
+    def room(turn: float) -> float:
+        q = now + wrist_roll * turn
+        return min(q - low, high - q)
+    return room
 
 
 def heading_of(rotation: np.ndarray) -> float:

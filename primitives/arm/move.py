@@ -24,6 +24,7 @@ from primitives.arm.motion import (
     norm,
     orientation_twist,
     heading_of,
+    roll_room,
     top_down,
     turn_to_yaw,
     what_stops,
@@ -139,18 +140,11 @@ class CartesianMove(Controller):
         self.stall.reset(readings.time)
 
     def _roll_room(self, readings: Readings) -> Callable[[float], float] | None:
-        """How far a turn of the hand about the vertical (rad) leaves the last arm joint from its
-        nearer limit, that joint turning `wrist_roll` times the turn; None where the factory
-        gave no roll (the last joint does not roll the hand)."""
-        if not self.wrist_roll:
-            return None
+        """How far a turn of the hand about the vertical leaves the last arm joint from its
+        limits (`roll_room`); None where the factory gave no roll."""
         info = self.ctx.info
-        now, low, high = float(readings.arm_q[-1]), float(info.arm_lower[-1]), float(info.arm_upper[-1])
-
-        def room(turn: float) -> float:
-            q = now + self.wrist_roll * turn
-            return min(q - low, high - q)
-        return room
+        return roll_room(float(readings.arm_q[-1]), float(info.arm_lower[-1]), float(info.arm_upper[-1]),
+                         self.wrist_roll)
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         if self.status is not Status.RUNNING:
