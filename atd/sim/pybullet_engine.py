@@ -232,20 +232,22 @@ class PybulletRobot(SimRobot):
 
     def _build_scene(self, scene: Scene) -> None:
         c = self.client
+        # A friction anchor pins a contact point, which a rolling ball's is not: anchored (on
+        # either body), a ball rolling at 5 cm/s sped up to 17 cm/s in 2 s on a level table, and
+        # balls the grasp had nudged rolled off it; on a box's floor, one nudged at 2.5 cm/s
+        # sped up to 14 cm/s and rolled from wall to wall for half a minute. So nothing fixed that
+        # a rolling object may rest on is anchored.
+        anchored = not any(body.rolls for body in scene.objects)
         if scene.table:
             table = pb.createCollisionShape(pb.GEOM_BOX, halfExtents=TABLE_HALF, physicsClientId=c)
             self.table = pb.createMultiBody(0, table, basePosition=TABLE_CENTRE, physicsClientId=c)
             pb.changeVisualShape(self.table, -1, rgbaColor=COLOURS["table"], physicsClientId=c)
-            # A friction anchor pins a contact point, which a rolling ball's is not: anchored
-            # (on either body), a ball rolling at 5 cm/s sped up to 17 cm/s in 2 s on a level
-            # table, and balls the grasp had nudged rolled off it.
-            rolls = any(body.rolls for body in scene.objects)
-            pb.changeDynamics(self.table, -1, lateralFriction=1.0, frictionAnchor=int(not rolls), physicsClientId=c)
+            pb.changeDynamics(self.table, -1, lateralFriction=1.0, frictionAnchor=int(anchored), physicsClientId=c)
         for obstacle in scene.obstacles:
-            self._make(obstacle, fixed=True, colour=COLOURS["obstacle"])
+            self._make(obstacle, fixed=True, colour=COLOURS["obstacle"], anchored=anchored)
         for container in scene.containers:
             for part in container.parts():
-                self._make(part, fixed=True, colour=COLOURS["container"])
+                self._make(part, fixed=True, colour=COLOURS["container"], anchored=anchored)
         self._objects = [self._make(body, fixed=False, colour=COLOURS["object"]) for body in scene.objects]
         self.object = self._objects[0] if self._objects else -1
         self._threads = [_Thread(uid, body.thread) for uid, body in zip(self._objects, scene.objects) if body.thread]
@@ -267,7 +269,8 @@ class PybulletRobot(SimRobot):
                 self._make(Body(f"jaw{k}:{body.name}", "box", size, pose, 1.0, 1.0), fixed=True,
                            colour=COLOURS["obstacle"])
 
-    def _make(self, body: Body, fixed: bool, colour: tuple[float, ...]) -> int:
+    def _make(self, body: Body, fixed: bool, colour: tuple[float, ...], anchored: bool = True) -> int:
+        """The body in Bullet; its contacts keep friction anchors where `anchored` and it does not roll."""
         c = self.client
         half = body.half_extents
         if body.thread is not None:
@@ -284,7 +287,7 @@ class PybulletRobot(SimRobot):
             0 if fixed else body.mass, shape, basePosition=body.pose[:3, 3].tolist(),
             baseOrientation=_xyzw(body.pose), physicsClientId=c,
         )
-        pb.changeDynamics(uid, -1, lateralFriction=body.friction, frictionAnchor=int(not body.rolls),
+        pb.changeDynamics(uid, -1, lateralFriction=body.friction, frictionAnchor=int(anchored and not body.rolls),
                           physicsClientId=c)
         pb.changeVisualShape(uid, -1, rgbaColor=colour, physicsClientId=c)
         if not fixed:
