@@ -276,6 +276,8 @@ class BlindExploration(Perceiver):
                                       f"{z:.3f}) on the way to the probe")
         elif kind in (Leg.PROBE, Leg.FEEL) and contact is None and self.plan:
             pass  # down to just over the rim: the descent goes on
+        elif kind is Leg.FEEL and contact is None and self.swept.by_walls:
+            self._estimated(readings, "the descent beside the wall met nothing as low as the hand fits there")
         elif kind in (Leg.PROBE, Leg.FEEL) and contact is None:
             self.finish(Status.ERROR, f"no floor within {PROBE_BEYOND * 100:g} cm below where the container's "
                                       f"floor is believed to be ({self.container.floor:.3f} m)")
@@ -290,8 +292,6 @@ class BlindExploration(Perceiver):
         elif kind in (Leg.SWEEP, Leg.WALLS) and contact is not None:
             self.swept = Swept(contact, self._ahead(readings, contact, kind is Leg.WALLS), kind is Leg.WALLS)
             self.plan = self._feel(readings, self.swept)
-        elif kind is Leg.FEEL and contact is None and not self.plan and self.swept.by_walls:
-            self._estimated(readings, "the descent beside the wall met nothing as low as the hand fits there")
         elif kind is Leg.RETREAT and contact is not None:
             self._estimated(readings, f"a contact on the way back and over it ({self._felt(contact)})")
         elif kind is Leg.FEEL:

@@ -20,11 +20,11 @@ from primitives.base import Context, StateView, Status
 from primitives.blackboard import AIMED
 from primitives.perception.clusters import euclidean_clusters
 from primitives.perception.container import ContainerBelief
-from primitives.perception.blind import TRIED, TURNS, Finding, Leg, Tried
+from primitives.perception.blind import TRIED, TURNS, Finding, Leg, Swept, Tried, Waypoint
 from primitives.perception.generators import Approaching, VisionSettings, random_blind, vision
 from primitives.registry import BuildError, build_condition, build_controller
 from primitives.robot import DepthImage
-from primitives.values import Approach, NothingFound
+from primitives.values import Approach, Contact, NothingFound
 from tests.primitives.box_worlds import BELIEF, BOX_POSE, CORNER, FLOOR, MELFA_REACH, box_world, cube, perceive
 from tests.primitives.conftest import Stage, events, execute, leaf, machine, use
 from tests.primitives.melfa_jaws import MELFA, still
@@ -485,6 +485,24 @@ def test_blind_exploration_feels_an_object_lying_in_the_band_its_lanes_keep_the_
     assert outcome.succeeded, outcome.summary
     assert isinstance(found, Approach) and cause["kind"] == "object_found"
     assert np.linalg.norm(found.point[:2] - truth[:2]) < 0.03
+
+
+def test_what_going_round_the_walls_met_and_the_descent_over_it_did_not_is_the_sweep_s_estimate() -> None:
+    """Going round the walls, the fingers met something; coming down over where it should lie,
+    no lower than they went round (the wider body over the rim), they met nothing (a lying
+    can's top curves away there): the approach is the sweep's estimate, its top unknown, not
+    "no floor" (the fresh seed 33700, Melfa, trial 1 ended "stuck" so, docs/empty-the-box.md)."""
+    ctx = Context(info=MELFA, params={}, rng=np.random.default_rng(0))
+    look = build_controller(perceive("blind_exploration", **MELFA_TIP), "arm", ctx)
+    over = (0.26, 0.08, FLOOR + 0.04)
+    look.start(still(over))
+    met = Contact(np.array(over), "wrist", 4.0, np.array([1.0, 0.0, 0.0]), 0.0)
+    look.swept = Swept(met, np.array([0.27, 0.075, FLOOR + 0.02]), by_walls=True)
+    look.plan, look.leg = [], Waypoint(np.array(over), Leg.FEEL)
+    look.explore = SimpleNamespace(found=None, blocked=False, rest=np.array(over))
+    look._ended(still(over))
+    assert look.status is Status.RUNNING and look.result is not None and not look.result.on_top
+    np.testing.assert_allclose(look.result.point, look.swept.estimate)
 
 
 def test_blind_exploration_of_an_empty_box_finds_nothing() -> None:
