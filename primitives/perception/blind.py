@@ -69,6 +69,11 @@ SIDE_DEPTH = 0.015
 # m more than the hand's reach that the sweep keeps from the walls: at exactly its reach the
 # Melfa's gripper body, below the rim, rubbed the wall along a lane and read 9.9 N
 WALL_CLEARANCE = 0.005
+# m the hand's tip keeps from the walls going round them after the lanes: with 5 and 10 mm the
+# Baxter, its paddles 9 mm or more off the +y wall by the truth, read a contact in an empty box
+# and the look found an object there (docs/empty-the-box.md); the library's objects, 3.8 cm or
+# more across, still reach under a tip 1.5 cm off the wall
+WALLS_CLEARANCE = 0.015
 # rad the jaws turn from what the feel chose, the 1st, 2nd, 3rd, ... time in a row the probe,
 # come down where the last approach lay, lands on an object there: a quarter turn first (the
 # feel chose the wrong one of the box's axes), then the diagonals (a wood block or a spray can
@@ -465,7 +470,7 @@ class BlindExploration(Perceiver):
         """From the lanes' `end` (world), up and round the container's walls, from the corner
         nearest it: the lanes keep the whole hand `hand_radius` off the walls, and an object
         lying in the band they leave (docs/empty-the-box.md: a spray can 2.6 cm from a wall)
-        is felt only here. The TCP keeps the hand's tip WALL_CLEARANCE off each wall, its
+        is felt only here. The TCP keeps the hand's tip WALLS_CLEARANCE off each wall, its
         lowest point as low as keeps its wider part (`tip_length` above it) WALL_CLEARANCE
         over the rim, and no lower than the lanes (`walls_height`)."""
         if self.walls_height is None:
@@ -481,8 +486,8 @@ class BlindExploration(Perceiver):
 
     def _walls_room(self, readings: Readings) -> np.ndarray:
         """How far the TCP keeps from the walls going round them: the tip's reach along each
-        of the container's x and y, and WALL_CLEARANCE."""
-        return self._tip_along(readings) + WALL_CLEARANCE
+        of the container's x and y, and WALLS_CLEARANCE; no further than the lanes."""
+        return np.minimum(self._tip_along(readings) + WALLS_CLEARANCE, self.room)
 
     def _walls_tcp(self) -> float:
         """The TCP's height with the hand's lowest point `walls_height` over the floor."""
