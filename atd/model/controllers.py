@@ -471,8 +471,9 @@ _ARM_CONTROLLERS = (
                                "`RobotDescription.hand_extent` within 2 cm)", (0.015, 0.01), unit="m", length=2),
             "tip_length": _p(NUM, "blind exploration: how far up from the hand's lowest point its links reach "
                              "sideways no further than its tip (`sweep_extent`): with the tip on a top that far below "
-                             "the rim or less, the approach to a top against a wall comes as near it as the tip lets "
-                             "(the robot's own geometry: `RobotDescription.tip_length`); 0: never nearer than "
+                             "the rim or less, the approach to a top against a wall comes as near it as the tip lets, "
+                             "and after its lanes the sweep goes round the walls with the tip alone that far below the "
+                             "rim (the robot's own geometry: `RobotDescription.tip_length`); 0: never nearer than "
                              "`hand_radius`", 0.0, unit="m",
                              limits=ranges.SIZE_OR_NONE),
             "floor_band": _p(NUM, "blind exploration: a contact of the hand's lowest point within this of the "

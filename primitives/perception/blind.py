@@ -6,7 +6,9 @@ no object lay, at a free move's speed; in the container at an explore's). A cont
 floor (the floor's height is the container's believed pose; the contact's, the TCP's height
 less the hand's reach) is an object's top: the approach is there. The floor itself starts a
 sweep: the hand, its lowest point just above the floor, goes along the container in lanes (a
-boustrophedon) until it feels something, which is an object ahead of it; a sweep that feels
+boustrophedon) until it feels something, which is an object ahead of it. The lanes keep the
+whole hand off the walls, so the sweep then goes round them with the hand's tip alone in
+the band they leave, as low as its wider part, over the rim, lets it; a sweep that feels
 nothing found nothing. A sweep's contact places the object only by its near side, at the
 height of the hand's tip, so the hand then feels for its top: it backs off, rises just over
 the rim, comes over the object's near part and goes down onto it (landing on the floor, the
@@ -67,6 +69,11 @@ SIDE_DEPTH = 0.015
 # m more than the hand's reach that the sweep keeps from the walls: at exactly its reach the
 # Melfa's gripper body, below the rim, rubbed the wall along a lane and read 9.9 N
 WALL_CLEARANCE = 0.005
+# m the hand's tip keeps from the walls going round them after the lanes: with 5 and 10 mm the
+# Baxter, its paddles 9 mm or more off the +y wall by the truth, read a contact in an empty box
+# and the look found an object there (docs/empty-the-box.md); the library's objects, 3.8 cm or
+# more across, still reach under a tip 1.5 cm off the wall
+WALLS_CLEARANCE = 0.015
 # rad the jaws turn from what the feel chose, the 1st, 2nd, 3rd, ... time in a row the probe,
 # come down where the last approach lay, lands on an object there: a quarter turn first (the
 # feel chose the wrong one of the box's axes), then the diagonals (a wood block or a spray can
@@ -91,6 +98,7 @@ class Leg(Enum):
     TRANSIT = "transit"  # over the container to the probe: something in the way, an error
     PROBE = "probe"  # down onto the floor: an object's top, or the floor
     SWEEP = "sweep"  # along the floor: an object ahead
+    WALLS = "walls"  # round the walls, the hand's tip alone in the band the lanes leave: an object ahead
     RETREAT = "retreat"  # back, up and over what a sweep met: the sweep's estimate is the approach
     FEEL = "feel"  # down onto what a sweep met: its top, or the floor beside it
     LIFT = "lift"  # off what the hand came down on
@@ -114,6 +122,7 @@ class Swept:
 
     contact: Contact
     estimate: np.ndarray  # (3,)
+    by_walls: bool = False  # met going round the walls: the hand comes down there no lower than it went round
 
 
 @dataclass
@@ -157,6 +166,11 @@ class BlindExploration(Perceiver):
         self.floor_band = float(p["floor_band"])
         self.tip = np.array(p["sweep_extent"], float)
         self.tip_length = float(p["tip_length"])
+        # m over the floor the hand's lowest point goes round the walls (`_along_walls`); None
+        # where `tip_length` is not known (the hand may be as wide all the way down: the lanes
+        # went round as near the walls as it fits)
+        self.walls_height = None if self.tip_length <= 0.0 else max(
+            self.sweep_height, self.container.rim + WALL_CLEARANCE - self.tip_length - self.container.floor)
         inner = self.container.inner
         if np.any(inner[:2] <= 2 * self.margin):
             raise ValueError(f"a hand reaching {self.margin:g} m sideways cannot sweep a container "
@@ -235,8 +249,9 @@ class BlindExploration(Perceiver):
             if self.result is not None:
                 self._conclude()
             else:
-                self.found(None, f"swept the container's floor {self.sweep_height * 100:g} cm above it without a "
-                                 f"contact")
+                walls = "" if self.walls_height is None else f" and along its walls {self.walls_height * 100:.3g} cm"
+                self.found(None, f"swept the container's floor {self.sweep_height * 100:g} cm above it{walls} "
+                                 f"without a contact")
             return
         self.leg = self.plan.pop(0)
         way = self.leg.to - here
@@ -266,6 +281,8 @@ class BlindExploration(Perceiver):
                                       f"{z:.3f}) on the way to the probe")
         elif kind in (Leg.PROBE, Leg.FEEL) and contact is None and self.plan:
             pass  # down to just over the rim: the descent goes on
+        elif kind is Leg.FEEL and contact is None and self.swept.by_walls:
+            self._estimated(readings, "the descent beside the wall met nothing as low as the hand fits there")
         elif kind in (Leg.PROBE, Leg.FEEL) and contact is None:
             self.finish(Status.ERROR, f"no floor within {PROBE_BEYOND * 100:g} cm below where the container's "
                                       f"floor is believed to be ({self.container.floor:.3f} m)")
@@ -277,8 +294,8 @@ class BlindExploration(Perceiver):
                                f"the probe felt it: {self._felt(contact)}", True)
             else:
                 self.plan = self._sweep(readings)
-        elif kind is Leg.SWEEP and contact is not None:
-            self.swept = Swept(contact, self._ahead(readings, contact))
+        elif kind in (Leg.SWEEP, Leg.WALLS) and contact is not None:
+            self.swept = Swept(contact, self._ahead(readings, contact, kind is Leg.WALLS), kind is Leg.WALLS)
             self.plan = self._feel(readings, self.swept)
         elif kind is Leg.RETREAT and contact is not None:
             self._estimated(readings, f"a contact on the way back and over it ({self._felt(contact)})")
@@ -322,8 +339,7 @@ class BlindExploration(Perceiver):
         above = float(point[2]) + self.approaching.reach + SIDE_RISE
         low, high = self.container.footprint(self.room)
         centre = self.container.to_local(point[None])[0]
-        # how far the tip reaches along each of the container's axes
-        tip = np.abs(readings.tcp[:3, :3].T @ self.container.pose[:3, :2])[:2].T @ self.tip
+        tip = self._tip_along(readings)
         legs = [Waypoint(np.array([*self.explore.rest[:2], above]), Leg.ABOVE)]
         for axis in (0, 1):
             for sign in (1, -1):
@@ -398,34 +414,40 @@ class BlindExploration(Perceiver):
             return near, 0.0
         return near, max(0.0, min(SIDE_DEPTH, top + self.tip_length - self.container.rim - WALL_CLEARANCE))
 
-    def _ahead(self, readings: Readings, contact: Contact) -> np.ndarray:
+    def _ahead(self, readings: Readings, contact: Contact, by_walls: bool) -> np.ndarray:
         """Where, at the sweep's height, the hand comes down to feel what the sweep met: its
         near side is where the hand's tip reaches along the sweep (`sweep_extent`, the hand
         turned as it is), and the hand comes down FEEL_INTO past it, kept inside the walls by
-        its reach (`hand_radius`) as the sweep is."""
+        its reach (`hand_radius`) as the lanes are, or `by_walls` by its tip's as going round them is."""
         way = contact.direction[:3] * np.array([1.0, 1.0, 0.0])
         way = way / np.linalg.norm(way)
         along_hand = np.abs(readings.tcp[:3, :3].T @ way)[:2]
         ahead = contact.point + (float(along_hand @ self.tip) + FEEL_INTO) * way
         local = self.container.to_local(ahead[None])[0]
-        low, high = self.container.footprint(self.room)
+        low, high = self.container.footprint(self._walls_room(readings) if by_walls else self.room)
         local[:2] = np.clip(local[:2], low, high)
         point = self.container.to_world(local[None])[0]
         point[2] = float(contact.point[2]) - self.approaching.reach  # its top is at least that high
         return point
 
     def _feel(self, readings: Readings, swept: Swept) -> list[Waypoint]:
-        """Back off what the sweep met, up just over the rim, over where it lies, and down onto it."""
+        """Back off what the sweep met, up just over the rim, over where it lies, and down onto
+        it: by the walls no lower than the hand went round them (`_walls_tcp`)."""
         back = readings.tcp[:3, 3] - BACK_OFF * swept.contact.direction
         over = self._over_rim()
         x, y = swept.estimate[:2]
+        down = self._walls_tcp() if swept.by_walls else self._below_floor()
         return [Waypoint(back, Leg.RETREAT), Waypoint(np.array([back[0], back[1], over]), Leg.RETREAT),
-                Waypoint(np.array([x, y, over]), Leg.RETREAT),
-                Waypoint(np.array([x, y, self._below_floor()]), Leg.FEEL)]
+                Waypoint(np.array([x, y, over]), Leg.RETREAT), Waypoint(np.array([x, y, down]), Leg.FEEL)]
+
+    def _tip_along(self, readings: Readings) -> np.ndarray:
+        """How far the hand's tip (`sweep_extent`, the hand turned as it is) reaches along
+        each of the container's x and y."""
+        return np.abs(readings.tcp[:3, :3].T @ self.container.pose[:3, :2])[:2].T @ self.tip
 
     def _sweep(self, readings: Readings) -> list[Waypoint]:
         """Up to the sweep's height, then lanes along the container's x, `lane_spacing` apart
-        at most, from the corner nearest the hand."""
+        at most, from the corner nearest the hand; then round the walls (`_along_walls`)."""
         here = readings.tcp[:3, 3]
         height = self.container.floor + self.sweep_height + self.approaching.reach
         low, high = self.container.footprint(self.room)
@@ -441,7 +463,35 @@ class BlindExploration(Perceiver):
             points += [(first, y), (last, y)]
         world = self.container.to_world(np.array([[x, y, 0.0] for x, y in points]))
         world[:, 2] = height
-        return [Waypoint(np.array([here[0], here[1], height]), Leg.TRANSIT)] + [Waypoint(p, Leg.SWEEP) for p in world]
+        return ([Waypoint(np.array([here[0], here[1], height]), Leg.TRANSIT)] + [Waypoint(p, Leg.SWEEP) for p in world]
+                + self._along_walls(readings, world[-1]))
+
+    def _along_walls(self, readings: Readings, end: np.ndarray) -> list[Waypoint]:
+        """From the lanes' `end` (world), up and round the container's walls, from the corner
+        nearest it: the lanes keep the whole hand `hand_radius` off the walls, and an object
+        lying in the band they leave (docs/empty-the-box.md: a spray can 2.6 cm from a wall)
+        is felt only here. The TCP keeps the hand's tip WALLS_CLEARANCE off each wall, its
+        lowest point as low as keeps its wider part (`tip_length` above it) WALL_CLEARANCE
+        over the rim, and no lower than the lanes (`walls_height`)."""
+        if self.walls_height is None:
+            return []
+        height = self._walls_tcp()
+        low, high = self.container.footprint(self._walls_room(readings))
+        corners = np.array([[low[0], low[1]], [high[0], low[1]], [high[0], high[1]], [low[0], high[1]]])
+        nearest = int(np.argmin(np.linalg.norm(corners - self.container.to_local(end[None])[0][:2], axis=1)))
+        ring = np.roll(corners, -nearest, axis=0)
+        world = self.container.to_world(np.array([[x, y, 0.0] for x, y in [*ring, ring[0]]]))
+        world[:, 2] = height
+        return [Waypoint(np.array([end[0], end[1], height]), Leg.TRANSIT)] + [Waypoint(p, Leg.WALLS) for p in world]
+
+    def _walls_room(self, readings: Readings) -> np.ndarray:
+        """How far the TCP keeps from the walls going round them: the tip's reach along each
+        of the container's x and y, and WALLS_CLEARANCE; no further than the lanes."""
+        return np.minimum(self._tip_along(readings) + WALLS_CLEARANCE, self.room)
+
+    def _walls_tcp(self) -> float:
+        """The TCP's height with the hand's lowest point `walls_height` over the floor."""
+        return self.container.floor + self.walls_height + self.approaching.reach
 
 
 def _long(plus: bool | None, minus: bool | None) -> bool:

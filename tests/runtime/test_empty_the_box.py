@@ -107,6 +107,16 @@ def test_a_grasp_comes_down_into_a_known_box_from_over_its_rim_at_a_free_move_s_
     assert result.sim_time < 5.6
 
 
+def test_a_blind_look_feels_the_spray_can_lying_by_a_wall_that_made_the_preset_say_empty():
+    """The preset's seed, Melfa, trial 2: a spray can lying 2.6 cm off the -y wall and 4.4 cm
+    off the +x wall, in the band the look's lanes keep the Melfa's 5 cm-wide hand out of; the
+    lanes passed it by under a millimetre and the task said the box was empty with the can in
+    it (docs/empty-the-box.md). Going round the walls with the fingers alone, the look feels it:
+    on main it ended on nothing_found."""
+    result = run(BOX_DATA / "blind_look.xml", robot="melfa", world=BOX_DATA / "spray_by_a_wall.toml")
+    assert result.end_state == "found", result.summary
+
+
 @pytest.fixture(scope="module")
 def empty_box(tmp_path_factory) -> tuple[subprocess.CompletedProcess, Path]:
     """Vision on an empty box, traced and recorded: one picture, no grasp."""
