@@ -74,7 +74,7 @@ WRIST_ALIGNED = 0.99  # cos: a last joint within 8 degrees of the approach axis 
 # than it reaches: the arm reaches an approach to within 3 mm, and the Barrett's boxed pinch, its
 # fingers widest at the rim's height, came down on the rim 1.4 mm over it and closed 1 cm over a block
 BOXED_CLEARANCE = 0.005
-ALONG_Y = np.radians(10.0)  # rad: a pinch closing this near a quarter turn of the hand's y is turned by vision as closing there
+ALONG_Y = np.radians(10.0)  # rad: a pinch closing this near a quarter turn of the hand's y is turned by vision
 
 
 class Unmappable(Exception):
@@ -623,7 +623,8 @@ class Factory(ABC):
                 f"put the TCP at least {needed:.3f} m above the table with this turn (it is at {tcp_at[2]:.3f} m), "
                 f"or grasp from above")
 
-    def hand_for_motion(self, state: State, context: MappingContext | None = None) -> tuple[Controller, tuple[str, ...]]:
+    def hand_for_motion(self, state: State, context: MappingContext | None = None
+                        ) -> tuple[Controller, tuple[str, ...]]:
         """The hand during an arm motion: the state's hand shape (or the closest this hand
         makes, with a note; `boxed` in a task that knows a container), or kept as it is when
         the state names none."""

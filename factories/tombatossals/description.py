@@ -75,7 +75,7 @@ BH_DW, BH_AW, BH_A1, BH_A2, BH_A3 = 0.076, 0.025, 0.050, 0.070, 0.050
 BH_DISTAL_REST = 42 * D
 BH_COUPLING = 0.84 / 2.44
 BH_POINTING = (np.pi / 2 - BH_DISTAL_REST) / (1 + BH_COUPLING)  # proximal flexion that turns the distal link vertical
-BH_BOXED_FLEX = 1.3  # rad: pads 12.8 cm apart: 3.5 cm a side to miss a 5.7 cm wide object by (the widest narrow side the library has)
+BH_BOXED_FLEX = 1.3  # rad: pads 12.8 cm apart, 3.5 cm a side to miss the library's widest narrow side (5.7 cm) by
 BH_TUCKED = 2.44  # rad: a finger curled fully under the palm, out of a box's way
 # The finger drives are self-locking (worm gears): modelled as dry friction on the motor
 # joint, so an object pushes a stalled finger back only with more than this (our value).
@@ -170,8 +170,8 @@ def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
     # over the task's depth, a lug cap rising 2.5 mm up its thread stays on the tips (docs/unscrew-campaign.md).
     hand = Hand("barrett_bh8_280", dofs, tuple(pads), postures, test_grasp="pinch_grasp", pinch_clearance=0.002,
                 grasp_centres={"push": pointing}, push_posture="push", rising_grasps=frozenset({"pinch_grasp"}),
-                side_roll=-np.pi / 2,
-                boxed={"pinch_grasp_preshape": "boxed_pinch_grasp_preshape", "pinch_grasp": "boxed_pinch_grasp"})  # the object's friction: rubber pads kept its finger-lost correction from moving a 5 kg box (PyBullet; docs/slide.md)
+                side_roll=-np.pi / 2,  # the object's friction: rubber pads kept its finger-lost correction from moving a 5 kg box (PyBullet; docs/slide.md)
+                boxed={"pinch_grasp_preshape": "boxed_pinch_grasp_preshape", "pinch_grasp": "boxed_pinch_grasp"})
     return tuple(links), hand, 0.155
 
 
