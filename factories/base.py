@@ -70,7 +70,11 @@ SWEEPING_TIP = 0.02
 TIE_SHORT = np.radians(1.0)
 TURN_TOLERANCE = np.radians(1.0)  # rad: a turn to the object under a degree changes no grasp; the hand keeps its yaw
 WRIST_ALIGNED = 0.99  # cos: a last joint within 8 degrees of the approach axis rolls the hand about it (ours)
-ALONG_Y = np.radians(10.0)  # rad: a pinch closing this near the hand's y closes as vision turns jaws (the SDH2's: exactly)
+# m a hand in a posture that stands in to fit a box (`Hand.boxed`) is kept further off its walls
+# than it reaches: the arm reaches an approach to within 3 mm, and the Barrett's boxed pinch, its
+# fingers widest at the rim's height, came down on the rim 1.4 mm over it and closed 1 cm over a block
+BOXED_CLEARANCE = 0.005
+ALONG_Y = np.radians(10.0)  # rad: a pinch closing this near a quarter turn of the hand's y is turned by vision
 
 
 class Unmappable(Exception):
@@ -329,25 +333,52 @@ class Factory(ABC):
                               container_wall=container.wall, hand_reach=round(reach, 6), hand_radius=round(radius, 6),
                               grasp_reach=round(max(self.robot.hand_reach(p) for p in self.robot.hand.postures), 6),
                               grasp_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)),
-                              jaw_band=self.jaw_band(), grasp_footprint=self.grasp_footprint(),
+                              jaw_band=self.jaw_band(), **self.grasp_footprint(context),
                               sweep_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture, SWEEPING_TIP)),
                               tip_length=round(self.robot.tip_length(posture, SWEEPING_TIP), 6))
         return NodeMapping("perceive", arm, self.controller("hand_shape", shape=posture), notes)
 
-    def grasp_footprint(self) -> tuple[float, float, float, float]:
+    def grasp_footprint(self, context: MappingContext) -> dict[str, tuple[float, ...] | float]:
         """What vision's approach is for, on a multi-finger hand: its pinch (a box round's grasp),
-        its preshape's footprint (`hand_footprint`) about where it closes. Zeros for a parallel
-        jaw, alike either way round, and for a pinch that does not close along the hand's y, as
-        vision turns jaws (the Barrett's closes along its x)."""
-        preshape, pinch = HandShape.PINCH_GRASP_PRESHAPE.value, HandShape.PINCH_GRASP.value
+        its preshape's footprint (`hand_footprint`) about where it closes, given (`grasp_footprint`)
+        along the axes of a hand turned `grasp_turn` (degrees) back from it, whose y the pinch
+        closes along, as vision turns jaws: the Barrett's pinch closes along its x, 90 degrees.
+        Zeros for a parallel jaw, alike either way round, and for a pinch that closes within
+        ALONG_Y of no quarter turn of the hand's y."""
+        none = {"grasp_footprint": (0.0, 0.0, 0.0, 0.0), "grasp_turn": 0.0}
+        preshape = self.boxed(HandShape.PINCH_GRASP_PRESHAPE.value, context)
+        pinch = self.boxed(HandShape.PINCH_GRASP.value, context)
         if self.arm.hand.kind == "parallel jaw" or preshape not in self.robot.hand.postures:
-            return (0.0, 0.0, 0.0, 0.0)
+            return none
         line = self.robot.closing_line(preshape, pinch) if pinch in self.robot.hand.postures else None
-        if line is None or abs(line - np.pi / 2) > ALONG_Y:
-            return (0.0, 0.0, 0.0, 0.0)
+        if line is None:
+            return none
+        quarters = round((np.pi / 2 - line) / (np.pi / 2))
+        if abs(np.pi / 2 - line - quarters * np.pi / 2) > ALONG_Y:
+            return none
         centre = self.robot.hand.grasp_centres.get(preshape, (0.0, 0.0, 0.0))
-        extent, offset = self.robot.hand_footprint(preshape, (float(centre[0]), float(centre[1])))
-        return (round(extent[0], 6), round(extent[1], 6), round(offset[0], 6), round(offset[1], 6))
+        extent, offset = self.footprint(preshape, (float(centre[0]), float(centre[1])))
+        for _ in range(quarters % 4):  # the hand's x y seen from axes a quarter turn back: (x, y) -> (-y, x)
+            extent, offset = (extent[1], extent[0]), (0.0 - offset[1], offset[0])
+        return {"grasp_footprint": tuple(round(float(v), 6) for v in (*extent, *offset)),
+                "grasp_turn": float((quarters % 4 * 90 + 180) % 360 - 180)}
+
+    def footprint(self, posture: str, about: tuple[float, float] = (0.0, 0.0)
+                  ) -> tuple[tuple[float, float], tuple[float, float]]:
+        """The hand's footprint in a posture (`hand_footprint`), BOXED_CLEARANCE wider where
+        the posture stands in to fit a box (`Hand.boxed`)."""
+        extent, offset = self.robot.hand_footprint(posture, about)
+        if posture in self.robot.hand.boxed.values():
+            extent = (extent[0] + BOXED_CLEARANCE, extent[1] + BOXED_CLEARANCE)
+        return extent, offset
+
+    def boxed(self, posture: str, context: MappingContext | None) -> str:
+        """The posture the hand makes for `posture`: in a task that knows a container, its
+        narrower stand-in where it has one (`Hand.boxed`), else `posture` itself."""
+        environment = context.environment if context is not None else None
+        if environment is None or not environment.containers:
+            return posture
+        return self.robot.hand.boxed.get(posture, posture)
 
     def jaw_band(self) -> tuple[float, float, float]:
         """A parallel jaw's open fingertips, which a box round's grasp comes down with (`perceive`'s
@@ -592,13 +623,15 @@ class Factory(ABC):
                 f"put the TCP at least {needed:.3f} m above the table with this turn (it is at {tcp_at[2]:.3f} m), "
                 f"or grasp from above")
 
-    def hand_for_motion(self, state: State) -> tuple[Controller, tuple[str, ...]]:
+    def hand_for_motion(self, state: State, context: MappingContext | None = None
+                        ) -> tuple[Controller, tuple[str, ...]]:
         """The hand during an arm motion: the state's hand shape (or the closest this hand
-        makes, with a note), or kept as it is when the state names none."""
+        makes, with a note; `boxed` in a task that knows a container), or kept as it is when
+        the state names none."""
         if state.hand_shape is None:
             return self.controller("hold_position"), ()
         shape, notes = self.shape(state.hand_shape)
-        return self.controller("hand_shape", shape=self.posture(shape, state)), notes
+        return self.controller("hand_shape", shape=self.boxed(self.posture(shape, state), context)), notes
 
     def posture(self, shape: HandShape, state: State) -> str:
         """The hand's posture for a shape in a state: a closed hand holds nothing, so in a

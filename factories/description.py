@@ -306,6 +306,10 @@ class Hand:
     """How far over a task's pinch depth the pads' lower edge stands (m): a hand whose pads
     meet a cap tip first, their faces turned up, loses the cap out of its pinch once the cap's
     lower edge has risen past the tips (a thread's rise between pinches, the arm back at its height)."""
+    boxed: dict[str, str] = field(default_factory=dict)
+    """Postures the hand makes in place of these in a task that knows a container (a box
+    round's reach and grasp): a narrower stand-in for one whose fingers reach past a box's
+    walls (the Barrett's pinch preshape spans 28 cm with its flat third finger 16 cm out)."""
 
     @property
     def couplings(self) -> tuple[tuple[str, str, float], ...]:

@@ -139,26 +139,27 @@ class MultiFingerFactory(Factory):
         arm = self.arm_motion(state, context, target, via, **extra)
         if kind is StateType.TRANSPORT:  # the fingers keep the grasp as it was
             return NodeMapping("transport", arm, self.controller("hold_position"))
-        return NodeMapping("transport", arm, *self.hand_for_motion(state))
+        return NodeMapping("transport", arm, *self.hand_for_motion(state, context))
 
     def finger_grasp(self, state: State, context: MappingContext) -> NodeMapping:
         """The robust grasp (thesis 3.3.1): the state's grasp, or the one its preshape leads
         to, or a power grasp; refused when the hand cannot make it or would hit an obstacle."""
         grasp, preshape_made, notes = self.grasp_shapes(state, self.grasp_of(state))
-        self.check_object_reach(context, state, grasp.value, *((preshape_made.value,) if preshape_made else ()))
+        closed = self.boxed(grasp.value, context)
+        placed = self.boxed(preshape_made.value, context) if preshape_made else closed
+        self.check_object_reach(context, state, closed, *((placed,) if preshape_made else ()))
         configured = float(self.controller("robust_grasp_hand").params["grasp_force"])
         refuse_uncarriable(context.object, f"grasp state '{state.name}'")
         needed = holding_force(context.object)
         edges = {"side_edge_correction": True} if self.robot.hand.side_edge_pinch else None
-        placed = preshape_made.value if preshape_made else grasp.value
-        swing = self.robot.closing_swing(placed, grasp.value)
-        hand = self.controller("robust_grasp_hand", edges, grasp_shape=grasp.value,
-                               preshape=preshape_made.value if preshape_made else None,
+        swing = self.robot.closing_swing(placed, closed)
+        hand = self.controller("robust_grasp_hand", edges, grasp_shape=closed,
+                               preshape=placed if preshape_made else None,
                                pregrasp_size=self.pregrasp_size(state, context),
                                grasp_force=round(needed, 3) if needed > configured else None,
                                closing_swing=round(swing, 6))
         rising = grasp.value in self.robot.hand.rising_grasps
-        extent, offset = self.robot.hand_footprint(placed)
+        extent, offset = self.footprint(placed)
         arm = self.controller("robust_grasp_approach", {"follow_surface": False} if rising else None,
                               max_distance=self.side_travel(state, context),
                               wrist_to_tcp=round(self._wrist_to_tcp, 6),
@@ -167,7 +168,7 @@ class MultiFingerFactory(Factory):
                               hand_extent=tuple(round(e, 6) for e in extent),
                               hand_offset=tuple(round(o, 6) for o in offset),
                               grasp_centre=tuple(round(float(c), 6) for c in
-                                                 self.robot.hand.grasp_centres.get(grasp.value, (0.0, 0.0, 0.0))))
+                                                 self.robot.hand.grasp_centres.get(closed, (0.0, 0.0, 0.0))))
         return NodeMapping("robust_grasp", arm, hand, notes)
 
     def grasp_of(self, state: State) -> HandShape:

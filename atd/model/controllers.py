@@ -453,11 +453,19 @@ _ARM_CONTROLLERS = (
                            (0.0, 0.0, 0.0), unit="m", length=3, limits=ranges.SIZE_OR_NONE),
             "grasp_footprint": _p(VEC, "vision: the rectangle a hand reaching further one way than the other covers "
                                   "as it comes down to grasp: how far it reaches either way from its middle along the "
-                                  "hand's x and y, and where that middle lies from the point it grasps at; vision turns "
+                                  "hand's x and y (along `grasp_turn`'s axes), and where that middle lies from the "
+                                  "point it grasps at; vision turns "
                                   "the hand, whose half turn then matters, to the way the walls leave it room (the "
                                   "robot's own geometry: `RobotDescription.hand_footprint` of its pinch's preshape, the "
                                   "SDH2's thumb 8.9 cm out); 0 0 0 0: a hand alike either way round (`grasp_extent`)",
                                   (0.0, 0.0, 0.0, 0.0), unit="m", length=4, limits=ranges.COORDINATE),
+            "grasp_turn": _p(NUM, "vision: how far the hand turns about its approach axis from the axes "
+                             "`grasp_footprint` is given along, whose y is the line its grasp closes along, as vision "
+                             "turns jaws across an object's narrow side (the robot's own geometry: "
+                             "`RobotDescription.closing_line` of its pinch, to the nearest quarter turn: the "
+                             "Barrett's closes along its x, 90); 0: along the hand's y, a parallel jaw's and the "
+                             "SDH2's",
+                             0.0, unit="deg", limits=ranges.YAW),
             "approach_height": _p(NUM, "the approach puts the hand's lowest point this far over the higher of "
                                   "the object's top and the container's rim (ours)", 0.05, unit="m"),
             **_EXPLORING,

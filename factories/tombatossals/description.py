@@ -75,6 +75,8 @@ BH_DW, BH_AW, BH_A1, BH_A2, BH_A3 = 0.076, 0.025, 0.050, 0.070, 0.050
 BH_DISTAL_REST = 42 * D
 BH_COUPLING = 0.84 / 2.44
 BH_POINTING = (np.pi / 2 - BH_DISTAL_REST) / (1 + BH_COUPLING)  # proximal flexion that turns the distal link vertical
+BH_BOXED_FLEX = 1.3  # rad: pads 12.8 cm apart, 3.5 cm a side to miss the library's widest narrow side (5.7 cm) by
+BH_TUCKED = 2.44  # rad: a finger curled fully under the palm, out of a box's way
 # The finger drives are self-locking (worm gears): modelled as dry friction on the motor
 # joint, so an object pushes a stalled finger back only with more than this (our value).
 BH_SELF_LOCK = 0.5
@@ -141,6 +143,11 @@ def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
         "spherical_grasp": (np.pi / 3, 2.0, 2.0, 2.0),
         "pinch_grasp_preshape": (np.pi / 2, 0.6, 0.6, 0.0),
         "pinch_grasp": (np.pi / 2, 1.6, 1.6, 0.0),
+        # The pinch inside a box (`boxed`): F3 curled under the palm (it stays 2.9 cm over the
+        # TCP) and F1 and F2 flexed further, pads 12.8 cm apart: it spans 20.5 x 13 cm from
+        # above, where the pinch preshape's 28.2 x 22.4 cm fits no 28 x 23 cm box inside.
+        "boxed_pinch_grasp_preshape": (np.pi / 2, BH_BOXED_FLEX, BH_BOXED_FLEX, BH_TUCKED),
+        "boxed_pinch_grasp": (np.pi / 2, 1.6, 1.6, BH_TUCKED),
         "hook_grasp_preshape": (np.pi, 0.8, 0.8, 0.8),
         "hook_grasp": (np.pi, 1.6, 1.6, 1.6),
         # To push: F3 points down, its distal link vertical so that every face of it is, and
@@ -163,7 +170,8 @@ def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
     # over the task's depth, a lug cap rising 2.5 mm up its thread stays on the tips (docs/unscrew-campaign.md).
     hand = Hand("barrett_bh8_280", dofs, tuple(pads), postures, test_grasp="pinch_grasp", pinch_clearance=0.002,
                 grasp_centres={"push": pointing}, push_posture="push", rising_grasps=frozenset({"pinch_grasp"}),
-                side_roll=-np.pi / 2)  # the object's friction: rubber pads kept its finger-lost correction from moving a 5 kg box (PyBullet; docs/slide.md)
+                side_roll=-np.pi / 2,  # the object's friction: rubber pads kept its finger-lost correction from moving a 5 kg box (PyBullet; docs/slide.md)
+                boxed={"pinch_grasp_preshape": "boxed_pinch_grasp_preshape", "pinch_grasp": "boxed_pinch_grasp"})
     return tuple(links), hand, 0.155
 
 

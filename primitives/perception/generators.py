@@ -99,6 +99,9 @@ class VisionSettings:
     # comes down to grasp: how far either way from its middle along the hand's x and y, and where that
     # middle lies from the point it grasps at; zeros: a hand alike either way round (`grasp_extent`)
     footprint: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)
+    # rad the hand turns about its approach axis from the axes `footprint` is given along, whose y
+    # is the line its grasp closes along: the Barrett's pinch closes along its x, a quarter turn
+    turn: float = 0.0
 
     @property
     def walls(self) -> tuple[tuple[float, float], tuple[float, float]]:
@@ -280,7 +283,8 @@ def vision(image: DepthImage, container: ContainerBelief, rng: np.random.Generat
     the earlier rounds' misses leave (`part_to_aim_at`). Turned for the jaws to close across
     its narrow side (across the split, over a part) where the walls leave them room
     (`jaw_yaw`), turned or slid further where the open jaws would come down on something the
-    picture shows (`clear_jaws`); None when it shows none."""
+    picture shows (`clear_jaws`), and for a hand whose grasp closes along another line than
+    its y, turned to close along that one (`closing_turned`); None when it shows none."""
     clusters = objects_seen(image, container, settings)
     if not clusters:
         return None
@@ -293,5 +297,17 @@ def vision(image: DepthImage, container: ContainerBelief, rng: np.random.Generat
     extent, offset = settings.walls
     pose = approach_pose(container, point, approaching.grasp_reach, approaching.height,
                          jaw_yaw(top, container, extent, part if len(part) < len(top) else None, offset))
-    pose = clear_jaws(pose, point, np.concatenate(clusters), container, settings)
+    pose = closing_turned(clear_jaws(pose, point, np.concatenate(clusters), container, settings), settings.turn)
     return Approach(pose, point, "vision", len(clusters), float(point[2]), either_way=not any(offset))
+
+
+def closing_turned(pose: np.ndarray, turn: float) -> np.ndarray:
+    """The hand's pose for an approach `pose` turned for a grasp closing along its y: turned
+    `turn` (rad) about its own approach axis, so that a hand closing along another line
+    (the Barrett's pinch, along its x) closes along that y."""
+    if turn == 0.0:
+        return pose
+    c, s = np.cos(turn), np.sin(turn)
+    turned = pose.copy()
+    turned[:3, :3] = pose[:3, :3] @ np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    return turned

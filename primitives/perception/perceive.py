@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from typing import Callable, Mapping
 
+import numpy as np
+
 from primitives.base import Context, Status
 from primitives.blackboard import AIMED
 from primitives.perception.blind import BlindExploration
@@ -49,7 +51,8 @@ class Vision(Perceiver):
         self.settings = VisionSettings(float(p["floor_margin"]), float(p["wall_margin"]), float(p["above_rim"]),
                                        float(p["voxel"]), int(p["min_points"]), (float(extent[0]), float(extent[1])),
                                        (band[0], band[1], band[2]),
-                                       (footprint[0], footprint[1], footprint[2], footprint[3]))
+                                       (footprint[0], footprint[1], footprint[2], footprint[3]),
+                                       float(np.radians(float(p["grasp_turn"]))))
 
     def start(self, readings: Readings) -> None:
         super().start(readings)

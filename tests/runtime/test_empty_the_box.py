@@ -84,6 +84,19 @@ def test_vision_turns_the_sdh2_s_thumb_away_from_the_wall_and_its_pinch_holds_a_
     assert result.end_state == "held", result.summary
 
 
+def test_vision_turns_the_barrett_s_pinch_across_a_block_lying_along_the_box_and_its_boxed_pinch_holds_it():
+    """A wood block lies along the box's x, 4 cm off its middle. The Barrett's pinch closes
+    along its hand's x: turned as vision turns jaws, it closed along the block's 7 cm with its
+    pads 25 cm apart, and its preshape (28.2 x 22.4 cm from above) fits no way round inside the
+    28 x 23 cm box, so the walls held it in the middle. Vision turns its closing line across the
+    block, the hand makes its boxed pinch (third finger curled under the palm, pads 12.8 cm
+    apart), and the pinch holds the block (docs/empty-the-box.md, "The Barrett's pinch across
+    what vision saw")."""
+    result = run(BOX_DATA / "one_look_grasp.xml", robot="tombatossals", arm="right",
+                 world=BOX_DATA / "wood_along_x.toml")
+    assert result.end_state == "held", result.summary
+
+
 def test_a_random_blind_round_on_an_empty_spot_rises_out_at_once_and_costs_under_19_s():
     """Random blind needs many rounds, most of them on a spot with nothing there, so a round's
     simulated time decides whether it empties the box in its budget: the jaws that closed on
