@@ -14,7 +14,7 @@ import numpy as np
 
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
 from primitives.blackboard import EMPTY_HAND
-from primitives.filters import world_load
+from primitives.filters import GRAVITY, world_load
 from primitives.hands.posture import position_command
 from primitives.robot import HandMode, Readings
 
@@ -38,6 +38,20 @@ RIM_MOVES = 2  # times per grasp the jaws reopen off a rim for the arm to move a
 # of a pad's half width: a contact centred this far out lies in the pad's edge column (the Melfa's
 # outer 3.4 mm), the rest of it on the finger's bare rim beyond
 EDGE = 0.6
+# m the arm lifts jaws closed nearly shut before they reopen, to weigh what they may hold: a thin
+# part gripped (a can's chord near its top, 28 mm between the Baxter's paddles) hangs clear of the
+# floor and of what it rested on (docs/empty-the-box.md)
+SHUT_LIFT = 0.02
+# s jaws stand still within EMPTY of closed before they count as shut: pressing off a lying can's
+# axis squeezed it aside and the Baxter's paddles swept through 0.8 mm open in 40 ms, then sprang
+# back to 9.6 mm on it, held, while the grasp had said "closed on nothing" (docs/empty-the-box.md);
+# the wrist is read over this time too, before the lift
+SHUT_STILL = 0.2
+SHUT_WEIGH_TIME = 0.3  # s the wrist is read, still, after the lift
+# kg more the lifted wrist must carry than before the lift for shut jaws to hold something: half the
+# lightest object the box is emptied of (the duck, 30 g); the Melfa's wrist read -3 to -1 g with its
+# jaws shut on nothing (the Baxter's virtual one -37 to +31 g: it does not weigh; docs/empty-the-box.md)
+SHUT_HELD = 0.015
 
 
 class Jaws:
@@ -113,10 +127,12 @@ class CloseUntilForce(Controller):
     jaws' width until the pads take the push.
     """
 
-    def __init__(self, ctx: Context, rim_moves: int = RIM_MOVES) -> None:
+    def __init__(self, ctx: Context, rim_moves: int = RIM_MOVES, weighs: bool = True) -> None:
         super().__init__(ctx)
         self.grasp_force = float(self.params["grasp_force"])
         self.rim_moves_left = rim_moves  # reopenings off a rim left: 0 where the arm moves nothing along the jaws
+        # the arm lifts jaws closed nearly shut to weigh them (`weigh`): not where it cannot, nor a wrist too noisy
+        self.weighs = weighs and bool(self.params.get("weigh_shut", True))
         self.speed = float(self.params["closing_speed"])
         self.max_recentre = float(self.params["max_recentre"])
         self.jaws = Jaws(ctx, str(self.params["force_source"]))
@@ -133,9 +149,14 @@ class CloseUntilForce(Controller):
         self.rimmed = 0.0  # s the jaws have pressed still, the squeeze at its limit, short of a grip
         self.ctx.memory[EMPTY_HAND] = world_load(readings)  # a grasp begins empty-handed
         self.guided = self.ctx.blackboard.contact is not None  # the arm says when to close
+        self.shut_for = 0.0  # s the jaws have stood still within EMPTY of closed
+        self.before: list[float] = []  # the wrist's vertical loads (N) meanwhile
+        self.weighing: list[float] | None = None  # the lifted wrist's vertical loads (N) while shut jaws are weighed
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         board = self.ctx.blackboard
+        if self.weighing is not None:
+            return self._weigh_shut(readings)
         if self.guided and not self.pressing and not board.contact:
             return self._reopen(dt)
         if self.status is Status.RUNNING:
@@ -143,18 +164,24 @@ class CloseUntilForce(Controller):
             self.unfelt = self.unfelt + dt if self.pressing and self.jaws.pad_unfelt(readings) else 0.0
             self.rimmed = self.rimmed + dt if self._on_rim(readings, force) else 0.0
             # a motor pressing on its end stop feels force too; fingers stopped beside the pads grip nothing
-            empty = self.jaws.empty(readings) or self.unfelt >= UNFELT_TIME
-            gripped = (not empty and self.pressing and abs(float(readings.hand_dq[0])) < STILL
+            near = self.jaws.empty(readings)
+            shut = self._shut_still(readings, near, dt)
+            empty = shut or self.unfelt >= UNFELT_TIME
+            gripped = (not near and not empty and self.pressing and abs(float(readings.hand_dq[0])) < STILL
                        and self._gripped(force) and not board.pressing)
-            rim = None if empty else self._rim(readings, force, gripped)
+            rim = None if near or empty else self._rim(readings, force, gripped)
+            if shut and self._weighable():
+                self.weighing, board.weigh = [], SHUT_LIFT
+                board.arm_nudge = None
+                return self.jaws.command(self.grasp_force)
             if empty:
                 self.pressing = False
                 self.brushed = self._across_pads(readings) or self.brushed  # a pad still touching says the side
                 if self.guided:
-                    board.jaws_empty = True
+                    board.jaws_empty, board.jaws_weighed = True, None
                     board.jaws_brushed = self.brushed
                 else:
-                    self.finish(Status.ERROR, "the jaws closed on nothing" if self.jaws.empty(readings)
+                    self.finish(Status.ERROR, "the jaws closed on nothing" if shut
                                 else "the jaws stopped on something a pad does not feel")
             elif rim is not None:
                 self.pressing, self.rimmed = False, 0.0
@@ -187,6 +214,49 @@ class CloseUntilForce(Controller):
         if closing:
             self.reference += self.jaws.closing * self.speed * dt
         return position_command(np.array([self.reference]))
+
+    def _shut_still(self, readings: Readings, near: bool, dt: float) -> bool:
+        """Whether the jaws, within EMPTY of closed (`near`), have stood still there SHUT_STILL:
+        jaws that sweep through it on an object squeezed aside are not shut. Meanwhile the
+        wrist's vertical load is kept, to weigh against once lifted."""
+        if not (near and abs(float(readings.hand_dq[0])) < STILL):
+            self.shut_for, self.before = 0.0, []
+            return False
+        self.shut_for += dt
+        self.before.append(float(world_load(readings)[2]))
+        return self.shut_for >= SHUT_STILL
+
+    def _weighable(self) -> bool:
+        """Shut jaws the arm can lift to weigh (`weigh`): a grip on a thin part reads shut too,
+        once nothing more squeezes it aside."""
+        return self.guided and self.weighs and not self.ctx.blackboard.jaws_empty
+
+    def _weigh_shut(self, readings: Readings) -> ControlData:
+        """The jaws press on, shut, while the arm lifts them SHUT_LIFT (`weigh`) and holds still;
+        then the wrist is read for SHUT_WEIGH_TIME. Carrying SHUT_HELD more than before the lift
+        (what the support under it bore is now the wrist's), they hold something thin: the grip is
+        done. Less, they closed on nothing, and say so."""
+        board = self.ctx.blackboard
+        command = self.jaws.command(self.grasp_force)
+        if board.weigh is not None:
+            return command
+        self.weighing.append(float(world_load(readings)[2]))
+        if len(self.weighing) * self.ctx.info.control_period < SHUT_WEIGH_TIME:
+            return command
+        # a weight pulls the wrist down, along world -z
+        carried = (float(np.mean(self.before)) - float(np.mean(self.weighing))) / GRAVITY
+        self.weighing, self.before, self.shut_for = None, [], 0.0
+        opening = 2.0 * max(0.0, self.jaws.closing * (self.jaws.closed - float(readings.hand_q[0]))) * 1000.0
+        if carried >= SHUT_HELD:
+            self.pressing, board.fingers_stopped = True, True  # the squeeze holds it from here
+            self.finish(Status.DONE, f"the jaws closed nearly shut ({opening:.1f} mm) on something thin: "
+                                     f"lifted, the wrist carries {carried * 1000:.0f} g")
+            return command
+        self.pressing = False
+        self.brushed = self._across_pads(readings) or self.brushed
+        board.jaws_empty, board.jaws_brushed = True, self.brushed
+        board.jaws_weighed = carried
+        return self._reopen(0.0)
 
     def _gripped(self, force: float) -> bool:
         """The pads feel the grasp force, or all the jaw motor gives (its effort limit); or,
