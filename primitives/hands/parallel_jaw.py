@@ -38,17 +38,15 @@ RIM_MOVES = 2  # times per grasp the jaws reopen off a rim for the arm to move a
 # of a pad's half width: a contact centred this far out lies in the pad's edge column (the Melfa's
 # outer 3.4 mm), the rest of it on the finger's bare rim beyond
 EDGE = 0.6
-# m the arm lifts jaws closed nearly shut before they reopen, to weigh what they may hold: a thin
-# part gripped (a can's chord near its top, 28 mm between the Baxter's paddles) hangs clear of the
-# floor and of what it rested on (docs/empty-the-box.md)
-SHUT_LIFT = 0.02
+# m the arm lifts jaws closed nearly shut before they reopen, to weigh what they may hold: clear of
+# the table, as the robust grasp lifts to weigh (WEIGH_LIFT)
+SHUT_LIFT = 0.015
 # s jaws stand still within EMPTY of closed before they count as shut: pressing off a lying can's
 # axis squeezed it aside and the Baxter's paddles swept through 0.8 mm open in 40 ms, then sprang
-# back to 9.6 mm on it, held, while the grasp had said "closed on nothing" (docs/empty-the-box.md);
-# the wrist is read over this time too, before the lift
-SHUT_STILL = 0.2
-SHUT_WEIGH_TIME = 0.3  # s the wrist is read, still, after the lift
-# kg more the lifted wrist must carry than before the lift for shut jaws to hold something: half the
+# back to 4.8 mm on it, held, while the grasp had said "closed on nothing" (docs/empty-the-box.md)
+SHUT_STILL = 0.1
+SHUT_WEIGH_TIME = 0.1  # s the wrist is read, still, after the lift: the Melfa's reads 0.05 N a sample, 1 g over this
+# kg beyond the empty hand's load the lifted wrist must carry for shut jaws to hold something: half the
 # lightest object the box is emptied of (the duck, 30 g); the Melfa's wrist read -3 to -1 g with its
 # jaws shut on nothing (the Baxter's virtual one -37 to +31 g: it does not weigh; docs/empty-the-box.md)
 SHUT_HELD = 0.015
@@ -150,7 +148,6 @@ class CloseUntilForce(Controller):
         self.ctx.memory[EMPTY_HAND] = world_load(readings)  # a grasp begins empty-handed
         self.guided = self.ctx.blackboard.contact is not None  # the arm says when to close
         self.shut_for = 0.0  # s the jaws have stood still within EMPTY of closed
-        self.before: list[float] = []  # the wrist's vertical loads (N) meanwhile
         self.weighing: list[float] | None = None  # the lifted wrist's vertical loads (N) while shut jaws are weighed
 
     def update(self, readings: Readings, dt: float) -> ControlData:
@@ -217,25 +214,20 @@ class CloseUntilForce(Controller):
 
     def _shut_still(self, readings: Readings, near: bool, dt: float) -> bool:
         """Whether the jaws, within EMPTY of closed (`near`), have stood still there SHUT_STILL:
-        jaws that sweep through it on an object squeezed aside are not shut. Meanwhile the
-        wrist's vertical load is kept, to weigh against once lifted."""
-        if not (near and abs(float(readings.hand_dq[0])) < STILL):
-            self.shut_for, self.before = 0.0, []
-            return False
-        self.shut_for += dt
-        self.before.append(float(world_load(readings)[2]))
+        jaws that sweep through it on an object squeezed aside are not shut."""
+        self.shut_for = self.shut_for + dt if near and abs(float(readings.hand_dq[0])) < STILL else 0.0
         return self.shut_for >= SHUT_STILL
 
     def _weighable(self) -> bool:
-        """Shut jaws the arm can lift to weigh (`weigh`): a grip on a thin part reads shut too,
-        once nothing more squeezes it aside."""
-        return self.guided and self.weighs and not self.ctx.blackboard.jaws_empty
+        """Shut jaws the arm can lift to weigh (`weigh`) against the empty hand's load, read in free
+        air before the descent (`EMPTY_HAND`): a grip on a thin part reads shut too."""
+        return self.guided and self.weighs and not self.ctx.blackboard.jaws_empty and EMPTY_HAND in self.ctx.memory
 
     def _weigh_shut(self, readings: Readings) -> ControlData:
         """The jaws press on, shut, while the arm lifts them SHUT_LIFT (`weigh`) and holds still;
-        then the wrist is read for SHUT_WEIGH_TIME. Carrying SHUT_HELD more than before the lift
-        (what the support under it bore is now the wrist's), they hold something thin: the grip is
-        done. Less, they closed on nothing, and say so."""
+        then the wrist is read for SHUT_WEIGH_TIME. Carrying SHUT_HELD beyond the empty hand's load
+        (not beyond the load before the lift: fingertips pressed on a duck read 660 g lighter there),
+        they hold something thin: the grip is done. Less, they closed on nothing, and say so."""
         board = self.ctx.blackboard
         command = self.jaws.command(self.grasp_force)
         if board.weigh is not None:
@@ -244,8 +236,8 @@ class CloseUntilForce(Controller):
         if len(self.weighing) * self.ctx.info.control_period < SHUT_WEIGH_TIME:
             return command
         # a weight pulls the wrist down, along world -z
-        carried = (float(np.mean(self.before)) - float(np.mean(self.weighing))) / GRAVITY
-        self.weighing, self.before, self.shut_for = None, [], 0.0
+        carried = (float(self.ctx.memory[EMPTY_HAND][2]) - float(np.mean(self.weighing))) / GRAVITY
+        self.weighing, self.shut_for = None, 0.0
         opening = 2.0 * max(0.0, self.jaws.closing * (self.jaws.closed - float(readings.hand_q[0]))) * 1000.0
         if carried >= SHUT_HELD:
             self.pressing, board.fingers_stopped = True, True  # the squeeze holds it from here
