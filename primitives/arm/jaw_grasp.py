@@ -16,7 +16,8 @@ beyond the jaws' width, where closing does not sweep: the arm rises and goes whe
 palm's contact placed the object, or a step beyond the pads' edge that brushed it on the
 way (`jaws_brushed`) or beyond where the wrist felt a finger's bare rim push it (`RimLever`),
 or else to the next point of a bounded search along the jaws' width, alternating sides, around where the approach left it and the moves
-across have since taken it. While the jaws close it follows the hand's `arm_nudge`
+across have since taken it (jaws shut that the hand asks to weigh, `weigh`, it first lifts straight
+up and holds still). While the jaws close it follows the hand's `arm_nudge`
 (re-centring on the pads' contact) and ends once `fingers_stopped`. Jaws that reopen from a
 grip pressed partly through a finger's bare rim (`jaws_rim`) have the object between them,
 beyond the pads' edge: the arm moves along their width, towards where the weaker pad felt the

@@ -122,7 +122,11 @@ class CloseUntilForce(Controller):
     finger's bare rim beside the pads, as do jaws the squeeze counts as gripping only at its
     limit with the weaker pad's contact at its edge: they reopen too (at most RIM_MOVES times),
     saying where the weaker pad feels the object (`jaws_rim`), for the arm to move along the
-    jaws' width until the pads take the push.
+    jaws' width until the pads take the push. Jaws count as closed on nothing only once they
+    stand still within EMPTY of closed (SHUT_STILL): pressing off a lying can's axis squeezes it
+    aside, and they sweep through on their way back onto it. Shut so, with an arm that lifts
+    (`weigh`) and a wrist that weighs (`weigh_shut`), they press on while the arm lifts them
+    SHUT_LIFT, and hold something thin if the wrist then carries SHUT_HELD beyond the empty hand.
     """
 
     def __init__(self, ctx: Context, rim_moves: int = RIM_MOVES, weighs: bool = True) -> None:
