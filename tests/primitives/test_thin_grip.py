@@ -62,10 +62,11 @@ def test_jaws_shut_on_a_thin_plate_hold_it_and_lift_it(engine: str, tmp_path: Pa
     assert succeeded and rise > RISEN, (rise, how)
 
 
-def test_jaws_shut_on_nothing_still_closed_on_nothing(tmp_path: Path) -> None:
+@pytest.mark.parametrize("engine", ("mujoco", "pybullet"))
+def test_jaws_shut_on_nothing_still_closed_on_nothing(engine: str, tmp_path: Path) -> None:
     """The approach 12 cm off along the jaws' width: every close of the search is on nothing, and
     each weighing says so; the grasp fails saying so (given the time to end its search), the
     plate where it stood."""
-    succeeded, rise, how = _grasp(_plate_task(tmp_path, grasp_time=120.0), "mujoco", dx=0.12)
+    succeeded, rise, how = _grasp(_plate_task(tmp_path, grasp_time=120.0), engine, dx=0.12)
     assert not succeeded and abs(rise) < 0.005, (rise, how)
     assert "closed on nothing" in how and "the wrist carried" in how, how
