@@ -47,7 +47,7 @@ SHUT_LIFT = 0.015
 SHUT_STILL = 0.1
 SHUT_WEIGH_TIME = 0.1  # s the wrist is read, still, after the lift: the Melfa's reads 0.05 N a sample, 1 g over this
 # kg beyond the empty hand's load the lifted wrist must carry for shut jaws to hold something: half the
-# lightest object the box is emptied of (the duck, 30 g); the Melfa's wrist read -3 to -1 g with its
+# lightest object the box is emptied of (the duck, 30 g); the Melfa's wrist read -3 to +4 g with its
 # jaws shut on nothing (the Baxter's virtual one -37 to +31 g: it does not weigh; docs/empty-the-box.md)
 SHUT_HELD = 0.015
 
@@ -225,7 +225,7 @@ class CloseUntilForce(Controller):
     def _weighable(self) -> bool:
         """Shut jaws the arm can lift to weigh (`weigh`) against the empty hand's load, read in free
         air before the descent (`EMPTY_HAND`): a grip on a thin part reads shut too."""
-        return self.guided and self.weighs and not self.ctx.blackboard.jaws_empty and EMPTY_HAND in self.ctx.memory
+        return self.guided and self.weighs and not self.ctx.blackboard.jaws_empty
 
     def _weigh_shut(self, readings: Readings) -> ControlData:
         """The jaws press on, shut, while the arm lifts them SHUT_LIFT (`weigh`) and holds still;
