@@ -70,8 +70,7 @@ class Blackboard:
     """Hand -> arm: m for the arm to raise (+) or lower (-) the hand, holding, and then hold
     still there; the arm sets it back to None once it has, still for a moment. The robust
     grasp lifts what it holds off the table this way to feel where its weight hangs, and
-    lowers its open hand back as far when the object slipped out of the pads meanwhile; a
-    gripper's jaws closed nearly shut are lifted so, to weigh whether they hold something thin."""
+    lowers its open hand back as far when the object slipped out of the pads meanwhile."""
 
     arm_nudge: np.ndarray | None = None
     """Hand -> arm: (3,) world-frame TCP velocity, m/s, to add to the arm's own motion."""
@@ -79,11 +78,6 @@ class Blackboard:
     jaws_empty: bool = False
     """Hand -> arm: True from the moment a gripper's jaws closed on nothing until they are
     open again, for an arm that looks for the object elsewhere."""
-
-    jaws_weighed: float | None = None
-    """Hand -> arm: with `jaws_empty` after jaws closed nearly shut, what the wrist carried
-    (kg beyond the empty hand's load) once the arm had lifted them (`weigh`): too little for
-    anything held."""
 
     jaws_brushed: float | None = None
     """Hand -> arm: with `jaws_empty`, where along the jaws' width (the hand's x, from -1 to 1

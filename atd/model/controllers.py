@@ -610,9 +610,6 @@ _HAND_CONTROLLERS = (
                                "width before the jaws close anyway: a contact on the pad lies within this of "
                                "its middle, so one that stays off-centre moves with the pad (ours: about a "
                                "pad's half width)", 0.01, unit="m"),
-            "weigh_shut": _p(FLAG, "jaws closed nearly shut, as on nothing, are lifted before they reopen and the "
-                             "wrist weighs whether they hold something thin (ours; false where the wrist cannot "
-                             "weigh a few tens of grams)", True),
         },
     ),
     ControllerSpec(

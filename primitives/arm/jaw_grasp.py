@@ -16,8 +16,7 @@ beyond the jaws' width, where closing does not sweep: the arm rises and goes whe
 palm's contact placed the object, or a step beyond the pads' edge that brushed it on the
 way (`jaws_brushed`) or beyond where the wrist felt a finger's bare rim push it (`RimLever`),
 or else to the next point of a bounded search along the jaws' width, alternating sides, around where the approach left it and the moves
-across have since taken it (jaws shut that the hand asks to weigh, `weigh`, it first lifts straight
-up and holds still). While the jaws close it follows the hand's `arm_nudge`
+across have since taken it. While the jaws close it follows the hand's `arm_nudge`
 (re-centring on the pads' contact) and ends once `fingers_stopped`. Jaws that reopen from a
 grip pressed partly through a finger's bare rim (`jaws_rim`) have the object between them,
 beyond the pads' edge: the arm moves along their width, towards where the weaker pad felt the
@@ -46,7 +45,7 @@ from enum import Enum
 
 import numpy as np
 
-from primitives.arm.approach_phases import APPROACH_ACCELERATION, SETTLE
+from primitives.arm.approach_phases import APPROACH_ACCELERATION
 from primitives.arm.motion import (
     GAIN,
     ORIENTATION_TOLERANCE,
@@ -526,7 +525,6 @@ class JawGraspCorrection(Controller):
         self.phase = JawPhase.CLOSE
         self.risen = 0.0  # m the arm has risen in this close to take the hand off the support
         self.rim.reset()
-        self.lifting: float | None = None  # m: the lift the hand asked for to weigh shut jaws, while it is made
         self.ctx.blackboard.contact = True
 
     def _start_span(self, readings: Readings, back_off: float, touching: bool) -> None:
@@ -637,17 +635,12 @@ class JawGraspCorrection(Controller):
             self.searched += 1
         else:
             self.phase = JawPhase.HOLD
-            weighed = self.ctx.blackboard.jaws_weighed
-            carried = "" if weighed is None else f" (lifted, the wrist carried {weighed * 1000:.0f} g)"
-            self.finish(Status.ERROR, f"{why} at {self.searched + self.hinted + self.turned + 1} points{carried}")
+            self.finish(Status.ERROR, f"{why} at {self.searched + self.hinted + self.turned + 1} points")
             return
         self._rise(readings, point - readings.tcp[:3, 3], self._above_object())
 
     def _close(self, readings: Readings, dt: float) -> np.ndarray:
         board = self.ctx.blackboard
-        if board.weigh is not None:
-            self._lift_to_weigh(readings, dt)
-            return np.zeros(3)
         self.rim.add(self.contact.update(readings, dt))
         if board.jaws_empty and board.jaws_rim is not None:
             board.contact = False
@@ -669,17 +662,6 @@ class JawGraspCorrection(Controller):
         kept = self.walls.inside(self.rotation, nudged, self.goal)
         self.goal = kept
         return np.asarray(nudge, float) if np.array_equal(kept, nudged) else np.zeros(3)
-
-    def _lift_to_weigh(self, readings: Readings, dt: float) -> None:
-        """Lift the closed jaws by what the hand asks (`weigh`), straight up whatever the grasp's
-        approach, and hold still there SETTLE, for the wrist to weigh what they hold."""
-        board = self.ctx.blackboard
-        if self.lifting is None:
-            self.lifting, self.still = board.weigh, 0.0
-            self.goal = self.goal + board.weigh * UP
-        self.still = self.still + dt if norm(self.goal - readings.tcp[:3, 3]) < ARRIVED else 0.0
-        if self.still >= SETTLE:
-            board.weigh = self.lifting = None
 
     def _start_along(self, readings: Readings, felt: float) -> None:
         """The jaws reopen from a grip the pads took only part of: the object lies between them

@@ -14,7 +14,7 @@ import numpy as np
 
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
 from primitives.blackboard import EMPTY_HAND
-from primitives.filters import GRAVITY, world_load
+from primitives.filters import world_load
 from primitives.hands.posture import position_command
 from primitives.robot import HandMode, Readings
 
@@ -38,19 +38,10 @@ RIM_MOVES = 2  # times per grasp the jaws reopen off a rim for the arm to move a
 # of a pad's half width: a contact centred this far out lies in the pad's edge column (the Melfa's
 # outer 3.4 mm), the rest of it on the finger's bare rim beyond
 EDGE = 0.6
-# m the arm lifts jaws closed nearly shut before they reopen, to weigh what they may hold: clear of
-# the table, as the robust grasp lifts to weigh (WEIGH_LIFT)
-SHUT_LIFT = 0.015
 # s jaws stand still within EMPTY of closed before they count as shut: pressing off a lying can's
 # axis squeezed it aside and the Baxter's paddles swept through 0.8 mm open in 40 ms, then sprang
 # back to 4.8 mm on it, held, while the grasp had said "closed on nothing" (docs/empty-the-box.md)
 SHUT_STILL = 0.1
-SHUT_WEIGH_TIME = 0.1  # s the wrist is read, still, after the lift: the Melfa's reads 0.05 N a sample, 1 g over this
-# kg beyond the empty hand's load the lifted wrist must carry for shut jaws to hold something: the
-# Melfa's wrist read -3 to +4 g with its jaws shut on nothing, but 31 g with a finger dragged up a
-# steel weight's side (PyBullet), and 62 g for a 60 g plate held (the Baxter's virtual wrist -37 to
-# +31 g on nothing: it does not weigh; docs/empty-the-box.md)
-SHUT_HELD = 0.045
 
 
 class Jaws:
@@ -125,17 +116,13 @@ class CloseUntilForce(Controller):
     saying where the weaker pad feels the object (`jaws_rim`), for the arm to move along the
     jaws' width until the pads take the push. Jaws count as closed on nothing only once they
     stand still within EMPTY of closed (SHUT_STILL): pressing off a lying can's axis squeezes it
-    aside, and they sweep through on their way back onto it. Shut so, with an arm that lifts
-    (`weigh`) and a wrist that weighs (`weigh_shut`), they press on while the arm lifts them
-    SHUT_LIFT, and hold something thin if the wrist then carries SHUT_HELD beyond the empty hand.
+    aside, and they sweep through on their way back onto it.
     """
 
-    def __init__(self, ctx: Context, rim_moves: int = RIM_MOVES, weighs: bool = True) -> None:
+    def __init__(self, ctx: Context, rim_moves: int = RIM_MOVES) -> None:
         super().__init__(ctx)
         self.grasp_force = float(self.params["grasp_force"])
         self.rim_moves_left = rim_moves  # reopenings off a rim left: 0 where the arm moves nothing along the jaws
-        # the arm lifts jaws closed nearly shut to weigh them (`weigh`): not where it cannot, nor a wrist too noisy
-        self.weighs = weighs and bool(self.params.get("weigh_shut", True))
         self.speed = float(self.params["closing_speed"])
         self.max_recentre = float(self.params["max_recentre"])
         self.jaws = Jaws(ctx, str(self.params["force_source"]))
@@ -153,12 +140,9 @@ class CloseUntilForce(Controller):
         self.ctx.memory[EMPTY_HAND] = world_load(readings)  # a grasp begins empty-handed
         self.guided = self.ctx.blackboard.contact is not None  # the arm says when to close
         self.shut_for = 0.0  # s the jaws have stood still within EMPTY of closed
-        self.weighing: list[float] | None = None  # the lifted wrist's vertical loads (N) while shut jaws are weighed
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         board = self.ctx.blackboard
-        if self.weighing is not None:
-            return self._weigh_shut(readings)
         if self.guided and not self.pressing and not board.contact:
             return self._reopen(dt)
         if self.status is Status.RUNNING:
@@ -172,15 +156,11 @@ class CloseUntilForce(Controller):
             gripped = (not near and not empty and self.pressing and abs(float(readings.hand_dq[0])) < STILL
                        and self._gripped(force) and not board.pressing)
             rim = None if near or empty else self._rim(readings, force, gripped)
-            if shut and self._weighable():
-                self.weighing, board.weigh = [], SHUT_LIFT
-                board.arm_nudge = None
-                return self.jaws.command(self.grasp_force)
             if empty:
                 self.pressing = False
                 self.brushed = self._across_pads(readings) or self.brushed  # a pad still touching says the side
                 if self.guided:
-                    board.jaws_empty, board.jaws_weighed = True, None
+                    board.jaws_empty = True
                     board.jaws_brushed = self.brushed
                 else:
                     self.finish(Status.ERROR, "the jaws closed on nothing" if shut
@@ -222,38 +202,6 @@ class CloseUntilForce(Controller):
         jaws that sweep through it on an object squeezed aside are not shut."""
         self.shut_for = self.shut_for + dt if near and abs(float(readings.hand_dq[0])) < STILL else 0.0
         return self.shut_for >= SHUT_STILL
-
-    def _weighable(self) -> bool:
-        """Shut jaws the arm can lift to weigh (`weigh`) against the empty hand's load, read in free
-        air before the descent (`EMPTY_HAND`): a grip on a thin part reads shut too."""
-        return self.guided and self.weighs and not self.ctx.blackboard.jaws_empty
-
-    def _weigh_shut(self, readings: Readings) -> ControlData:
-        """The jaws press on, shut, while the arm lifts them SHUT_LIFT (`weigh`) and holds still;
-        then the wrist is read for SHUT_WEIGH_TIME. Carrying SHUT_HELD beyond the empty hand's load
-        (not beyond the load before the lift: fingertips pressed on a duck read 660 g lighter there),
-        they hold something thin: the grip is done. Less, they closed on nothing, and say so."""
-        board = self.ctx.blackboard
-        command = self.jaws.command(self.grasp_force)
-        if board.weigh is not None:
-            return command
-        self.weighing.append(float(world_load(readings)[2]))
-        if len(self.weighing) * self.ctx.info.control_period < SHUT_WEIGH_TIME:
-            return command
-        # a weight pulls the wrist down, along world -z
-        carried = (float(self.ctx.memory[EMPTY_HAND][2]) - float(np.mean(self.weighing))) / GRAVITY
-        self.weighing, self.shut_for = None, 0.0
-        opening = 2.0 * max(0.0, self.jaws.closing * (self.jaws.closed - float(readings.hand_q[0]))) * 1000.0
-        if carried >= SHUT_HELD:
-            self.pressing, board.fingers_stopped = True, True  # the squeeze holds it from here
-            self.finish(Status.DONE, f"the jaws closed nearly shut ({opening:.1f} mm) on something thin: "
-                                     f"lifted, the wrist carries {carried * 1000:.0f} g")
-            return command
-        self.pressing = False
-        self.brushed = self._across_pads(readings) or self.brushed
-        board.jaws_empty, board.jaws_brushed = True, self.brushed
-        board.jaws_weighed = carried
-        return self._reopen(0.0)
 
     def _gripped(self, force: float) -> bool:
         """The pads feel the grasp force, or all the jaw motor gives (its effort limit); or,

@@ -80,7 +80,7 @@ class UnscrewJaws(Controller):
     def _new_grip(self, readings: Readings) -> None:
         board = self.ctx.blackboard
         board.cap, board.jaws_empty, board.arm_nudge = CapGrip(), False, None
-        self.grip = CloseUntilForce(self.ctx, rim_moves=0, weighs=False)  # the unscrew's arm holds still over the cap
+        self.grip = CloseUntilForce(self.ctx, rim_moves=0)  # the unscrew's arm holds still over the cap
         self.grip.start(readings)
         self.phase = Phase.GRIP
         self.contacts = np.zeros(3)  # sum of the world contact midpoints felt since the close
