@@ -38,6 +38,10 @@ RIM_MOVES = 2  # times per grasp the jaws reopen off a rim for the arm to move a
 # of a pad's half width: a contact centred this far out lies in the pad's edge column (the Melfa's
 # outer 3.4 mm), the rest of it on the finger's bare rim beyond
 EDGE = 0.6
+# s jaws stand still within EMPTY of closed before they count as shut: pressing off a lying can's
+# axis squeezed it aside and the Baxter's paddles swept through 0.8 mm open in 40 ms, then sprang
+# back to 4.8 mm on it, held, while the grasp had said "closed on nothing" (docs/empty-the-box.md)
+SHUT_STILL = 0.1
 
 
 class Jaws:
@@ -110,7 +114,9 @@ class CloseUntilForce(Controller):
     finger's bare rim beside the pads, as do jaws the squeeze counts as gripping only at its
     limit with the weaker pad's contact at its edge: they reopen too (at most RIM_MOVES times),
     saying where the weaker pad feels the object (`jaws_rim`), for the arm to move along the
-    jaws' width until the pads take the push.
+    jaws' width until the pads take the push. Jaws count as closed on nothing only once they
+    stand still within EMPTY of closed (SHUT_STILL): pressing off a lying can's axis squeezes it
+    aside, and they sweep through on their way back onto it.
     """
 
     def __init__(self, ctx: Context, rim_moves: int = RIM_MOVES) -> None:
@@ -133,6 +139,7 @@ class CloseUntilForce(Controller):
         self.rimmed = 0.0  # s the jaws have pressed still, the squeeze at its limit, short of a grip
         self.ctx.memory[EMPTY_HAND] = world_load(readings)  # a grasp begins empty-handed
         self.guided = self.ctx.blackboard.contact is not None  # the arm says when to close
+        self.shut_for = 0.0  # s the jaws have stood still within EMPTY of closed
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         board = self.ctx.blackboard
@@ -143,10 +150,12 @@ class CloseUntilForce(Controller):
             self.unfelt = self.unfelt + dt if self.pressing and self.jaws.pad_unfelt(readings) else 0.0
             self.rimmed = self.rimmed + dt if self._on_rim(readings, force) else 0.0
             # a motor pressing on its end stop feels force too; fingers stopped beside the pads grip nothing
-            empty = self.jaws.empty(readings) or self.unfelt >= UNFELT_TIME
-            gripped = (not empty and self.pressing and abs(float(readings.hand_dq[0])) < STILL
+            near = self.jaws.empty(readings)
+            shut = self._shut_still(readings, near, dt)
+            empty = shut or self.unfelt >= UNFELT_TIME
+            gripped = (not near and not empty and self.pressing and abs(float(readings.hand_dq[0])) < STILL
                        and self._gripped(force) and not board.pressing)
-            rim = None if empty else self._rim(readings, force, gripped)
+            rim = None if near or empty else self._rim(readings, force, gripped)
             if empty:
                 self.pressing = False
                 self.brushed = self._across_pads(readings) or self.brushed  # a pad still touching says the side
@@ -154,7 +163,7 @@ class CloseUntilForce(Controller):
                     board.jaws_empty = True
                     board.jaws_brushed = self.brushed
                 else:
-                    self.finish(Status.ERROR, "the jaws closed on nothing" if self.jaws.empty(readings)
+                    self.finish(Status.ERROR, "the jaws closed on nothing" if shut
                                 else "the jaws stopped on something a pad does not feel")
             elif rim is not None:
                 self.pressing, self.rimmed = False, 0.0
@@ -187,6 +196,12 @@ class CloseUntilForce(Controller):
         if closing:
             self.reference += self.jaws.closing * self.speed * dt
         return position_command(np.array([self.reference]))
+
+    def _shut_still(self, readings: Readings, near: bool, dt: float) -> bool:
+        """Whether the jaws, within EMPTY of closed (`near`), have stood still there SHUT_STILL:
+        jaws that sweep through it on an object squeezed aside are not shut."""
+        self.shut_for = self.shut_for + dt if near and abs(float(readings.hand_dq[0])) < STILL else 0.0
+        return self.shut_for >= SHUT_STILL
 
     def _gripped(self, force: float) -> bool:
         """The pads feel the grasp force, or all the jaw motor gives (its effort limit); or,
