@@ -11,6 +11,7 @@ from typing import Sequence
 
 import numpy as np
 
+from atd.model.frames import axis_rotation
 from primitives.perception.clusters import euclidean_clusters
 from primitives.perception.container import ContainerBelief, approach_pose, clear_of_walls
 from primitives.robot import DepthImage, point_cloud
@@ -307,7 +308,6 @@ def closing_turned(pose: np.ndarray, turn: float) -> np.ndarray:
     (the Barrett's pinch, along its x) closes along that y."""
     if turn == 0.0:
         return pose
-    c, s = np.cos(turn), np.sin(turn)
     turned = pose.copy()
-    turned[:3, :3] = pose[:3, :3] @ np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    turned[:3, :3] = pose[:3, :3] @ axis_rotation(np.array([0.0, 0.0, 1.0]), turn)
     return turned
