@@ -105,8 +105,11 @@ def test_static_facts_describe_each_hand() -> None:
         names = set(info_hand.postures)
         assert {"open", "closed"} <= names
         assert info_hand.push_posture in names, f"{robot}: the push posture must be one of the hand's postures"
-        assert names - {info_hand.push_posture} <= {shape.value for shape in HandShape}, \
-            f"{robot}: postures must be D5 hand shapes, or the one the hand pushes with"
+        shapes, stand_ins = {shape.value for shape in HandShape}, set(info_hand.boxed.values())
+        assert names - {info_hand.push_posture} - stand_ins <= shapes, \
+            f"{robot}: postures must be D5 hand shapes, the one the hand pushes with, or a shape's stand-in in a box"
+        assert set(info_hand.boxed) <= shapes and stand_ins <= names, \
+            f"{robot}: a box's stand-in replaces a D5 hand shape with a posture of the hand's"
         for values in info_hand.postures.values():
             assert len(values) == len(info_hand.dofs)
     barrett = load_description("tombatossals", "right").hand
