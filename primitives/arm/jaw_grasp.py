@@ -495,8 +495,7 @@ class JawGraspCorrection(Controller):
         start afresh along the new closing axis."""
         self.turned = True
         info = self.ctx.info
-        room = roll_room(float(readings.arm_q[-1]), float(info.arm_lower[-1]), float(info.arm_upper[-1]),
-                         self.wrist_roll)
+        room = roll_room(readings.arm_q, info.arm_lower, info.arm_upper, self.wrist_roll)
         turn = -TURN if room is not None and room(-TURN) > room(TURN) else TURN
         self.rotation = about_vertical(turn) @ self.rotation
         self.shifts, self.bracket, self.hint = 0, Bracket(), None

@@ -90,12 +90,15 @@ def about_vertical(turn: float) -> np.ndarray:
     return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
-def roll_room(now: float, low: float, high: float, wrist_roll: float) -> Callable[[float], float] | None:
-    """How far a turn of the hand about the vertical (rad) leaves the last arm joint, now at
-    `now` within [`low`, `high`], from its nearer limit, that joint turning `wrist_roll` times
-    the turn (the factory's); None where it does not roll the hand (`wrist_roll` 0)."""
+def roll_room(arm_q: np.ndarray, lower: np.ndarray, upper: np.ndarray,
+              wrist_roll: float) -> Callable[[float], float] | None:
+    """How far a turn of the hand about the vertical (rad) leaves the last arm joint (its
+    position and limits the last of `arm_q`, `lower`, `upper`) from its nearer limit, that
+    joint turning `wrist_roll` times the turn (the factory's); None where it does not roll
+    the hand (`wrist_roll` 0)."""
     if not wrist_roll:
         return None
+    now, low, high = float(arm_q[-1]), float(lower[-1]), float(upper[-1])
 
     def room(turn: float) -> float:
         q = now + wrist_roll * turn

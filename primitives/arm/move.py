@@ -8,8 +8,6 @@ orientation held all along, inside the velocity and acceleration limits).
 
 from __future__ import annotations
 
-from typing import Callable
-
 import numpy as np
 
 from atd.model.frames import rotation_rpy
@@ -126,7 +124,9 @@ class CartesianMove(Controller):
         level = top_down(start) if turned is None else turned
         if self.yaw is not None:
             reference = self.ctx.memory.setdefault(YAW_REFERENCE, heading_of(level))
-            turn = turn_to_yaw(level, self.yaw, reference, self.either_way, self._roll_room(readings))
+            info = self.ctx.info
+            room = roll_room(readings.arm_q, info.arm_lower, info.arm_upper, self.wrist_roll)
+            turn = turn_to_yaw(level, self.yaw, reference, self.either_way, room)
             level, start = turn @ level, turn @ start
         self.rotation = self.tilt @ (level if self.level else start)
         self.via[-1] = self.target - self.rotation @ self.hand_point  # the yaw, and so where that point is, known now
@@ -138,13 +138,6 @@ class CartesianMove(Controller):
         for point in self.via:
             self.points += self.detour.route(self.points[-1] if self.points else self.leg_start, point)
         self.stall.reset(readings.time)
-
-    def _roll_room(self, readings: Readings) -> Callable[[float], float] | None:
-        """How far a turn of the hand about the vertical leaves the last arm joint from its
-        limits (`roll_room`); None where the factory gave no roll."""
-        info = self.ctx.info
-        return roll_room(float(readings.arm_q[-1]), float(info.arm_lower[-1]), float(info.arm_upper[-1]),
-                         self.wrist_roll)
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         if self.status is not Status.RUNNING:

@@ -3,9 +3,8 @@ its `method` parameter, run as a state of the task."""
 
 from __future__ import annotations
 
+import math
 from typing import Callable, Mapping
-
-import numpy as np
 
 from primitives.base import Context, Status
 from primitives.blackboard import AIMED
@@ -52,7 +51,7 @@ class Vision(Perceiver):
                                        float(p["voxel"]), int(p["min_points"]), (float(extent[0]), float(extent[1])),
                                        (band[0], band[1], band[2]),
                                        (footprint[0], footprint[1], footprint[2], footprint[3]),
-                                       float(np.radians(float(p["grasp_turn"]))))
+                                       math.radians(float(p["grasp_turn"])))
 
     def start(self, readings: Readings) -> None:
         super().start(readings)
