@@ -75,6 +75,7 @@ WRIST_ALIGNED = 0.99  # cos: a last joint within 8 degrees of the approach axis 
 # fingers widest at the rim's height, came down on the rim 1.4 mm over it and closed 1 cm over a block
 BOXED_CLEARANCE = 0.005
 ALONG_Y = np.radians(10.0)  # rad: a pinch closing this near a quarter turn of the hand's y is turned by vision
+PRESSING_FOR = 0.1  # s: a finger's effort closing on nothing passes in a tick; one on a grip lasts
 
 
 class Unmappable(Exception):
@@ -417,6 +418,9 @@ class Factory(ABC):
             return self.success(origin)
         if event_type in (EventType.OBJECT_FOUND, EventType.NOTHING_FOUND):
             return self.condition(event_type, event_type.value, value=written(origin, ValueKind.POSE))
+        if event_type is EventType.OBJECT_IN_HAND:  # a look that gave up with its fingers on a grip
+            return all_of(any_of(self.condition(event_type, "arm_error"), self.condition(event_type, "hand_error")),
+                          self.condition(event_type, "fingers_pressing", for_time=PRESSING_FOR))
         if event_type in (EventType.CONTACT, EventType.NO_CONTACT):  # explore's own verdict
             return self.condition(event_type, "arm_done" if event_type is EventType.CONTACT else "arm_error")
         if event_type in self.undetectable_events:

@@ -291,6 +291,28 @@ class LoadHeld(Debounced):
         return {"carried": round(self.carried, 3), "weight": self.weight}
 
 
+class FingersPressing(Debounced):
+    """A closing joint of the hand presses on something: its effort in the closing direction
+    is at least `effort` of its limit. With a hand controller that stopped short of its
+    posture, something stands between the fingers (a look's close held by what the hand
+    still grips: docs/empty-the-box.md)."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...]) -> None:
+        super().__init__(ctx, sensors)
+        hand = ctx.info.hand
+        self.closing = hand.closing
+        self.least = float(self.params["effort"]) * hand.effort_limit
+        self.pressing = np.zeros_like(self.least)
+
+    def test(self, readings: Readings, dt: float) -> bool:
+        self.pressing = np.where(self.closing != 0, self.closing * readings.hand_effort, 0.0)
+        return bool((self.pressing >= self.least).any())
+
+    def explain(self) -> dict[str, Any]:
+        return {"closing_effort": [round(float(e), 4) for e in self.pressing],
+                "least": [round(float(e), 4) for e in self.least]}
+
+
 class FingersStill(Debounced):
     """Every closing joint of the hand moves slower than `drift` of its travel per second:
     a grip that keeps closing is squeezing the object out of the hand (a duck or a tape
