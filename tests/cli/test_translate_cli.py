@@ -63,7 +63,7 @@ def test_perception_translates_and_a_hand_too_wide_to_sweep_the_box_exits_4_nami
         shutil.copy(REPO / "examples" / sub, tmp_path)
     result = atd("translate", str(spread), "--robot", "tombatossals", "--arm", "right", "-o", str(tmp_path / "x.xml"))
     assert result.returncode == 4 and "Traceback" not in result.stderr
-    assert (f"{spread}:27:3: error[TRN001]: tombatossals (right arm): cannot map perceive state 'look': the Barrett "
+    assert (f"{spread}:28:3: error[TRN001]: tombatossals (right arm): cannot map perceive state 'look': the Barrett "
             "BH8-280 reaches 15.9 cm sideways in its 'open' posture") in result.stderr
     assert "it could not tell a wall from an object" in result.stderr and not (tmp_path / "x.xml").exists()
 
