@@ -315,9 +315,7 @@ class Factory(ABC):
                                   max_distance=state.max_distance, writes=written(state, ValueKind.POINT),
                                   hand_point=tuple(round(v, 6) for v in touching) if any(touching) else None)
             return NodeMapping("explore", arm, *self.hand_for_motion(state))
-        # The hand perceives in the state's shape, closed by default: the narrowest sweep.
-        made, notes = self.shape(state.hand_shape or HandShape.CLOSED)
-        posture = self.posture(made, state)
+        posture, notes = self.perceiving_posture(state)
         radius, reach = self.robot.hand_radius(posture), self.robot.hand_reach(posture)
         container = {c.name: c for c in context.environment.containers}[state.container]  # validated
         method = state.method.value
@@ -338,6 +336,12 @@ class Factory(ABC):
                               sweep_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture, SWEEPING_TIP)),
                               tip_length=round(self.robot.tip_length(posture, SWEEPING_TIP), 6))
         return NodeMapping("perceive", arm, self.controller("hand_shape", shape=posture), notes)
+
+    def perceiving_posture(self, state: State) -> tuple[str, tuple[str, ...]]:
+        """The posture a perceive state's hand takes: the state's shape, closed by default (the
+        narrowest sweep), with a note where the hand makes only the closest shape."""
+        made, notes = self.shape(state.hand_shape or HandShape.CLOSED)
+        return self.posture(made, state), notes
 
     def grasp_footprint(self, context: MappingContext) -> dict[str, tuple[float, ...] | float]:
         """What vision's approach is for, on a multi-finger hand: its pinch (a box round's grasp),
@@ -420,7 +424,8 @@ class Factory(ABC):
             return self.condition(event_type, event_type.value, value=written(origin, ValueKind.POSE))
         if event_type is EventType.OBJECT_IN_HAND:  # a look that gave up with its fingers on a grip
             return all_of(any_of(self.condition(event_type, "arm_error"), self.condition(event_type, "hand_error")),
-                          self.condition(event_type, "fingers_pressing", for_time=PRESSING_FOR))
+                          self.condition(event_type, "fingers_pressing", posture=self.perceiving_posture(origin)[0],
+                                         for_time=PRESSING_FOR))
         if event_type in (EventType.CONTACT, EventType.NO_CONTACT):  # explore's own verdict
             return self.condition(event_type, "arm_done" if event_type is EventType.CONTACT else "arm_error")
         if event_type in self.undetectable_events:

@@ -724,11 +724,13 @@ _CONDITIONS = (
     ),
     ConditionSpec(
         "fingers_pressing",
-        "A closing joint of the hand presses on something (its effort in the closing direction): with a "
-        "hand controller stopped short of its posture, something stands between the fingers.",
+        "A closing joint of the hand presses on something (its effort in the closing direction) more open "
+        "than the hand's `posture`: something stands between the fingers.",
         params={
             "effort": _p(NUM, "least closing effort that counts as pressing, as a fraction of the joint's effort "
                          "limit (ours: as a hold keeps a pressing finger's effort)", 0.05),
+            "posture": _p(WORD, "the hand posture the fingers were closing to (one the robot's hand makes)",
+                          required=True),
             "for_time": _FOR,
         },
     ),
