@@ -75,7 +75,7 @@ WRIST_ALIGNED = 0.99  # cos: a last joint within 8 degrees of the approach axis 
 # fingers widest at the rim's height, came down on the rim 1.4 mm over it and closed 1 cm over a block
 BOXED_CLEARANCE = 0.005
 ALONG_Y = np.radians(10.0)  # rad: a pinch closing this near a quarter turn of the hand's y is turned by vision
-PRESSING_FOR = 0.1  # s a finger presses short of its posture before a look's give-up counts as a grip: not one tick's effort
+PRESSING_FOR = 0.1  # s a finger presses short of its posture before a look's give-up counts as a grip
 
 
 class Unmappable(Exception):
