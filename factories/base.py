@@ -75,6 +75,7 @@ WRIST_ALIGNED = 0.99  # cos: a last joint within 8 degrees of the approach axis 
 # fingers widest at the rim's height, came down on the rim 1.4 mm over it and closed 1 cm over a block
 BOXED_CLEARANCE = 0.005
 ALONG_Y = np.radians(10.0)  # rad: a pinch closing this near a quarter turn of the hand's y is turned by vision
+PRESSING_FOR = 0.1  # s a finger presses short of its posture before a look's give-up counts as a grip
 
 
 class Unmappable(Exception):
@@ -314,9 +315,7 @@ class Factory(ABC):
                                   max_distance=state.max_distance, writes=written(state, ValueKind.POINT),
                                   hand_point=tuple(round(v, 6) for v in touching) if any(touching) else None)
             return NodeMapping("explore", arm, *self.hand_for_motion(state))
-        # The hand perceives in the state's shape, closed by default: the narrowest sweep.
-        made, notes = self.shape(state.hand_shape or HandShape.CLOSED)
-        posture = self.posture(made, state)
+        posture, notes = self.perceiving_posture(state)
         radius, reach = self.robot.hand_radius(posture), self.robot.hand_reach(posture)
         container = {c.name: c for c in context.environment.containers}[state.container]  # validated
         method = state.method.value
@@ -337,6 +336,12 @@ class Factory(ABC):
                               sweep_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture, SWEEPING_TIP)),
                               tip_length=round(self.robot.tip_length(posture, SWEEPING_TIP), 6))
         return NodeMapping("perceive", arm, self.controller("hand_shape", shape=posture), notes)
+
+    def perceiving_posture(self, state: State) -> tuple[str, tuple[str, ...]]:
+        """The posture a perceive state's hand takes: the state's shape, closed by default (the
+        narrowest sweep), with a note where the hand makes only the closest shape."""
+        made, notes = self.shape(state.hand_shape or HandShape.CLOSED)
+        return self.posture(made, state), notes
 
     def grasp_footprint(self, context: MappingContext) -> dict[str, tuple[float, ...] | float]:
         """What vision's approach is for, on a multi-finger hand: its pinch (a box round's grasp),
@@ -417,6 +422,10 @@ class Factory(ABC):
             return self.success(origin)
         if event_type in (EventType.OBJECT_FOUND, EventType.NOTHING_FOUND):
             return self.condition(event_type, event_type.value, value=written(origin, ValueKind.POSE))
+        if event_type is EventType.OBJECT_IN_HAND:  # a look that gave up with its fingers on a grip
+            return all_of(any_of(self.condition(event_type, "arm_error"), self.condition(event_type, "hand_error")),
+                          self.condition(event_type, "fingers_pressing", posture=self.perceiving_posture(origin)[0],
+                                         for_time=PRESSING_FOR))
         if event_type in (EventType.CONTACT, EventType.NO_CONTACT):  # explore's own verdict
             return self.condition(event_type, "arm_done" if event_type is EventType.CONTACT else "arm_error")
         if event_type in self.undetectable_events:

@@ -19,6 +19,7 @@ from atd.model.frames import GRAVITY
 from primitives.base import Condition, Context, StateView, Status
 from primitives.blackboard import EMPTY_HAND
 from primitives.filters import ContactWrench, Debounce, LowPass, RecentRows, world_load
+from primitives.hands.posture import REACHED
 from primitives.robot import HandInfo, Readings
 from primitives.values import Approach, NothingFound
 
@@ -289,6 +290,37 @@ class LoadHeld(Debounced):
         if self.carried is None:
             return {"empty_hand": "never measured"}
         return {"carried": round(self.carried, 3), "weight": self.weight}
+
+
+class FingersPressing(Debounced):
+    """A closing joint of the hand presses on something short of the hand's `posture`: its
+    effort in the closing direction is at least `effort` of its limit, and it stands more
+    open than the posture by more than a hand posture's REACHED. Something stands between
+    the fingers (a look's close held by what the hand still grips: docs/empty-the-box.md);
+    a hand that made the posture is not blocked, however hard it presses there (the SDH2's
+    `closed` presses 9 % of its limit on nothing). A multi-finger hand still closing from
+    open presses so too (up to 24 % of its limit): no stillness is asked, since a Melfa's
+    jaws squeezing a held block closed on at 8 mm/s while its look gave up."""
+
+    def __init__(self, ctx: Context, sensors: tuple[str, ...]) -> None:
+        super().__init__(ctx, sensors)
+        hand = ctx.info.hand
+        self.closing = hand.closing
+        self.least = float(self.params["effort"]) * hand.effort_limit
+        self.goal = np.asarray(hand.postures[str(self.params["posture"])], float)
+        self.tolerance = REACHED * (hand.upper - hand.lower)
+        self.pressing = np.zeros_like(self.least)
+        self.short = np.zeros_like(self.goal)
+
+    def test(self, readings: Readings, dt: float) -> bool:
+        self.pressing = np.where(self.closing != 0, self.closing * readings.hand_effort, 0.0)
+        self.short = self.closing * (self.goal - readings.hand_q)
+        return bool(((self.pressing >= self.least) & (self.short > self.tolerance)).any())
+
+    def explain(self) -> dict[str, Any]:
+        return {"closing_effort": [round(float(e), 4) for e in self.pressing],
+                "least": [round(float(e), 4) for e in self.least],
+                "short_of_posture": [round(float(v), 4) for v in self.short]}
 
 
 class FingersStill(Debounced):

@@ -26,6 +26,7 @@ from primitives.arm.unscrew import UnscrewArm
 from primitives.base import Condition, Context, Controller, Status
 from primitives.conditions import (
     Fault,
+    FingersPressing,
     FingersStill,
     Gripper,
     LoadHeld,
@@ -108,6 +109,7 @@ CONDITION_KINDS: Mapping[str, ConditionMaker] = {
     "tactile_load_change": TactileLoadChange,
     "load_held": LoadHeld,
     "fingers_still": FingersStill,
+    "fingers_pressing": FingersPressing,
     "slip_watched": SlipWatched,
     "wrist_force_above": WristForceAbove,
     "gripper_force_above": lambda ctx, sensors: Gripper(ctx, sensors, "force", above=True),

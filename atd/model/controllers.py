@@ -723,6 +723,18 @@ _CONDITIONS = (
         },
     ),
     ConditionSpec(
+        "fingers_pressing",
+        "A closing joint of the hand presses on something (its effort in the closing direction) more open "
+        "than the hand's `posture`: something stands between the fingers.",
+        params={
+            "effort": _p(NUM, "least closing effort that counts as pressing, as a fraction of the joint's effort "
+                         "limit (ours: as a hold keeps a pressing finger's effort)", 0.05),
+            "posture": _p(WORD, "the hand posture the fingers were closing to (one the robot's hand makes)",
+                          required=True),
+            "for_time": _FOR,
+        },
+    ),
+    ConditionSpec(
         "fingers_still",
         "The hand's closing joints have stopped moving: a grip that keeps closing (or opening) while it "
         "holds is squeezing the object out or letting it slip, so the object is not yet held still.",

@@ -92,6 +92,7 @@ class EventType(StrEnum):
     ERROR = "error"
     OBJECT_FOUND = "object_found"  # perceive chose an object: its approach is written
     NOTHING_FOUND = "nothing_found"  # perceive found no object where it looked
+    OBJECT_IN_HAND = "object_in_hand"  # perceive's hand could not close: something is held between its fingers
     CONTACT = "contact"  # explore felt contact: where is written
     NO_CONTACT = "no_contact"  # explore ended without contact: its whole distance, or stopped short (it says why)
     OUTCOME = "outcome"  # a sub-task ended in the end state it names
@@ -127,6 +128,7 @@ FINDING_EVENT: dict[StateType, EventType] = {
 FIRED_BY: dict[EventType, frozenset[StateType]] = {
     EventType.OBJECT_FOUND: frozenset({StateType.PERCEIVE}),
     EventType.NOTHING_FOUND: frozenset({StateType.PERCEIVE}),
+    EventType.OBJECT_IN_HAND: frozenset({StateType.PERCEIVE}),
     EventType.CONTACT: frozenset({StateType.EXPLORE}),
     EventType.NO_CONTACT: frozenset({StateType.EXPLORE}),
     EventType.OUTCOME: frozenset({StateType.TASK}),

@@ -59,11 +59,11 @@ def test_perception_translates_and_a_hand_too_wide_to_sweep_the_box_exits_4_nami
     spread = tmp_path / "spread.xml"
     spread.write_text((REPO / "examples" / "empty_the_box_exploration.xml").read_text().replace(
         "<method>blind_exploration</method>", "<method>blind_exploration</method><hand_shape>open</hand_shape>"))
-    for sub in ("pick_one.xml", "free_one.xml"):
+    for sub in ("pick_one.xml", "free_one.xml", "put_out.xml"):
         shutil.copy(REPO / "examples" / sub, tmp_path)
     result = atd("translate", str(spread), "--robot", "tombatossals", "--arm", "right", "-o", str(tmp_path / "x.xml"))
     assert result.returncode == 4 and "Traceback" not in result.stderr
-    assert (f"{spread}:27:3: error[TRN001]: tombatossals (right arm): cannot map perceive state 'look': the Barrett "
+    assert (f"{spread}:28:3: error[TRN001]: tombatossals (right arm): cannot map perceive state 'look': the Barrett "
             "BH8-280 reaches 15.9 cm sideways in its 'open' posture") in result.stderr
     assert "it could not tell a wall from an object" in result.stderr and not (tmp_path / "x.xml").exists()
 

@@ -130,6 +130,20 @@ def test_a_blind_look_feels_the_spray_can_lying_by_a_wall_that_made_the_preset_s
     assert result.end_state == "found", result.summary
 
 
+def test_a_look_that_starts_holding_a_block_puts_it_out_and_goes_on_to_empty_the_box():
+    """A hand that reaches blind exploration's look still gripping something (the preset's seed,
+    Baxter, trial 0: a duck caught between the paddles as free_one.xml pressed on it, lifted as it
+    rose): the look's close stops on the grip and its sweep cannot start. On main the look's error
+    edge ended the task "stuck"; the look now says object_in_hand, put_out.xml carries it out
+    and puts it down beside the box, and the next look's sweep finds the box empty
+    (docs/empty-the-box.md)."""
+    result = run(BOX_DATA / "held_look.xml", robot="melfa", world=BOX_DATA / "one_block.toml")
+    assert result.end_state == "emptied", result.summary
+    assert "empty_it/put_out/put_down" in result.path and result.path.count("empty_it/look") == 2
+    x, y, z = result.object_positions["wood"]
+    assert y > 0.10 and z < 0.05  # on the table beside the box (its +y wall at y 0.045)
+
+
 @pytest.fixture(scope="module")
 def empty_box(tmp_path_factory) -> tuple[subprocess.CompletedProcess, Path]:
     """Vision on an empty box, traced and recorded: one picture, no grasp."""
