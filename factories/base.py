@@ -335,6 +335,7 @@ class Factory(ABC):
                               grasp_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)),
                               jaw_band=self.jaw_band(), **self.grasp_footprint(context),
                               sweep_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture, SWEEPING_TIP)),
+                              hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture)),
                               tip_length=round(self.robot.tip_length(posture, SWEEPING_TIP), 6))
         return NodeMapping("perceive", arm, self.controller("hand_shape", shape=posture), notes)
 
