@@ -506,25 +506,27 @@ class BlindExploration(Perceiver):
             return []
         legs, self.walled = self._low_walls(readings, end)
         if len(self.walled) == 2:
-            return legs[:-1]  # nothing met: the look ends where the last wall's leg did
+            return legs
         turns = [leg.turn for leg in legs if leg.kind is Leg.TURN]
         if turns and turns[-1]:  # the ring is laid for the hand as the look began
-            legs.append(Waypoint(legs[-1].to, Leg.TURN))
+            over = np.array([*legs[-1].to[:2], self._clear()])
+            legs += [Waypoint(over, Leg.RISE), Waypoint(over, Leg.TURN)]
         return legs + self._ring(readings, legs[-1].to if legs else end)
 
     def _low_walls(self, readings: Readings, end: np.ndarray) -> tuple[list[Waypoint], set[int]]:
         """From `end` (world), along the walls across each of the container's axes (0 x, 1 y)
-        the hand can go along at the lanes' height nearer them than the lanes did: turned (a
-        quarter turn or none, over the rim) so its whole extent (`hand_extent`) towards them is
-        the smaller, the whole hand WALLS_CLEARANCE off every wall, each wall from its end
-        nearer the hand, down onto it from over the rim; and the axes done. None where the
-        ring comes under LOWEST_TOP or the hand's extent is not known."""
+        the hand can go along at the lanes' height nearer them than the lanes did, turned (a
+        quarter turn or none) so its whole extent (`hand_extent`) towards them is the smaller,
+        the whole hand WALLS_CLEARANCE off every wall, each wall from its end nearer the hand;
+        and the axes done. At the lanes' height from one wall to the next, where the hand fits
+        all the way as it does at both ends (what it meets is an object ahead, placed as by the
+        walls: the SDH2's lanes are a point in the middle); over the rim to turn, and down from there. None where the ring comes under LOWEST_TOP or the
+        hand's extent is not known."""
         if self.walls_height < LOWEST_TOP or not np.all(self.extent > 0.0):
             return [], set()
         rotation = readings.tcp[:3, :3]
-        over, clear = self._over_rim(), self._clear()
         height = self.container.floor + self.sweep_height + self.approaching.reach
-        here, legs, walled, now = end, [], set(), 0.0
+        here, legs, walled, now, low = end, [], set(), 0.0, True
         for axis in (0, 1):
             fits = []
             for turn in (0.0, math.pi / 2):
@@ -535,26 +537,27 @@ class BlindExploration(Perceiver):
                 continue
             _, turn, room = min(fits, key=lambda fit: fit[0])
             walled.add(axis)
-            low, high = self.container.footprint(room)
-            legs.append(Waypoint(np.array([here[0], here[1], clear]), Leg.RISE))
             if turn != now:
-                legs.append(Waypoint(legs[-1].to, Leg.TURN, turn=turn))
-                now = turn
-            local_here = self.container.to_local(here[None])[0]
-            for at in sorted((low[axis], high[axis]), key=lambda a: abs(a - local_here[axis])):
-                ends = [low[1 - axis], high[1 - axis]]
-                if abs(ends[1] - local_here[1 - axis]) < abs(ends[0] - local_here[1 - axis]):
-                    ends.reverse()
+                over = np.array([here[0], here[1], self._clear()])
+                legs += [Waypoint(over, Leg.RISE), Waypoint(over, Leg.TURN, turn=turn)]
+                now, low = turn, False
+            lower, upper = self.container.footprint(room)
+            nearer = self.container.to_local(here[None])[0][axis]
+            for at in sorted((lower[axis], upper[axis]), key=lambda a: abs(a - nearer)):
+                local = self.container.to_local(here[None])[0]
+                ends = sorted((lower[1 - axis], upper[1 - axis]), key=lambda a: abs(a - local[1 - axis]))
                 points = np.zeros((2, 3))
                 points[:, axis], points[:, 1 - axis] = at, ends
                 first, last = self.container.to_world(points)
-                legs += [Waypoint(np.array([first[0], first[1], clear]), Leg.TRANSIT),
-                         Waypoint(np.array([first[0], first[1], over]), Leg.DOWN),
-                         Waypoint(np.array([first[0], first[1], height]), Leg.DOWN),
-                         Waypoint(np.array([last[0], last[1], height]), Leg.WALLS),
-                         Waypoint(np.array([last[0], last[1], clear]), Leg.RISE)]
-                here = legs[-1].to
-                local_here = self.container.to_local(here[None])[0]
+                first[2] = last[2] = height
+                if low:
+                    legs.append(Waypoint(first, Leg.WALLS))
+                else:
+                    legs += [Waypoint(np.array([first[0], first[1], self._clear()]), Leg.TRANSIT),
+                             Waypoint(np.array([first[0], first[1], self._over_rim()]), Leg.DOWN),
+                             Waypoint(first, Leg.DOWN)]
+                legs.append(Waypoint(last, Leg.WALLS))
+                here, low = last, True
         return legs, walled
 
     def _ring(self, readings: Readings, end: np.ndarray) -> list[Waypoint]:
