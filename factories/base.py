@@ -314,9 +314,14 @@ class Factory(ABC):
                                   max_distance=state.max_distance, writes=written(state, ValueKind.POINT),
                                   hand_point=tuple(round(v, 6) for v in touching) if any(touching) else None)
             return NodeMapping("explore", arm, *self.hand_for_motion(state))
-        # The hand perceives in the state's shape, closed by default: the narrowest sweep.
+        # The hand perceives in the state's shape, closed by default: the narrowest sweep; blind
+        # exploration's, with its fingers stretched where that is narrower still (the SDH2's fist
+        # sticks its thumb 11.5 cm out, its stretched fingers reach 5 cm).
         made, notes = self.shape(state.hand_shape or HandShape.CLOSED)
         posture = self.posture(made, state)
+        if (state.hand_shape is None and state.method is PerceptionMethod.BLIND_EXPLORATION
+                and HandShape.EXTEND.value in self.robot.hand.postures):
+            posture = min((posture, HandShape.EXTEND.value), key=self.robot.hand_radius)
         radius, reach = self.robot.hand_radius(posture), self.robot.hand_reach(posture)
         container = {c.name: c for c in context.environment.containers}[state.container]  # validated
         method = state.method.value

@@ -132,10 +132,11 @@ def test_a_blind_look_feels_the_spray_can_lying_by_a_wall_that_made_the_preset_s
 
 @pytest.mark.parametrize("arm", ["right", "left"])
 def test_a_blind_look_feels_the_spray_can_by_a_wall_with_either_tombatossals_hand(arm):
-    """The same can, on the Barrett (right) and the SDH2 (left): their wider parts keep the ring
-    round the walls 4.3 and 5.4 cm over the floor, over the can's top at 3.8 cm, so the look
-    goes along the walls at the lanes' height with the hand turned its narrower way towards
-    them; on main both ended on nothing_found with the can in the box."""
+    """The same can, on the Barrett (right) and the SDH2 (left): their wider parts kept the ring
+    round the walls 4.3 and 5.4 cm over the floor, over the can's top at 3.8 cm, and on main
+    both ended on nothing_found with the can in the box. The Barrett goes along the walls at
+    the lanes' height with its narrower side towards them; the SDH2 sweeps with its fingers
+    stretched, 5 cm wide, not with its fist and its thumb 11.5 cm out."""
     result = run(BOX_DATA / "blind_look.xml", robot="tombatossals", arm=arm, world=BOX_DATA / "spray_by_a_wall.toml")
     assert result.end_state == "found", result.summary
 
