@@ -8,8 +8,9 @@ less the hand's reach) is an object's top: the approach is there. The floor itse
 sweep: the hand, its lowest point just above the floor, goes along the container in lanes (a
 boustrophedon) until it feels something, which is an object ahead of it. The lanes keep the
 whole hand off the walls, so the sweep then goes round them with the hand's tip alone in
-the band they leave, as low as its wider part, over the rim, lets it; a sweep that feels
-nothing found nothing. A sweep's contact places the object only by its near side, at the
+the band they leave, as low as its wider part, over the rim, lets it; where that is over a
+lying spray can, along each wall at the lanes' height instead, the hand turned its narrower
+side towards it; a sweep that feels nothing found nothing. A sweep's contact places the object only by its near side, at the
 height of the hand's tip, so the hand then feels for its top: it backs off, rises just over
 the rim, comes over the object's near part and goes down onto it (landing on the floor, the
 approach keeps the sweep's estimate, its top unknown). On a top, found either way, the hand
@@ -77,7 +78,7 @@ WALL_CLEARANCE = 0.005
 WALLS_CLEARANCE = 0.015
 # m: the library's lowest object lying, the spray can on its side: a ring round the walls whose
 # lowest point is not under it passes over it, so the sweep goes along the walls at the lanes'
-# height instead where the hand fits there (the Tombatossals' hands: a ring 4.3 and 5.4 cm up)
+# height instead where the hand fits there (the Barrett's ring: 4.3 cm up)
 LOWEST_TOP = 0.038
 # rad the jaws turn from what the feel chose, the 1st, 2nd, 3rd, ... time in a row the probe,
 # come down where the last approach lay, lands on an object there: a quarter turn first (the
