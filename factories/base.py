@@ -334,14 +334,21 @@ class Factory(ABC):
                               grasp_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)),
                               jaw_band=self.jaw_band(), **self.grasp_footprint(context),
                               sweep_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture, SWEEPING_TIP)),
+                              hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture)),
                               tip_length=round(self.robot.tip_length(posture, SWEEPING_TIP), 6))
         return NodeMapping("perceive", arm, self.controller("hand_shape", shape=posture), notes)
 
     def perceiving_posture(self, state: State) -> tuple[str, tuple[str, ...]]:
         """The posture a perceive state's hand takes: the state's shape, closed by default (the
-        narrowest sweep), with a note where the hand makes only the closest shape."""
+        narrowest sweep), with a note where the hand makes only the closest shape; blind
+        exploration's, with its fingers stretched where that is narrower still (the SDH2's fist
+        sticks its thumb 11.5 cm out, its stretched fingers reach 5 cm)."""
         made, notes = self.shape(state.hand_shape or HandShape.CLOSED)
-        return self.posture(made, state), notes
+        posture = self.posture(made, state)
+        if (state.hand_shape is None and state.method is PerceptionMethod.BLIND_EXPLORATION
+                and HandShape.EXTEND.value in self.robot.hand.postures):
+            posture = min((posture, HandShape.EXTEND.value), key=self.robot.hand_radius)
+        return posture, notes
 
     def grasp_footprint(self, context: MappingContext) -> dict[str, tuple[float, ...] | float]:
         """What vision's approach is for, on a multi-finger hand: its pinch (a box round's grasp),

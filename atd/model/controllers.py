@@ -477,6 +477,11 @@ _ARM_CONTROLLERS = (
                                "point) reaches sideways along its x and its y: what meets an object in a sweep, which "
                                "places the object's near side ahead of the TCP (the robot's own geometry: "
                                "`RobotDescription.hand_extent` within 2 cm)", (0.015, 0.01), unit="m", length=2),
+            "hand_extent": _p(VEC, "blind exploration: how far the whole hand reaches sideways along its x and its "
+                              "y: where the walls' ring cannot come under a lying object's top, the sweep goes along "
+                              "each wall at the lanes' height instead, the hand turned so its narrower side faces "
+                              "the wall (the robot's own geometry: `RobotDescription.hand_extent`); 0 0: never",
+                              (0.0, 0.0), unit="m", length=2, limits=ranges.SIZE_OR_NONE),
             "tip_length": _p(NUM, "blind exploration: how far up from the hand's lowest point its links reach "
                              "sideways no further than its tip (`sweep_extent`): with the tip on a top that far below "
                              "the rim or less, the approach to a top against a wall comes as near it as the tip lets, "

@@ -8,8 +8,9 @@ less the hand's reach) is an object's top: the approach is there. The floor itse
 sweep: the hand, its lowest point just above the floor, goes along the container in lanes (a
 boustrophedon) until it feels something, which is an object ahead of it. The lanes keep the
 whole hand off the walls, so the sweep then goes round them with the hand's tip alone in
-the band they leave, as low as its wider part, over the rim, lets it; a sweep that feels
-nothing found nothing. A sweep's contact places the object only by its near side, at the
+the band they leave, as low as its wider part, over the rim, lets it; where that is over a
+lying spray can, along each wall at the lanes' height instead, the hand turned its narrower
+side towards it; a sweep that feels nothing found nothing. A sweep's contact places the object only by its near side, at the
 height of the hand's tip, so the hand then feels for its top: it backs off, rises just over
 the rim, comes over the object's near part and goes down onto it (landing on the floor, the
 approach keeps the sweep's estimate, its top unknown). On a top, found either way, the hand
@@ -39,6 +40,7 @@ import numpy as np
 from atd.model.controllers import ARM_CONTROLLERS
 from primitives.arm.approach_phases import SETTLE
 from primitives.arm.explore import ARRIVED, Explore
+from primitives.arm.turn import Turn
 from primitives.arm.walls import FREE_SPEED, RIM_CLEARANCE
 from primitives.base import Context, ControlData, Status
 from primitives.perception.container import approach_pose
@@ -74,6 +76,10 @@ WALL_CLEARANCE = 0.005
 # and the look found an object there (docs/empty-the-box.md); the library's objects, 3.8 cm or
 # more across, still reach under a tip 1.5 cm off the wall
 WALLS_CLEARANCE = 0.015
+# m: the library's lowest object lying, the spray can on its side: a ring round the walls whose
+# lowest point is not under it passes over it, so the sweep goes along the walls at the lanes'
+# height instead where the hand fits there (the Barrett's ring: 4.3 cm up)
+LOWEST_TOP = 0.038
 # rad the jaws turn from what the feel chose, the 1st, 2nd, 3rd, ... time in a row the probe,
 # come down where the last approach lay, lands on an object there: a quarter turn first (the
 # feel chose the wrong one of the box's axes), then the diagonals (a wood block or a spray can
@@ -99,6 +105,8 @@ class Leg(Enum):
     PROBE = "probe"  # down onto the floor: an object's top, or the floor
     SWEEP = "sweep"  # along the floor: an object ahead
     WALLS = "walls"  # round the walls, the hand's tip alone in the band the lanes leave: an object ahead
+    TURN = "turn"  # the hand turned where it stands, over the rim: nothing to meet
+    DOWN = "down"  # down beside a wall to the lanes' height: an object's top
     RETREAT = "retreat"  # back, up and over what a sweep met: the sweep's estimate is the approach
     FEEL = "feel"  # down onto what a sweep met: its top, or the floor beside it
     LIFT = "lift"  # off what the hand came down on
@@ -113,6 +121,7 @@ class Waypoint:
     to: np.ndarray  # (3,)
     kind: Leg
     side: tuple[int, int] = (0, 0)  # a SIDE's: the container's axis (0 x, 1 y) and which way (+1, -1)
+    turn: float = 0.0  # a TURN's: rad about the vertical from how the hand was turned when the look began
 
 
 @dataclass(frozen=True)
@@ -166,6 +175,7 @@ class BlindExploration(Perceiver):
         self.floor_band = float(p["floor_band"])
         self.tip = np.array(p["sweep_extent"], float)
         self.tip_length = float(p["tip_length"])
+        self.extent = np.array(p["hand_extent"], float)
         # m over the floor the hand's lowest point goes round the walls (`_along_walls`); None
         # where `tip_length` is not known (the hand may be as wide all the way down: the lanes
         # went round as near the walls as it fits)
@@ -180,11 +190,13 @@ class BlindExploration(Perceiver):
     def start(self, readings: Readings) -> None:
         super().start(readings)
         here = readings.tcp[:3, 3]
+        self.level = readings.tcp[:3, :3].copy()  # how the hand is turned: TURNs turn it from there
         clear = self._clear()
         low, high = self.container.footprint(self.room)
         self.tried: Tried | None = self.ctx.memory.get(TRIED)
         given_up = self.tried is not None and self.tried.times >= len(TURNS) - 1
         self.again = False  # the probe landed on an object where the last approach lay
+        self.walled: set[int] = set()  # the container's axes whose walls the sweep went along at the lanes' height
         if given_up:  # every turn of the jaws tried there: come down elsewhere, as a first look does
             xy = self._away(self.container.to_local(self.tried.point[None])[0][:2], low, high)
             self.tried = None
@@ -243,17 +255,25 @@ class BlindExploration(Perceiver):
         """Start the explore move to the plan's next waypoint (one already reached is passed
         over); with none left, the sweep is over and found nothing."""
         here = readings.tcp[:3, 3]
-        while self.plan and np.linalg.norm(self.plan[0].to - here) < ARRIVED:
+        while self.plan and self.plan[0].kind is not Leg.TURN and np.linalg.norm(self.plan[0].to - here) < ARRIVED:
             self.plan.pop(0)
         if not self.plan:
             if self.result is not None:
                 self._conclude()
             else:
-                walls = "" if self.walls_height is None else f" and along its walls {self.walls_height * 100:.3g} cm"
+                low = "".join(f" and along its {'xy'[axis]} walls {self.sweep_height * 100:g} cm"
+                              for axis in sorted(self.walled))
+                ring = self.walls_height is not None and len(self.walled) < 2
+                walls = low + (f" and along its walls {self.walls_height * 100:.3g} cm" if ring else "")
                 self.found(None, f"swept the container's floor {self.sweep_height * 100:g} cm above it{walls} "
                                  f"without a contact")
             return
         self.leg = self.plan.pop(0)
+        if self.leg.kind is Leg.TURN:
+            self.explore = Turn(self.ctx, _turned(self.level, self.leg.turn))
+            self.explore.start(readings)
+            self.handled = False
+            return
         way = self.leg.to - here
         distance = float(np.linalg.norm(way))
         moving = dict(self.moving)
@@ -286,6 +306,11 @@ class BlindExploration(Perceiver):
         elif kind in (Leg.PROBE, Leg.FEEL) and contact is None:
             self.finish(Status.ERROR, f"no floor within {PROBE_BEYOND * 100:g} cm below where the container's "
                                       f"floor is believed to be ({self.container.floor:.3f} m)")
+        elif kind is Leg.DOWN and contact is not None:
+            top = self._top(contact)
+            if top is not None:
+                self._approach(readings, np.array([*contact.point[:2], top]),
+                               f"the descent beside a wall felt it: {self._felt(contact)}", True)
         elif kind is Leg.PROBE:
             top = self._top(contact)
             if top is not None:
@@ -443,7 +468,12 @@ class BlindExploration(Perceiver):
     def _tip_along(self, readings: Readings) -> np.ndarray:
         """How far the hand's tip (`sweep_extent`, the hand turned as it is) reaches along
         each of the container's x and y."""
-        return np.abs(readings.tcp[:3, :3].T @ self.container.pose[:3, :2])[:2].T @ self.tip
+        return self._along_box(readings.tcp[:3, :3], self.tip)
+
+    def _along_box(self, rotation: np.ndarray, reach: np.ndarray) -> np.ndarray:
+        """How far a hand turned as `rotation` (world), reaching `reach` along its x and its y,
+        reaches along each of the container's x and y."""
+        return np.abs(rotation.T @ self.container.pose[:3, :2])[:2].T @ reach
 
     def _sweep(self, readings: Readings) -> list[Waypoint]:
         """Up to the sweep's height, then lanes along the container's x, `lane_spacing` apart
@@ -467,14 +497,75 @@ class BlindExploration(Perceiver):
                 + self._along_walls(readings, world[-1]))
 
     def _along_walls(self, readings: Readings, end: np.ndarray) -> list[Waypoint]:
-        """From the lanes' `end` (world), up and round the container's walls, from the corner
-        nearest it: the lanes keep the whole hand `hand_radius` off the walls, and an object
-        lying in the band they leave (docs/empty-the-box.md: a spray can 2.6 cm from a wall)
-        is felt only here. The TCP keeps the hand's tip WALLS_CLEARANCE off each wall, its
-        lowest point as low as keeps its wider part (`tip_length` above it) WALL_CLEARANCE
-        over the rim, and no lower than the lanes (`walls_height`)."""
+        """From the lanes' `end` (world), along the walls: the lanes keep the whole hand
+        `hand_radius` off them, and an object lying in the band they leave (docs/empty-the-box.md:
+        a spray can 2.6 cm from a wall) is felt only there. Along each wall where the ring
+        (`_ring`) would pass over the lowest object (LOWEST_TOP) and the hand, turned its
+        narrower way, fits nearer it than the lanes at their height (`_low_walls`); round the
+        rest in the ring."""
         if self.walls_height is None:
             return []
+        legs, self.walled = self._low_walls(readings, end)
+        if len(self.walled) == 2:
+            return legs
+        turns = [leg.turn for leg in legs if leg.kind is Leg.TURN]
+        if turns and turns[-1]:  # the ring is laid for the hand as the look began
+            over = np.array([*legs[-1].to[:2], self._clear()])
+            legs += [Waypoint(over, Leg.RISE), Waypoint(over, Leg.TURN)]
+        return legs + self._ring(readings, legs[-1].to if legs else end)
+
+    def _low_walls(self, readings: Readings, end: np.ndarray) -> tuple[list[Waypoint], set[int]]:
+        """From `end` (world), along the walls across each of the container's axes (0 x, 1 y)
+        the hand can go along at the lanes' height nearer them than the lanes did, turned (a
+        quarter turn or none) so its whole extent (`hand_extent`) towards them is the smaller,
+        the whole hand WALLS_CLEARANCE off every wall, each wall from its end nearer the hand;
+        and the axes done. At the lanes' height from one wall to the next, where the hand fits
+        all the way as it does at both ends (what it meets is an object ahead, placed as by the
+        walls: the SDH2's lanes are a point in the middle); over the rim to turn, and down from there. None where the ring comes under LOWEST_TOP or the
+        hand's extent is not known."""
+        if self.walls_height < LOWEST_TOP or not np.all(self.extent > 0.0):
+            return [], set()
+        rotation = readings.tcp[:3, :3]
+        height = self.container.floor + self.sweep_height + self.approaching.reach
+        here, legs, walled, now, low = end, [], set(), 0.0, True
+        for axis in (0, 1):
+            fits = []
+            for turn in (0.0, math.pi / 2):
+                room = self._along_box(_turned(rotation, turn), self.extent) + WALLS_CLEARANCE
+                if room[axis] < self.room and room[1 - axis] < self.container.inner[1 - axis] / 2:
+                    fits.append((float(room[axis]), turn, room))
+            if not fits:
+                continue
+            _, turn, room = min(fits, key=lambda fit: fit[0])
+            walled.add(axis)
+            if turn != now:
+                over = np.array([here[0], here[1], self._clear()])
+                legs += [Waypoint(over, Leg.RISE), Waypoint(over, Leg.TURN, turn=turn)]
+                now, low = turn, False
+            lower, upper = self.container.footprint(room)
+            nearer = self.container.to_local(here[None])[0][axis]
+            for at in sorted((lower[axis], upper[axis]), key=lambda a: abs(a - nearer)):
+                local = self.container.to_local(here[None])[0]
+                ends = sorted((lower[1 - axis], upper[1 - axis]), key=lambda a: abs(a - local[1 - axis]))
+                points = np.zeros((2, 3))
+                points[:, axis], points[:, 1 - axis] = at, ends
+                first, last = self.container.to_world(points)
+                first[2] = last[2] = height
+                if low:
+                    legs.append(Waypoint(first, Leg.WALLS))
+                else:
+                    legs += [Waypoint(np.array([first[0], first[1], self._clear()]), Leg.TRANSIT),
+                             Waypoint(np.array([first[0], first[1], self._over_rim()]), Leg.DOWN),
+                             Waypoint(first, Leg.DOWN)]
+                legs.append(Waypoint(last, Leg.WALLS))
+                here, low = last, True
+        return legs, walled
+
+    def _ring(self, readings: Readings, end: np.ndarray) -> list[Waypoint]:
+        """From `end` (world), up and round the container's walls, from the corner nearest it.
+        The TCP keeps the hand's tip WALLS_CLEARANCE off each wall, its lowest point as low as
+        keeps its wider part (`tip_length` above it) WALL_CLEARANCE over the rim, and no lower
+        than the lanes (`walls_height`)."""
         height = self._walls_tcp()
         low, high = self.container.footprint(self._walls_room(readings))
         corners = np.array([[low[0], low[1]], [high[0], low[1]], [high[0], high[1]], [low[0], high[1]]])
@@ -492,6 +583,12 @@ class BlindExploration(Perceiver):
     def _walls_tcp(self) -> float:
         """The TCP's height with the hand's lowest point `walls_height` over the floor."""
         return self.container.floor + self.walls_height + self.approaching.reach
+
+
+def _turned(rotation: np.ndarray, angle: float) -> np.ndarray:
+    """`rotation` (3x3, world) turned `angle` (rad) about the world vertical."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]) @ rotation
 
 
 def _long(plus: bool | None, minus: bool | None) -> bool:

@@ -144,6 +144,24 @@ def test_a_look_that_starts_holding_a_block_puts_it_out_and_goes_on_to_empty_the
     assert y > 0.10 and z < 0.05  # on the table beside the box (its +y wall at y 0.045)
 
 
+@pytest.mark.parametrize("arm", ["right", "left"])
+def test_a_blind_look_feels_the_spray_can_by_a_wall_with_either_tombatossals_hand(arm):
+    """The same can, on the Barrett (right) and the SDH2 (left): their wider parts kept the ring
+    round the walls 4.3 and 5.4 cm over the floor, over the can's top at 3.8 cm, and on main
+    both ended on nothing_found with the can in the box. The Barrett goes along the walls at
+    the lanes' height with its narrower side towards them; the SDH2 sweeps with its fingers
+    stretched, 5 cm wide, not with its fist and its thumb 11.5 cm out."""
+    result = run(BOX_DATA / "blind_look.xml", robot="tombatossals", arm=arm, world=BOX_DATA / "spray_by_a_wall.toml")
+    assert result.end_state == "found", result.summary
+
+
+@pytest.mark.parametrize("arm", ["right", "left"])
+def test_a_blind_look_in_the_empty_box_still_finds_nothing_with_either_tombatossals_hand(arm):
+    """Going along the walls at the lanes' height, neither hand reads a wall as an object."""
+    result = run(BOX_DATA / "blind_look.xml", robot="tombatossals", arm=arm)
+    assert result.end_state == "empty", result.summary
+
+
 @pytest.fixture(scope="module")
 def empty_box(tmp_path_factory) -> tuple[subprocess.CompletedProcess, Path]:
     """Vision on an empty box, traced and recorded: one picture, no grasp."""

@@ -7,6 +7,7 @@ from __future__ import annotations
 import shutil
 
 import numpy as np
+import pytest
 
 from lxml import etree
 
@@ -110,6 +111,24 @@ def test_every_robot_maps_perception_with_its_own_hand_and_reads_targets_at_run_
         assert feel.arm.name == "explore" and feel.arm.params["writes"] == "touched"
         contact = next(t for t in inner.transitions if t.atd == "feel->grasp").events[0].condition
         assert contact.kind == "arm_done"
+
+
+def test_blind_exploration_sweeps_with_the_narrower_of_the_closed_and_stretched_hand():
+    """The SDH2's fist sticks its thumb 11.5 cm out, its stretched fingers 5 cm: in the example
+    box its closed lanes were a point in the middle and the box's ends went unswept (a false
+    "empty" with a mug, a ball and a spray can left, docs/empty-the-box.md); it sweeps stretched.
+    Every other hand, the Barrett's included, still sweeps closed; each look knows its hand's
+    whole extent (`hand_extent`), which turns it along the walls."""
+    task, found = load_task(REPO / "tests" / "data" / "empty_the_box" / "blind_look.xml")
+    assert found == []
+    for factory in every_factory():
+        look = translate(task, factory).estd.states_by_name["look"]
+        shape = look.hand.params["shape"]
+        assert shape == ("extend" if factory.arm.hand.name == "Schunk SDH2" else "closed"), factory.name
+        assert look.arm.params["hand_radius"] == round(factory.robot.hand_radius(shape), 6)
+        assert look.arm.params["hand_extent"] == tuple(round(e, 6) for e in factory.robot.hand_extent(shape))
+    sdh2 = translate(task, create("tombatossals", arm="left")).estd.states_by_name["look"]
+    assert sdh2.arm.params["hand_radius"] == pytest.approx(0.05, abs=0.001)
 
 
 def test_robots_claim_the_perception_events_they_map():
