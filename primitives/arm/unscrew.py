@@ -7,7 +7,8 @@ cap is off when a pull has gone CAP_REMOVED_DISTANCE with the pads still pressin
 what the wrist and the pads say, never where the simulator has the cap. A cap the pads
 held and twisted, and then close on nothing where they held it, has left its thread and
 the pads (a pinch off its axis squeezes a freed cap out): the unscrew ends saying so, not
-pinching on after a cap that is gone. Its phases are
+pinching on after a cap that is gone; not on jaws without tactile pads, whose grip on a
+chord of a cap off their line slides off a cap still on its thread. Its phases are
 in `primitives.arm.unscrew_phases`; docs/writing-a-primitive.md draws the machine.
 
 A gripper's jaws have little room around a cap (the Melfa's 4 mm a side around a 60 mm
@@ -140,7 +141,7 @@ class UnscrewArm(Controller):
         nudge = self.ctx.blackboard.arm_nudge
         if nudge is not None:
             self.still.position = self.still.position + nudge * dt
-        if self.cap.empty and self.held:
+        if self.cap.empty and self.held and not self._motor_jaws():
             self._gone(readings)
         elif self.cap.empty:
             self._again(readings, "the fingers closed on nothing")
@@ -349,7 +350,10 @@ class UnscrewArm(Controller):
         """The fingers closed on nothing where they had pinched and twisted the cap: a cap on
         its thread stays where it was pinched, so this one came free and left the pads (a
         pinch across its axis squeezes a freed cap out, docs/unscrew-campaign.md). Give up
-        now, saying so: the remaining pinches would close on nothing too."""
+        now, saying so: the remaining pinches would close on nothing too. Not where the jaws
+        know only their motor (`_motor_jaws`): their one force cannot place a cap pinched
+        off their line, and the Baxter's paddles, 13 mm across a cap's axis, held a chord of
+        it, gave way in the twist and slid off the cap, still on its thread, in the next pinch."""
         self._hold_here(readings, Phase.FAILED)
         self.finish(Status.ERROR, f"the cap came off its thread and left the pads after {self.tally.twists} twists: "
                                   f"pinch {self.tally.pinches} closed on nothing where they had held it "
@@ -401,8 +405,10 @@ class UnscrewArm(Controller):
         hand, go back and pinch again; or, the pinches spent, give up saying why."""
         self.tally.ended = why
         if self.tally.pinches >= self.max_pinches:
+            lost = self.cap.empty and self.tally.twists > 0  # twisted, then nothing: whether it came off, unknown
+            where = "no cap between the pads, on its thread or off," if lost else "cap still on"
             self._hold_here(readings, Phase.FAILED)
-            self.finish(Status.ERROR, f"cap still on after {self.tally.pinches} pinches and {self.tally.twists} "
+            self.finish(Status.ERROR, f"{where} after {self.tally.pinches} pinches and {self.tally.twists} "
                                       f"twists: {why}", twists=self.tally.twists)
             return
         self._align()

@@ -5,8 +5,9 @@ grasp force), keep pressing while the arm's last wrist joint twists it and the a
 and open when the arm asks, to grip again after the arm has turned back. It tells the arm
 the same `CapGrip` the fingertip pinch does, so the arm side (`primitives.arm.unscrew`) is
 the one the multi-finger hands use: pinched once the grip force is there, empty once the
-jaws stand nearer than FINGER_MIN_DISTANCE, holding while both jaws touch, and the cap's
-axis where the pads' contacts, averaged since the close, put it."""
+jaws stand nearer than FINGER_MIN_DISTANCE (or, without tactile pads, at their stop),
+holding while both jaws touch, and the cap's axis where the pads' contacts, averaged since
+the close, put it."""
 
 from __future__ import annotations
 
@@ -40,6 +41,7 @@ class UnscrewJaws(Controller):
         self.min_distance = float(self.params["finger_min_distance"])
         self.jaws = Jaws(ctx, str(self.params["force_source"]))
         self.pads = list(range(len(ctx.info.hand.pads)))  # both jaws' pads; none on a gripper without them
+        self.tactile = bool(self.pads) and all(pad.taxels is not None for pad in ctx.info.hand.pads)
 
     def start(self, readings: Readings) -> None:
         self.opened = float(readings.hand_q[0])
@@ -93,13 +95,16 @@ class UnscrewJaws(Controller):
         the average that places the cap's axis; and are the jaws nearer than
         FINGER_MIN_DISTANCE with neither pad pressed (pads that both press hold something:
         the Melfa's soft pads, pressing a 40 mm cap with 10 N, stood 12 mm apart by the jaws'
-        joint, MuJoCo)? A gripper without pads knows only its motor: its jaws are empty when
-        closed to their stop, and it places no axis."""
+        joint, MuJoCo)? Jaws without tactile pads know only their motor: closed to their stop
+        they are empty, seen the tick they get there (the grip reopens them at once, between
+        two looks at the pads), as the Baxter's paddles stand 26 mm apart there, over
+        FINGER_MIN_DISTANCE (docs/unscrew-campaign.md); without pads, they place no axis."""
         cap = self.ctx.blackboard.cap
         cap.pinched = cap.pinched or self.grip.status is Status.DONE
         cap.holding = self.jaws.both_touch(readings, self.grip.grasp_force)
-        if not self.pads:
+        if not self.tactile:
             cap.empty = cap.empty or self.jaws.empty(readings)
+        if not self.pads:
             return
         if readings.time - self.looked < GAP_CHECK:
             return

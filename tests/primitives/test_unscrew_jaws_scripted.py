@@ -17,7 +17,7 @@ from atd.sim.simrobot import robot_info
 from factories.registry import create
 from primitives.arm.unscrew import UnscrewArm
 from primitives.arm.unscrew_phases import Phase
-from primitives.base import Context
+from primitives.base import Context, Status
 from primitives.blackboard import SHORT_OF_TARGET, CapGrip
 from primitives.registry import build_controller
 from primitives.robot import Readings
@@ -194,3 +194,72 @@ def test_a_motor_grip_twisted_off_the_caps_axis_gives_way_and_keeps_both_jaws_on
         world.time += dt
     assert arm.phase is Phase.PULL and arm.tally.twists == 1, arm.phase  # turned TWIST_ANGLE
     assert worst < 0.5 * arm.room and worst < 0.0015, (worst, arm.room)  # both jaws on the cap, short of their stop
+
+
+def _close_on_nothing(robot: str, seconds: float) -> CapGrip:
+    """The unscrew's jaws of `robot`, told the arm is over the cap, closing where no cap is:
+    each tick the jaws stand where the hand last commanded them, no further than their stop
+    (a force command drives them there). What they say of the cap after `seconds`."""
+    factory = create(robot)
+    info = robot_info(load_description(robot, None))
+    mapping = factory.map_node(State(name="unscrew_cap", type=StateType.UNSCREW, object_size=2 * RADIUS), None)
+    ctx = Context(info=info, params={})
+    hand = build_controller(mapping.hand, "hand", ctx)
+    closed, opened = float(info.hand.closed[0]), float(info.hand.open[0])
+    q, dt = opened, 0.005
+    hand.start(_jaw_readings(info, q, 0.0))
+    ctx.blackboard.contact = True
+    for tick in range(int(seconds / dt)):
+        command = hand.update(_jaw_readings(info, q, tick * dt), dt).hand
+        value = float(command.values[0])
+        q = closed if command.modes[0].value == "force" else float(np.clip(value, *sorted((closed, opened))))
+    return ctx.blackboard.cap
+
+
+def _jaw_readings(info, q: float, time: float) -> Readings:
+    n = len(info.arm_joints)
+    return Readings(time=time, arm_q=np.zeros(n), arm_dq=np.zeros(n), arm_effort=np.zeros(n),
+                    hand_q=np.array([q]), hand_dq=np.zeros(1), hand_effort=np.zeros(1), tcp=np.eye(4),
+                    wrench=np.zeros(6), taxels={}, pad_force=np.zeros(len(info.hand.pads)), range=None)
+
+
+def test_motor_jaws_that_close_to_their_stop_where_the_cap_was_say_they_hold_nothing() -> None:
+    """The Baxter's left arm in PyBullet, Table 3.5 without the alignment (docs/unscrew-campaign.md):
+    a cap freed by the twists fell out of the jaws and lay beside them; each pinch after
+    closed the paddles to their stop, reopened and closed again, but their pads (no tactile
+    image) were looked at only every GAP_CHECK, never while shut, so the hand never said the
+    jaws were empty and the unscrew ended "cap still on" after its 40 pinches. Jaws shut to
+    their stop hold nothing, whatever their pads say."""
+    assert _close_on_nothing("baxter", 3.0).empty
+
+
+def test_motor_jaws_that_slide_off_a_cap_pinched_on_a_chord_do_not_say_it_came_off() -> None:
+    """The Baxter's left arm in PyBullet, Table 3.5 without the alignment, trial 3 at seed
+    42011 (docs/unscrew-campaign.md), once its paddles said they were empty at their stop:
+    the hand 13 mm off the cap's axis across the paddles, they held a chord of the cap, the
+    twist gave way along their line and they slid off it, and the next pinch, from the same
+    start pose, slid off to their stop; the unscrew ended "the cap came off its thread",
+    the cap on it. A motor's grip that closes on nothing where it held a cap says nothing of
+    the cap: the unscrew pinches again."""
+    world = ScriptedJaws("baxter", "left", (-0.013, 0.0, TOP), gap=0.0676)
+    arm, dt = world.arm, world.info.control_period
+    arm.start(world.read())
+    board = world.ctx.blackboard
+    board.cap = CapGrip(pinched=True, holding=True)  # the paddles hold a chord of the cap
+    arm.update(world.read(), dt)
+    assert arm.phase is Phase.TWIST, arm.phase
+    board.cap = CapGrip(empty=True)  # they slide off it while twisting, to their stop
+    arm.update(world.read(), dt)
+    assert arm.phase is Phase.RELEASE, arm.phase
+    board.release, board.cap = False, CapGrip()  # the hand has opened
+    while world.time < 20.0 and arm.phase is not Phase.PINCH:  # back to the start pose
+        twist = arm.update(world.read(), dt).arm.twist
+        world.tcp[:3, 3] += twist[:3] * dt
+        turn = float(np.linalg.norm(twist[3:]))
+        if turn > 0.0:
+            world.tcp[:3, :3] = axis_rotation(twist[3:] / turn, turn * dt) @ world.tcp[:3, :3]
+        world.time += dt
+    assert arm.phase is Phase.PINCH and arm.tally.pinches == 2, arm.phase
+    board.cap = CapGrip(empty=True)  # the second pinch slides off the cap's curve to the stop
+    arm.update(world.read(), dt)
+    assert arm.status is Status.RUNNING and arm.phase is Phase.RELEASE, arm.reason
