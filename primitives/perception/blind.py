@@ -10,24 +10,24 @@ boustrophedon) until it feels something, which is an object ahead of it. The lan
 whole hand off the walls, so the sweep then goes round them with the hand's tip alone in
 the band they leave, as low as its wider part, over the rim, lets it; where that is over a
 lying spray can, along each wall at the lanes' height instead, the hand turned its narrower
-side towards it; a sweep that feels nothing found nothing. A sweep's contact places the object only by its near side, at the
-height of the hand's tip, so the hand then feels for its top: it backs off, rises just over
-the rim, comes over the object's near part and goes down onto it (landing on the floor, the
-approach keeps the sweep's estimate, its top unknown). On a top, found either way, the hand
-comes down beside it along the container's axes to feel how far it reaches, and the approach
-is moved towards where it goes on and turned so the jaws close across a top long along the
-box's y; where the walls keep the hand from coming down beside a top, its tip alone feels
-there, as near the wall as it fits, wherever the hand's wider part stays over the rim; a top
-that goes on towards a wall and not the other way lies against it, and the approach is moved
-up to SIDE_STEP towards it: a grasp of the open hand is kept off the wall by its own reach
-anyway, and what presses on the top to free it (examples/free_one.xml) presses on its middle,
-not on its edge towards the box's middle; the approach says the top's height (`Approach.top`),
-so the grasp knows a jaw landing there for a jaw on the object rather than close above it.
-A look after another starts where that one's approach lay: landing on an object there, the
-grasp took nothing out, and the jaws are turned another way this time (`TURNS`). Once every
-turn has been tried there, the look comes down at random a hand's reach away from it instead:
-an object no turn of the jaws takes (against another, or a wall) would hold every later round.
-"""
+side towards it; a sweep that feels nothing found nothing. A sweep's contact places the
+object only by its near side, at the height of the hand's tip, so the hand then feels for
+its top: it backs off, rises just over the rim, comes over the object's near part and goes
+down onto it (landing on the floor, the approach keeps the sweep's estimate, its top unknown).
+On a top, found either way, the hand comes down beside it along the container's axes to feel
+how far it reaches, and the approach is moved towards where it goes on and turned so the jaws
+close across a top long along the box's y; where the walls keep the hand from coming down
+beside a top, its tip alone feels there, as near the wall as it fits, wherever the hand's
+wider part stays over the rim; a top that goes on towards a wall and not the other way lies
+against it, and the approach is moved up to SIDE_STEP towards it: a grasp of the open hand is
+kept off the wall by its own reach anyway, and what presses on the top to free it
+(examples/free_one.xml) presses on its middle, not on its edge towards the box's middle; the
+approach says the top's height (`Approach.top`), so the grasp knows a jaw landing there for a
+jaw on the object rather than close above it. A look after another starts where that one's
+approach lay: landing on an object there, the grasp took nothing out, and the jaws are turned
+another way this time (`TURNS`). Once every turn has been tried there, the look comes down at
+random a hand's reach away from it instead: an object no turn of the jaws takes (against
+another, or a wall) would hold every later round. """
 
 from __future__ import annotations
 
@@ -521,8 +521,9 @@ class BlindExploration(Perceiver):
         the whole hand WALLS_CLEARANCE off every wall, each wall from its end nearer the hand;
         and the axes done. At the lanes' height from one wall to the next, where the hand fits
         all the way as it does at both ends (what it meets is an object ahead, placed as by the
-        walls: the SDH2's lanes are a point in the middle); over the rim to turn, and down from there. None where the ring comes under LOWEST_TOP or the
-        hand's extent is not known."""
+        walls: the SDH2's lanes are a point in the middle); over the rim to turn, and down
+        from there. None where the ring comes under LOWEST_TOP or the hand's extent is not
+        known."""
         if self.walls_height < LOWEST_TOP or not np.all(self.extent > 0.0):
             return [], set()
         rotation = readings.tcp[:3, :3]
