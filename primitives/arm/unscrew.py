@@ -405,7 +405,9 @@ class UnscrewArm(Controller):
         hand, go back and pinch again; or, the pinches spent, give up saying why."""
         self.tally.ended = why
         if self.tally.pinches >= self.max_pinches:
-            lost = self.cap.empty and self.tally.twists > 0  # twisted, then nothing: whether it came off, unknown
+            # motor jaws twisted, then shut on nothing: whether the cap came off, unknown (`_gone`
+            # tells it where the pads feel the cap)
+            lost = self.cap.empty and self.tally.twists > 0 and self._motor_jaws()
             where = "no cap between the pads, on its thread or off," if lost else "cap still on"
             self._hold_here(readings, Phase.FAILED)
             self.finish(Status.ERROR, f"{where} after {self.tally.pinches} pinches and {self.tally.twists} "
