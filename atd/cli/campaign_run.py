@@ -172,7 +172,9 @@ def _run(chosen: Plans, store: Store, name: str, workers: int, ray_address: str 
         _fail(f"error: {exc}; {progress.done} finished trials are kept in {store.path}", EXIT_USAGE)
     except KeyboardInterrupt:
         progress.close()
-        _fail(f"stopped: {progress.done} of {total} trials were stored in {store.path}; "
+        # counted in the store: the stop can land after a trial is stored and before it is counted
+        done = _tally(chosen, store)["n"] - (len(chosen) - total)
+        _fail(f"stopped: {done} of {total} trials were stored in {store.path}; "
               f"add --resume to the same command to continue", EXIT_INTERRUPTED)
     progress.close()
     return lost

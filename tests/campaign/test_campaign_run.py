@@ -15,13 +15,16 @@ from dataclasses import replace
 from pathlib import Path
 
 import pytest
+from click.testing import CliRunner
 
 from atd.campaign.cells import TrialPlan, plans
+from atd.campaign.progress import Progress
 from atd.campaign.record import TrialRecord
 from atd.campaign.runner import _Pool, run_local
 from atd.campaign.spec import load_spec
 from atd.campaign.store import Store
 from atd.campaign.trial import run_trial
+from atd.cli import main
 from tests.campaign.conftest import RAY_WORKERS_AT_OUR_PRIORITY, outcomes
 from tests.conftest import REPO
 
@@ -242,6 +245,24 @@ def test_a_pick_and_place_is_judged_by_where_the_object_rests(tmp_path: Path) ->
     assert record.status == "ok" and record.task_succeeded, record.summary
     assert record.judged_succeeded, record.judge_reason
     assert record.measurements["distance"] < 0.02 and abs(record.measurements["height"]) < 0.01
+
+
+def test_a_stop_between_storing_a_trial_and_counting_it_still_says_it_was_stored(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Ctrl-C can land after a trial is in the store and before the progress counts it: the
+    message says how many the store holds (it once said one fewer, and the CI saw it)."""
+    def stopped(progress: Progress, record: TrialRecord) -> None:
+        raise KeyboardInterrupt
+    monkeypatch.setattr(Progress, "__call__", stopped)
+    store = tmp_path / "small.sqlite"
+    handler = signal.getsignal(signal.SIGTERM)  # the campaign stops on SIGTERM too: give the test runner back its own
+    try:
+        result = CliRunner().invoke(main, ["campaign", "run", str(DATA / "small.toml"), "--store", str(store),
+                                           "-j", "1", "-q", "--trials", "1"])
+    finally:
+        signal.signal(signal.SIGTERM, handler)
+    assert result.exit_code == 130, result.stderr
+    assert _stored(store) == 1 and "stopped: 1 of 1 trials were stored" in result.stderr, result.stderr
 
 
 @pytest.mark.parametrize("stop", [signal.SIGINT, signal.SIGTERM])
