@@ -38,6 +38,7 @@ from enum import Enum
 import numpy as np
 
 from atd.model.controllers import ARM_CONTROLLERS
+from atd.model.frames import axis_rotation
 from primitives.arm.approach_phases import SETTLE
 from primitives.arm.explore import ARRIVED, Explore
 from primitives.arm.turn import Turn
@@ -80,6 +81,7 @@ WALLS_CLEARANCE = 0.015
 # lowest point is not under it passes over it, so the sweep goes along the walls at the lanes'
 # height instead where the hand fits there (the Barrett's ring: 4.3 cm up)
 LOWEST_TOP = 0.038
+VERTICAL = np.array([0.0, 0.0, 1.0])  # the world's z, about which the hand turns between legs
 # rad the jaws turn from what the feel chose, the 1st, 2nd, 3rd, ... time in a row the probe,
 # come down where the last approach lay, lands on an object there: a quarter turn first (the
 # feel chose the wrong one of the box's axes), then the diagonals (a wood block or a spray can
@@ -588,8 +590,7 @@ class BlindExploration(Perceiver):
 
 def _turned(rotation: np.ndarray, angle: float) -> np.ndarray:
     """`rotation` (3x3, world) turned `angle` (rad) about the world vertical."""
-    c, s = math.cos(angle), math.sin(angle)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]) @ rotation
+    return axis_rotation(VERTICAL, angle) @ rotation
 
 
 def _long(plus: bool | None, minus: bool | None) -> bool:
