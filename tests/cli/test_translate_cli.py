@@ -59,7 +59,7 @@ def test_perception_translates_and_a_hand_too_wide_to_sweep_the_box_exits_4_nami
     spread = tmp_path / "spread.xml"
     spread.write_text((REPO / "examples" / "empty_the_box_exploration.xml").read_text().replace(
         "<method>blind_exploration</method>", "<method>blind_exploration</method><hand_shape>open</hand_shape>"))
-    for sub in ("pick_one.xml", "free_one.xml", "put_out.xml"):
+    for sub in ("pick_one.xml", "free_one.xml", "put_out.xml", "put_down_beside.xml"):
         shutil.copy(REPO / "examples" / sub, tmp_path)
     result = atd("translate", str(spread), "--robot", "tombatossals", "--arm", "right", "-o", str(tmp_path / "x.xml"))
     assert result.returncode == 4 and "Traceback" not in result.stderr

@@ -67,4 +67,4 @@ def test_a_lift_whose_grip_never_settles_still_puts_the_object_down():
     seed, docs/empty-the-box.md). Over the table the object is still held: put it down."""
     task, _ = load_task(EXAMPLES / "pick_one.xml")
     out_of_lift = {(e.type.value, t.destination) for t in task.transitions if t.origin == "lift_out" for e in t.events}
-    assert ("timeout", "put_down") in out_of_lift
+    assert ("timeout", "put_away") in out_of_lift

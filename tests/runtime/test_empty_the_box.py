@@ -37,7 +37,7 @@ def test_vision_empties_a_box_of_two_objects_on_the_melfa_and_says_what_it_took_
     records = [json.loads(line) for line in trace.read_text().splitlines()]
     # Each round's outcome reached the parent, which branched on it by name.
     outcomes = [r["atd"] for r in records if r["type"] == "event" and r["event"] == "outcome"]
-    assert outcomes == ["take_one_out->aside/outcome"] * 2  # placed, both times
+    assert outcomes == ["put_away->placed/outcome", "take_one_out->aside/outcome"] * 2  # down, then placed, both times
     # The round's first move went where perceive found the object: its input, read at run time.
     found = [r["conditions"][0]["point"] for r in records if r["type"] == "event" and r["event"] == "object_found"]
     assert len(found) == 2 and all(-0.05 < p[0] < 0.25 and -0.2 < p[1] < 0.04 for p in found)
@@ -139,7 +139,7 @@ def test_a_look_that_starts_holding_a_block_puts_it_out_and_goes_on_to_empty_the
     (docs/empty-the-box.md)."""
     result = run(BOX_DATA / "held_look.xml", robot="melfa", world=BOX_DATA / "one_block.toml")
     assert result.end_state == "emptied", result.summary
-    assert "empty_it/put_out/put_down" in result.path and result.path.count("empty_it/look") == 2
+    assert "empty_it/put_out/put_away/put_down" in result.path and result.path.count("empty_it/look") == 2
     x, y, z = result.object_positions["wood"]
     assert y > 0.10 and z < 0.05  # on the table beside the box (its +y wall at y 0.045)
 
