@@ -53,13 +53,13 @@ def _gripping(robot, monkeypatch, always_sensing: bool) -> tuple[list[bytes], li
 
 def test_sensors_once_a_period_read_as_before(melfa, robot_of, monkeypatch) -> None:
     robot = robot_of(melfa, "mujoco")
-    periods = robot.substeps
-    assert periods > 1
+    substeps = robot.substeps
+    assert substeps > 1
     now, sensed = _gripping(robot, monkeypatch, always_sensing=False)
     before, _ = _gripping(robot_of(melfa, "mujoco"), monkeypatch, always_sensing=True)
     assert len(now) == len(before) > 300
     assert now == before  # every reading of every period, and the state at the end
     assert robot.read().pad_force.min() > 1.0  # both pads pressed
-    steps = np.array(sensed).reshape(-1, periods)
+    steps = np.array(sensed).reshape(-1, substeps)
     assert steps[:, -1].all() and not steps[:, :-1].any()
     assert robot.model.opt.disableflags & SENSORS_OFF == 0  # left as the model had it
