@@ -193,6 +193,8 @@ class MujocoRobot(SimRobot):
         self._depth_renderers: dict[str, mujoco.Renderer] = {}
         self._arm_from: np.ndarray | None = None  # where the arm's reference ramps from; None: hold it
         self._fractions = np.arange(1, self.substeps + 1) / self.substeps  # of the ramp, after each substep
+        self._sensing = int(m.opt.disableflags)  # the model's own: sensors on
+        self._not_sensing = self._sensing | int(mujoco.mjtDisableBit.mjDSBL_SENSOR)
 
     # ---- engine part ------------------------------------------------------------------
     def _apply_arm(self, q_ref: np.ndarray, dq_ff: np.ndarray) -> None:
@@ -230,10 +232,20 @@ class MujocoRobot(SimRobot):
         ramps = [(r._arm_act, r._arm_to if r._arm_from is None else r._arm_from) for r in arms]
         ramps = [(act, start + np.multiply.outer(self._fractions, r._arm_to - start))
                  for r, (act, start) in zip(arms, ramps)]
-        for k in range(self.substeps):
-            for act, references in ramps:
-                self._ctrl[act] = references[k]
-            mujoco.mj_step(self.model, self.data)
+        # Only the last substep's sensor values are ever read: the others skip the sensors
+        # (the wrist's force and torque cost a pass of their own over the bodies); the physics
+        # does not read them, so every step is the same, float for float.
+        options, last = self.model.opt, self.substeps - 1
+        options.disableflags = self._not_sensing
+        try:
+            for k in range(self.substeps):
+                for act, references in ramps:
+                    self._ctrl[act] = references[k]
+                if k == last:
+                    options.disableflags = self._sensing
+                mujoco.mj_step(self.model, self.data)
+        finally:
+            options.disableflags = self._sensing
         for r in arms:
             r._arm_from = r._arm_to
         for turn, weld, cap, _, _, end in self._threads:  # a cap at the thread's end is let go

@@ -19,6 +19,7 @@ from tests.conftest import REPO
     ("bench_record.py", ("--repeat", "1",), "recording at 100 Hz"),
     ("bench_video.py", ("--repeat", "1", "--size", "320x240"), "ratio, wall"),
     ("bench_perception.py", ("--engine", "mujoco", "--methods", "vision"), "vision: corner"),
+    ("bench_box.py", ("--task", "random", "--budget", "5"), "trial/physics alone"),
     ("bench_slide.py", ("--runs", "1", "--arms", "baxter:right"), "false successes 0"),
     ("bench_state_entry.py", ("--rounds", "1"), "ratio, 10,000 states over 500"),
     ("count_tick.py", ("--robot", "melfa"), "melfa/main: 3845 ticks, succeeded"),
