@@ -152,7 +152,7 @@ class Finding:
     on_top: bool
     reaches: dict[tuple[int, int], bool] = field(default_factory=dict)
     by_wall: set[tuple[int, int]] = field(default_factory=set)  # sides felt by the tip alone, nearer a wall
-    tip: np.ndarray = field(default_factory=lambda: np.zeros(2))  # the tip's reach along the container's x y (`_sides`)
+    tip: np.ndarray = field(default_factory=lambda: np.zeros(2))  # its reach along the container's x y (`_sides`)
 
 
 @dataclass(frozen=True)
@@ -372,8 +372,9 @@ class BlindExploration(Perceiver):
         axes, both ways, the hand's tip (`sweep_extent`, the hand turned as it is) reaching to
         SIDE_STEP out and no nearer (a `spread_tip`'s to where it landed: which side is it
         under?), where that keeps the hand as far inside the walls as the sweep does, else
-        (`_by_wall`) as near the wall as the tip fits; from one side to the next SIDE_RISE over
-        the top."""
+        (`_by_wall`) as near the wall as the tip fits, and where it comes nearer the other
+        axis's walls than the sweep, no deeper than the tip fits there (`_tip_depth`); from one
+        side to the next SIDE_RISE over the top."""
         above = float(point[2]) + self.approaching.reach + SIDE_RISE
         low, high = self.container.footprint(self.room)
         centre = self.container.to_local(point[None])[0]
@@ -386,12 +387,16 @@ class BlindExploration(Perceiver):
                 local = centre.copy()
                 local[axis] += sign * (past + tip[axis])
                 depth = SIDE_DEPTH
-                if not low[axis] - 1e-9 <= local[axis] <= high[axis] + 1e-9:
+                inside = (local[:2] >= low - 1e-9) & (local[:2] <= high + 1e-9)
+                if inside[axis] and not inside[1 - axis]:  # nearer the other axis's walls: the tip alone below
+                    depth = self._tip_depth(float(point[2]))
+                elif not inside[axis]:
                     local[axis], depth = self._by_wall(centre, axis, sign, float(tip[axis]), float(point[2]),
                                                        0.0 if self.spread else float(tip[axis]))
-                    if depth <= 0.0:
-                        continue  # a side the hand cannot come down at: not felt
-                    self.result.by_wall.add((axis, sign))
+                    if depth > 0.0:
+                        self.result.by_wall.add((axis, sign))
+                if depth <= 0.0:
+                    continue  # a side the hand cannot come down at: not felt
                 x, y, _ = self.container.to_world(local[None])[0]
                 legs += [Waypoint(np.array([x, y, above]), Leg.ABOVE),
                          Waypoint(np.array([x, y, above - SIDE_RISE - depth]), Leg.SIDE, (axis, sign)),
@@ -400,11 +405,13 @@ class BlindExploration(Perceiver):
 
     def _conclude(self) -> None:
         """The approach over what was felt: moved SIDE_STEP / 2 towards a side the top reaches
-        where the other side's does not (a `spread_tip`'s: `_under_tip`), SIDE_STEP where the hand's tip alone felt
-        that side by a wall (no nearer the wall than the tip fits), and turned to close the jaws (along the
+        where the other side's does not, SIDE_STEP where the hand's tip alone felt that side by
+        a wall (no nearer the wall than the tip fits), and turned to close the jaws (along the
         hand's y) across the container's x where the top is long along its y and not along its
-        x (`_long`), else across its y, at the half turn whose grasp the walls push less off it
-        (`roomier_half`: the SDH2's thumb towards the room, as vision turns it)."""
+        x (`_long`), else across its y; a `spread_tip`'s moved under the tip's half the top is
+        under (`_under_tip`) and turned as the walls leave the grasp room (`_roomiest`); at the
+        half turn whose grasp the walls push less off it (`roomier_half`: the SDH2's thumb
+        towards the room, as vision turns it)."""
         finding = self.result
         local = self.container.to_local(finding.point[None])[0]
         reaches = finding.reaches
@@ -425,8 +432,7 @@ class BlindExploration(Perceiver):
                     local[axis] += sign * SIDE_STEP / 2
         point = self.container.to_world(local[None])[0]
         point[2] = finding.point[2]
-        along = [_long(reaches.get((axis, 1)), reaches.get((axis, -1))) for axis in (0, 1)]
-        yaw = self._roomiest(point) if self.spread else math.pi / 2 if along[1] and not along[0] else 0.0
+        yaw = self._roomiest(point) if self.spread else _across_long(reaches)
         times = self.tried.times + 1 if self.again else 0
         turn = TURNS[times % len(TURNS)]
         self.ctx.memory[TRIED] = Tried(point, times)
@@ -487,7 +493,13 @@ class BlindExploration(Perceiver):
         near = sign * self._wall_room(axis, tip)
         if sign * (near - centre[axis]) < tip + past:
             return near, 0.0
-        return near, max(0.0, min(SIDE_DEPTH, top + self.tip_length - self.container.rim - WALL_CLEARANCE))
+        return near, self._tip_depth(top)
+
+    def _tip_depth(self, top: float) -> float:
+        """How far below a top at world height `top` the hand's tip may go down beside it with
+        the hand's part wider than the tip (`tip_length` above its lowest point) WALL_CLEARANCE
+        over the rim, at most SIDE_DEPTH."""
+        return max(0.0, min(SIDE_DEPTH, top + self.tip_length - self.container.rim - WALL_CLEARANCE))
 
     def _ahead(self, readings: Readings, contact: Contact, by_walls: bool) -> np.ndarray:
         """Where, at the sweep's height, the hand comes down to feel what the sweep met: its
@@ -639,6 +651,14 @@ class BlindExploration(Perceiver):
 def _turned(rotation: np.ndarray, angle: float) -> np.ndarray:
     """`rotation` (3x3, world) turned `angle` (rad) about the world vertical."""
     return axis_rotation(VERTICAL, angle) @ rotation
+
+
+def _across_long(reaches: dict[tuple[int, int], bool]) -> float:
+    """The yaw (from the container's x) of jaws closing along the hand's y across a top that
+    reaches out as `reaches` says: across the container's x where it is long along its y and not
+    along its x (`_long`), else across its y."""
+    along = [_long(reaches.get((axis, 1)), reaches.get((axis, -1))) for axis in (0, 1)]
+    return math.pi / 2 if along[1] and not along[0] else 0.0
 
 
 def _long(plus: bool | None, minus: bool | None) -> bool:
