@@ -372,9 +372,10 @@ class BlindExploration(Perceiver):
         axes, both ways, the hand's tip (`sweep_extent`, the hand turned as it is) reaching to
         SIDE_STEP out and no nearer (a `spread_tip`'s to where it landed: which side is it
         under?), where that keeps the hand as far inside the walls as the sweep does, else
-        (`_by_wall`) as near the wall as the tip fits, and where it comes nearer the other
-        axis's walls than the sweep, no deeper than the tip fits there (`_tip_depth`); from one
-        side to the next SIDE_RISE over the top."""
+        (`_by_wall`) as near the wall as the tip fits (a spread tip's, only where it comes nearer
+        its own axis's walls than the sweep: nearer the other axis's alone, it stays where it
+        was, no deeper than the tip fits there, `_tip_depth`); from one side to the next
+        SIDE_RISE over the top."""
         above = float(point[2]) + self.approaching.reach + SIDE_RISE
         low, high = self.container.footprint(self.room)
         centre = self.container.to_local(point[None])[0]
@@ -388,9 +389,9 @@ class BlindExploration(Perceiver):
                 local[axis] += sign * (past + tip[axis])
                 depth = SIDE_DEPTH
                 inside = (local[:2] >= low - 1e-9) & (local[:2] <= high + 1e-9)
-                if inside[axis] and not inside[1 - axis]:  # nearer the other axis's walls: the tip alone below
+                if self.spread and inside[axis] and not inside[1 - axis]:  # nearer the other axis's walls
                     depth = self._tip_depth(float(point[2]))
-                elif not inside[axis]:
+                elif not np.all(inside):
                     local[axis], depth = self._by_wall(centre, axis, sign, float(tip[axis]), float(point[2]),
                                                        0.0 if self.spread else float(tip[axis]))
                     if depth > 0.0:
