@@ -492,7 +492,7 @@ _ARM_CONTROLLERS = (
             "spread_tip": _p(FLAG, "blind exploration: the hand's lowest points are fingertips spread apart, none "
                              "under the TCP, so a landing on a top does not place it under the TCP: beside it, "
                              "the hand comes down with its tip's edge over where it landed, on each side, and "
-                             "the approach goes the tip's reach towards the one side the top is under (the "
+                             "the approach goes the tip's reach towards the likelier side (felt there, else not felt at all; the "
                              "robot's own geometry: the SDH2's stretched fingers, 3.3-4.7 cm off its TCP); off: "
                              "the tip's edge SIDE_STEP past it, to feel how far the top goes on", False),
             "floor_band": _p(NUM, "blind exploration: a contact of the hand's lowest point within this of the "

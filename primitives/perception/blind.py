@@ -26,7 +26,7 @@ approach says the top's height (`Approach.top`), so the grasp knows a jaw landin
 jaw on the object rather than close above it. A hand whose lowest points are fingertips spread
 apart (`spread_tip`: the SDH2's stretched fingers) lands on a top under one of them, not under its
 TCP: it comes down beside with its tip's edge over where it landed instead, and the approach goes
-the tip's reach towards the one side the top is under. A look after another starts where that one's
+the tip's reach towards the side the top is likelier under. A look after another starts where that one's
 approach lay: landing on an object there, the grasp took nothing out, and the jaws are turned
 another way this time (`TURNS`). Once every turn has been tried there, the look comes down at
 random a hand's reach away from it instead: an object no turn of the jaws takes (against
