@@ -335,7 +335,8 @@ class Factory(ABC):
                               jaw_band=self.jaw_band(), **self.grasp_footprint(context),
                               sweep_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture, SWEEPING_TIP)),
                               hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture)),
-                              tip_length=round(self.robot.tip_length(posture, SWEEPING_TIP), 6))
+                              tip_length=round(self.robot.tip_length(posture, SWEEPING_TIP), 6),
+                              spread_tip=posture == HandShape.EXTEND.value)
         return NodeMapping("perceive", arm, self.controller("hand_shape", shape=posture), notes)
 
     def perceiving_posture(self, state: State) -> tuple[str, tuple[str, ...]]:

@@ -489,6 +489,12 @@ _ARM_CONTROLLERS = (
                              "rim (the robot's own geometry: `RobotDescription.tip_length`); 0: never nearer than "
                              "`hand_radius`", 0.0, unit="m",
                              limits=ranges.SIZE_OR_NONE),
+            "spread_tip": _p(FLAG, "blind exploration: the hand's lowest points are fingertips spread apart, none "
+                             "under the TCP, so a landing on a top does not place it under the TCP: beside it, "
+                             "the hand comes down with its tip's edge over where it landed, on each side, and "
+                             "the approach goes the tip's reach towards the likelier side (felt there, else not felt at all; the "
+                             "robot's own geometry: the SDH2's stretched fingers, 3.3-4.7 cm off its TCP); off: "
+                             "the tip's edge SIDE_STEP past it, to feel how far the top goes on", False),
             "floor_band": _p(NUM, "blind exploration: a contact of the hand's lowest point within this of the "
                              "floor is the floor (ours)", 0.015, unit="m"),
             "camera": _p(WORD, "vision: the depth camera to look with; unset: the robot's first"),

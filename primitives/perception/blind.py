@@ -23,7 +23,10 @@ against it, and the approach is moved up to SIDE_STEP towards it: a grasp of the
 kept off the wall by its own reach anyway, and what presses on the top to free it
 (examples/free_one.xml) presses on its middle, not on its edge towards the box's middle; the
 approach says the top's height (`Approach.top`), so the grasp knows a jaw landing there for a
-jaw on the object rather than close above it. A look after another starts where that one's
+jaw on the object rather than close above it. A hand whose lowest points are fingertips spread
+apart (`spread_tip`: the SDH2's stretched fingers) lands on a top under one of them, not under its
+TCP: it comes down beside with its tip's edge over where it landed instead, and the approach goes
+the tip's reach towards the side the top is likelier under. A look after another starts where that one's
 approach lay: landing on an object there, the grasp took nothing out, and the jaws are turned
 another way this time (`TURNS`). Once every turn has been tried there, the look comes down at
 random a hand's reach away from it instead: an object no turn of the jaws takes (against
@@ -45,6 +48,7 @@ from primitives.arm.turn import Turn
 from primitives.arm.walls import FREE_SPEED, RIM_CLEARANCE
 from primitives.base import Context, ControlData, Status
 from primitives.perception.container import approach_pose
+from primitives.perception.generators import roomier_half, walls_push
 from primitives.perception.perceiver import Perceiver
 from primitives.robot import Readings
 from primitives.values import Approach, Contact
@@ -148,6 +152,7 @@ class Finding:
     on_top: bool
     reaches: dict[tuple[int, int], bool] = field(default_factory=dict)
     by_wall: set[tuple[int, int]] = field(default_factory=set)  # sides felt by the tip alone, nearer a wall
+    tip: np.ndarray = field(default_factory=lambda: np.zeros(2))  # its reach along the container's x y (`_sides`)
 
 
 @dataclass(frozen=True)
@@ -177,6 +182,11 @@ class BlindExploration(Perceiver):
         self.floor_band = float(p["floor_band"])
         self.tip = np.array(p["sweep_extent"], float)
         self.tip_length = float(p["tip_length"])
+        self.spread = bool(p["spread_tip"])
+        # the grasp's footprint (`grasp_footprint`: the SDH2's thumb 8.9 cm out, its fingers 5.0 cm the
+        # other way), where its pinch closes along the hand's y as the approach's yaw takes it to
+        footprint = tuple(float(v) for v in p["grasp_footprint"])
+        self.footprint = footprint if float(p["grasp_turn"]) == 0.0 else (0.0, 0.0, 0.0, 0.0)
         self.extent = np.array(p["hand_extent"], float)
         # m over the floor the hand's lowest point goes round the walls (`_along_walls`); None
         # where `tip_length` is not known (the hand may be as wide all the way down: the lanes
@@ -360,24 +370,34 @@ class BlindExploration(Perceiver):
     def _sides(self, readings: Readings, point: np.ndarray) -> list[Waypoint]:
         """Over the top at `point` (world) and down beside it along each of the container's
         axes, both ways, the hand's tip (`sweep_extent`, the hand turned as it is) reaching to
-        SIDE_STEP out and no nearer, where that keeps the hand as far inside the walls as the
-        sweep does, else (`_by_wall`) as near the wall as the tip fits; from one side to the
-        next SIDE_RISE over the top."""
+        SIDE_STEP out and no nearer (a `spread_tip`'s to where it landed: which side is it
+        under?), where that keeps the hand as far inside the walls as the sweep does, else
+        (`_by_wall`) as near the wall as the tip fits (a spread tip's, only where it comes nearer
+        its own axis's walls than the sweep: nearer the other axis's alone, it stays where it
+        was, no deeper than the tip fits there, `_tip_depth`); from one side to the next
+        SIDE_RISE over the top."""
         above = float(point[2]) + self.approaching.reach + SIDE_RISE
         low, high = self.container.footprint(self.room)
         centre = self.container.to_local(point[None])[0]
         tip = self._tip_along(readings)
+        self.result.tip = tip
+        past = 0.0 if self.spread else SIDE_STEP  # how far past where it landed the tip's near edge comes down
         legs = [Waypoint(np.array([*self.explore.rest[:2], above]), Leg.ABOVE)]
         for axis in (0, 1):
             for sign in (1, -1):
                 local = centre.copy()
-                local[axis] += sign * (SIDE_STEP + tip[axis])
+                local[axis] += sign * (past + tip[axis])
                 depth = SIDE_DEPTH
-                if not np.all((local[:2] >= low - 1e-9) & (local[:2] <= high + 1e-9)):
-                    local[axis], depth = self._by_wall(centre, axis, sign, float(tip[axis]), float(point[2]))
-                    if depth <= 0.0:
-                        continue  # a side the hand cannot come down at: not felt
-                    self.result.by_wall.add((axis, sign))
+                inside = (local[:2] >= low - 1e-9) & (local[:2] <= high + 1e-9)
+                if self.spread and inside[axis] and not inside[1 - axis]:  # nearer the other axis's walls
+                    depth = self._tip_depth(float(point[2]))
+                elif not np.all(inside):
+                    local[axis], depth = self._by_wall(centre, axis, sign, float(tip[axis]), float(point[2]),
+                                                       0.0 if self.spread else float(tip[axis]))
+                    if depth > 0.0:
+                        self.result.by_wall.add((axis, sign))
+                if depth <= 0.0:
+                    continue  # a side the hand cannot come down at: not felt
                 x, y, _ = self.container.to_world(local[None])[0]
                 legs += [Waypoint(np.array([x, y, above]), Leg.ABOVE),
                          Waypoint(np.array([x, y, above - SIDE_RISE - depth]), Leg.SIDE, (axis, sign)),
@@ -389,14 +409,19 @@ class BlindExploration(Perceiver):
         where the other side's does not, SIDE_STEP where the hand's tip alone felt that side by
         a wall (no nearer the wall than the tip fits), and turned to close the jaws (along the
         hand's y) across the container's x where the top is long along its y and not along its
-        x (`_long`), else across its y."""
+        x (`_long`), else across its y; a `spread_tip`'s moved under the tip's half the top is
+        under (`_under_tip`) and turned as the walls leave the grasp room (`_roomiest`); at the
+        half turn whose grasp the walls push less off it (`roomier_half`: the SDH2's thumb
+        towards the room, as vision turns it)."""
         finding = self.result
         local = self.container.to_local(finding.point[None])[0]
         reaches = finding.reaches
         walled = []
         for axis in (0, 1):
             plus, minus = reaches.get((axis, 1)), reaches.get((axis, -1))
-            if plus is not None and minus is not None and plus != minus:
+            if self.spread:
+                local[axis] = self._under_tip(float(local[axis]), axis, plus, minus)
+            elif plus is not None and minus is not None and plus != minus:
                 sign = 1 if plus else -1
                 if (axis, sign) in finding.by_wall:  # against the wall: as far towards it as the tip fits
                     room = self._wall_room(axis, float(np.max(self.tip)))
@@ -406,40 +431,76 @@ class BlindExploration(Perceiver):
                     local[axis] = moved
                 else:
                     local[axis] += sign * SIDE_STEP / 2
-        along = [_long(reaches.get((axis, 1)), reaches.get((axis, -1))) for axis in (0, 1)]
-        yaw = math.pi / 2 if along[1] and not along[0] else 0.0
         point = self.container.to_world(local[None])[0]
         point[2] = finding.point[2]
+        yaw = self._roomiest(point) if self.spread else _across_long(reaches)
         times = self.tried.times + 1 if self.again else 0
         turn = TURNS[times % len(TURNS)]
         self.ctx.memory[TRIED] = Tried(point, times)
-        pose = approach_pose(self.container, point, self.approaching.grasp_reach, self.approaching.height, yaw + turn)
+        yaw = roomier_half(self.container, point, yaw + turn, self.footprint[:2], self.footprint[2:])
+        pose = approach_pose(self.container, point, self.approaching.grasp_reach, self.approaching.height, yaw)
         felt = ", ".join(f"{'+' if sign > 0 else '-'}{'xy'[axis]} {'yes' if on else 'no'}"
                          for (axis, sign), on in reaches.items())
-        how = finding.how + (f"; its top reaches {SIDE_STEP * 100:g} cm out: {felt}" if felt else "")
+        out = "under the tip's edge over where it landed" if self.spread else f"{SIDE_STEP * 100:g} cm out"
+        how = finding.how + (f"; its top reaches {out}: {felt}" if felt else "")
         if walled:
             how += f"; its top goes on towards a wall: moved {', '.join(walled)}"
         if times:
             how += (f"; landed where the last approach lay ({times} in a row): the jaws turned "
                     f"{math.degrees(turn):g} deg")
-        self.found(Approach(pose, point, self.method, top=float(point[2]) if finding.on_top else None), "", how)
+        self.found(Approach(pose, point, self.method, top=float(point[2]) if finding.on_top else None,
+                            either_way=not any(self.footprint[2:])), "", how)
+
+    def _roomiest(self, point: np.ndarray) -> float:
+        """Of closing the jaws across the container's y (yaw 0) and across its x, the one whose
+        grasp over `point` (world) the walls push less off it along its closing axis
+        (`walls_push`, each at its `roomier_half`): a spread tip's sides tell where the top lies,
+        not how it is long."""
+        extent, offset = self.footprint[:2], self.footprint[2:]
+
+        def pushed(yaw: float) -> float:
+            turned = roomier_half(self.container, point, yaw, extent, offset)
+            pose = approach_pose(self.container, point, 0.0, 0.0, turned)
+            return round(walls_push(self.container, pose, extent, offset)[0], 6)
+
+        return min((0.0, math.pi / 2), key=pushed)
+
+    def _under_tip(self, at: float, axis: int, plus: bool | None, minus: bool | None) -> float:
+        """Where along the container's `axis` a spread tip that landed at `at` (its frame) has
+        the top it felt: under the half of its reach on the likelier side (`plus`, `minus`: the
+        top felt there, the side not felt at all, or the top not felt there, likeliest first),
+        the tip's reach that way, where its fingertips are, within the container; where it
+        landed where both sides are alike."""
+        if plus is minus:
+            return at
+        likelier = (True, None, False)
+        sign = 1 if likelier.index(plus) < likelier.index(minus) else -1
+        half = float(self.container.inner[axis]) / 2
+        return float(np.clip(at + sign * self.result.tip[axis], -half, half))
 
     def _wall_room(self, axis: int, tip: float) -> float:
         """How far from the container's middle along its `axis` the TCP may go with the hand's
         tip, reaching `tip` that way, WALL_CLEARANCE off the wall."""
         return float(self.container.footprint(tip + WALL_CLEARANCE)[1][axis])
 
-    def _by_wall(self, centre: np.ndarray, axis: int, sign: int, tip: float, top: float) -> tuple[float, float]:
+    def _by_wall(self, centre: np.ndarray, axis: int, sign: int, tip: float, top: float,
+                 past: float) -> tuple[float, float]:
         """For a side of the top at `centre` (the container's frame, world height `top`) where the
         walls keep the hand from coming down: where along `axis` its TCP comes as near the wall as
         the tip, reaching `tip` that way, fits, and how far below the top the tip may go down there
         with the hand's part wider than it (`tip_length` above its lowest point) WALL_CLEARANCE
         over the rim, at most SIDE_DEPTH; depth 0 where it cannot feel there (the top too low, or
-        no room beside where it landed)."""
+        no room beside where it landed: the tip's near edge less than `past` beyond it)."""
         near = sign * self._wall_room(axis, tip)
-        if sign * (near - centre[axis]) < 2 * tip:
+        if sign * (near - centre[axis]) < tip + past:
             return near, 0.0
-        return near, max(0.0, min(SIDE_DEPTH, top + self.tip_length - self.container.rim - WALL_CLEARANCE))
+        return near, self._tip_depth(top)
+
+    def _tip_depth(self, top: float) -> float:
+        """How far below a top at world height `top` the hand's tip may go down beside it with
+        the hand's part wider than the tip (`tip_length` above its lowest point) WALL_CLEARANCE
+        over the rim, at most SIDE_DEPTH."""
+        return max(0.0, min(SIDE_DEPTH, top + self.tip_length - self.container.rim - WALL_CLEARANCE))
 
     def _ahead(self, readings: Readings, contact: Contact, by_walls: bool) -> np.ndarray:
         """Where, at the sweep's height, the hand comes down to feel what the sweep met: its
@@ -591,6 +652,14 @@ class BlindExploration(Perceiver):
 def _turned(rotation: np.ndarray, angle: float) -> np.ndarray:
     """`rotation` (3x3, world) turned `angle` (rad) about the world vertical."""
     return axis_rotation(VERTICAL, angle) @ rotation
+
+
+def _across_long(reaches: dict[tuple[int, int], bool]) -> float:
+    """The yaw (from the container's x) of jaws closing along the hand's y across a top that
+    reaches out as `reaches` says: across the container's x where it is long along its y and not
+    along its x (`_long`), else across its y."""
+    along = [_long(reaches.get((axis, 1)), reaches.get((axis, -1))) for axis in (0, 1)]
+    return math.pi / 2 if along[1] and not along[0] else 0.0
 
 
 def _long(plus: bool | None, minus: bool | None) -> bool:

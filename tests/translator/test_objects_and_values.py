@@ -131,6 +131,21 @@ def test_blind_exploration_sweeps_with_the_narrower_of_the_closed_and_stretched_
     assert sdh2.arm.params["hand_radius"] == pytest.approx(0.05, abs=0.001)
 
 
+def test_only_a_look_with_stretched_fingers_places_a_top_under_the_half_of_its_tip_that_felt_it():
+    """The SDH2's stretched fingers touch down with three fingertips 3.3-4.7 cm off its TCP and
+    nothing under it: its look is told its tip is spread (`spread_tip`), and its pinch's
+    footprint (the thumb 8.9 cm out), which the look turns towards the room. Every other hand
+    looks closed, its tip not spread (docs/empty-the-box.md)."""
+    task, found = load_task(REPO / "tests" / "data" / "empty_the_box" / "blind_look.xml")
+    assert found == []
+    for factory in every_factory():
+        look = translate(task, factory).estd.states_by_name["look"]
+        assert look.arm.params["spread_tip"] is (look.hand.params["shape"] == "extend"), factory.name
+    sdh2 = translate(task, create("tombatossals", arm="left")).estd.states_by_name["look"]
+    assert sdh2.arm.params["spread_tip"] is True and sdh2.arm.params["grasp_turn"] == 0.0
+    assert sdh2.arm.params["grasp_footprint"][2] == pytest.approx(-0.038, abs=0.001)
+
+
 def test_robots_claim_the_perception_events_they_map():
     for factory in every_factory():
         events = factory.capabilities.events
