@@ -299,12 +299,15 @@ class RobustGraspHand(ForceGrasp):
         points = contact_points(self.ctx.info.hand, readings, pads)
         return points, points @ readings.tcp[2, :3] + readings.tcp[2, 3] >= SUPPORT_BAND
 
-    def _only_on_table(self, readings: Readings, touching: list[str]) -> bool:
-        """Every touching grasping pad presses the table, none anything above it: the close
-        holds nothing. Read as on the object, a pad on the table sent the finger-lost shift
-        away from the object, and two pinched the table until the hold timed out
-        (docs/robust-grasp.md, "A pad on the table is not on the object")."""
-        return bool(touching) and not self._above_table(readings, [self.pad_of[f] for f in touching])[1].any()
+    def _pinched_table(self, readings: Readings, touching: list[str]) -> bool:
+        """The close ended with every grasping pad pressed PINCHED times the grasp force on
+        the table, none on anything above it: the fingertips pinched the table, not the
+        object. Held as a grasp, that pinch never settled (the Barrett's stapler and mug:
+        "pads never settled" at 20-35 N). A single pad that low is not told from one pressing
+        an object's foot (docs/robust-grasp.md, "Pads that pinch the table")."""
+        if self.closing.pinched < SETTLE_TIME or len(touching) < len(self.fingers):
+            return False
+        return not self._above_table(readings, [self.pad_of[f] for f in touching])[1].any()
 
     def _off_table(self, readings: Readings) -> np.ndarray:
         """The shift after the pads pinched the table: FREE_RISE up, clear of the fingertips'
@@ -336,10 +339,10 @@ class RobustGraspHand(ForceGrasp):
         heading, search.heading = search.heading, 0.0
         weighed, search.weighed = search.weighed, False
         touching = self._touching(readings)
-        on_table = self._only_on_table(readings, touching)
-        if on_table:
-            touching = []
-        elif not touching and set(self.fingers) - self.closing.brushed:
+        if self._pinched_table(readings, touching):
+            self._try_again(self._off_table(readings), "the pads pinched the table")
+            return
+        if not touching and set(self.fingers) - self.closing.brushed:
             touching = [f for f in self.fingers if f in self.closing.brushed]
         lost = [f for f in self.fingers if f not in touching]
         if not lost and (self._uneven(readings) or self._by_side_edges(readings)):
@@ -350,8 +353,6 @@ class RobustGraspHand(ForceGrasp):
         what = f"finger {', '.join(lost)} missed the object" if touching else "nothing between the fingers"
         if self._nudging(readings):
             self._try_again(search.nudge(), "the fingers stopped on something their pads do not feel")
-        elif on_table and self.closing.pinched >= SETTLE_TIME:
-            self._try_again(self._off_table(readings), "the pads pinched the table")
         elif touching and not self.correct:
             self._fail(what)
         elif touching and heading and self.pinch:  # a search step's close met the object's edge: further that way
