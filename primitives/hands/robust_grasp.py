@@ -299,6 +299,25 @@ class RobustGraspHand(ForceGrasp):
         points = contact_points(self.ctx.info.hand, readings, pads)
         return points, points @ readings.tcp[2, :3] + readings.tcp[2, 3] >= SUPPORT_BAND
 
+    def _pinched_table(self, readings: Readings, touching: list[str]) -> bool:
+        """The close ended with every grasping pad pressed PINCHED times the grasp force on
+        the table, none on anything above it: the fingertips pinched the table, not the
+        object. Held as a grasp, that pinch never settled (the Barrett's stapler and mug:
+        "pads never settled" at 20-35 N). A single pad that low is not told from one pressing
+        an object's foot (docs/robust-grasp.md, "Pads that pinch the table")."""
+        if self.closing.pinched < SETTLE_TIME or len(touching) < len(self.fingers):
+            return False
+        return not self._above_table(readings, [self.pad_of[f] for f in touching])[1].any()
+
+    def _off_table(self, readings: Readings) -> np.ndarray:
+        """The shift after the pads pinched the table: FREE_RISE up, clear of the fingertips'
+        press, to close again there if the pads stood wide enough apart for the object to be
+        between them (the table stopped them short of it), else to the search's next point."""
+        rise = np.array([0.0, 0.0, -FREE_RISE])
+        if self.ctx.object is not None and self.gauge.gap(readings.hand_q) >= PASSED * self.ctx.object.least_width:
+            return rise
+        return rise + self.search.next(side=self._felt_side())
+
     def _on_table(self, readings: Readings) -> bool:
         """A grasping pad touches the table."""
         pads = [self.pad_of[f] for f in self._touching(readings)]
@@ -320,6 +339,9 @@ class RobustGraspHand(ForceGrasp):
         heading, search.heading = search.heading, 0.0
         weighed, search.weighed = search.weighed, False
         touching = self._touching(readings)
+        if self._pinched_table(readings, touching):
+            self._try_again(self._off_table(readings), "the pads pinched the table")
+            return
         if not touching and set(self.fingers) - self.closing.brushed:
             touching = [f for f in self.fingers if f in self.closing.brushed]
         lost = [f for f in self.fingers if f not in touching]
