@@ -54,11 +54,8 @@ HAND_CLEARANCE = 0.01
 # transport only at its target, a place where the object's underside meets the surface
 # the task puts it on (the target is the object resting there; ours).
 CARRIED_MARGIN = {StateType.TRANSPORT: 0.0, StateType.PLACE: 0.01}
-# s a transport's arm stays at its target, the object held all along, before the transport
-# succeeds (thesis 3.4.1: the object lifted "does not move in the hand"): held at the top, a
-# duck in the Barrett's pinch dropped 0.9 s after a lift had said success, and a mug whose pads
-# eased from 2.1 to 1.2 N 1.6 s after (MuJoCo duck trial 16, PyBullet mug trial 11 of the
-# preset's approach error)
+# s a transport holds the object at its target before it succeeds (thesis 3.4.1: the object lifted
+# "does not move in the hand"; the drops it catches: docs/constants.md)
 HELD_FOR = 2.0
 # m above the hand's lowest point that its sweeping tip spans: a blind exploration sweeps 2 cm
 # over the floor and every library object stands 3.8 cm or more whichever way it lies, so only
@@ -1043,19 +1040,13 @@ def obstacle_params(context: MappingContext) -> dict[str, tuple[tuple[float, ...
             "obstacle_sizes": tuple(o.size or (0.0, 0.0, 0.0) for o in obstacles)}
 
 
-# times the weight friction must carry: a 340 g steel weight (friction 0.5) pinched by two
-# Barrett pads at 5 N turned 12-24 degrees in the hand as it was lifted and slid out within
-# 2 s of the lift's end in PyBullet (Table 3.3 preset, 1df1356); 3.3 N carries it at rest
-GRIP_SAFETY = 2.0
+GRIP_SAFETY = 2.0  # times the weight friction must carry: at once, a lifted weight slid out (docs/constants.md)
 
 
 def carrying_force(obj: ObjectInfo | None) -> float:
     """The force each of two opposed pads must press with for friction to carry the
-    object's weight at all; below it the object is sliding out. A lift of a 340 g steel
-    weight (friction 0.5: 3.3 N) ended with the Barrett's pads at 3.2 and 3.4 N and
-    falling, and said success; the weight turned 16 degrees and slid 12 cm out of the
-    hand in the judge's hold (PyBullet, the Table 3.3 preset's weight trial 4, approach
-    error). 0 when the task does not say the object's weight and friction."""
+    object's weight at all; below it the object is sliding out (docs/constants.md). 0 when
+    the task does not say the object's weight and friction."""
     return holding_force(obj) / GRIP_SAFETY
 
 

@@ -316,10 +316,8 @@ class Hand:
         """(joint, other joint, ratio): joints one motor closes together through a rigid
         transmission, `other` = ratio x `joint`: every closing DOF but a geared one (the
         others, a spread, only ever hold a position, which keeps their joints together).
-        A gripper's jaws on one spindle cannot drift sideways together: pushed alike but
-        left independent in simulation, a Baxter's jaws and the cylinder between them slid
-        7 mm towards one side during a lift, and the jaw the opening is read from reached
-        its closed stop with the object still held (PyBullet, the preset's cylinder trial 9)."""
+        A gripper's jaws on one spindle cannot drift sideways together; left independent in
+        simulation they do, object and all (docs/constants.md)."""
         return tuple((dof.joints[0][0], joint, ratio / dof.joints[0][1])
                      for dof in self.dofs if dof.closing and not dof.geared for joint, ratio in dof.joints[1:])
 

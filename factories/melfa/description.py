@@ -95,8 +95,7 @@ def description(arm: str | None = None) -> RobotDescription:
             "power_grasp_preshape": (PG70.stroke,),
             "power_grasp": (0.0,),
         },
-        # The object's friction alone (no rubber, unlike the hands that slide): with twice it,
-        # the jaw grasp timed out on 3 more of the Table 3.3 preset's trials (docs/slide.md).
+        # The object's friction alone (no rubber, unlike the hands that slide; docs/constants.md).
     )
     return RobotDescription(
         name="melfa",

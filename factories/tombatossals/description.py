@@ -159,10 +159,7 @@ def _barrett() -> tuple[tuple[Link, ...], Hand, float]:
     # The push acts on F3's distal link, out along hand -y.
     pointing = (0.0, -(BH_A1 + BH_A2 * np.cos(BH_POINTING)), 0.0)
     # The pinch's sliding grasp does not follow the table down: kept on it, F1's and F2's tips
-    # slid under an object's bottom edge as they curled and lifted one side of it (speaker,
-    # mug, stapler: up 3-9 mm, PyBullet, the preset's approach error); the pads read 2-4 N
-    # with a gap between them and the grasp searched on. Left to rise, the preset's trials
-    # 0-19 with the error lifted 159 of 200 against 155 (MuJoCo), 148 against 136 (PyBullet).
+    # slide under an object's bottom edge as they curl and lift one side (docs/constants.md).
     # From the side, a quarter turn about the approach axis: the pinch's F1 and F2, facing
     # each other along hand x, close across a standing bottle instead of on its top and
     # bottom, and F3, flat in the pinch, stands up off the table instead of 7 cm into it.

@@ -443,8 +443,7 @@ class JawGraspCorrection(Controller):
             # close on nothing, look first where the contact was (the palm on its top, as
             # wide as the hand; not the fingertips on the support, which say nothing of
             # the object). Only once: a contact that sent the jaws to close on nothing was
-            # no object's top, and following each next one like it walked the hand away from
-            # the object, 3.7 cm a time (Melfa, MuJoCo, the preset's wood trial 1).
+            # no object's top, and following each next one walks the hand away (docs/constants.md).
             on_support = self.vertical and float(readings.tcp[2, 3]) - self.tip_depth - self._support() < SUPPORT_BAND
             self.hint = None if not off_centre or on_support or self.hinted else \
                 readings.tcp[:3, 3] + readings.tcp[:3, :3] @ clamp_norm(across, self.max_shift)
@@ -593,10 +592,10 @@ class JawGraspCorrection(Controller):
         self._close_here(readings, back_off)
 
     def _relieve(self, readings: Readings, dt: float) -> bool:
-        """Rise while the wrist is pushed up beyond the empty hand's load: jaws squeezing a duck
-        below its widest point pressed it into the table, and the hand with it, 96 N up
-        (PyBullet, the preset's duck trial 2); the lift, tared on that, read its going as a
-        collision and stopped. True once nothing presses (or the arm has risen MAX_RELIEF)."""
+        """Rise while the wrist is pushed up beyond the empty hand's load: jaws squeezing an object
+        below its widest point press it into the table, and the hand with it, and a lift tared on
+        that reads its going as a collision (docs/constants.md). True once nothing presses (or the
+        arm has risen MAX_RELIEF)."""
         empty = self.ctx.memory.get(EMPTY_HAND)
         pressed = 0.0 if empty is None else float(world_load(readings)[2] - empty[2])
         if pressed <= PRESSED or self.risen >= MAX_RELIEF:

@@ -83,11 +83,9 @@ class CartesianMove(Controller):
     top-down (hand z = world -z) with the yaw it started with, or given `yaw` that yaw or its
     opposite (`turn_to_yaw`; not `either_way`, that yaw itself), turned by `tilt` where given; or, not `level`, as it started
     (turned about the vertical to `yaw` where given), turned by `tilt`: a transport lifts the object as the
-    grasp holds it. A gripper that grasped with the tilt the approach left, levelled on the
-    lift, took the Melfa's wrist into its singularity (j5 = 0), where the turn it wanted
-    could not be made, and the lift stalled 10 cm short (MuJoCo, 6 of 50 trials with the
-    seeds' approach error in the preset at 1df1356); the object, standing on the table as
-    the jaws closed, is upright in the tilted hand, and levelling the hand would tip it.
+    grasp holds it: the object, standing on the table as the jaws closed, is upright in the
+    tilted hand, levelling the hand would tip it, and it can take a wrist into its singularity
+    (docs/constants.md).
     """
 
     def __init__(self, ctx: Context) -> None:
