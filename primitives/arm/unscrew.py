@@ -39,6 +39,7 @@ PULL_SPEED = 0.02  # m/s: the 40 mm pull in 2 s; a threaded cap reaches the 7 N 
 RETURN_SPEED = 0.05  # m/s: back to the start pose with the fingers open, clear of the cap
 ARRIVED = 0.002  # m: the start pose counts as reached this near (the robust grasp's SHIFT_TOLERANCE)
 ALIGN_TOLERANCE = 0.002  # m: the pads place the axis to half a 3 mm taxel row; a finer move chased that rounding
+MOTOR_ALIGN_TOLERANCE = 0.0005  # m: motor jaws' middle is their joint's, exact; 1.7 mm off, open paddles rubbed the cap
 PINCH_TIME = 6.0  # s: closing from the preshape (up to 1.5 s) and the robust grasp's SETTLE_LIMIT to reach the force
 TWIST_TURNS = 3.0  # times a twist's time at TWIST_SPEED: not turned by then, the cap turns about another axis
 MAX_ALIGN = 0.02  # m: the largest move onto the cap's axis: further, the pads felt more than the cap
@@ -429,7 +430,7 @@ class UnscrewArm(Controller):
         along = start.rotation @ self.direction
         off = axis - start.position - start.rotation @ self.grasp_centre
         off = off - float(off @ along) * along
-        if norm(off) >= ALIGN_TOLERANCE:
+        if norm(off) >= (MOTOR_ALIGN_TOLERANCE if self._motor_jaws() else ALIGN_TOLERANCE):
             start.position = start.position + clamp_norm(off, MAX_ALIGN)
             self.tally.aligned += 1
 
