@@ -182,9 +182,15 @@ class RobustGraspHand(ForceGrasp):
         than OFF_CENTRE off the pinch line (or any distance, for a hold short of the grasp
         force: OFF_CENTRE was measured at it), and turning the object harder than friction
         over RIM_CONTACT carries or hanging beyond FAR_OFF, the arm sets it down (SET_DOWN)
-        to grasp it again that far across; otherwise it is held, lifted."""
+        to grasp it again that far across; otherwise it is held, lifted. Not while a grasping
+        pad feels nothing: the object slipping out of the pads as the arm raised them leaves
+        the wrist feeling less than WEIGHED of it, which reads as centred (`_weight_off_line`),
+        so the weighing waits until the pads hold it again or `_squeeze` finds it dropped
+        (docs/robust-grasp.md, "Weighed as it slipped out")."""
         if self._squeeze(readings, dt) is None or self.ctx.blackboard.weigh is not None:
             return  # dropped, or the arm is still raising the hand
+        if len(self._touching(readings)) < len(self.fingers):
+            return
         weighing = self.weighing
         weighing.weights.append(held_wrench(self.ctx.info.hand, readings))
         if len(weighing.weights) * self.ctx.info.control_period < WEIGH_TIME:
