@@ -329,7 +329,7 @@ class Factory(ABC):
                               container_wall=container.wall, hand_reach=round(reach, 6), hand_radius=round(radius, 6),
                               grasp_reach=round(max(self.robot.hand_reach(p) for p in self.robot.hand.postures), 6),
                               grasp_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)),
-                              jaw_band=self.jaw_band(), **self.grasp_footprint(context),
+                              **self.jaw_band(context), **self.grasp_footprint(context),
                               sweep_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture, SWEEPING_TIP)),
                               hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture)),
                               tip_length=round(self.robot.tip_length(posture, SWEEPING_TIP), 6),
@@ -390,16 +390,30 @@ class Factory(ABC):
             return posture
         return self.robot.hand.boxed.get(posture, posture)
 
-    def jaw_band(self) -> tuple[float, float, float]:
-        """A parallel jaw's open fingertips, which a box round's grasp comes down with (`perceive`'s
-        `jaw_band`): from its pads' half opening along the hand's y to how far its tips reach
-        along it, and how far along its x; zeros for a multi-finger hand, whose fingers are no
-        two jaws closing along its y."""
-        if self.arm.hand.kind != "parallel jaw":
-            return (0.0, 0.0, 0.0)
-        inner = self.robot.pad_opening(HandShape.OPEN.value, np.pi / 2) / 2.0
-        across, along = self.robot.hand_extent(HandShape.OPEN.value, SWEEPING_TIP)
-        return (round(inner, 6), round(along, 6), round(across, 6))
+    def jaw_band(self, context: MappingContext) -> dict[str, tuple[float, ...]]:
+        """The fingertips a box round's grasp comes down with, closing along the hand's y
+        (`perceive`'s `jaw_band`): from the pads' half opening along it to how far the tips reach
+        along it, and how far along the hand's x from where they close; and the hand's other
+        lowest links there (`other_tips`: from and to along its x, either way along its y). A
+        parallel jaw's open fingers; a multi-finger hand's pinch preshape where its pinch closes
+        along the y: the SDH2's two fingers and its thumb, which came down on a neighbour's top
+        in 14 of 15 grasps that closed on nothing (docs/empty-the-box.md, "The SDH2's fingertips
+        and thumb kept off what the picture shows"). Zeros for a pinch closing along another line
+        (the Barrett's, along its x)."""
+        none = {"jaw_band": (0.0, 0.0, 0.0), "other_tips": (0.0, 0.0, 0.0)}
+        if self.arm.hand.kind == "parallel jaw":
+            inner = self.robot.pad_opening(HandShape.OPEN.value, np.pi / 2) / 2.0
+            across, along = self.robot.hand_extent(HandShape.OPEN.value, SWEEPING_TIP)
+            return {**none, "jaw_band": (round(inner, 6), round(along, 6), round(across, 6))}
+        pinch = self.grasp_footprint(context)
+        if pinch["grasp_turn"] != 0.0 or not any(pinch["grasp_footprint"]):
+            return none
+        preshape = self.boxed(HandShape.PINCH_GRASP_PRESHAPE.value, context)
+        centre = self.robot.hand.grasp_centres.get(preshape, (0.0, 0.0, 0.0))
+        (along, across), others = self.robot.low_tips(preshape, SWEEPING_TIP, (float(centre[0]), float(centre[1])))
+        inner = self.robot.pad_opening(preshape, np.pi / 2) / 2.0
+        return {"jaw_band": (round(inner, 6), round(along, 6), round(across, 6)),
+                "other_tips": tuple(round(v, 6) for v in others)}
 
     @abstractmethod
     def map_node(self, state: State, context: MappingContext) -> NodeMapping:

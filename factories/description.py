@@ -543,6 +543,32 @@ class RobotDescription:
 
         return reach(tcp[:3, 0]), reach(-tcp[:3, 0]), reach(tcp[:3, 1]), reach(-tcp[:3, 1])
 
+    def low_tips(self, posture: str, within: float, about: tuple[float, float] = (0.0, 0.0)
+                 ) -> tuple[tuple[float, float], tuple[float, float, float]]:
+        """Where the hand's links within `within` of its lowest point, pointing down, stand in a
+        posture about the point `about` (hand x y from the TCP: where its fingers close along the
+        hand's y): those reaching past the pads' half opening along the y (the closing fingers'
+        tips), how far along the y and either way along the x; the others (the SDH2's thumb, 8.9
+        cm out along -x), from and to along the x and either way along the y. Zeros where none."""
+        poses, tcp = self._hand_in(posture)
+        approach, centre = tcp[:3, 2], tcp[:3, 3] + tcp[:3, :2] @ np.asarray(about, float)
+        shapes = [(poses[name], shape) for name in self.hand_links for shape in self.links_by_name[name].shapes]
+        lowest = max(shape.support(pose, approach) for pose, shape in shapes)
+        low = [(pose, shape) for pose, shape in shapes if shape.support(pose, approach) >= lowest - within]
+        inner = self.pad_opening(posture, np.pi / 2) / 2.0
+
+        def reach(part: tuple[np.ndarray, Shape], way: np.ndarray) -> float:
+            return part[1].support(part[0], way) - float(centre @ way)
+
+        x, y = tcp[:3, 0], tcp[:3, 1]
+        closing = [part for part in low if max(reach(part, y), reach(part, -y)) > inner]
+        others = [part for part in low if max(reach(part, y), reach(part, -y)) <= inner]
+        tips = ((max(reach(part, way) for part in closing for way in (y, -y)),
+                 max(reach(part, way) for part in closing for way in (x, -x))) if closing else (0.0, 0.0))
+        rest = ((-max(reach(part, -x) for part in others), max(reach(part, x) for part in others),
+                 max(reach(part, way) for part in others for way in (y, -y))) if others else (0.0, 0.0, 0.0))
+        return tips, rest
+
     def hand_footprint(self, posture: str | np.ndarray, about: tuple[float, float] = (0.0, 0.0)
                        ) -> tuple[tuple[float, float], tuple[float, float]]:
         """The rectangle the hand covers from above in a posture (`hand_sides`): how far it

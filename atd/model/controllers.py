@@ -451,6 +451,12 @@ _ARM_CONTROLLERS = (
                            "keep them off it (the robot's own geometry: `RobotDescription.pad_opening`, "
                            "`hand_extent` within 2 cm); 0 0 0: not known, the turn is the top's alone",
                            (0.0, 0.0, 0.0), unit="m", length=3, limits=ranges.SIZE_OR_NONE),
+            "other_tips": _p(VEC, "vision: the rectangle the hand's other lowest links (the SDH2's thumb) cover "
+                             "as its pinch comes down, about where it closes: from and to along the hand's x, and "
+                             "either way along its y; where they or the fingertips (`jaw_band`) would come down on "
+                             "what the picture shows, the approach turns and slides to keep them off it (the robot's "
+                             "own geometry: `RobotDescription.low_tips` within 2 cm); 0 0 0: none",
+                             (0.0, 0.0, 0.0), unit="m", length=3, limits=ranges.COORDINATE),
             "grasp_footprint": _p(VEC, "vision: the rectangle a hand reaching further one way than the other covers "
                                   "as it comes down to grasp: how far it reaches either way from its middle along the "
                                   "hand's x and y (along `grasp_turn`'s axes), and where that middle lies from the "

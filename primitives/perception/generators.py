@@ -103,6 +103,9 @@ class VisionSettings:
     # rad the hand turns about its approach axis from the axes `footprint` is given along, whose y
     # is the line its grasp closes along: the Barrett's pinch closes along its x, a quarter turn
     turn: float = 0.0
+    # m, the hand's other lowest links about where its fingers close (the SDH2's thumb): from and to
+    # along the hand's x, and either way along its y; zeros: none
+    other_tips: tuple[float, float, float] = (0.0, 0.0, 0.0)
 
     @property
     def walls(self) -> tuple[tuple[float, float], tuple[float, float]]:
@@ -203,13 +206,18 @@ def roomier_half(container: ContainerBelief, point: np.ndarray, yaw: float, exte
     return min((yaw, yaw + np.pi), key=pushed)
 
 
-def under_jaws(points: np.ndarray, pose: np.ndarray, band: tuple[float, float, float]) -> int:
+def under_jaws(points: np.ndarray, pose: np.ndarray, band: tuple[float, float, float],
+               others: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> int:
     """How many of `points` (world) lie under the open jaws' fingertips of a top-down hand at
-    `pose` (reaching `band`, see VisionSettings, and JAW_MARGIN further out): what a jaw coming
-    down there lands on."""
+    `pose` (reaching `band`, see VisionSettings, and JAW_MARGIN further out), or under its other
+    lowest links (`others`, VisionSettings.other_tips): what a jaw, or a thumb, coming down
+    there lands on."""
     flat = points[:, :2] - pose[:2, 3]
-    along, across = np.abs(flat @ pose[:2, 1]), np.abs(flat @ pose[:2, 0])
+    x, y = flat @ pose[:2, 0], flat @ pose[:2, 1]
+    along, across = np.abs(y), np.abs(x)
     under = (along >= band[0]) & (along <= band[1] + JAW_MARGIN) & (across <= band[2] + JAW_MARGIN)
+    if any(others):
+        under |= (x >= others[0] - JAW_MARGIN) & (x <= others[1] + JAW_MARGIN) & (along <= others[2] + JAW_MARGIN)
     return int(np.count_nonzero(under))
 
 
@@ -221,20 +229,23 @@ def clear_jaws(pose: np.ndarray, point: np.ndarray, seen: np.ndarray, container:
     a jaw by a wall), the turn (CLEARING_TURNS) and slide along the closing axis
     (CLEARING_SLIDES) that leave the fewest points under them, then the least slide, then the
     least turn from `pose`'s: a jaw on something as high as the top stops the grasp's descent
-    there (docs/empty-the-box.md, "Jaws kept off what the picture shows")."""
-    band, extent = settings.jaw_band, settings.grasp_extent
+    there (docs/empty-the-box.md, "Jaws kept off what the picture shows"). A hand whose
+    footprint lies off its grasp point (`VisionSettings.walls`) is kept inside the walls by
+    that footprint and takes each turn at its roomier half (`roomier_half`), as `jaw_yaw` does."""
+    band, (extent, offset) = settings.jaw_band, settings.walls
     if band[1] <= 0.0:
         return pose
 
     def landed(candidate: np.ndarray) -> int:
-        return under_jaws(seen, clear_of_walls([container], candidate, extent), band)
+        return under_jaws(seen, clear_of_walls([container], candidate, extent, offset=offset), band,
+                          settings.other_tips)
 
     if landed(pose) == 0:
         return pose
     first = float(np.arctan2(pose[1, 1], pose[0, 1]))  # the hand's y, the closing axis, in the world
 
     def turned(turn: float, slide: float) -> np.ndarray:
-        candidate = approach_pose(container, point, 0.0, 0.0, turn)
+        candidate = approach_pose(container, point, 0.0, 0.0, roomier_half(container, point, turn, extent, offset))
         candidate[:3, 3] = pose[:3, 3] + slide * candidate[:3, 1]
         return candidate
 

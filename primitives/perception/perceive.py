@@ -47,11 +47,12 @@ class Vision(Perceiver):
         extent = p["grasp_extent"]
         band = tuple(float(v) for v in p["jaw_band"])
         footprint = tuple(float(v) for v in p["grasp_footprint"])
+        others = tuple(float(v) for v in p["other_tips"])
         self.settings = VisionSettings(float(p["floor_margin"]), float(p["wall_margin"]), float(p["above_rim"]),
                                        float(p["voxel"]), int(p["min_points"]), (float(extent[0]), float(extent[1])),
                                        (band[0], band[1], band[2]),
                                        (footprint[0], footprint[1], footprint[2], footprint[3]),
-                                       math.radians(float(p["grasp_turn"])))
+                                       math.radians(float(p["grasp_turn"])), (others[0], others[1], others[2]))
 
     def start(self, readings: Readings) -> None:
         super().start(readings)

@@ -16,7 +16,7 @@ from primitives.arm.approach_phases import Phase
 from primitives.arm.jaw_grasp import JawPhase
 from primitives.base import Context, Status
 from primitives.perception.container import approach_pose, clear_of_walls
-from primitives.perception.generators import jaw_yaw, long_side
+from primitives.perception.generators import VisionSettings, clear_jaws, jaw_yaw, long_side, under_jaws
 from primitives.registry import build_controller
 from atd.sim.simrobot import robot_info
 from primitives.robot import Readings
@@ -144,6 +144,41 @@ def test_vision_closes_the_jaws_along_a_wall_that_leaves_no_room_across() -> Non
         top = _top((0.18, HIGH_Y - 0.035), 0.05, 0.05, yaw)
         closing = approach_pose(BELIEF, np.array([0.18, 0.2, RIM_Z]), 0.0, 0.0, jaw_yaw(top, BELIEF, MELFA_OPEN))
         assert abs(closing[1, 1]) < 0.2, yaw  # the closing axis (hand y) runs along the wall (world x)
+
+
+# The SDH2's pinch preshape as its factory gives it to vision (`atd translate` of
+# examples/empty_the_box_vision.xml, left arm): fingertips 4.8-6.8 cm out along the closing line,
+# its thumb 9.0-10.7 cm behind the pinch, its footprint's middle 3.8 cm towards the thumb.
+SDH2_VISION = VisionSettings(floor_margin=0.01, wall_margin=0.01, above_rim=0.1, voxel=0.01, min_points=20,
+                             grasp_extent=(0.08847, 0.05), jaw_band=(0.048062, 0.067562, 0.011),
+                             footprint=(0.069235, 0.068116, -0.038235, 0.0), other_tips=(-0.10747, -0.08947, 0.011))
+
+
+def _sdh2_lands_on(seen: np.ndarray, pose: np.ndarray) -> int:
+    """Points of `seen` under the SDH2's fingertips or thumb at `pose`, kept inside the walls."""
+    extent, offset = SDH2_VISION.walls
+    return under_jaws(seen, clear_of_walls([BELIEF], pose, extent, offset=offset), SDH2_VISION.jaw_band,
+                      SDH2_VISION.other_tips)
+
+
+@pytest.mark.parametrize("under", ["fingertip", "thumb"])
+def test_vision_turns_the_sdh2_s_pinch_until_neither_its_fingertips_nor_its_thumb_come_down_on_a_neighbour(
+        under: str) -> None:
+    """A block lies along the box's x; the pinch closes across its 4 cm. A second block beside
+    it, under a fingertip (6 cm off along the closing line) or under the thumb (10 cm behind
+    the pinch), stopped the SDH2's descent over it and the pinch closed on nothing (14 of 15
+    such grasps at seed 58238, docs/empty-the-box.md). Vision turns the pinch until neither
+    comes down on what the picture shows, its footprint kept inside the walls."""
+    centre = np.array([0.18, 0.15, RIM_Z])
+    top = _top((0.18, 0.15), 0.07, 0.04, 0.0)
+    extent, offset = SDH2_VISION.walls
+    first = approach_pose(BELIEF, centre, 0.0, 0.0, jaw_yaw(top, BELIEF, extent, None, offset))
+    way = first[:2, 1] * 0.058 if under == "fingertip" else first[:2, 0] * -0.098
+    neighbour = _top(tuple(centre[:2] + way), 0.02, 0.02, 0.0)
+    seen = np.concatenate([top, neighbour])
+    assert _sdh2_lands_on(neighbour, first) > 0
+    cleared = clear_jaws(first, centre, seen, BELIEF, SDH2_VISION)
+    assert _sdh2_lands_on(neighbour, cleared) == 0
 
 
 @pytest.mark.parametrize("arm", ["right", "left"])

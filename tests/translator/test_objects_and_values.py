@@ -146,6 +146,22 @@ def test_only_a_look_with_stretched_fingers_places_a_top_under_the_half_of_its_t
     assert sdh2.arm.params["grasp_footprint"][2] == pytest.approx(-0.038, abs=0.001)
 
 
+def test_vision_is_told_where_the_sdh2_s_pinch_fingertips_and_thumb_come_down_and_the_barrett_s_nothing():
+    """The SDH2's pinch closes along its hand's y between two fingertips 4.8-6.8 cm out, 1.1 cm
+    either way of the pinch, and its thumb hangs as low 9.0-10.7 cm behind: vision is told both
+    (`jaw_band`, `other_tips`) to keep them off what it sees. The Barrett's pinch closes along
+    its x: neither. A parallel jaw has its jaws and nothing else."""
+    task, found = load_task(EXAMPLES / "empty_the_box_vision.xml")
+    assert found == []
+    look = {arm: translate(task, create("tombatossals", arm=arm)).estd.states_by_name["look"].arm.params
+            for arm in ("left", "right")}
+    assert look["left"]["jaw_band"] == pytest.approx((0.048, 0.0676, 0.011), abs=0.001)
+    assert look["left"]["other_tips"] == pytest.approx((-0.1075, -0.0895, 0.011), abs=0.001)
+    assert not any(look["right"]["jaw_band"]) and not any(look["right"]["other_tips"])
+    melfa = translate(task, create("melfa")).estd.states_by_name["look"].arm.params
+    assert melfa["jaw_band"][1] > 0.0 and not any(melfa["other_tips"])
+
+
 def test_robots_claim_the_perception_events_they_map():
     for factory in every_factory():
         events = factory.capabilities.events
