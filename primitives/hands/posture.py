@@ -6,10 +6,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from atd.model.controllers import CREEP_WATCH
+from atd.model.controllers import CREEP_WATCH, SLIP_DISTANCE
 from atd.model.vocabulary import HandShape as Shape
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
 from primitives.blackboard import STEEP_PINCH
+from primitives.filters import PressureCentres, RecentRows
 from primitives.robot import HandMode, Readings
 
 PRESHAPES = frozenset(s.value for s in Shape if s.value.endswith("_preshape"))
@@ -19,6 +20,12 @@ STALL_TIME = 1.0  # s stopped short of the goal: something blocks the fingers
 STILL_SPEED = 0.05  # of a DOF's speed limit: a finger slower than this on average has stopped
 LOADED = 0.05  # of a DOF's effort limit, in the closing direction: the finger presses on something
 STEEP_WATCH = CREEP_WATCH  # s a steep pinch is held before the hand says it holds
+STEADY_WINDOW = 1.0  # s over which a watched pinch's pads must have kept their grip when the watch ends
+# Of the pads' summed force per second a watched pinch may lose and count as steady: at 6 s the
+# Barrett's lasting pinches eased 0-0.6 %/s, its creeping ones 2-4.4 %/s, two of which dropped
+# 3.5-4.5 s later (docs/robust-grasp.md, "A watched pinch ends on its pads").
+STEADY_EASE = 0.01
+WATCH_BOUND = 2 * STEEP_WATCH  # s a pinch still easing off is watched before the hand gives it up
 
 
 def position_command(values: np.ndarray) -> ControlData:
@@ -100,9 +107,13 @@ class HoldPosition(PostureDrive):
     folded them open 0.15 rad in 0.17 s in PyBullet and the cylinder fell out.
 
     A pinch that may creep out (`STEEP_PINCH`: steeper than friction holds, or held by the
-    object's flank) goes with every sensor steady until it goes: the hand says it holds such
-    a grip only once it has held it STEEP_WATCH, so that a lift which loses it meanwhile says
-    so (docs/robust-grasp.md, "A steep pinch watched", "A pinch held by the flank").
+    object's flank) is watched: the hand says it holds such a grip only once it has held it
+    STEEP_WATCH and the grip is steady, the pads' summed force not easing by more than
+    STEADY_EASE per second over the last STEADY_WINDOW and their contacts not moving across
+    them, so that a lift which loses it meanwhile says so; a creeping object eases the pads
+    as it goes. A grip still easing at WATCH_BOUND is an error: the hand cannot say it holds
+    (docs/robust-grasp.md, "A steep pinch watched", "A pinch held by the flank", "A watched
+    pinch ends on its pads").
     """
 
     def start(self, readings: Readings) -> None:
@@ -116,19 +127,34 @@ class HoldPosition(PostureDrive):
         self.modes = tuple(HandMode.FORCE if forced else HandMode.POSITION for forced in self.forced)
         self.watch = STEEP_WATCH if self.ctx.memory.pop(STEEP_PINCH, False) else 0.0
         self.held = 0.0
-        self._watched()
+        self.centres = PressureCentres(list(hand.pads))
+        self.grip = RecentRows(1 + 2 * len(self.centres.names))  # the pads' summed force and centres
+        self._watched(readings)
 
-    def _watched(self) -> None:
-        """Done once the grip has been held as long as it must be watched."""
+    def _watched(self, readings: Readings) -> None:
+        """Done once the grip has been held as long as it must be watched and is steady."""
+        if not self.watch:
+            self.finish(Status.DONE, "holding the fingers")
+            return
+        force = float(readings.pad_force.sum())
+        self.grip.add(readings.time, np.concatenate(([force], self.centres(readings).ravel())),
+                      readings.time - STEADY_WINDOW)
         if self.held < self.watch:
             return
-        watched = f", a pinch that may creep out watched {self.watch:g} s" if self.watch else ""
-        self.finish(Status.DONE, f"holding the fingers{watched}")
+        rows = self.grip.rows()
+        eased = (rows[0, 0] - force) / STEADY_WINDOW
+        spread = np.fmax.reduce(rows[:, 1:], axis=0) - np.fmin.reduce(rows[:, 1:], axis=0)
+        moved = np.nan_to_num(np.hypot(spread[0::2], spread[1::2]), nan=0.0)  # a pad pressing nothing is not read
+        if eased <= STEADY_EASE * force and not (moved > SLIP_DISTANCE).any():
+            self.finish(Status.DONE, f"holding the fingers, a pinch that may creep out watched {round(self.held, 1):g} s")
+        elif self.held >= WATCH_BOUND:
+            self.finish(Status.ERROR, f"the pinch still not steady after {WATCH_BOUND:g} s watched: the pads eased "
+                        f"{eased:.2g} N/s at {force:.2g} N, their contacts moved {1000 * moved.max(initial=0.0):.2g} mm")
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         if self.status is Status.RUNNING:
             self.held += dt
-            self._watched()
+            self._watched(readings)
         hand = self.ctx.info.hand
         locked = np.clip(self.effort + hand.stiffness * (self.goal - readings.hand_q), -hand.effort_limit, hand.effort_limit)
         values = np.where(self.forced, locked, self.goal)
