@@ -138,22 +138,20 @@ class HoldPosition(PostureDrive):
 
     def _watched(self, readings: Readings) -> None:
         """Done once the grip has been held as long as it must be watched and is steady, or has
-        been held to WATCH_BOUND; an error once the pads press nothing after the watch."""
+        been held to WATCH_BOUND, the pads pressing either way."""
         if not self.watch:
             self.finish(Status.DONE, "holding the fingers")
             return
         force = float(readings.pad_force.sum())
         self.grip.add(readings.time, np.concatenate(([readings.time, force], self.centres(readings).ravel())),
                       readings.time - STEADY_WINDOW)
-        if self.held < self.watch:
-            return
+        if self.held < self.watch or force <= 0.0:
+            return  # nothing between the pads does not hold: the lift's grasp_lost says so
         rows = self.grip.rows()
         eased, error = _ease(rows[:, 0], rows[:, 1])
         spread = np.fmax.reduce(rows[:, 2:], axis=0) - np.fmin.reduce(rows[:, 2:], axis=0)
         moved = np.nan_to_num(np.hypot(spread[0::2], spread[1::2]), nan=0.0)  # a pad pressing nothing is not read
-        if force <= 0.0:
-            self.finish(Status.ERROR, f"the pads press nothing after a pinch watched {round(self.held, 1):g} s")
-        elif eased + STEADY_SIGMAS * error <= STEADY_EASE * rows[:, 1].mean() and not (moved > SLIP_DISTANCE).any():
+        if eased + STEADY_SIGMAS * error <= STEADY_EASE * rows[:, 1].mean() and not (moved > SLIP_DISTANCE).any():
             self.finish(Status.DONE, f"holding the fingers, a pinch that may creep out watched {round(self.held, 1):g} s")
         elif self.held >= WATCH_BOUND - 1e-9:
             self.finish(Status.DONE, f"holding the fingers, a pinch that may creep out held {WATCH_BOUND:g} s, the pads "

@@ -51,14 +51,22 @@ def _ends(force: Callable[[float], float], column: Callable[[float], int] = lamb
 
 
 def test_a_steady_watched_pinch_holds_after_the_watch() -> None:
-    status, time, _ = _ends(lambda t: 5.0 - 0.002 * t)
+    noise = np.random.default_rng(0)  # the pads' scatter about their line in the traced holds: 0.003-0.006 N
+    status, time, _ = _ends(lambda t: 5.0 - 0.002 * t + 0.005 * noise.standard_normal())
     assert status is Status.DONE and abs(time - STEEP_WATCH) < 2 * DT
 
 
-def test_a_watched_pinch_whose_pads_ease_is_not_said_to_hold() -> None:
+def test_a_watched_pinch_whose_pads_ease_holds_only_at_the_bound() -> None:
     status, time, reason = _ends(lambda t: 5.4 - 0.15 * t)  # the duck that slid out after the 6 s watch
-    assert status is Status.ERROR and abs(time - BOUND) < 2 * DT, (status, time, reason)
-    assert "eased" in reason
+    assert status is Status.DONE and abs(time - BOUND) < 2 * DT, (status, time, reason)
+    assert "easing" in reason
+
+
+def test_one_noisy_reading_does_not_make_an_easing_pinch_steady() -> None:
+    """The 50255 bunny's pads eased 1.6 %/s at 17 N; one reading 0.25 N low a second before
+    made a fall between two readings 1 s apart look steady (watch23 said it held at 11.4 s)."""
+    status, time, reason = _ends(lambda t: 17.5 - 0.28 * t - (0.25 if abs(t - 8.0) < DT / 2 else 0.0))
+    assert status is Status.DONE and abs(time - BOUND) < 2 * DT, (status, time, reason)
 
 
 def test_a_watched_pinch_that_settles_holds_once_steady() -> None:
@@ -70,6 +78,11 @@ def test_a_watched_pinch_whose_contacts_move_is_not_said_to_hold() -> None:
     # A contact creeping a taxel column (4.75 mm) every 0.5 s from 5 s to 7.5 s, the force steady.
     status, time, _ = _ends(lambda t: 5.0, lambda t: 0 if t < 5.0 else min(6, 1 + int((t - 5.0) / 0.5)))
     assert status is Status.DONE and 8.4 < time < 8.6
+
+
+def test_a_watched_pinch_whose_pads_let_go_does_not_hold() -> None:
+    status, time, reason = _ends(lambda t: max(0.0, 5.0 - 0.5 * t))  # nothing between the pads from 10 s
+    assert status is Status.RUNNING, (status, time, reason)  # the lift's grasp_lost ends it
 
 
 def test_a_lift_whose_duck_would_creep_out_after_the_watch_does_not_say_success(tmp_path: Path) -> None:
