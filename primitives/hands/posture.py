@@ -146,7 +146,7 @@ class HoldPosition(PostureDrive):
         self.grip.add(readings.time, np.concatenate(([readings.time, force], self.centres(readings).ravel())),
                       readings.time - STEADY_WINDOW)
         if self.held < self.watch or force <= 0.0:
-            return  # nothing between the pads does not hold: the lift's grasp_lost says so
+            return  # watched too short, or nothing between the pads: the lift's grasp_lost tells that
         rows = self.grip.rows()
         eased, error = _ease(rows[:, 0], rows[:, 1])
         spread = np.fmax.reduce(rows[:, 2:], axis=0) - np.fmin.reduce(rows[:, 2:], axis=0)

@@ -2,7 +2,9 @@
 Barrett held a duck 2.2 cm off its pinch line, the lift's 6 s watch passed with the pads
 easing 0.15 N/s at the held effort, the lift said success and the duck slid out in the
 judge's hold; watched lifts whose pads eased as fast dropped 3.5-4.5 s after their 6 s
-(docs/robust-grasp.md, "A watched pinch ends on its pads")."""
+(docs/robust-grasp.md, "A watched pinch ends on its pads"). Steady is read on the slope of the
+whole last second, and a grip still easing holds at the bound ("A watched pinch says it holds on
+a steady slope")."""
 
 from __future__ import annotations
 
@@ -20,7 +22,7 @@ from primitives.robot import Readings, RobotInfo
 from tests.primitives.conftest import campaign_trial, generalisation_at
 
 DT = 0.005
-BOUND = 2 * STEEP_WATCH  # s an easing pinch is watched before the hand gives it up
+BOUND = 2 * STEEP_WATCH  # s an easing pinch is watched before it counts as held
 BARRETT = robot_info(load_description("tombatossals", "right"))
 
 
@@ -64,7 +66,8 @@ def test_a_watched_pinch_whose_pads_ease_holds_only_at_the_bound() -> None:
 
 def test_one_noisy_reading_does_not_make_an_easing_pinch_steady() -> None:
     """The 50255 bunny's pads eased 1.6 %/s at 17 N; one reading 0.25 N low a second before
-    made a fall between two readings 1 s apart look steady (watch23 said it held at 11.4 s)."""
+    makes the fall between two readings 1 s apart look steady (watch23's rule: held at 9 s here,
+    at the bunny 11.4 s, 0.03 s before it let go)."""
     status, time, reason = _ends(lambda t: 17.5 - 0.28 * t - (0.25 if abs(t - 8.0) < DT / 2 else 0.0))
     assert status is Status.DONE and abs(time - BOUND) < 2 * DT, (status, time, reason)
 
