@@ -18,7 +18,7 @@ import numpy as np
 from atd.model.frames import GRAVITY
 from primitives.base import Condition, Context, StateView, Status
 from primitives.blackboard import EMPTY_HAND
-from primitives.filters import ContactWrench, Debounce, LowPass, RecentRows, world_load
+from primitives.filters import ContactWrench, Debounce, LowPass, PressureCentres, RecentRows, world_load
 from primitives.hands.posture import REACHED
 from primitives.robot import HandInfo, Readings
 from primitives.values import Approach, NothingFound
@@ -374,19 +374,10 @@ class SlipWatched(Debounced):
 
     def __init__(self, ctx: Context, sensors: tuple[str, ...]) -> None:
         super().__init__(ctx, sensors)
-        pads = [ctx.info.hand.pads[i] for i in pad_indices(ctx.info.hand, sensors)]
-        self.names = [p.name for p in pads if p.taxels is not None]
-        # Per pad: the taxels' centres in the pad's frame (m), columns along x, rows along y.
-        self.cells = [self._centres(p.taxels, p.half_size) for p in pads if p.taxels is not None]
+        self.centres = PressureCentres([ctx.info.hand.pads[i] for i in pad_indices(ctx.info.hand, sensors)])
+        self.names = self.centres.names
         self.distance = float(self.params["distance"])
         self.watch = float(self.params["watch"])
-
-    @staticmethod
-    def _centres(taxels: tuple[int, int], half: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
-        rows, cols = taxels
-        x = ((np.arange(cols) + 0.5) / cols * 2.0 - 1.0) * half[0]
-        y = ((np.arange(rows) + 0.5) / rows * 2.0 - 1.0) * half[1]
-        return x, y
 
     def start(self, readings: Readings) -> None:
         super().start(readings)
@@ -405,14 +396,11 @@ class SlipWatched(Debounced):
     def test(self, readings: Readings, dt: float) -> bool:
         self.time = readings.time
         if self.moved_at is None:
-            for i, (name, (x, y)) in enumerate(zip(self.names, self.cells)):
-                image = readings.taxels[name]
-                total = float(image.sum())
-                if total > 0.0:
-                    centre = np.array([image.sum(axis=0) @ x, image.sum(axis=1) @ y]) / total
-                    self.low[i] = np.minimum(self.low[i], centre)
-                    self.high[i] = np.maximum(self.high[i], centre)
-                    self.moved[i] = float(np.hypot(*(self.high[i] - self.low[i])))
+            centre = self.centres(readings)
+            pressed = ~np.isnan(centre[:, 0])
+            self.low[pressed] = np.minimum(self.low[pressed], centre[pressed])
+            self.high[pressed] = np.maximum(self.high[pressed], centre[pressed])
+            self.moved[pressed] = np.hypot(*(self.high[pressed] - self.low[pressed]).T)
             if self.moved.max(initial=0.0) > self.distance:
                 self.moved_at = readings.time
         return self.moved_at is None or readings.time - self.moved_at >= self.watch

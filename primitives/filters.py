@@ -14,7 +14,7 @@ from collections import deque
 import numpy as np
 
 from atd.model.frames import GRAVITY
-from primitives.robot import HandInfo, Readings
+from primitives.robot import HandInfo, PadInfo, Readings
 
 
 class LowPass:
@@ -187,3 +187,31 @@ class RecentRows:
     def rows(self) -> np.ndarray:
         """The rows kept, oldest first (a view, valid until the next `add`)."""
         return self._buffer[self._end - len(self._times):self._end]
+
+
+class PressureCentres:
+    """Each taxel pad's centre of pressure (the taxel image's force-weighted cell centre, m,
+    in the pad's frame, x along its columns): where its contacts lie, NaN on a pad pressing
+    nothing. Pads without a taxel array are not read."""
+
+    def __init__(self, pads: list[PadInfo]) -> None:
+        arrays = [p for p in pads if p.taxels is not None]
+        self.names = [p.name for p in arrays]
+        self.cells = [self._centres(p.taxels, p.half_size) for p in arrays]
+
+    @staticmethod
+    def _centres(taxels: tuple[int, int], half: tuple[float, float]) -> tuple[np.ndarray, np.ndarray]:
+        rows, cols = taxels
+        x = ((np.arange(cols) + 0.5) / cols * 2.0 - 1.0) * half[0]
+        y = ((np.arange(rows) + 0.5) / rows * 2.0 - 1.0) * half[1]
+        return x, y
+
+    def __call__(self, readings: Readings) -> np.ndarray:
+        """(pads, 2): each pad's centre now."""
+        centres = np.full((len(self.names), 2), np.nan)
+        for i, (name, (x, y)) in enumerate(zip(self.names, self.cells)):
+            image = readings.taxels[name]
+            total = float(image.sum())
+            if total > 0.0:
+                centres[i] = np.array([image.sum(axis=0) @ x, image.sum(axis=1) @ y]) / total
+        return centres

@@ -6,10 +6,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from atd.model.controllers import CREEP_WATCH
+from atd.model.controllers import CREEP_WATCH, SLIP_DISTANCE
 from atd.model.vocabulary import HandShape as Shape
 from primitives.base import Context, ControlData, Controller, HandCommand, Status
 from primitives.blackboard import STEEP_PINCH
+from primitives.filters import PressureCentres, RecentRows
 from primitives.robot import HandMode, Readings
 
 PRESHAPES = frozenset(s.value for s in Shape if s.value.endswith("_preshape"))
@@ -19,6 +20,16 @@ STALL_TIME = 1.0  # s stopped short of the goal: something blocks the fingers
 STILL_SPEED = 0.05  # of a DOF's speed limit: a finger slower than this on average has stopped
 LOADED = 0.05  # of a DOF's effort limit, in the closing direction: the finger presses on something
 STEEP_WATCH = CREEP_WATCH  # s a steep pinch is held before the hand says it holds
+STEADY_WINDOW = 1.0  # s over which a watched pinch's pads must have kept their grip
+# Of the pads' summed force per second a watched pinch may lose and count as steady: at 6 s the
+# Barrett's lasting pinches eased 0-0.6 %/s, its creeping ones 1.6-4.4 %/s, two of which dropped
+# 3.5-4.5 s later (docs/robust-grasp.md, "A watched pinch ends on its pads").
+STEADY_EASE = 0.01
+# Standard errors of the window's fitted slope the ease must clear as well: the pads' summed force
+# scatters 0.003-0.006 N about its 1-s line (median per traced hold, up to 0.3 N where the lift shook
+# it), one standard error 0.02 %/s, 0.3 %/s at worst ("A watched pinch says it holds on a steady slope").
+STEADY_SIGMAS = 3.0
+WATCH_BOUND = 2 * STEEP_WATCH  # s a pinch still easing is watched: held that long with the pads pressing, it holds
 
 
 def position_command(values: np.ndarray) -> ControlData:
@@ -100,9 +111,14 @@ class HoldPosition(PostureDrive):
     folded them open 0.15 rad in 0.17 s in PyBullet and the cylinder fell out.
 
     A pinch that may creep out (`STEEP_PINCH`: steeper than friction holds, or held by the
-    object's flank) goes with every sensor steady until it goes: the hand says it holds such
-    a grip only once it has held it STEEP_WATCH, so that a lift which loses it meanwhile says
-    so (docs/robust-grasp.md, "A steep pinch watched", "A pinch held by the flank").
+    object's flank) is watched: the hand says it holds such a grip only once it has held it
+    STEEP_WATCH and the grip is steady, the pads' summed force not easing by more than
+    STEADY_EASE per second over the last STEADY_WINDOW (the slope of their least-squares line,
+    clear of its noise) and their contacts not moving across them, so that a lift which loses
+    it meanwhile says so; a creeping object eases the pads as it goes. A grip still easing at
+    WATCH_BOUND has been lifted and held that long: with the pads still pressing, it holds
+    (docs/robust-grasp.md, "A steep pinch watched", "A pinch held by the flank", "A watched
+    pinch ends on its pads", "A watched pinch says it holds on a steady slope").
     """
 
     def start(self, readings: Readings) -> None:
@@ -116,19 +132,35 @@ class HoldPosition(PostureDrive):
         self.modes = tuple(HandMode.FORCE if forced else HandMode.POSITION for forced in self.forced)
         self.watch = STEEP_WATCH if self.ctx.memory.pop(STEEP_PINCH, False) else 0.0
         self.held = 0.0
-        self._watched()
+        self.centres = PressureCentres(list(hand.pads))
+        self.grip = RecentRows(2 + 2 * len(self.centres.names))  # time, the pads' summed force, their centres
+        self._watched(readings)
 
-    def _watched(self) -> None:
-        """Done once the grip has been held as long as it must be watched."""
-        if self.held < self.watch:
+    def _watched(self, readings: Readings) -> None:
+        """Done once the grip has been held as long as it must be watched and is steady, or has
+        been held to WATCH_BOUND, the pads pressing either way."""
+        if not self.watch:
+            self.finish(Status.DONE, "holding the fingers")
             return
-        watched = f", a pinch that may creep out watched {self.watch:g} s" if self.watch else ""
-        self.finish(Status.DONE, f"holding the fingers{watched}")
+        force = float(readings.pad_force.sum())
+        self.grip.add(readings.time, np.concatenate(([readings.time, force], self.centres(readings).ravel())),
+                      readings.time - STEADY_WINDOW)
+        if self.held < self.watch or force <= 0.0:
+            return  # watched too short, or nothing between the pads: the lift's grasp_lost tells that
+        rows = self.grip.rows()
+        eased, error = _ease(rows[:, 0], rows[:, 1])
+        spread = np.fmax.reduce(rows[:, 2:], axis=0) - np.fmin.reduce(rows[:, 2:], axis=0)
+        moved = np.nan_to_num(np.hypot(spread[0::2], spread[1::2]), nan=0.0)  # a pad pressing nothing is not read
+        if eased + STEADY_SIGMAS * error <= STEADY_EASE * rows[:, 1].mean() and not (moved > SLIP_DISTANCE).any():
+            self.finish(Status.DONE, f"holding the fingers, a pinch that may creep out watched {round(self.held, 1):g} s")
+        elif self.held >= WATCH_BOUND - 1e-9:
+            self.finish(Status.DONE, f"holding the fingers, a pinch that may creep out held {WATCH_BOUND:g} s, the pads "
+                        f"easing {eased:.2g} N/s at {force:.2g} N, their contacts moved {1000 * moved.max(initial=0.0):.2g} mm")
 
     def update(self, readings: Readings, dt: float) -> ControlData:
         if self.status is Status.RUNNING:
             self.held += dt
-            self._watched()
+            self._watched(readings)
         hand = self.ctx.info.hand
         locked = np.clip(self.effort + hand.stiffness * (self.goal - readings.hand_q), -hand.effort_limit, hand.effort_limit)
         values = np.where(self.forced, locked, self.goal)
@@ -183,3 +215,16 @@ class OpenTo(PostureDrive):
         """A closing DOF pushed open past its goal has reached it."""
         beyond = self.closing * (q - self.goal)  # > 0: more closed than the goal
         return np.where(self.closing != 0, beyond > self.tolerance, np.abs(self.goal - q) > self.tolerance)
+
+
+def _ease(times: np.ndarray, forces: np.ndarray) -> tuple[float, float]:
+    """How fast `forces` fall (N/s) along their least-squares line over `times`, and that slope's
+    standard error from their scatter about the line: a whole window's trend, not two readings'
+    difference, which one noisy reading can turn."""
+    t = times - times.mean()
+    spread = float(t @ t)
+    if len(t) < 3 or spread <= 0.0:
+        return 0.0, np.inf
+    slope = float(t @ (forces - forces.mean())) / spread
+    residual = forces - forces.mean() - slope * t
+    return -slope, float(np.sqrt(residual @ residual / (len(t) - 2) / spread))

@@ -35,8 +35,12 @@ def test_a_bunny_dropped_in_the_weighing_is_grasped_again_where_it_stood(tmp_pat
     assert record.judged_succeeded, (record.judge_reason, record.summary)
 
 
-def test_a_bunny_that_slipped_out_in_the_weighing_is_held_harder_and_lifted(tmp_path: Path) -> None:
+def test_a_bunny_that_slipped_out_in_the_weighing_is_held_harder_and_its_lift_says_when_it_goes(
+        tmp_path: Path) -> None:
+    """Held harder, the bunny is lifted, its watched pinch easing 1.6 %/s at 16 N, and slides off
+    the pads' corners 11.4 s into the hold: main said success at 6 s and the judge's 2 s passed,
+    5.4 s before it went ("A watched pinch says it holds on a steady slope")."""
     record = _bunny(50255, 1, "right_far", tmp_path)
     forces = [float(f) for f in re.findall(r"tactile_f\d ([\d.]+) N", _held(record))]
     assert min(forces) > 7.5, forces  # twice the 5 N asked, within force adaptation's band
-    assert record.judged_succeeded, (record.judge_reason, record.summary)
+    assert not record.task_succeeded and "grasp_lost" in record.summary, (record.judge_reason, record.summary)
