@@ -396,10 +396,9 @@ class Factory(ABC):
         along it, and how far along the hand's x from where they close; and the hand's other
         lowest links there (`other_tips`: from and to along its x, either way along its y). A
         parallel jaw's open fingers; a multi-finger hand's pinch preshape where its pinch closes
-        along the y: the SDH2's two fingers and its thumb, which came down on a neighbour's top
-        in 14 of 15 grasps that closed on nothing (docs/empty-the-box.md, "The SDH2's fingertips
-        and thumb kept off what the picture shows"). Zeros for a pinch closing along another line
-        (the Barrett's, along its x)."""
+        along the y: the SDH2's two fingers and its thumb, which come down on neighbours' tops
+        (docs/empty-the-box.md, "The SDH2's fingertips and thumb kept off what the picture shows").
+        Zeros for a pinch closing along another line (the Barrett's, along its x)."""
         none = {"jaw_band": (0.0, 0.0, 0.0), "other_tips": (0.0, 0.0, 0.0)}
         if self.arm.hand.kind == "parallel jaw":
             inner = self.robot.pad_opening(HandShape.OPEN.value, np.pi / 2) / 2.0
