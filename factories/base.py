@@ -324,12 +324,13 @@ class Factory(ABC):
                              "use another method, a wider container, or a hand shape that keeps the hand narrower")
         if state.method is PerceptionMethod.VISION and not self.robot.cameras:
             raise Unmappable(f"the {self.name} has no depth camera to look with", "use a blind method")
+        pinch = self.grasp_footprint(context)
         arm = self.controller("perceive", method=method, writes=written(state, ValueKind.POSE),
                               container_pose=container.pose.matrix, container_size=container.size,
                               container_wall=container.wall, hand_reach=round(reach, 6), hand_radius=round(radius, 6),
                               grasp_reach=round(max(self.robot.hand_reach(p) for p in self.robot.hand.postures), 6),
                               grasp_extent=tuple(round(e, 6) for e in self.robot.hand_extent(HandShape.OPEN.value)),
-                              **self.jaw_band(context), **self.grasp_footprint(context),
+                              **self.jaw_band(context, pinch), **pinch,
                               sweep_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture, SWEEPING_TIP)),
                               hand_extent=tuple(round(e, 6) for e in self.robot.hand_extent(posture)),
                               tip_length=round(self.robot.tip_length(posture, SWEEPING_TIP), 6),
@@ -390,7 +391,8 @@ class Factory(ABC):
             return posture
         return self.robot.hand.boxed.get(posture, posture)
 
-    def jaw_band(self, context: MappingContext) -> dict[str, tuple[float, ...]]:
+    def jaw_band(self, context: MappingContext, pinch: dict[str, tuple[float, ...] | float]
+                 ) -> dict[str, tuple[float, ...]]:
         """The fingertips a box round's grasp comes down with, closing along the hand's y
         (`perceive`'s `jaw_band`): from the pads' half opening along it to how far the tips reach
         along it, and how far along the hand's x from where they close; and the hand's other
@@ -398,13 +400,13 @@ class Factory(ABC):
         parallel jaw's open fingers; a multi-finger hand's pinch preshape where its pinch closes
         along the y: the SDH2's two fingers and its thumb, which come down on neighbours' tops
         (docs/empty-the-box.md, "The SDH2's fingertips and thumb kept off what the picture shows").
-        Zeros for a pinch closing along another line (the Barrett's, along its x)."""
+        Zeros for a pinch closing along another line (the Barrett's, along its x); `pinch` is
+        the hand's `grasp_footprint` in `context`."""
         none = {"jaw_band": (0.0, 0.0, 0.0), "other_tips": (0.0, 0.0, 0.0)}
         if self.arm.hand.kind == "parallel jaw":
             inner = self.robot.pad_opening(HandShape.OPEN.value, np.pi / 2) / 2.0
             across, along = self.robot.hand_extent(HandShape.OPEN.value, SWEEPING_TIP)
             return {**none, "jaw_band": (round(inner, 6), round(along, 6), round(across, 6))}
-        pinch = self.grasp_footprint(context)
         if pinch["grasp_turn"] != 0.0 or not any(pinch["grasp_footprint"]):
             return none
         preshape = self.boxed(HandShape.PINCH_GRASP_PRESHAPE.value, context)
