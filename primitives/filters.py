@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from collections import deque
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -59,6 +60,29 @@ STILL_TIME = 0.05  # s without such a jump before the tare is held: a put-down's
 TARE_LIMIT = 0.5  # s: held by then whatever it reads, a hand still knocked about is pressed on, not ringing
 
 
+@dataclass(frozen=True, eq=False)
+class Leaving:
+    """A motion along `direction` (world, unit) that may start pressed on something it moves
+    away from, by a hand of the believed model `hand`, feeling contacts of `threshold` N."""
+
+    hand: HandInfo
+    direction: np.ndarray
+    threshold: float
+
+    def along(self, readings: Readings) -> np.ndarray:
+        """The force on the wrist beyond the believed empty hand, world frame."""
+        return readings.tcp[:3, :3] @ held_wrench(self.hand, readings)[:3]
+
+    def press(self, readings: Readings) -> float:
+        """N with which something the hand leaves behind pushes it along `direction`, where
+        that alone could read as a contact once eased (at least `threshold`); else 0. A
+        downward part is left out: a held object's weight goes along with the hand."""
+        beyond = self.along(readings)
+        beyond[2] = max(float(beyond[2]), 0.0)
+        pushed = float(beyond @ self.direction)
+        return pushed if pushed >= self.threshold else 0.0
+
+
 class ContactWrench:
     """The wrench that contacts add since `start`: tared, gravity turned with the hand, filtered.
 
@@ -73,10 +97,19 @@ class ContactWrench:
     the force jumps faster than RING_RATE the tare follows the reading, and it is held
     once the reading has not jumped for STILL_TIME (or TARE_LIMIT after the start). A start
     whose reading does not jump keeps the start's reading, as before.
+
+    A motion that starts pressed on what it moves away from (`Leaving`: an explore rising
+    off an object the last state pressed on at 200 N) feels that press ease as it goes,
+    and against the start's tare the easing reads as a force against the motion, the same
+    as a new contact. So while such a press eases the tare eases with it along the motion,
+    down to what the believed empty hand would read; a contact the motion then meets reads
+    in full.
     """
 
-    def __init__(self, filter_time: float = 0.0) -> None:
+    def __init__(self, filter_time: float = 0.0, leaving: Leaving | None = None) -> None:
         self._filter = LowPass(filter_time)
+        self._leaving = leaving
+        self._press = 0.0  # N along the motion that pressed the hand at the tare
         self._load_world = np.zeros(3)
         self._torque0 = np.zeros(3)
         self.value = np.zeros(6)
@@ -96,6 +129,7 @@ class ContactWrench:
 
     def _tare(self, readings: Readings) -> None:
         self._load_world = world_load(readings)
+        self._press = self._leaving.press(readings) if self._leaving is not None else 0.0
         self._torque0 = readings.wrench[3:].copy()
         self._filter.reset(np.zeros(6))
         self.value = np.zeros(6)
@@ -105,9 +139,18 @@ class ContactWrench:
         raw = readings.wrench
         if self._settling:
             self._settle(readings, dt)
-        force = raw[:3] - readings.tcp[:3, :3].T.dot(self._load_world)  # .dot: half the cost of @ here
+        load = self._load_world if self._press == 0.0 else self._eased_load(readings)
+        force = raw[:3] - readings.tcp[:3, :3].T.dot(load)  # .dot: half the cost of @ here
         self.value = self._filter(np.concatenate((force, raw[3:] - self._torque0)), dt)
         return self.value
+
+    def _eased_load(self, readings: Readings) -> np.ndarray:
+        """The start's load less as much of its press along the motion as has eased since."""
+        leaving = self._leaving
+        assert leaving is not None
+        pressing = float(leaving.along(readings) @ leaving.direction)
+        eased = min(max(self._press - pressing, 0.0), self._press)
+        return self._load_world - eased * leaving.direction
 
     def _settle(self, readings: Readings, dt: float) -> None:
         """Follow the reading while it rings; hold the tare once it is still."""

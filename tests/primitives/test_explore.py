@@ -13,6 +13,7 @@ from atd.model.vocabulary import EventType
 from primitives.arm.explore import Explore
 from primitives.arm.move import EASE_OFF
 from primitives.base import Context, Status
+from primitives.filters import held_wrench
 from primitives.values import Contact
 from tests.primitives.box_worlds import CORNER, FLOOR, MELFA_REACH, box_world, cube
 from tests.primitives.conftest import Stage, events, execute, leaf, machine, melfa, use
@@ -76,6 +77,31 @@ def test_a_pad_s_force_over_its_start_is_a_contact_and_named() -> None:
     assert explore.status is Status.DONE  # done once off it: the next motion starts from rest
     robot.close()
 
+
+def test_a_press_the_hand_rises_off_is_not_a_contact_as_it_eases_but_one_from_above_is() -> None:
+    """free_one's rise started on the Baxter's wrist pressed at 200 N by the slides before it
+    (seed 77123, docs/empty-the-box.md): against the start's tare the press easing read as a
+    151.6 N contact, and the run ended `stuck`."""
+    robot = melfa()
+    ctx = Context(info=robot.info, params={"direction": (0.0, 0.0, 1.0), "speed": 0.15, "force_threshold": 150.0,
+                                           "max_distance": 0.15, "filter_time": 0.0})
+    explore = Explore(ctx)
+    still = robot.read()
+    empty = still.wrench - held_wrench(robot.info.hand, still)  # what the believed empty hand reads
+
+    def pushed(t: float, up: float, sideways: float = 0.0):
+        force = still.tcp[:3, :3].T @ np.array([sideways, 0.0, up])  # world frame to the sensor's
+        return dataclasses.replace(still, time=t, wrench=empty + np.concatenate((force, np.zeros(3))))
+
+    dt = 0.005
+    explore.start(pushed(0.0, 200.0, sideways=60.0))  # the object below pushes the hand up and aside
+    for tick, up in enumerate(np.linspace(200.0, 0.0, 101)):  # eased in 0.5 s, as the rise leaves it
+        explore.update(pushed(tick * dt, up, sideways=0.3 * up), dt)
+        assert explore.status is Status.RUNNING and explore.found is None, up
+    for tick, down in enumerate(np.linspace(0.0, 155.0, 32), start=101):  # then something above pushes it down
+        explore.update(pushed(tick * dt, -down), dt)
+    assert explore.found is not None and explore.found.sensor == "wrist" and explore.found.force >= 150.0
+    robot.close()
 
 
 def test_an_arm_that_stops_short_without_a_contact_ends_in_error_naming_the_joint() -> None:
