@@ -69,7 +69,7 @@ class Leaving:
     direction: np.ndarray
     threshold: float
 
-    def along(self, readings: Readings) -> np.ndarray:
+    def beyond(self, readings: Readings) -> np.ndarray:
         """The force on the wrist beyond the believed empty hand, world frame."""
         return readings.tcp[:3, :3] @ held_wrench(self.hand, readings)[:3]
 
@@ -77,7 +77,7 @@ class Leaving:
         """N with which something the hand leaves behind pushes it along `direction`, where
         that alone could read as a contact once eased (at least `threshold`); else 0. A
         downward part is left out: a held object's weight goes along with the hand."""
-        beyond = self.along(readings)
+        beyond = self.beyond(readings)
         beyond[2] = max(float(beyond[2]), 0.0)
         pushed = float(beyond @ self.direction)
         return pushed if pushed >= self.threshold else 0.0
@@ -148,7 +148,7 @@ class ContactWrench:
         """The start's load less as much of its press along the motion as has eased since."""
         leaving = self._leaving
         assert leaving is not None
-        pressing = float(leaving.along(readings) @ leaving.direction)
+        pressing = float(leaving.beyond(readings) @ leaving.direction)
         eased = min(max(self._press - pressing, 0.0), self._press)
         return self._load_world - eased * leaving.direction
 
