@@ -14,6 +14,7 @@ from primitives.arm.explore import Explore
 from primitives.arm.move import EASE_OFF
 from primitives.base import Context, Status
 from primitives.filters import held_wrench
+from primitives.robot import Readings
 from primitives.values import Contact
 from tests.primitives.box_worlds import CORNER, FLOOR, MELFA_REACH, box_world, cube
 from tests.primitives.conftest import Stage, events, execute, leaf, machine, melfa, use
@@ -89,7 +90,7 @@ def test_a_press_the_hand_rises_off_is_not_a_contact_as_it_eases_but_one_from_ab
     still = robot.read()
     empty = still.wrench - held_wrench(robot.info.hand, still)  # what the believed empty hand reads
 
-    def pushed(t: float, up: float, sideways: float = 0.0):
+    def pushed(t: float, up: float, sideways: float = 0.0) -> Readings:
         force = still.tcp[:3, :3].T @ np.array([sideways, 0.0, up])  # world frame to the sensor's
         return dataclasses.replace(still, time=t, wrench=empty + np.concatenate((force, np.zeros(3))))
 
