@@ -43,7 +43,7 @@ class Cap:
     weak: float = 1.0  # of its finger's push f2's pad feels (the rest on the finger's bare link)
     chatter: float = 0.0  # N the pads' readings swing about their squeeze, in turn, tick to tick (PyBullet's contacts)
     slips_out: bool = False  # once free it leaves the pads and falls away (a pinch across its axis squeezes it out)
-    neck: float = 0.0  # m: where it slipped out, fingers closing nearer than this stop on their bare links, no pad touched
+    neck: float = 0.0  # m: once it slipped out, fingers nearer than this stop on their bare links, no pad touching
     turned: float = field(default=0.0, init=False)  # rad the cap has turned
     wound: float = field(default=0.0, init=False)  # rad this pinch has twisted a stuck cap
     seated_at: float | None = field(default=None, init=False)  # TCP height when this pinch took hold of it
