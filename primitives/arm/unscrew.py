@@ -306,13 +306,18 @@ class UnscrewArm(Controller):
         return self.room > 0.0 and self.ctx.info.hand.pads[0].taxels is None
 
     def _lost_where_held(self) -> bool:
-        """Does a close on nothing here say the cap left the pads? Only where the pads pinched
-        and twisted it (`held`) round its side, where a cap on its thread stays between them:
-        not jaws that know only their motor (`_gone`), nor a gripper's jaws pinching from over
-        SEAT_SHORT above the depth the descent was going to (`short`), a jaw on the cap's top,
-        whose pads' tips pinch its rim and slide across it to close on nothing beyond, the
-        cap on its thread (the Melfa without the alignment, PyBullet, docs/unscrew-campaign.md)."""
-        return self.held and not self._motor_jaws() and (self.room == 0.0 or self.short <= SEAT_SHORT)
+        """Does a pinch here that finds nothing say the cap left the pads? Only where they
+        pinched and twisted it (`held`) round its side, where a cap on its thread stays between
+        them: not jaws that know only their motor (`_gone`), nor jaws pinching from above their
+        depth (`_above_depth`), whose pads' tips pinch the cap's rim and slide across its top to
+        close on nothing beyond, the cap on its thread (the Melfa without the alignment,
+        PyBullet, docs/unscrew-campaign.md)."""
+        return self.held and not self._motor_jaws() and not self._above_depth()
+
+    def _above_depth(self) -> bool:
+        """A gripper's jaws pinch from over SEAT_SHORT above where the descent was sending them
+        (`short`): it stopped on a jaw on the cap's top, and no seat has brought them down."""
+        return self.room > 0.0 and self.short > SEAT_SHORT
 
     def _yield_step(self, readings: Readings, dt: float) -> float:
         """How far (m, signed along `jaw_line`) the arm yields this tick to the wrist's push
@@ -366,14 +371,15 @@ class UnscrewArm(Controller):
 
     def _gone(self, readings: Readings, felt: str) -> None:
         """The fingers closed on nothing where they had pinched and twisted the cap, or closed
-        with no pad touching anything (a Barrett's fingers stopped by their bare links on the
-        jar's neck or each other, over FINGER_MIN_DISTANCE apart): a cap on its thread stays
-        where it was pinched, so this one came free and left the pads (a pinch across its
-        axis squeezes a freed cap out, docs/unscrew-campaign.md). Give up now, saying so
-        (`felt`: what this pinch did): the remaining pinches would find nothing too. Not where the jaws
-        know only their motor (`_motor_jaws`): their one force cannot place a cap pinched
-        off their line, and the Baxter's paddles, 13 mm across a cap's axis, held a chord of
-        it, gave way in the twist and slid off the cap, still on its thread, in the next pinch."""
+        with no pad touching anything (a Barrett's fingers stopped by their bare links, over
+        FINGER_MIN_DISTANCE apart, docs/unscrew-campaign.md): a cap on its thread stays where
+        it was pinched, so this one came free and left the pads (a pinch across its axis
+        squeezes a freed cap out). Give up now, saying so (`felt`: what this pinch did): the
+        remaining pinches would find nothing too. Not where the jaws know only their motor
+        (`_motor_jaws`): their one force cannot place a cap pinched off their line, and the
+        Baxter's paddles, 13 mm across a cap's axis, held a chord of it, gave way in the twist
+        and slid off the cap, still on its thread, in the next pinch; nor from above their
+        depth (`_lost_where_held`)."""
         self._hold_here(readings, Phase.FAILED)
         self.finish(Status.ERROR, f"the cap came off its thread and left the pads after {self.tally.twists} twists: "
                                   f"pinch {self.tally.pinches} {felt} where they had held it "
@@ -430,20 +436,15 @@ class UnscrewArm(Controller):
             # tells it where the pads feel the cap)
             lost = self.cap.empty and self.tally.twists > 0 and self._motor_jaws()
             where = "no cap between the pads, on its thread or off," if lost else "the cap not felt to come off"
+            above = f" (the jaws {self.short * 1000:.0f} mm over their depth round the cap: a jaw on its top)"
             self._hold_here(readings, Phase.FAILED)
             self.finish(Status.ERROR, f"{where} after {self.tally.pinches} pinches and {self.tally.twists} "
-                                      f"twists: {why}{self._on_top()}", twists=self.tally.twists)
+                                      f"twists: {why}{above if self._above_depth() else ''}", twists=self.tally.twists)
             return
         self._align()
         self._hold_here(readings, Phase.RELEASE)
         self.ctx.blackboard.release = True
         self.ctx.blackboard.contact = False
-
-    def _on_top(self) -> str:
-        """What a verdict adds of jaws pinching from over their depth (`_lost_where_held`)."""
-        if self.room == 0.0 or self.short <= SEAT_SHORT:
-            return ""
-        return f" (the jaws {self.short * 1000:.0f} mm over their depth round the cap: a jaw on its top)"
 
     def _align(self) -> None:
         """The reactive alignment (Fig. 3.12): move the start pose across the approach so that
