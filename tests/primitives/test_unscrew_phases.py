@@ -207,8 +207,9 @@ def test_a_cap_that_comes_free_and_leaves_fingers_that_then_touch_nothing_ends_t
     """The Barrett's PyBullet trial 3 at seed 33156 without the alignment (docs/unscrew-campaign.md):
     the fourth twist freed the cap, which sprang out of the pads onto the table; every pinch
     after it stopped its fingers on their bare links, over FINGER_MIN_DISTANCE apart, no pad
-    touching anything, and timed out. After 36 of them the unscrew ended "cap still on".
-    Where the pads had held the cap, a pinch whose pads touch nothing says it left them."""
+    touching anything, and timed out. After 36 of them the unscrew ended "cap still on". Here
+    the SDH2's fingers stop 20 mm apart once the cap is out. Where the pads had held the cap,
+    a pinch whose pads touch nothing says it left them."""
     robot, arm, _ = _run(Cap(turns_to_free=55.0 / 360.0, slips_out=True, neck=0.02), max_pinches=5)
     assert robot.cap.free
     assert arm.status is Status.ERROR and arm.tally.twists == 2 and arm.tally.pinches == 3, arm.reason
