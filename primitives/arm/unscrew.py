@@ -8,8 +8,10 @@ what the wrist and the pads say, never where the simulator has the cap. A cap th
 held and twisted, and then close on nothing where they held it, has left its thread and
 the pads (a pinch off its axis squeezes a freed cap out): the unscrew ends saying so, not
 pinching on after a cap that is gone; not on jaws without tactile pads, whose grip on a
-chord of a cap off their line slides off a cap still on its thread. Its phases are
-in `primitives.arm.unscrew_phases`; docs/writing-a-primitive.md draws the machine.
+chord of a cap off their line slides off a cap still on its thread, nor on jaws pinching
+from the cap's top (`_lost_where_held`). Pinches spent, the unscrew says what it felt: the
+cap not felt to come off, and why the last one ended. Its phases are in
+`primitives.arm.unscrew_phases`; docs/writing-a-primitive.md draws the machine.
 
 A gripper's jaws have little room around a cap (the Melfa's 4 mm a side around a 60 mm
 cap), so an approach off the cap's axis lands a jaw on its top, and the guarded descent
@@ -31,6 +33,7 @@ from primitives.arm.unscrew_phases import Phase, Pulling, Seating, Tally, TcpPos
 from primitives.base import Context, ControlData, Controller, Status
 from primitives.blackboard import SHORT_OF_TARGET, CapGrip
 from primitives.filters import ContactWrench, held_wrench
+from primitives.hands.parallel_jaw import TOUCH
 from primitives.robot import Readings
 from primitives.search import search_offsets
 
@@ -83,9 +86,10 @@ class UnscrewArm(Controller):
         short = self.ctx.memory.pop(SHORT_OF_TARGET, None)
         down = 0.0 if short is None else float(np.asarray(short) @ (self.start_pose.rotation @ self.direction))
         self.room = self._jaws_room(readings)
+        along = self.start_pose.rotation @ self.direction
+        self.depth = self.start_pose.position + down * along  # where the guarded descent was sending the TCP
         if self.alignment and down > SEAT_SHORT and self.room > 0.0:
-            along = self.start_pose.rotation @ self.direction
-            goal = self.start_pose.position + down * along
+            goal = self.depth
             self.seating = Seating(goal, goal, [self.start_pose.position - SEAT_RISE * along])
             self._hold_here(readings, Phase.ACROSS)  # off the top first: the wrist still rings with the stop on it
             self.ctx.blackboard.contact = False  # the jaws wait open
@@ -142,13 +146,17 @@ class UnscrewArm(Controller):
         nudge = self.ctx.blackboard.arm_nudge
         if nudge is not None:
             self.still.position = self.still.position + nudge * dt
-        if self.cap.empty and self.held and not self._motor_jaws():
-            self._gone(readings)
+        self.touched = self.touched or bool((readings.pad_force > TOUCH).any())
+        timed_out = readings.time - self.pinch_started > PINCH_TIME
+        if self.cap.empty and self._lost_where_held():
+            self._gone(readings, "closed on nothing")
         elif self.cap.empty:
             self._again(readings, "the fingers closed on nothing")
         elif self.cap.pinched and not self._pressed_outside(readings, dt):
             self._begin_twist(readings)
-        elif readings.time - self.pinch_started > PINCH_TIME:
+        elif timed_out and not self.touched and self._lost_where_held():
+            self._gone(readings, f"touched nothing with any pad in {PINCH_TIME:.0f} s")
+        elif timed_out:
             self._again(readings, f"the pads did not all press the grasp force within {PINCH_TIME:.0f} s")
         if self.phase is not Phase.PINCH:
             return self._toward(readings, self.still, RETURN_SPEED)
@@ -229,7 +237,7 @@ class UnscrewArm(Controller):
         if norm(start.position - readings.tcp[:3, 3]) < ARRIVED and left < ORIENTATION_TOLERANCE:
             self.phase = Phase.PINCH
             self.still = TcpPose(start.position.copy(), start.rotation.copy())
-            self.pinch_started, self.yielded = readings.time, 0.0
+            self.pinch_started, self.yielded, self.touched = readings.time, 0.0, False
             self.tally.pinches += 1
             self.ctx.blackboard.contact = True
         return self._toward(readings, start, RETURN_SPEED)
@@ -297,6 +305,20 @@ class UnscrewArm(Controller):
         says nothing of which jaw presses the cap; the wrist does."""
         return self.room > 0.0 and self.ctx.info.hand.pads[0].taxels is None
 
+    def _lost_where_held(self) -> bool:
+        """Does a pinch here that finds nothing say the cap left the pads? Only where they
+        pinched and twisted it (`held`) round its side, where a cap on its thread stays between
+        them: not jaws that know only their motor (`_gone`), nor jaws pinching from above their
+        depth (`_above_depth`), whose pads' tips pinch the cap's rim and slide across its top to
+        close on nothing beyond, the cap on its thread (the Melfa without the alignment,
+        PyBullet, docs/unscrew-campaign.md)."""
+        return self.held and not self._motor_jaws() and not self._above_depth()
+
+    def _above_depth(self) -> bool:
+        """A gripper's jaws pinch from over SEAT_SHORT above where the descent was sending them
+        (`short`): it stopped on a jaw on the cap's top, and no seat has brought them down."""
+        return self.room > 0.0 and self.short > SEAT_SHORT
+
     def _yield_step(self, readings: Readings, dt: float) -> float:
         """How far (m, signed along `jaw_line`) the arm yields this tick to the wrist's push
         along the jaws' line, one jaw pressing the cap harder: at OUTSIDE_SPEED the way it
@@ -347,17 +369,20 @@ class UnscrewArm(Controller):
         self.tally.pinches += 1
         self._hold_here(readings, Phase.ACROSS)
 
-    def _gone(self, readings: Readings) -> None:
-        """The fingers closed on nothing where they had pinched and twisted the cap: a cap on
-        its thread stays where it was pinched, so this one came free and left the pads (a
-        pinch across its axis squeezes a freed cap out, docs/unscrew-campaign.md). Give up
-        now, saying so: the remaining pinches would close on nothing too. Not where the jaws
-        know only their motor (`_motor_jaws`): their one force cannot place a cap pinched
-        off their line, and the Baxter's paddles, 13 mm across a cap's axis, held a chord of
-        it, gave way in the twist and slid off the cap, still on its thread, in the next pinch."""
+    def _gone(self, readings: Readings, felt: str) -> None:
+        """The fingers closed on nothing where they had pinched and twisted the cap, or closed
+        with no pad touching anything (a Barrett's fingers stopped by their bare links, over
+        FINGER_MIN_DISTANCE apart, docs/unscrew-campaign.md): a cap on its thread stays where
+        it was pinched, so this one came free and left the pads (a pinch across its axis
+        squeezes a freed cap out). Give up now, saying so (`felt`: what this pinch did): the
+        remaining pinches would find nothing too. Not where the jaws know only their motor
+        (`_motor_jaws`): their one force cannot place a cap pinched off their line, and the
+        Baxter's paddles, 13 mm across a cap's axis, held a chord of it, gave way in the twist
+        and slid off the cap, still on its thread, in the next pinch; nor from above their
+        depth (`_lost_where_held`)."""
         self._hold_here(readings, Phase.FAILED)
         self.finish(Status.ERROR, f"the cap came off its thread and left the pads after {self.tally.twists} twists: "
-                                  f"pinch {self.tally.pinches} closed on nothing where they had held it "
+                                  f"pinch {self.tally.pinches} {felt} where they had held it "
                                   f"({self.tally.ended})", twists=self.tally.twists)
 
     def _pinch_from(self, readings: Readings) -> None:
@@ -365,8 +390,9 @@ class UnscrewArm(Controller):
         self.held = False
         position = readings.tcp[:3, 3].copy()
         self.start_pose = TcpPose(position, self.start_pose.rotation)
+        self.short = float((self.depth - position) @ (self.start_pose.rotation @ self.direction))  # m over the depth
         self.still = TcpPose(position.copy(), self.start_pose.rotation)
-        self.pinch_started, self.yielded = readings.time, 0.0
+        self.pinch_started, self.yielded, self.touched = readings.time, 0.0, False  # touched: a pad felt something
         self.phase = Phase.PINCH
         self.ctx.blackboard.contact = True  # the hand is over the cap: it may close
 
@@ -409,10 +435,11 @@ class UnscrewArm(Controller):
             # motor jaws twisted, then shut on nothing: whether the cap came off, unknown (`_gone`
             # tells it where the pads feel the cap)
             lost = self.cap.empty and self.tally.twists > 0 and self._motor_jaws()
-            where = "no cap between the pads, on its thread or off," if lost else "cap still on"
+            where = "no cap between the pads, on its thread or off," if lost else "the cap not felt to come off"
+            above = f" (the jaws {self.short * 1000:.0f} mm over their depth round the cap: a jaw on its top)"
             self._hold_here(readings, Phase.FAILED)
             self.finish(Status.ERROR, f"{where} after {self.tally.pinches} pinches and {self.tally.twists} "
-                                      f"twists: {why}", twists=self.tally.twists)
+                                      f"twists: {why}{above if self._above_depth() else ''}", twists=self.tally.twists)
             return
         self._align()
         self._hold_here(readings, Phase.RELEASE)

@@ -50,5 +50,5 @@ def test_a_stuck_cap_ends_through_error_with_the_cap_still_on(monkeypatch: pytes
     monkeypatch.setattr(objects, "_screw_capped", lambda: stuck)
     outcome, caps, reasons = _run(max_pinches=2)
     assert not outcome.succeeded and outcome.end_state == "cap_on", outcome.summary
-    assert any(r.startswith("cap still on after 2 pinches") for r in reasons), reasons
+    assert any(r.startswith("the cap not felt to come off after 2 pinches") for r in reasons), reasons
     assert not caps["jar"].free and caps["jar"].turned < 0.02, caps
