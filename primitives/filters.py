@@ -62,14 +62,14 @@ TARE_LIMIT = 0.5  # s: held by then whatever it reads, a hand still knocked abou
 
 @dataclass(frozen=True, eq=False)
 class Leaving:
-    """A motion that may start pressed on something it moves away from, by a hand of the
-    believed model `hand`, feeling contacts of `threshold` N: along `direction` (world,
-    unit), or, None, whichever way the press pushes the hand (a free move, whose path
-    leaves a press whichever way it lies)."""
+    """A motion that may start pressed on something it moves away from, whichever way the
+    press lies (free_one's rise pushed up off an object, or held down by one over a finger;
+    a free move off fingers blocked on what they let go), by a hand of the believed model
+    `hand`, feeling contacts of `threshold` N; `rises`: the motion only goes up."""
 
     hand: HandInfo
-    direction: np.ndarray | None
     threshold: float
+    rises: bool = False
 
     def beyond(self, readings: Readings) -> np.ndarray:
         """The force on the wrist beyond the believed empty hand, world frame."""
@@ -78,15 +78,13 @@ class Leaving:
     def press(self, readings: Readings) -> tuple[float, np.ndarray]:
         """N with which something the hand leaves behind pushes it, and the way it pushes
         (world, unit), where that alone could read as a contact once eased (at least
-        `threshold`); else 0 N. A downward part is left out: a held object's weight goes
-        along with the hand."""
+        `threshold`); else 0 N. Unless the motion rises, a downward part is left out: a held
+        object's weight eases as it is set down, a contact to feel."""
         beyond = self.beyond(readings)
-        beyond[2] = max(float(beyond[2]), 0.0)
-        if self.direction is None:
-            pushed = math.sqrt(float(beyond @ beyond))
-            along = beyond / pushed if pushed > 0.0 else beyond
-        else:
-            pushed, along = float(beyond @ self.direction), self.direction
+        if not self.rises:
+            beyond[2] = max(float(beyond[2]), 0.0)
+        pushed = math.sqrt(float(beyond @ beyond))
+        along = beyond / pushed if pushed > 0.0 else beyond
         return (pushed if pushed >= self.threshold else 0.0), along
 
 
@@ -106,11 +104,12 @@ class ContactWrench:
     whose reading does not jump keeps the start's reading, as before.
 
     A motion that starts pressed on what it moves away from (`Leaving`: an explore rising
-    off an object the last state pressed on at 200 N, a free move off fingers blocked on
-    what they let go) feels that press ease as it goes, and against the start's tare the
-    easing reads as a force against the motion, the same as a new contact. So while such
-    a press eases the tare eases with it, along the way it pushed, down to what the
-    believed empty hand would read; a contact the motion then meets reads in full.
+    off an object the last state pressed on at 200 N, or held down under one, a free move
+    off fingers blocked on what they let go) feels that press ease as it goes, and against
+    the start's tare the easing reads as a force against the motion, the same as a new
+    contact. So while such a press eases the tare eases with it, along the way it pushed,
+    down to what the believed empty hand would read, and never back; a contact the motion
+    then meets reads in full.
     """
 
     def __init__(self, filter_time: float = 0.0, leaving: Leaving | None = None) -> None:
@@ -118,6 +117,7 @@ class ContactWrench:
         self._leaving = leaving
         self._press = 0.0  # N that pressed the hand at the tare, along `_along`
         self._along = np.zeros(3)  # the way that press pushed, world frame
+        self._eased = 0.0  # N of it eased so far: a press that let go does not come back
         self._load_world = np.zeros(3)
         self._torque0 = np.zeros(3)
         self.value = np.zeros(6)
@@ -139,6 +139,7 @@ class ContactWrench:
         self._load_world = world_load(readings)
         if self._leaving is not None:
             self._press, self._along = self._leaving.press(readings)
+            self._eased = 0.0
         self._torque0 = readings.wrench[3:].copy()
         self._filter.reset(np.zeros(6))
         self.value = np.zeros(6)
@@ -154,12 +155,14 @@ class ContactWrench:
         return self.value
 
     def _eased_load(self, readings: Readings) -> np.ndarray:
-        """The start's load less as much of its press as has eased since, along the way it pushed."""
+        """The start's load less as much of its press as has eased since, along the way it
+        pushed; once eased it stays so, and a push that way later is a contact (a finger
+        hooked under a rim again as the rise goes on)."""
         leaving = self._leaving
         assert leaving is not None
         pressing = float(leaving.beyond(readings) @ self._along)
-        eased = min(max(self._press - pressing, 0.0), self._press)
-        return self._load_world - eased * self._along
+        self._eased = min(max(self._eased, self._press - pressing), self._press)
+        return self._load_world - self._eased * self._along
 
     def _settle(self, readings: Readings, dt: float) -> None:
         """Follow the reading while it rings; hold the tare once it is still."""

@@ -106,7 +106,7 @@ class CartesianMove(Controller):
         self.wrist_roll = float(p["wrist_roll"])
         self.margin = float(p["contact_margin"])
         # a free move may start off a press (fingers blocked on what they let go): its easing is no contact
-        leaving = None if self.straight else Leaving(ctx.info.hand, None, self.threshold)
+        leaving = None if self.straight else Leaving(ctx.info.hand, self.threshold)
         self.contact = ContactWrench(float(p["filter_time"]), leaving)
         self.shaper = TwistShaper(p["velocity_limits"], p["acceleration_limits"])
         self.detour = ObstacleDetour(p.get("obstacles", ()), p.get("obstacle_sizes", ()))
