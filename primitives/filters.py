@@ -62,25 +62,30 @@ TARE_LIMIT = 0.5  # s: held by then whatever it reads, a hand still knocked abou
 
 @dataclass(frozen=True, eq=False)
 class Leaving:
-    """A motion along `direction` (world, unit) that may start pressed on something it moves
-    away from, by a hand of the believed model `hand`, feeling contacts of `threshold` N."""
+    """A motion that may start pressed on something it moves away from, whichever way the
+    press lies (free_one's rise pushed up off an object, or held down by one over a finger;
+    a free move off fingers blocked on what they let go), by a hand of the believed model
+    `hand`, feeling contacts of `threshold` N; `rises`: the motion only goes up."""
 
     hand: HandInfo
-    direction: np.ndarray
     threshold: float
+    rises: bool = False
 
     def beyond(self, readings: Readings) -> np.ndarray:
         """The force on the wrist beyond the believed empty hand, world frame."""
         return readings.tcp[:3, :3] @ held_wrench(self.hand, readings)[:3]
 
-    def press(self, readings: Readings) -> float:
-        """N with which something the hand leaves behind pushes it along `direction`, where
-        that alone could read as a contact once eased (at least `threshold`); else 0. A
-        downward part is left out: a held object's weight goes along with the hand."""
+    def press(self, readings: Readings) -> tuple[float, np.ndarray]:
+        """N with which something the hand leaves behind pushes it, and the way it pushes
+        (world, unit), where that alone could read as a contact once eased (at least
+        `threshold`); else 0 N. Unless the motion rises, a downward part is left out: a held
+        object's weight eases as it is set down, a contact to feel."""
         beyond = self.beyond(readings)
-        beyond[2] = max(float(beyond[2]), 0.0)
-        pushed = float(beyond @ self.direction)
-        return pushed if pushed >= self.threshold else 0.0
+        if not self.rises:
+            beyond[2] = max(float(beyond[2]), 0.0)
+        pushed = math.sqrt(float(beyond @ beyond))
+        along = beyond / pushed if pushed > 0.0 else beyond
+        return (pushed if pushed >= self.threshold else 0.0), along
 
 
 class ContactWrench:
@@ -99,17 +104,20 @@ class ContactWrench:
     whose reading does not jump keeps the start's reading, as before.
 
     A motion that starts pressed on what it moves away from (`Leaving`: an explore rising
-    off an object the last state pressed on at 200 N) feels that press ease as it goes,
-    and against the start's tare the easing reads as a force against the motion, the same
-    as a new contact. So while such a press eases the tare eases with it along the motion,
-    down to what the believed empty hand would read; a contact the motion then meets reads
-    in full.
+    off an object the last state pressed on at 200 N, or held down under one, a free move
+    off fingers blocked on what they let go) feels that press ease as it goes, and against
+    the start's tare the easing reads as a force against the motion, the same as a new
+    contact. So while such a press eases the tare eases with it, along the way it pushed,
+    down to what the believed empty hand would read, and never back; a contact the motion
+    then meets reads in full.
     """
 
     def __init__(self, filter_time: float = 0.0, leaving: Leaving | None = None) -> None:
         self._filter = LowPass(filter_time)
         self._leaving = leaving
-        self._press = 0.0  # N along the motion that pressed the hand at the tare
+        self._press = 0.0  # N that pressed the hand at the tare, along `_along`
+        self._along = np.zeros(3)  # the way that press pushed, world frame
+        self._eased = 0.0  # N of it eased so far: a press that let go does not come back
         self._load_world = np.zeros(3)
         self._torque0 = np.zeros(3)
         self.value = np.zeros(6)
@@ -129,7 +137,9 @@ class ContactWrench:
 
     def _tare(self, readings: Readings) -> None:
         self._load_world = world_load(readings)
-        self._press = self._leaving.press(readings) if self._leaving is not None else 0.0
+        if self._leaving is not None:
+            self._press, self._along = self._leaving.press(readings)
+            self._eased = 0.0
         self._torque0 = readings.wrench[3:].copy()
         self._filter.reset(np.zeros(6))
         self.value = np.zeros(6)
@@ -145,12 +155,14 @@ class ContactWrench:
         return self.value
 
     def _eased_load(self, readings: Readings) -> np.ndarray:
-        """The start's load less as much of its press along the motion as has eased since."""
+        """The start's load less as much of its press as has eased since, along the way it
+        pushed; once eased it stays so, and a push that way later is a contact (a finger
+        hooked under a rim again as the rise goes on)."""
         leaving = self._leaving
         assert leaving is not None
-        pressing = float(leaving.beyond(readings) @ leaving.direction)
-        eased = min(max(self._press - pressing, 0.0), self._press)
-        return self._load_world - eased * leaving.direction
+        pressing = float(leaving.beyond(readings) @ self._along)
+        self._eased = min(max(self._eased, self._press - pressing), self._press)
+        return self._load_world - self._eased * self._along
 
     def _settle(self, readings: Readings, dt: float) -> None:
         """Follow the reading while it rings; hold the tare once it is still."""

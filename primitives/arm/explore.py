@@ -3,8 +3,9 @@ stop when a contact is detected", and say where.
 
 It feels a contact as the other guarded motions do: the wrist's contact wrench, tared as it
 starts (`ContactWrench`; a press it starts on and moves away from, such as free_one's rise
-off what its slides pressed on, is not felt as it eases), and the tactile pads, each tared
-as it starts too (a hand that holds something reads its grip all along).
+off what its slides pressed on, or from under what held a finger down, is not felt as it
+eases), and the tactile pads, each tared as it starts too (a hand that holds something
+reads its grip all along).
 """
 
 from __future__ import annotations
@@ -50,7 +51,8 @@ class Explore(Controller):
         self.max_distance = float(p["max_distance"])
         self.writes = str(p.get("writes", ""))
         self.hand_point = np.asarray(p.get("hand_point", (0.0, 0.0, 0.0)), float)
-        self.contact = ContactWrench(float(p["filter_time"]), Leaving(ctx.info.hand, self.direction, self.threshold))
+        self.contact = ContactWrench(float(p["filter_time"]), Leaving(ctx.info.hand, self.threshold,
+                                                                         rises=bool(self.direction[2] > 0.0)))
         self.shaper = TwistShaper(acceleration_limits=(APPROACH_ACCELERATION,) * 3 + (0.0,) * 3)
         self.stall = Stall()
         self.found: Contact | None = None

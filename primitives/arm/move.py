@@ -29,7 +29,7 @@ from primitives.arm.motion import (
 )
 from primitives.base import ArmCommand, Context, ControlData, Controller, Status
 from primitives.blackboard import ARM_TWIST, HAND_LEVEL, SHORT_OF_TARGET, YAW_REFERENCE
-from primitives.filters import ContactWrench, LowPass
+from primitives.filters import ContactWrench, Leaving, LowPass
 from primitives.robot import Readings
 
 VIA_TOLERANCE = 0.01  # m: a via point counts as passed this close
@@ -105,7 +105,9 @@ class CartesianMove(Controller):
         self.either_way = bool(p["either_way"])
         self.wrist_roll = float(p["wrist_roll"])
         self.margin = float(p["contact_margin"])
-        self.contact = ContactWrench(float(p["filter_time"]))
+        # a free move may start off a press (fingers blocked on what they let go): its easing is no contact
+        leaving = None if self.straight else Leaving(ctx.info.hand, self.threshold)
+        self.contact = ContactWrench(float(p["filter_time"]), leaving)
         self.shaper = TwistShaper(p["velocity_limits"], p["acceleration_limits"])
         self.detour = ObstacleDetour(p.get("obstacles", ()), p.get("obstacle_sizes", ()))
         self.stall = Stall()

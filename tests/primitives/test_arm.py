@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import mujoco
@@ -9,9 +10,14 @@ import mujoco
 import numpy as np
 import pytest
 
+from atd.model.estd import Controller as EstdController
 from atd.model.vocabulary import EventType
 from atd.sim.scene import DEFAULT_FRICTION, Body, Scene, box_scene
 from primitives.arm.motion import turn_to_yaw
+from primitives.base import Context, Status
+from primitives.filters import held_wrench
+from primitives.registry import build_controller
+from primitives.robot import Readings
 from primitives.values import Approach, Contact
 from tests.primitives.conftest import Stage, both_done, events, execute, last_reasons, leaf, machine, melfa, tcp, use
 
@@ -328,3 +334,29 @@ def test_a_yaw_whose_half_turn_matters_is_kept_unless_the_wrist_roll_would_end_o
     assert _heading(turn_to_yaw(level, math.radians(50.0), 0.0, False, room) @ level) == pytest.approx(50.0)
     assert _heading(turn_to_yaw(level, math.radians(-50.0), 0.0, False, room) @ level) == pytest.approx(130.0)
     assert _heading(turn_to_yaw(level, math.radians(-50.0), 0.0, False) @ level) == pytest.approx(-50.0)  # no roll told
+
+
+def test_a_free_move_off_a_press_is_not_stopped_as_it_eases_but_by_a_contact_after_it() -> None:
+    """The Barrett's `aside` in the box (seed 30100, docs/empty-the-box.md) started with its
+    fingers blocked on what they had let go, the wrist pressed 40 N beyond the resting hand,
+    up and across the path; against the start's tare the press easing as the hand left read
+    as "unexpected contact: 40.7 N" and the run ended `stuck`."""
+    robot = melfa()
+    ctx = Context(info=robot.info, params={}, environment=None)
+    move = build_controller(EstdController(name="cartesian_move", params={"target": (0.3, 0.1, 0.3),
+                                                                          "force_threshold": 40.0}), "arm", ctx)
+    still = robot.read()
+    empty = still.wrench - held_wrench(robot.info.hand, still)  # what the believed empty hand reads
+
+    def pushed(t: float, world: tuple[float, float, float]) -> Readings:
+        force = still.tcp[:3, :3].T @ np.array(world)  # world frame to the sensor's
+        return dataclasses.replace(still, time=t, wrench=empty + np.concatenate((force, np.zeros(3))))
+
+    dt = 0.005
+    move.start(pushed(0.0, (5.0, -18.0, 36.0)))
+    for tick, left in enumerate(np.linspace(1.0, 0.0, 21)):  # eased in 0.1 s, as the hand left it
+        move.update(pushed(tick * dt, (5.0 * left, -18.0 * left, 36.0 * left)), dt)
+        assert move.status is Status.RUNNING, left
+    move.update(pushed(21 * dt, (-30.0, 0.0, -30.0)), dt)  # then it meets something on its way
+    assert move.status is Status.ERROR and "unexpected contact" in move.reason
+    robot.close()

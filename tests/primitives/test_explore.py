@@ -127,3 +127,30 @@ def test_an_arm_that_stops_short_without_a_contact_ends_in_error_naming_the_join
     assert explore.reason.startswith("no contact, and no progress for 2 s 15.0 cm short of 0.15 m")
     assert explore.reason.endswith(f"joint 'j5' at its lower limit ({info.arm_lower[4]:.2f})")
     robot.close()
+
+
+def test_a_hold_against_the_rise_letting_go_is_not_a_contact_but_one_met_after_it_is() -> None:
+    """free_one's rise on the Barrett (seed 30100, docs/empty-the-box.md) started with a finger
+    held under something, the hand pushed 94 N down and 124 N across, and sprang free within a
+    tick: against its tare the release read as a 157 N contact, the rise stopped 1 cm up and
+    left the hand in the box, where `aside` met an object."""
+    robot = melfa()
+    ctx = Context(info=robot.info, params={"direction": (0.0, 0.0, 1.0), "speed": 0.15, "force_threshold": 150.0,
+                                           "max_distance": 0.15, "filter_time": 0.0})
+    explore = Explore(ctx)
+    still = robot.read()
+    empty = still.wrench - held_wrench(robot.info.hand, still)  # what the believed empty hand reads
+    held = (-116.0, -45.0, -94.0)  # N on the hand, world frame
+
+    def pushed(t: float, world: tuple[float, float, float]) -> Readings:
+        force = still.tcp[:3, :3].T @ np.array(world)  # world frame to the sensor's
+        return dataclasses.replace(still, time=t, wrench=empty + np.concatenate((force, np.zeros(3))))
+
+    dt = 0.005
+    explore.start(pushed(0.0, held))
+    for tick in range(1, 40):
+        explore.update(pushed(tick * dt, held if tick < 20 else (0.0, 0.0, 0.0)), dt)  # free at 0.1 s
+        assert explore.status is Status.RUNNING and explore.found is None, tick
+    explore.update(pushed(40 * dt, (0.0, 0.0, -155.0)), dt)  # then something above pushes it down
+    assert explore.found is not None and explore.found.sensor == "wrist" and explore.found.force >= 150.0
+    robot.close()
