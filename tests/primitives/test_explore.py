@@ -5,6 +5,7 @@ that stops short without a contact; a pad's contact counts as the wrist's does."
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -79,28 +80,34 @@ def test_a_pad_s_force_over_its_start_is_a_contact_and_named() -> None:
     robot.close()
 
 
+def _rise(robot) -> tuple[Explore, Callable[[float, tuple[float, float, float]], Readings]]:
+    """free_one's rise (an explore up, feeling 150 N) on the Melfa, and its readings at a time
+    with a force (N, world frame) on the hand beyond what the believed empty hand reads."""
+    ctx = Context(info=robot.info, params={"direction": (0.0, 0.0, 1.0), "speed": 0.15, "force_threshold": 150.0,
+                                           "max_distance": 0.15, "filter_time": 0.0})
+    still = robot.read()
+    empty = still.wrench - held_wrench(robot.info.hand, still)
+
+    def pushed(t: float, world: tuple[float, float, float]) -> Readings:
+        force = still.tcp[:3, :3].T @ np.array(world)  # world frame to the sensor's
+        return dataclasses.replace(still, time=t, wrench=empty + np.concatenate((force, np.zeros(3))))
+
+    return Explore(ctx), pushed
+
+
 def test_a_press_the_hand_rises_off_is_not_a_contact_as_it_eases_but_one_from_above_is() -> None:
     """free_one's rise started on the Baxter's wrist pressed at 200 N by the slides before it
     (seed 77123, docs/empty-the-box.md): against the start's tare the press easing read as a
     151.6 N contact, and the run ended `stuck`."""
     robot = melfa()
-    ctx = Context(info=robot.info, params={"direction": (0.0, 0.0, 1.0), "speed": 0.15, "force_threshold": 150.0,
-                                           "max_distance": 0.15, "filter_time": 0.0})
-    explore = Explore(ctx)
-    still = robot.read()
-    empty = still.wrench - held_wrench(robot.info.hand, still)  # what the believed empty hand reads
-
-    def pushed(t: float, up: float, sideways: float = 0.0) -> Readings:
-        force = still.tcp[:3, :3].T @ np.array([sideways, 0.0, up])  # world frame to the sensor's
-        return dataclasses.replace(still, time=t, wrench=empty + np.concatenate((force, np.zeros(3))))
-
+    explore, pushed = _rise(robot)
     dt = 0.005
-    explore.start(pushed(0.0, 200.0, sideways=60.0))  # the object below pushes the hand up and aside
+    explore.start(pushed(0.0, (60.0, 0.0, 200.0)))  # the object below pushes the hand up and aside
     for tick, up in enumerate(np.linspace(200.0, 0.0, 101)):  # eased in 0.5 s, as the rise leaves it
-        explore.update(pushed(tick * dt, up, sideways=0.3 * up), dt)
+        explore.update(pushed(tick * dt, (0.3 * up, 0.0, up)), dt)
         assert explore.status is Status.RUNNING and explore.found is None, up
     for tick, down in enumerate(np.linspace(0.0, 155.0, 32), start=101):  # then something above pushes it down
-        explore.update(pushed(tick * dt, -down), dt)
+        explore.update(pushed(tick * dt, (0.0, 0.0, -down)), dt)
     assert explore.found is not None and explore.found.sensor == "wrist" and explore.found.force >= 150.0
     robot.close()
 
@@ -135,17 +142,8 @@ def test_a_hold_against_the_rise_letting_go_is_not_a_contact_but_one_met_after_i
     tick: against its tare the release read as a 157 N contact, the rise stopped 1 cm up and
     left the hand in the box, where `aside` met an object."""
     robot = melfa()
-    ctx = Context(info=robot.info, params={"direction": (0.0, 0.0, 1.0), "speed": 0.15, "force_threshold": 150.0,
-                                           "max_distance": 0.15, "filter_time": 0.0})
-    explore = Explore(ctx)
-    still = robot.read()
-    empty = still.wrench - held_wrench(robot.info.hand, still)  # what the believed empty hand reads
+    explore, pushed = _rise(robot)
     held = (-116.0, -45.0, -94.0)  # N on the hand, world frame
-
-    def pushed(t: float, world: tuple[float, float, float]) -> Readings:
-        force = still.tcp[:3, :3].T @ np.array(world)  # world frame to the sensor's
-        return dataclasses.replace(still, time=t, wrench=empty + np.concatenate((force, np.zeros(3))))
-
     dt = 0.005
     explore.start(pushed(0.0, held))
     for tick in range(1, 40):
