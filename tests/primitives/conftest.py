@@ -4,6 +4,7 @@ controllers until a condition holds."""
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
@@ -25,6 +26,8 @@ from atd.sim.scene import Scene, box_scene, scene_from_task
 from atd.sim.simrobot import SimRobot
 from factories.melfa.description import description
 from factories.registry import create
+from primitives.filters import held_wrench
+from primitives.robot import Readings
 from primitives.base import Context
 from translator import translate
 
@@ -171,3 +174,16 @@ def campaign_trial(spec: Path, index: int, *cell: str) -> TrialRecord:
     assert loaded is not None, diagnostics
     [record] = [run_trial(plan) for plan in plans(loaded, parse_only(cell), index + 1) if plan.index == index]
     return record
+
+
+def pushed_still(robot: SimRobot) -> Callable[[float, tuple[float, float, float]], Readings]:
+    """Readings of `robot` as it stands, at a time, with a force (N, world frame) on the hand
+    beyond what the believed empty hand reads: a wrist pressed by what the hand touches."""
+    still = robot.read()
+    empty = still.wrench - held_wrench(robot.info.hand, still)
+
+    def pushed(t: float, world: tuple[float, float, float]) -> Readings:
+        force = still.tcp[:3, :3].T @ np.array(world)  # world frame to the sensor's
+        return dataclasses.replace(still, time=t, wrench=empty + np.concatenate((force, np.zeros(3))))
+
+    return pushed

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import mujoco
@@ -15,11 +14,10 @@ from atd.model.vocabulary import EventType
 from atd.sim.scene import DEFAULT_FRICTION, Body, Scene, box_scene
 from primitives.arm.motion import turn_to_yaw
 from primitives.base import Context, Status
-from primitives.filters import held_wrench
 from primitives.registry import build_controller
-from primitives.robot import Readings
 from primitives.values import Approach, Contact
-from tests.primitives.conftest import Stage, both_done, events, execute, last_reasons, leaf, machine, melfa, tcp, use
+from tests.primitives.conftest import (Stage, both_done, events, execute, last_reasons, leaf, machine, melfa,
+                                      pushed_still, tcp, use)
 
 FINGERTIP = 0.0238  # m from the Melfa's TCP down to its fingertips (PG70 pad half length)
 ASIDE = box_scene(xy=(0.0, 0.22))  # the box out of the way
@@ -345,13 +343,7 @@ def test_a_free_move_off_a_press_is_not_stopped_as_it_eases_but_by_a_contact_aft
     ctx = Context(info=robot.info, params={}, environment=None)
     move = build_controller(EstdController(name="cartesian_move", params={"target": (0.3, 0.1, 0.3),
                                                                           "force_threshold": 40.0}), "arm", ctx)
-    still = robot.read()
-    empty = still.wrench - held_wrench(robot.info.hand, still)  # what the believed empty hand reads
-
-    def pushed(t: float, world: tuple[float, float, float]) -> Readings:
-        force = still.tcp[:3, :3].T @ np.array(world)  # world frame to the sensor's
-        return dataclasses.replace(still, time=t, wrench=empty + np.concatenate((force, np.zeros(3))))
-
+    pushed = pushed_still(robot)
     dt = 0.005
     move.start(pushed(0.0, (5.0, -18.0, 36.0)))
     for tick, left in enumerate(np.linspace(1.0, 0.0, 21)):  # eased in 0.1 s, as the hand left it

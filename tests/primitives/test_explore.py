@@ -14,11 +14,10 @@ from atd.model.vocabulary import EventType
 from primitives.arm.explore import Explore
 from primitives.arm.move import EASE_OFF
 from primitives.base import Context, Status
-from primitives.filters import held_wrench
 from primitives.robot import Readings
 from primitives.values import Contact
 from tests.primitives.box_worlds import CORNER, FLOOR, MELFA_REACH, box_world, cube
-from tests.primitives.conftest import Stage, events, execute, leaf, machine, melfa, use
+from tests.primitives.conftest import Stage, events, execute, leaf, machine, melfa, pushed_still, use
 
 DOWN = (0.0, 0.0, -1.0)
 
@@ -85,14 +84,7 @@ def _rise(robot) -> tuple[Explore, Callable[[float, tuple[float, float, float]],
     with a force (N, world frame) on the hand beyond what the believed empty hand reads."""
     ctx = Context(info=robot.info, params={"direction": (0.0, 0.0, 1.0), "speed": 0.15, "force_threshold": 150.0,
                                            "max_distance": 0.15, "filter_time": 0.0})
-    still = robot.read()
-    empty = still.wrench - held_wrench(robot.info.hand, still)
-
-    def pushed(t: float, world: tuple[float, float, float]) -> Readings:
-        force = still.tcp[:3, :3].T @ np.array(world)  # world frame to the sensor's
-        return dataclasses.replace(still, time=t, wrench=empty + np.concatenate((force, np.zeros(3))))
-
-    return Explore(ctx), pushed
+    return Explore(ctx), pushed_still(robot)
 
 
 def test_a_press_the_hand_rises_off_is_not_a_contact_as_it_eases_but_one_from_above_is() -> None:
