@@ -874,8 +874,8 @@ class Factory(ABC):
         21 mm under its TCP and 57 mm from its pinch, a gripper's jaws 10-24 mm under its
         TCP) puts its TCP there. A path for the hand's lowest point (`<path for="lowest_point">`)
         acts so too: the task says how high over a floor the hand's lowest point drags,
-        whichever hand it is (a gripper's grasp centre is 10-24 mm above its jaws' ends, a
-        pointing finger's is its tip). `pinch`: the unscrew the state ends where it pinches, so
+        whichever hand it is (a gripper acts at its grasp centre, 10-24 mm above its jaws'
+        ends; a pointing finger at its tip). `pinch`: the unscrew the state ends where it pinches, so
         the point is the lower edge of the pads closed to its `object_size` (`pinch_reach`):
         the task says how far under a felt cap top the pads pinch, and each hand's pads get
         there (a Barrett's pad tips meet a 60 mm cap 5 mm over its preshape's lowest point,

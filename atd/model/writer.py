@@ -88,8 +88,8 @@ def _state(parent: etree._Element, state: State) -> None:
     node = _child(parent, "state", **attrib)
     _optional(node, state, "movement", "hand_shape")
     if state.path:
-        point = {} if state.path_for is PathPoint.HAND_SHAPE else {"for": state.path_for.value}
-        path = _child(node, "path", **point)
+        which = {} if state.path_for is PathPoint.HAND_SHAPE else {"for": state.path_for.value}
+        path = _child(node, "path", **which)
         for point in state.path:
             _child(path, point.kind, _numbers(point.values))
     _optional(node, state, "preshape", "object_size", "hand_opening")
