@@ -30,8 +30,8 @@ from atd.model.ranges import FORCE, WEIGHT
 from atd.model.resolved_rate import TURN_MARGIN
 from atd.model.validate import value_kinds
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Vec3
-from atd.model.vocabulary import (FIRED_BY, PERCEPTUAL_PRIMITIVES, EventType, HandShape, Movement, PerceptionMethod,
-                                  StateType, ValueKind)
+from atd.model.vocabulary import (FIRED_BY, PERCEPTUAL_PRIMITIVES, EventType, HandShape, Movement, PathPoint,
+                                  PerceptionMethod, StateType, ValueKind)
 from factories.beside import description_module, shipped_config
 from factories.config import RobotConfig, load_config
 from factories.description import RobotDescription
@@ -872,7 +872,10 @@ class Factory(ABC):
         hand acts with its lowest point, pads counted (`touch_reach`), under that: the task says where the
         fingertips go from a felt surface, and each hand's own geometry (the SDH2's thumb
         21 mm under its TCP and 57 mm from its pinch, a gripper's jaws 10-24 mm under its
-        TCP) puts its TCP there. `pinch`: the unscrew the state ends where it pinches, so
+        TCP) puts its TCP there. A path for the hand's lowest point (`<path for="lowest_point">`)
+        acts so too: the task says how high over a floor the hand's lowest point drags,
+        whichever hand it is (a gripper acts at its grasp centre, 10-24 mm above its jaws'
+        ends; a pointing finger at its tip). `pinch`: the unscrew the state ends where it pinches, so
         the point is the lower edge of the pads closed to its `object_size` (`pinch_reach`):
         the task says how far under a felt cap top the pads pinch, and each hand's pads get
         there (a Barrett's pad tips meet a 60 mm cap 5 mm over its preshape's lowest point,
@@ -880,6 +883,7 @@ class Factory(ABC):
         but for the hand's own `pinch_clearance` over it."""
         if state.hand_shape is None:
             return (0.0, 0.0, 0.0)
+        touching = touching or state.path_for is PathPoint.LOWEST_POINT
         made, _ = self.shape(state.hand_shape)
         posture = self.posture(made, state)
         robot = self.robot

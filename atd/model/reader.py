@@ -38,6 +38,7 @@ from atd.model.vocabulary import (
     HandShape,
     Movement,
     ObjectClass,
+    PathPoint,
     PerceptionMethod,
     StateType,
     ValueKind,
@@ -507,13 +508,16 @@ class TaskReader:
                             else "<state> has both <path> and <trajectory>", child, "keep one")
                 continue
             seen[key] = child
-            self._check_attributes(child, {"target": ("from", "offset"), "object_top": ("from",)}.get(key, ()))
+            self._check_attributes(child, {"target": ("from", "offset"), "object_top": ("from",),
+                                           "path": ("for",)}.get(key, ()))
             if key == "movement":
                 fields["movement"] = self._enum(child, Movement, "movement")
             elif key in ("hand_shape", "preshape"):
                 fields[key] = self._enum(child, HandShape, "hand shape")
             elif key == "path":
                 fields["path"] = self._path(child)
+                if child.get("for") is not None:
+                    fields["path_for"] = self._enum(child, PathPoint, "point of the hand", text=child.get("for"))
             elif key == "object_size":
                 fields["object_size"] = self._value(child, "object size", ranges.SIZE)
             elif key == "hand_opening":
@@ -530,6 +534,11 @@ class TaskReader:
                 fields["target_from"], fields["target_offset"] = self._target(child)
             elif key == "object_top":
                 fields["top_from"] = self._top_from(child)
+        if fields.get("path_for") is PathPoint.LOWEST_POINT and "hand_shape" not in seen:
+            self._error("ATD102", f"<{seen['path'].tag} for=\"lowest_point\"> needs the state's <hand_shape>: "
+                        "the hand's lowest point is that shape's", seen["path"],
+                        "add <hand_shape>closed</hand_shape> (or the shape the hand moves in)")
+            fields.pop("path_for")
         if "path" in seen and "target" in seen:
             self._error("ATD109", f"<state> has both <{seen['path'].tag}> and <target>", seen["target"],
                         "keep one: a fixed path, or the target a value gives at run time")

@@ -20,6 +20,7 @@ from atd.model.vocabulary import (
     HandShape,
     Movement,
     ObjectClass,
+    PathPoint,
     PerceptionMethod,
     StateType,
     ValueKind,
@@ -208,6 +209,7 @@ class State(AtdElement):
     movement: Movement | None = None
     hand_shape: HandShape | None = None
     path: tuple[Waypoint, ...] = ()
+    path_for: PathPoint = PathPoint.HAND_SHAPE  # which point of the hand the path's positions are for
     preshape: HandShape | None = None  # grasp, Table 7.1
     object_size: float | None = None  # grasp, metres
     hand_opening: float | None = None  # release, 0 closed .. 1 open

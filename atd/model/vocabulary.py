@@ -59,6 +59,13 @@ class Movement(StrEnum):
     CONSTRAINED = "constrained"  # orientation held during the motion
 
 
+class PathPoint(StrEnum):
+    """Which point of the hand a path's positions are for (`<path for="...">`)."""
+
+    HAND_SHAPE = "hand_shape"  # where the state's hand shape acts: a grasp centre, a pointing fingertip
+    LOWEST_POINT = "lowest_point"  # the hand's lowest point in that shape, pads counted, under that point
+
+
 class HandShape(StrEnum):
     """The 14 hand shapes of D5 2.2.2."""
 

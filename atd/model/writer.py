@@ -16,7 +16,7 @@ from typing import Callable, Iterator
 from lxml import etree
 
 from atd.model.task import Environment, ObjectInfo, State, Task, Transition, Value
-from atd.model.vocabulary import EventType
+from atd.model.vocabulary import EventType, PathPoint
 
 
 def _number(value: float) -> str:
@@ -88,7 +88,8 @@ def _state(parent: etree._Element, state: State) -> None:
     node = _child(parent, "state", **attrib)
     _optional(node, state, "movement", "hand_shape")
     if state.path:
-        path = _child(node, "path")
+        which = {} if state.path_for is PathPoint.HAND_SHAPE else {"for": state.path_for.value}
+        path = _child(node, "path", **which)
         for point in state.path:
             _child(path, point.kind, _numbers(point.values))
     _optional(node, state, "preshape", "object_size", "hand_opening")

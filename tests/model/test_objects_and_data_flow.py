@@ -124,6 +124,13 @@ CASES = {
         LOOK + '  <state name="reach" type="move">\n' + bad('    <target from="approach" offset="0 0.05"/>') +
         "  </state>\n" + edge("look", "reach", "<object_found/>") + edge("look", "done", "<nothing_found/>") +
         edge("reach", "done"))),
+    "a path for the hand's lowest point without a hand shape": ("ATD102", task(
+        '  <state name="go" type="move">\n' + bad('    <path for="lowest_point"><position>0 0 0.2</position></path>') +
+        "  </state>\n" + edge("go", "done"), "go")),
+    "a path for an unknown point of the hand": ("ATD104", task(
+        '  <state name="go" type="move"><hand_shape>closed</hand_shape>\n' +
+        bad('    <path for="fingertip"><position>0 0 0.2</position></path>') + "  </state>\n" + edge("go", "done"),
+        "go")),
     "a value read that nothing writes": ("ATD221", task(
         bad(REACH) + edge("reach", "done"), "reach")),
     "a value read after perceive found nothing": ("ATD221", task(
@@ -289,6 +296,17 @@ def test_a_target_offset_is_read_written_and_translated_with_its_value(tmp_path)
     estd = translate(original, create("tombatossals", "left")).estd
     read, problems = parse_estd(estd_to_xml(estd), "x.estd.xml")
     assert not problems and read.states_by_name["carry_cap"].target_offset == (0.0, -0.15, 0.1)
+
+
+def test_a_path_for_the_hand_s_lowest_point_is_read_and_written(tmp_path) -> None:
+    """examples/free_one.xml drags the hand's lowest point at heights over the box's floor."""
+    original, found = load_task(REPO / "examples" / "free_one.xml")
+    assert not found
+    assert {name: original.states_by_name[name].path_for.value for name in ("over", "drag", "tip_tall")} == \
+        {"over": "hand_shape", "drag": "lowest_point", "tip_tall": "lowest_point"}
+    copy = tmp_path / "copy.xml"
+    copy.write_bytes(task_to_xml(original))
+    assert load_task(copy)[0] == original
 
 
 def test_validate_prints_located_lines_and_exits_1_without_a_traceback(atd_file) -> None:

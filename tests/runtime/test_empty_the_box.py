@@ -54,6 +54,21 @@ def test_a_ball_in_a_corner_that_no_jaw_fits_beside_is_rolled_off_both_walls():
     assert inside_x - x > 0.065 and inside_y - y > 0.065
 
 
+@pytest.mark.parametrize("arm", ["left", "right"])
+def test_free_one_s_drag_takes_a_pointing_finger_low_enough_to_move_a_roll_of_tape_off_a_wall(arm):
+    """A roll of tape lies 5 mm from the -y wall. The Tombatossals' closed hands point a finger
+    (the SDH2 its thumb, the Barrett F3), and free_one.xml's drags, stated for the hand's
+    lowest point, take that fingertip 1.6 cm over the floor, as a gripper's jaws: the roll
+    ends 3 cm or more off the wall. Taken to where a gripper's grasp centre drags (the tip
+    3.6-4 cm over the floor), neither moved it (docs/empty-the-box.md, "free_one's drags for
+    the hand's lowest point")."""
+    result = run(BOX_DATA / "free_one_round.xml", robot="tombatossals", arm=arm,
+                 world=BOX_DATA / "tape_by_a_wall.toml")
+    assert result.end_state == "done" and "free_it/drag" in result.path, result.summary
+    lay = -0.161  # the roll's middle's y as it lay (tape_by_a_wall.toml)
+    assert result.object_positions["tape"][1] - lay > 0.03
+
+
 def test_a_grasp_over_half_of_a_standing_speakers_top_holds_it():
     """A second look at an object the first aimed at (as after a miss) aims at a half of its
     top: the jaws close across the split, the half's offset along the pads, and hold the 5 x 5

@@ -228,6 +228,25 @@ def test_the_touch_and_the_pinch_under_it_are_each_hands_own_points():
     # a move to a pose (vision's approach) is still for the grasp centre itself: see the test above
 
 
+def test_free_one_s_drags_take_every_hand_s_lowest_point_to_the_same_heights_over_the_floor():
+    """examples/free_one.xml states its drags' heights for the closed hand's lowest point, pads
+    counted: a gripper's jaws' ends, a pointing finger's tip (the SDH2's thumb, the Barrett's F3),
+    the point its `touch` feels with. Each hand's TCP stops that far over them, so every lowest
+    point drags 1.6, 3.6 and 4.6 cm over the box's floor (z 0.01) and the Melfa's TCP goes where
+    it went when the heights were its grasp centre's (z 0.05, 0.07, 0.08). Stated for the point
+    a closed hand acts at, the SDH2's thumb dragged 4 cm over the floor, at the top of an object
+    lying in the box, and moved nothing (docs/empty-the-box.md)."""
+    task, found = load_task(EXAMPLES / "free_one.xml")
+    assert found == []
+    for factory in every_factory():
+        states = translate(task, factory).estd.states_by_name
+        lowest = states["touch"].arm.params["hand_point"]  # where the closed hand touches, from its TCP
+        tcp = [states[name].arm.params["target"][2] for name in ("drag", "tip", "tip_tall")]
+        assert [round(z - lowest[2], 6) for z in tcp] == [0.0262, 0.0462, 0.0562], factory.name
+    melfa = translate(task, create("melfa")).estd.states_by_name
+    assert [melfa[name].arm.params["target"][2] for name in ("drag", "tip", "tip_tall")] == [0.05, 0.07, 0.08]
+
+
 def _pads_meet(robot, width: float) -> tuple[float, float]:
     """Where the pinch's two pads first come `width` apart, corner to corner, as the hand
     closes from its preshape (a finger's second joint flexing back by what its first
