@@ -28,30 +28,8 @@ from atd.campaign.record import TrialRecord  # noqa: E402
 from atd.campaign.spec import load_spec  # noqa: E402
 from atd.campaign.trial import trial_run  # noqa: E402
 from atd.model.diagnostics import render_all  # noqa: E402
-from atd.sim.scene import Body, Container, bounding_box  # noqa: E402
 
 LIMITS = (0.005, 0.01, 0.02)  # m: a wall touched, a fingertip's thickness, a finger's
-
-
-def half_extent(body: Body, rotation: np.ndarray, axis: np.ndarray) -> float:
-    """How far the body reaches from its centre along a horizontal unit `axis`, turned by `rotation`."""
-    if body.kind == "sphere":
-        return body.size[0]
-    if body.kind == "cylinder":
-        along = abs(float(rotation[:, 2] @ axis))  # the cylinder's axis against `axis`
-        return body.size[0] * float(np.sqrt(max(0.0, 1.0 - along * along))) + body.size[1] / 2 * along
-    return float(np.abs(rotation.T @ axis) @ (np.asarray(bounding_box(body.kind, body.size)) / 2))
-
-
-def gap_to_walls(body: Body, pose: np.ndarray, box: Container) -> float:
-    """The least distance from the body's extent to the box's inner walls, along the box's x and y."""
-    local = np.linalg.solve(box.pose, pose)
-    low, high = box.inner_corners()
-    gaps = []
-    for k, axis in enumerate(np.eye(3)[:2]):
-        reach = half_extent(body, local[:3, :3], axis)
-        gaps += [local[k, 3] - reach - low[k], high[k] - local[k, 3] - reach]
-    return min(gaps)
 
 
 def main() -> None:
@@ -69,7 +47,7 @@ def main() -> None:
         robot = run.robot
         box = robot.scene.container(plan.world.into)
         poses = robot.object_poses()
-        gaps = [(body.name, gap_to_walls(body, poses[body.name], box)) for body in robot.scene.objects]
+        gaps = [(body.name, box.gap_to_walls(body, poses[body.name])) for body in robot.scene.objects]
         robot.close()
         print(f"trial {plan.index}: " + ", ".join(f"{name} {100 * gap:.1f} cm" for name, gap in gaps), flush=True)
         rows.append([gap for _, gap in gaps])
