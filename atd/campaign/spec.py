@@ -48,13 +48,16 @@ class RobotEntry(StrictTable):
 class WorldDraw(StrictTable):
     """A world drawn afresh for every trial (thesis 3.4.3): `objects` library objects, drawn
     from `from` (each once while there are enough), dropped at random poses into the task's
-    container `into` and settled by the physics; seeded by the trial."""
+    container `into` (with a `clearance`, laid down resting that far from its walls) and
+    settled by the physics; seeded by the trial."""
 
     model_config = ConfigDict(extra="forbid", frozen=True, populate_by_name=True)
 
     objects: Count = Field(ge=1, le=20, description="how many objects")
     into: str = Field(pattern=f"^{PLAIN_NAME.pattern}$", description="the task's container they are dropped into")
     from_: tuple[str, ...] = Field(alias="from", min_length=1, description="the library objects to draw from")
+    clearance: Annotated[Number, within(ranges.CLEARANCE)] = Field(
+        0.0, description="m: laid down resting this far from the walls instead of dropped (thesis 3.4.3's assumption)")
 
     @field_validator("from_")
     @classmethod

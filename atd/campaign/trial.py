@@ -138,8 +138,8 @@ def _run(plan: TrialPlan, record: TrialRecord, started: float, recording: Path |
 
 def drawn_world(plan: TrialPlan, belief: Estd) -> Scene:
     """The trial's world as the spec's `world` draws it: its objects chosen from the pool by
-    the trial's seed (each once while the pool has enough), dropped into the container and
-    left to settle."""
+    the trial's seed (each once while the pool has enough), dropped (or laid, with a
+    clearance) into the container and left to settle."""
     draw = plan.world
     assert draw is not None
     pool = draw.from_
@@ -147,7 +147,8 @@ def drawn_world(plan: TrialPlan, belief: Estd) -> Scene:
     chosen = [pool[i] for i in rng.choice(len(pool), draw.objects, replace=draw.objects > len(pool))]
     named = [name if not chosen[:i].count(name) else f"{name}_{chosen[:i].count(name) + 1}"
              for i, name in enumerate(chosen)]
-    drop = Drop(tuple((n, get_library(c)) for n, c in zip(named, chosen)), draw.into, Location(plan.task_file, 0))
+    drop = Drop(tuple((n, get_library(c)) for n, c in zip(named, chosen)), draw.into, Location(plan.task_file, 0),
+                draw.clearance)
     try:
         return World(objects=(), drops=(drop,), containers=()).scene(belief_scene(belief), plan.seed)
     except WorldError as exc:

@@ -91,6 +91,7 @@ INERTIA = Range(-10.0, 10.0, "kg m^2")
 FRICTION = Range(0.0, 10.0)
 TIMEOUT = Range(0.0, 86_400.0, "s", low_open=True)  # a day
 FRACTION = Range(0.0, 1.0)
+CLEARANCE = Range(0.0, 0.1, "m")  # a world's objects laid this far from a box's walls: past 10 cm none fits
 
 # Controller and condition parameters, by the quantity they are (see atd.model.controllers).
 SPEED = Range(0.0, 2.0, "m/s", low_open=True)

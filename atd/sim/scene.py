@@ -153,6 +153,17 @@ class Container:
                             for z in (low[2], high[2])]) @ self.pose.T
         return corners[:, :3].min(axis=0), corners[:, :3].max(axis=0)
 
+    def gap_to_walls(self, body: Body, pose: np.ndarray) -> float:
+        """How far the body at `pose` keeps from the inner walls, along this container's x and
+        y (negative: through a wall); by `half_extent`, so a box's and a mesh's is a lower bound."""
+        local = np.linalg.solve(self.pose, pose)
+        low, high = self.inner_corners()
+        gaps = []
+        for k, axis in enumerate(np.eye(3)[:2]):
+            reach = half_extent(body.kind, body.size, local[:3, :3], axis)
+            gaps += [local[k, 3] - reach - low[k], high[k] - local[k, 3] - reach]
+        return min(gaps)
+
     def holds(self, point: np.ndarray) -> bool:
         """Whether a point (an object's centre, world frame) is in the container: over its
         floor, inside its walls, and no higher than PILE_HEIGHT above its rim."""
@@ -268,3 +279,15 @@ def bounding_box(kind: str, size: tuple[float, ...]) -> tuple[float, float, floa
     if kind == "cylinder":
         return (2 * size[0], 2 * size[0], size[1])
     return (2 * size[0],) * 3
+
+
+def half_extent(kind: str, size: tuple[float, ...], rotation: np.ndarray, axis: np.ndarray) -> float:
+    """How far a body of `kind` and `size`, turned by `rotation`, reaches from its centre along
+    the unit `axis`: exact for a sphere and a cylinder, by the turned bounding box for a box
+    and a mesh (for a mesh, an upper bound)."""
+    if kind == "sphere":
+        return float(size[0])
+    if kind == "cylinder":
+        along = abs(float(rotation[:, 2] @ axis))  # the cylinder's own axis against `axis`
+        return float(size[0] * np.sqrt(max(0.0, 1.0 - along * along)) + size[1] / 2 * along)
+    return float(np.abs(rotation.T @ axis) @ (np.asarray(bounding_box(kind, size)) / 2))

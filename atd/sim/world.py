@@ -17,11 +17,19 @@ robot knows the box, nothing of the five objects in it).
     [[drop]]                      # dropped at random poses, seeded by the run's seed
     objects = ["duck", "mug", "ball", "stapler", "tape"]
     into = "box"                  # a container of this file or of the task
+    clearance = 0.02              # optional, m: laid down resting, this far from the walls (below)
 
 Read like an ATD: every problem at once, each located (file:line), with a code (WLD...) and
 a hint. A world that lists objects replaces the task's; without any, the task's own stay.
 The scene it makes asks to settle: the engine lets gravity bring every object to rest
 before the run's clock starts (`SimRobot.settle`).
+
+A drop with a `clearance` lays its objects down instead, as thesis 3.4.3 assumes its box was
+filled ("some clearance between the objects and the sides of the box"): each resting (a
+box on any face, a cylinder on an end or its side, an object with a mesh as the library stands
+it) at a random turn about the vertical, its footprint that far from the walls and clear of
+the others'. Dropped from above, a third of the objects come to rest within 5 mm of
+a wall (`benchmarks/box_layout.py`).
 """
 
 from __future__ import annotations
@@ -43,7 +51,7 @@ from atd.model.toml_lines import TomlLines
 from atd.model.vocabulary import SIZE_LAYOUT, ObjectClass
 from atd.sim.library import LibraryObject, library
 from atd.sim.scene import (DEFAULT_FRICTION, DEFAULT_WEIGHT, TABLE_CENTRE, TABLE_HALF, Body, Container, Scene,
-                           bounding_box)
+                           bounding_box, half_extent)
 
 WORLD_CAP = 1 << 20  # bytes: a world file is a page of TOML
 RPY = ranges.Range(-360.0, 360.0, "deg")
@@ -51,9 +59,12 @@ NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 DEFAULT_WALL = 0.01  # m, a cardboard box's
 DROP_GAP = 0.01  # m between the bounding spheres of objects about to drop, and from the walls
 OVERLAP = 0.001  # m that two placed objects' bounding boxes may share: they touch, they do not cut in
+PLACES = 50  # places drawn for one object laid down before its layout is drawn again
+LAYOUTS = 200  # layouts drawn before the box is called too full for the clearance
+LAY_HEIGHT = 0.001  # m over the floor an object is laid at: it settles onto it without a bounce
 _KEYS = {
     "object": ("library", "shape", "size", "mass", "friction", "name", "position", "rpy", "fixture"),
-    "drop": ("objects", "into"),
+    "drop": ("objects", "into", "clearance"),
     "container": ("name", "position", "rpy", "size", "wall"),
 }
 
@@ -79,11 +90,13 @@ class PlacedObject:
 
 @dataclass(frozen=True)
 class Drop:
-    """Objects dropped into a container at random poses: (name in the world, library object)."""
+    """Objects dropped into a container at random poses: (name in the world, library object);
+    with a `clearance` (m), laid down resting that far from its walls instead."""
 
     objects: tuple[tuple[str, LibraryObject], ...]
     into: str
     loc: Location
+    clearance: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -120,7 +133,7 @@ class World:
                                    f"{', '.join(known) or 'none'})"))
                 continue
             try:
-                bodies += _dropped(drop, box, bodies, rng)
+                bodies += (_laid(drop, box, rng) if drop.clearance else _dropped(drop, box, bodies, rng))
             except ValueError as exc:
                 found.append(error("WLD025", str(exc), drop.loc, "use a larger container, or drop fewer objects"))
         if has_errors(found):
@@ -335,9 +348,10 @@ class _Reader:
             self.error("WLD012", f"'objects' must be a list of library objects, not {names!r}", (*loc, "objects"))
             return None
         found = [self.library_object(n, (*loc, "objects")) for n in names]
-        if into is None or None in found:
+        clearance = self.number(table, (*loc, "clearance"), ranges.CLEARANCE, 0.0)
+        if into is None or None in found or clearance is None:
             return None
-        return Drop(tuple((o.name, o) for o in found), into, self.at(loc))
+        return Drop(tuple((o.name, o) for o in found), into, self.at(loc), clearance)
 
     def library_object(self, name: object, loc: tuple) -> LibraryObject | None:
         known = library()
@@ -451,6 +465,74 @@ def _dropped(drop: Drop, box: Container, resting: list[Body], rng: np.random.Gen
         spheres.append((centre, radius))
         bodies.append(found.body(name, pose))
     return bodies
+
+
+def _laid(drop: Drop, box: Container, rng: np.random.Generator) -> list[Body]:
+    """The drop's objects laid on the container's floor, each resting (`_resting_rotation`) at a
+    random turn about the vertical, at a random place whose footprint (in the container's
+    axes) keeps `drop.clearance` from the walls and does not overlap the others'. A layout
+    where some object finds no place is drawn again from its first object."""
+    for _ in range(LAYOUTS):
+        laid = _layout(drop, box, rng)
+        if laid is not None:
+            return laid
+    raise ValueError(f"no room to lay {len(drop.objects)} objects {drop.clearance:g} m from the walls of "
+                     f"'{box.name}' ({LAYOUTS} layouts drawn)")
+
+
+def _layout(drop: Drop, box: Container, rng: np.random.Generator) -> list[Body] | None:
+    """One layout of `_laid`, or None where an object found no place in `PLACES` draws."""
+    low, high = box.inner_corners()
+    room = drop.clearance
+    footprints: list[tuple[np.ndarray, np.ndarray]] = []  # (low, high) corners in the container's x, y
+    bodies = []
+    for name, found in drop.objects:
+        kind = found.shape.value
+        for _ in range(PLACES):
+            turn = _resting_rotation(found, rng)
+            reach = np.array([half_extent(kind, found.size, turn, axis) for axis in np.eye(3)])
+            if (high[:2] - low[:2] - 2 * room < 2 * reach[:2]).any():
+                continue
+            centre = rng.uniform(low[:2] + room + reach[:2], high[:2] - room - reach[:2])
+            if not any((centre + reach[:2] > lo + OVERLAP).all() and (centre - reach[:2] < hi - OVERLAP).all()
+                       for lo, hi in footprints):
+                break
+        else:
+            return None
+        footprints.append((centre - reach[:2], centre + reach[:2]))
+        local = np.eye(4)
+        local[:3, :3] = turn
+        local[:3, 3] = (*centre, low[2] + reach[2] + LAY_HEIGHT)
+        bodies.append(found.body(name, box.pose @ local))
+    return bodies
+
+
+def _resting_rotation(found: LibraryObject, rng: np.random.Generator) -> np.ndarray:
+    """A turn that rests the object on the floor, about the vertical at random: a box on one of
+    its six faces, a cylinder on an end or on its side, a sphere as it is; an object with a mesh
+    (a duck, a mug) as the library stands it, the one face it is sure to rest on."""
+    face = np.eye(3)
+    if found.mesh is None and found.shape.value == "box":
+        down = int(rng.integers(6))
+        face = _face_down(down % 3, 1.0 if down < 3 else -1.0)
+    elif found.mesh is None and found.shape.value == "cylinder" and rng.integers(2):
+        face = _face_down(0, 1.0)  # on its side: its own axis level
+    yaw = rng.uniform(-np.pi, np.pi)
+    c, s = np.cos(yaw), np.sin(yaw)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]) @ face
+
+
+def _face_down(axis: int, sign: float) -> np.ndarray:
+    """A rotation that turns the body's own `axis` (signed) to point up: the face it points
+    away from rests on the floor."""
+    up = np.zeros(3)
+    up[axis] = sign
+    others = [k for k in range(3) if k != axis]
+    turn = np.zeros((3, 3))
+    turn[2, :] = up
+    turn[0, others[0]] = 1.0
+    turn[1, :] = np.cross(turn[2, :], turn[0, :])
+    return turn
 
 
 def _random_rotation(rng: np.random.Generator) -> np.ndarray:

@@ -84,6 +84,23 @@ def test_a_world_of_an_unknown_library_object_is_refused_located(tmp_path: Path)
     assert "no object 'duk' in the library" in found[0].message
 
 
+def test_a_world_with_a_clearance_lays_its_objects_and_one_out_of_range_is_refused_located(tmp_path: Path):
+    spec = tmp_path / "s.toml"
+    pool = '["ball", "tape", "duck", "mug"]'
+    spec.write_text(SPEC.format(task=EXAMPLES / "empty_the_box_vision.xml", pool=pool + ", clearance = 0.03"))
+    loaded, found = load_spec(spec)
+    assert found == [] and loaded is not None
+    plan = next(iter(plans(loaded, trials=1)))
+    belief, _ = believed(plan.task_file, "melfa", "main", "robust", "task")
+    scene = drawn_world(plan, belief)
+    floor = scene.containers[0].inner_bounds()[0][2]
+    assert all(o.pose[2, 3] < floor + 0.05 for o in scene.objects)  # laid on the floor, none dropped onto another
+    spec.write_text(SPEC.format(task=EXAMPLES / "empty_the_box_vision.xml", pool=pool + ", clearance = 0.5"))
+    loaded, found = load_spec(spec)
+    assert loaded is None and [(d.code, d.loc.line) for d in found] == [("CMP012", 4)]
+    assert "0.5" in found[0].message and "[0, 0.1] m" in found[0].message
+
+
 def box_trial(task: str, index: int, attempts: dict[int, float], left: int, said_empty: bool) -> TrialRecord:
     measured = {f"attempts_with_{k}_left": n for k, n in attempts.items()}
     return TrialRecord(cell=Cell(task, "melfa", "main", "mujoco", "robust", "task", "none"), index=index, seed=index,

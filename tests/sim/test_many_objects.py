@@ -94,3 +94,17 @@ def test_a_one_object_scene_is_still_made_and_changed_as_before() -> None:
     assert moved.objects[0].mass == 1.0 and len(moved.objects) == 1 and Scene(None).object is None
     with pytest.raises(ValueError, match="names of their own; object stand twice"):
         Scene(objects=(scene.object, scene.object))
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_five_objects_laid_with_a_clearance_come_to_rest_clear_of_the_walls(melfa, robot_of, engine, seed, tmp_path):
+    """Thesis 3.4.3's box: "some clearance between the objects and the sides of the box"."""
+    path = tmp_path / "five.toml"
+    path.write_text(FIVE_IN_A_BOX + "clearance = 0.03\n")
+    world, found = load_world(path)
+    assert world is not None, found
+    robot = robot_of(melfa, engine, world.scene(Scene(), seed), seed)
+    assert robot.settling is not None and robot.settling.moving == ()
+    box, poses = robot.scene.container("box"), robot.object_poses()
+    gaps = {body.name: box.gap_to_walls(body, poses[body.name]) for body in robot.scene.objects}
+    assert min(gaps.values()) > 0.01, gaps  # a fingertip's room everywhere (a mesh's gap is a lower bound)

@@ -11,7 +11,8 @@ from typing import Callable
 import numpy as np
 import pytest
 
-from atd.sim.scene import Body, Container, Scene, bounding_box
+from atd.sim.scene import Body, Container, Scene, bounding_box, half_extent
+from atd.sim.library import library
 from atd.sim.world import World, WorldError, load_world
 
 BOX = """
@@ -277,3 +278,46 @@ def test_a_box_too_small_for_what_is_dropped_into_it_is_located(world_file):
     """)
     [(code, line, message, _)] = _scene_problems(path)
     assert (code, line) == ("WLD025", 6) and message.startswith("'duck' (0.")
+
+
+def test_a_drop_with_a_clearance_lays_its_objects_resting_that_far_from_the_walls_and_apart(world_file):
+    world = _loaded(world_file(BOX + """
+        [[drop]]
+        objects = ["duck", "mug", "ball", "stapler", "tape"]
+        into = "box"
+        clearance = 0.03
+    """))
+    for seed in range(20):
+        scene = world.scene(Scene(), seed)
+        box = scene.containers[0]
+        low, high = box.inner_corners()
+        footprints = []
+        for body in scene.objects:
+            local = np.linalg.solve(box.pose, body.pose)
+            shape = library()[body.name]  # as laid: a mesh by the shape the library gives it
+            reach = np.array([half_extent(shape.shape.value, shape.size, local[:3, :3], axis) for axis in np.eye(3)])
+            assert (local[:2, 3] - reach[:2] >= low[:2] + 0.03 - 1e-9).all(), (seed, body.name)
+            assert (local[:2, 3] + reach[:2] <= high[:2] - 0.03 + 1e-9).all(), (seed, body.name)
+            assert local[2, 3] - reach[2] == pytest.approx(low[2], abs=2e-3)  # resting on the floor, not dropped
+            footprints.append((local[:2, 3] - reach[:2], local[:2, 3] + reach[:2]))
+        for (lo, hi), (lo2, hi2) in itertools.combinations(footprints, 2):
+            assert (np.minimum(hi, hi2) - np.maximum(lo, lo2) <= 1e-3).any(), seed
+
+
+def test_a_clearance_the_box_cannot_give_is_located(world_file):
+    too_much = world_file(BOX + """
+        [[drop]]
+        objects = ["duck", "mug", "ball", "stapler", "tape"]
+        into = "box"
+        clearance = 0.09
+    """)
+    [(code, line, message, hint)] = _scene_problems(too_much)
+    assert (code, line) == ("WLD025", 6) and "no room to lay 5 objects 0.09 m from the walls of 'box'" in message
+    negative = world_file(BOX + """
+        [[drop]]
+        objects = ["duck"]
+        into = "box"
+        clearance = -0.01
+    """)
+    [(code, line, message, _)] = _problems(negative)
+    assert (code, line, message) == ("WLD012", 9, "'clearance': -0.01 is outside [0, 0.1] m")
