@@ -517,9 +517,7 @@ def _resting_rotation(found: LibraryObject, rng: np.random.Generator) -> np.ndar
         face = _face_down(down % 3, 1.0 if down < 3 else -1.0)
     elif found.mesh is None and found.shape.value == "cylinder" and rng.integers(2):
         face = _face_down(0, 1.0)  # on its side: its own axis level
-    yaw = rng.uniform(-np.pi, np.pi)
-    c, s = np.cos(yaw), np.sin(yaw)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]) @ face
+    return rotation_rpy((0.0, 0.0, rng.uniform(-np.pi, np.pi))) @ face
 
 
 def _face_down(axis: int, sign: float) -> np.ndarray:
